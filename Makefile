@@ -1,0 +1,131 @@
+# sbfx — build, test, demo, bench, install.
+#   make [all]        library (build/libsbfx.a, .so), build/sbfx-play, build/sbfx-probe
+#   make demo         render the built-in explosion headless into build/demo/
+#   make test         unit + GL (surfaceless Mesa) tests, shader validation, then ASan+UBSan
+#   make bench        timings into build/bench/
+#   make install      PREFIX=/usr/local DESTDIR=
+#   make BOARD=name   cross build for boards/name.mk into build/name/
+PREFIX ?= /usr/local
+DESTDIR ?=
+BUILD ?= build
+CC ?= cc
+PKG_CONFIG ?= pkg-config
+VERSION := 0.1.0
+
+ifneq ($(BOARD),)
+include boards/$(BOARD).mk
+BUILD := build/$(BOARD)
+endif
+
+SRC_PKGS := glesv2 lcms2
+PLATFORM_PKGS := egl glesv2 libpng
+
+WARN := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Wno-unused-parameter
+OPT ?= -O2 -g
+CFLAGS ?=
+SANITIZE ?=
+ifeq ($(SANITIZE),1)
+OPT := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined
+endif
+BASE_CFLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $(OPT) $(WARN) -fPIC -MMD -MP
+SRC_CFLAGS := $(BASE_CFLAGS) $(shell $(PKG_CONFIG) --cflags $(SRC_PKGS)) -Isrc $(CFLAGS)
+SRC_LIBS := $(shell $(PKG_CONFIG) --libs $(SRC_PKGS)) -lm
+PLATFORM_CFLAGS := $(BASE_CFLAGS) $(shell $(PKG_CONFIG) --cflags $(PLATFORM_PKGS)) -Isrc -Iplatform $(CFLAGS)
+PLATFORM_LIBS := $(shell $(PKG_CONFIG) --libs $(PLATFORM_PKGS)) $(SRC_LIBS)
+LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined)
+comma := ,
+
+SRC := $(wildcard src/*.c)
+SHADERS := $(sort $(wildcard shaders_es/*.vert shaders_es/*.frag))
+LIB_OBJ := $(SRC:src/%.c=$(BUILD)/obj/src/%.o) $(BUILD)/obj/gen/shaders_es.o
+PLATFORM_COMMON := egl_headless png_io test_scene
+PLATFORM_COMMON_OBJ := $(PLATFORM_COMMON:%=$(BUILD)/obj/platform/%.o)
+
+UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/unit/%,$(wildcard tests/unit/*.c))
+GL_TESTS := $(patsubst tests/gl/%.c,$(BUILD)/tests/gl/%,$(wildcard tests/gl/*.c))
+
+.PHONY: all deps lib test test-unit test-gl test-asan demo bench install clean
+all: lib $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(BUILD)/sbfx.pc
+lib: $(BUILD)/libsbfx.a $(BUILD)/libsbfx.so
+
+deps:
+	@tools/deps.sh build
+
+$(BUILD)/tools/embed_shaders: tools/embed_shaders.c
+	@mkdir -p $(@D)
+	$(HOSTCC) -O1 -o $@ $<
+HOSTCC ?= cc
+
+$(BUILD)/gen/shaders_es.c: $(SHADERS) $(BUILD)/tools/embed_shaders
+	@mkdir -p $(@D)
+	$(BUILD)/tools/embed_shaders $@ $(SHADERS)
+
+$(BUILD)/obj/gen/shaders_es.o: $(BUILD)/gen/shaders_es.c
+	@mkdir -p $(@D)
+	$(CC) $(SRC_CFLAGS) -c -o $@ $<
+
+$(BUILD)/obj/src/%.o: src/%.c
+	@mkdir -p $(@D)
+	$(CC) $(SRC_CFLAGS) -c -o $@ $<
+
+$(BUILD)/obj/platform/%.o: platform/%.c
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -c -o $@ $<
+
+$(BUILD)/libsbfx.a: $(LIB_OBJ)
+	@rm -f $@
+	$(AR) rcs $@ $^
+
+$(BUILD)/libsbfx.so: $(LIB_OBJ)
+	$(CC) -shared -Wl,-soname,libsbfx.so.0 $(LDSAN) -o $@ $^ $(SRC_LIBS)
+
+$(BUILD)/sbfx-play: $(BUILD)/obj/platform/player.o $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
+
+$(BUILD)/sbfx-probe: $(BUILD)/obj/platform/probe.o $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
+
+$(BUILD)/sbfx.pc: Makefile
+	@mkdir -p $(@D)
+	@printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: sbfx\nDescription: volumetric particle effects (spherical billboards) on OpenGL ES 3.0\nVersion: %s\nRequires.private: %s\nLibs: -L$${libdir} -lsbfx\nLibs.private: -lm\nCflags: -I$${includedir}\n' \
+		'$(PREFIX)' '$(VERSION)' '$(SRC_PKGS)' > $@
+
+# ---- tests -------------------------------------------------------------------------------
+$(BUILD)/tests/unit/%: tests/unit/%.c $(BUILD)/libsbfx.a tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(SRC_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/libsbfx.a $(SRC_LIBS)
+
+$(BUILD)/tests/gl/%: tests/gl/%.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+
+test-unit: $(UNIT_TESTS)
+test-gl: $(GL_TESTS) $(BUILD)/sbfx-play $(BUILD)/sbfx-probe
+
+test:
+	@tools/deps.sh test
+	@$(MAKE) --no-print-directory all test-unit test-gl
+	@$(MAKE) --no-print-directory BUILD=build/asan SANITIZE=1 all test-unit test-gl
+	@tests/run.sh
+
+demo:
+	@tools/deps.sh build
+	@$(MAKE) --no-print-directory all
+	@$(BUILD)/sbfx-play --headless --size 960x540 --frames 36 --out $(BUILD)/demo --contact-sheet
+
+bench: all
+	@tests/bench/run.sh $(BUILD)
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig
+	install -m 644 $(BUILD)/libsbfx.a $(DESTDIR)$(PREFIX)/lib/
+	install -m 755 $(BUILD)/libsbfx.so $(DESTDIR)$(PREFIX)/lib/libsbfx.so.0
+	ln -sf libsbfx.so.0 $(DESTDIR)$(PREFIX)/lib/libsbfx.so
+	install -m 644 src/sbfx.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 $(BUILD)/sbfx.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
+	install -m 755 $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(DESTDIR)$(PREFIX)/bin/
+
+clean:
+	rm -rf build
+
+-include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)

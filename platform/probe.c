@@ -1,0 +1,229 @@
+/* sbfx-probe: answers one line per query line, CPU reference next to a real GPU render.
+ *   opacity MODE D R ZC ZS NEAR TAU  ->  CPU GPU
+ *   blackbody T                      ->  R G B (CPU table)  R G B (GPU fetch of the LUT)
+ *   phase COS G                      ->  CPU GPU   (COS = 1: light goes straight on)
+ * A malformed line gets a message on stderr naming its line number; later lines are still
+ * answered; the exit status is then 1. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "egl_headless.h"
+#include "internal.h"
+
+typedef struct probe {
+    sbfx *by_mode[SBFX_OPACITY_COUNT];
+    GLuint depth_texture, out_texture, out_fbo;
+    sbfx_cmf cmf;
+    double *blackbody_table;
+    int line;
+    bool failed;
+} probe;
+
+static const char *const mode_names[SBFX_OPACITY_COUNT] = {
+    [SBFX_OPACITY_PLANAR] = "planar", [SBFX_OPACITY_SOFT] = "soft",
+    [SBFX_OPACITY_SPHERICAL] = "spherical", [SBFX_OPACITY_EXACT] = "exact"};
+
+static void complain(probe *p, const char *fmt, const char *detail)
+{
+    fprintf(stderr, "sbfx-probe: line %d: ", p->line);
+    fprintf(stderr, fmt, detail);
+    fputc('\n', stderr);
+    p->failed = true;
+}
+
+static void log_to_stderr(sbfx_log_level level, const char *message, void *user)
+{
+    (void)user;
+    fprintf(stderr, "sbfx-probe: %s: %s\n", level == SBFX_LOG_ERROR ? "error" : "warning", message);
+}
+
+/* One module per opacity mode (the mode is a load-time specialisation), 1x1, full resolution,
+ * float target, made on first use. */
+static sbfx *module_for(probe *p, sbfx_opacity_mode mode)
+{
+    if (p->by_mode[mode]) return p->by_mode[mode];
+    sbfx_desc desc = {.target_divisor = 1, .target_format = SBFX_FORMAT_RGBA32F, .opacity = mode,
+                      .max_particles = 16, .log = log_to_stderr};
+    if (sbfx_create(&desc, &p->by_mode[mode]) != SBFX_OK) return NULL;
+    return p->by_mode[mode];
+}
+
+static int parse_doubles(const char *text, double *out, int count)
+{
+    for (int i = 0; i < count; i++) {
+        char *end;
+        errno = 0;
+        out[i] = strtod(text, &end);
+        if (end == text || errno == ERANGE) return -1;
+        text = end;
+    }
+    while (*text == ' ' || *text == '\t' || *text == '\r' || *text == '\n') text++;
+    return *text ? -1 : 0;
+}
+
+/* A window depth that linearises back to `distance` under this projection. */
+static float window_depth(const float proj[16], double distance, double far)
+{
+    if (!(distance < far)) return 1.0f;
+    double ndc = proj[14] / distance - proj[10];
+    return (float)fmin(1.0, fmax(0.0, 0.5 * ndc + 0.5));
+}
+
+static double gpu_opacity(probe *p, sbfx *fx, const double v[6])
+{
+    double d = v[0], r = v[1], zc = v[2], zs = v[3], near = v[4], tau = v[5];
+    /* Far enough to hold the sphere; an opaque surface beyond it reads as the far clear value,
+     * which clips nothing either. Not further: float depth would lose the near/far ratio. */
+    double far = 4.0 * fmax(fmax(fabs(zc) + fabs(r), near), fmin(zs, 1e30));
+    if (zs > 2.0 * (fabs(zc) + fabs(r))) far = 4.0 * fmax(fabs(zc) + fabs(r), near);
+    sbfx_frame frame = {.scene_depth_texture = p->depth_texture, .out_framebuffer = p->out_fbo,
+                        .width = 1, .height = 1};
+    sbfx_perspective(frame.projection, 1.5707963f, 1.0f, (float)near, (float)far);
+    frame.projection[0] = frame.projection[5] = 1.0f;
+    frame.projection[8] = (float)(d / zc); /* the single pixel's ray passes at D in the centre plane */
+    frame.view[0] = frame.view[5] = frame.view[10] = frame.view[15] = 1.0f;
+    float depth = window_depth(frame.projection, zs, far);
+    glBindTexture(GL_TEXTURE_2D, p->depth_texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, 1, 1, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+    sbfx_media(fx)[SBFX_SMOKE].tau = (float)tau;
+    sbfx_media(fx)[SBFX_SMOKE].detail_strength = 0.0f;
+    sbfx_view_particle particle = {.center = {0.0f, 0.0f, (float)-zc}, .radius = (float)r,
+                                   .intensity = 1.0f, .medium = SBFX_SMOKE};
+    if (sbfx_render_view_particles(fx, &frame, &particle, 1) != SBFX_OK) return NAN;
+    sbfx_counters c;
+    sbfx_stats(fx, &c);
+    if (c.passes == 0) return 0.0; /* the particle was skipped: it adds nothing */
+    float rgba[4];
+    int w, h;
+    if (sbfx_read_particle_target(fx, rgba, 4, &w, &h) != SBFX_OK) return NAN;
+    return 1.0 - rgba[3];
+}
+
+static void answer_opacity(probe *p, const char *args)
+{
+    char mode_name[32];
+    int used = 0;
+    double v[6];
+    if (sscanf(args, "%31s%n", mode_name, &used) != 1) return complain(p, "%s", "opacity needs MODE D R ZC ZS NEAR TAU");
+    sbfx_opacity_mode mode = SBFX_OPACITY_DEFAULT;
+    for (int m = 1; m < SBFX_OPACITY_COUNT; m++)
+        if (strcmp(mode_name, mode_names[m]) == 0) mode = (sbfx_opacity_mode)m;
+    if (!mode) return complain(p, "unknown opacity mode \"%s\" (planar, soft, spherical, exact)", mode_name);
+    if (parse_doubles(args + used, v, 6) != 0)
+        return complain(p, "%s", "opacity needs MODE D R ZC ZS NEAR TAU (numbers)");
+    if (v[2] == 0.0 || !(v[4] > 0.0))
+        return complain(p, "%s", "ZC must not be 0 and NEAR must be > 0");
+    sbfx *fx = module_for(p, mode);
+    if (!fx) return complain(p, "%s", "cannot create the module (see the message above)");
+    sbfx_ref_particle particle = {{0.0, 0.0, -v[2]}, v[1], v[5]};
+    sbfx_ref_pixel pixel = {{v[0] / v[2], 0.0, -1.0}, v[3], v[4], 0.0};
+    double cpu = sbfx_ref_opacity(mode, &particle, &pixel);
+    printf("%.9g %.9g\n", cpu, gpu_opacity(p, fx, v));
+}
+
+static void answer_blackbody(probe *p, const char *args)
+{
+    double t;
+    if (parse_doubles(args, &t, 1) != 0) return complain(p, "%s", "blackbody needs T (kelvin)");
+    sbfx *fx = module_for(p, SBFX_OPACITY_SPHERICAL);
+    if (!fx) return complain(p, "%s", "cannot create the module (see the message above)");
+    if (!p->blackbody_table) {
+        char err[256];
+        if (sbfx_cmf_load(SBFX_CMF_DEFAULT_PATH, &p->cmf, err, sizeof(err)) != SBFX_OK)
+            return complain(p, "%s", err);
+        p->blackbody_table = calloc(SBFX_BLACKBODY_SIZE * 3, sizeof(double));
+        if (!p->blackbody_table) return complain(p, "%s", "out of memory");
+        sbfx_blackbody_table(&p->cmf, SBFX_DEFAULT_MAX_KELVIN, SBFX_BLACKBODY_SIZE, p->blackbody_table);
+    }
+    double cpu[3];
+    float gpu[3], phase;
+    sbfx_blackbody_table_lookup(p->blackbody_table, SBFX_BLACKBODY_SIZE, SBFX_DEFAULT_MAX_KELVIN, t, cpu);
+    if (sbfx_fetch_luts(fx, (float)t, 0.0f, 0.0f, gpu, &phase) != SBFX_OK)
+        return complain(p, "%s", "GPU table fetch failed (see the message above)");
+    printf("%.9g %.9g %.9g %.9g %.9g %.9g\n", cpu[0], cpu[1], cpu[2], gpu[0], gpu[1], gpu[2]);
+}
+
+static void answer_phase(probe *p, const char *args)
+{
+    double v[2];
+    if (parse_doubles(args, v, 2) != 0) return complain(p, "%s", "phase needs COS G");
+    if (!(fabs(v[0]) <= 1.0) || !(fabs(v[1]) < 1.0))
+        return complain(p, "%s", "phase needs -1 <= COS <= 1 and -1 < G < 1");
+    sbfx *fx = module_for(p, SBFX_OPACITY_SPHERICAL);
+    if (!fx) return complain(p, "%s", "cannot create the module (see the message above)");
+    float rgb[3], gpu;
+    if (sbfx_fetch_luts(fx, 0.0f, (float)v[0], (float)v[1], rgb, &gpu) != SBFX_OK)
+        return complain(p, "%s", "GPU table fetch failed (see the message above)");
+    printf("%.9g %.9g\n", sbfx_phase(v[0], v[1]), gpu);
+}
+
+static void answer(probe *p, char *line)
+{
+    char verb[32];
+    int used = 0;
+    if (sscanf(line, "%31s%n", verb, &used) != 1) return; /* blank lines are ignored */
+    if (verb[0] == '#') return;
+    const char *args = line + used;
+    if (strcmp(verb, "opacity") == 0) answer_opacity(p, args);
+    else if (strcmp(verb, "blackbody") == 0) answer_blackbody(p, args);
+    else if (strcmp(verb, "phase") == 0) answer_phase(p, args);
+    else complain(p, "unknown query \"%s\" (opacity, blackbody, phase)", verb);
+    fflush(stdout);
+}
+
+static int create_host_objects(probe *p)
+{
+    glGenTextures(1, &p->depth_texture);
+    glGenTextures(1, &p->out_texture);
+    glBindTexture(GL_TEXTURE_2D, p->out_texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glGenFramebuffers(1, &p->out_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, p->out_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, p->out_texture, 0);
+    bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return ok ? 0 : -1;
+}
+
+static void usage(FILE *to)
+{
+    fprintf(to, "usage: sbfx-probe < queries\n"
+                "  opacity MODE D R ZC ZS NEAR TAU   -> CPU GPU (MODE: planar soft spherical exact)\n"
+                "  blackbody T                       -> R G B R G B (CPU table, GPU table fetch)\n"
+                "  phase COS G                       -> CPU GPU\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc > 1) {
+        bool help = strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0;
+        usage(help ? stdout : stderr);
+        return help ? 0 : 1;
+    }
+    struct egl_headless egl;
+    char err[512];
+    if (egl_headless_open(&egl, err, sizeof(err)) != 0) {
+        fprintf(stderr, "sbfx-probe: %s\n", err);
+        return 1;
+    }
+    probe p = {0};
+    if (create_host_objects(&p) != 0) {
+        fprintf(stderr, "sbfx-probe: cannot create a 1x1 RGBA8 framebuffer\n");
+        egl_headless_close(&egl);
+        return 1;
+    }
+    char line[1024];
+    while (fgets(line, sizeof(line), stdin)) {
+        p.line++;
+        answer(&p, line);
+    }
+    for (int m = 0; m < SBFX_OPACITY_COUNT; m++) sbfx_destroy(p.by_mode[m]);
+    free(p.blackbody_table);
+    glDeleteFramebuffers(1, &p.out_fbo);
+    GLuint textures[] = {p.depth_texture, p.out_texture};
+    glDeleteTextures(2, textures);
+    egl_headless_close(&egl);
+    return p.failed ? 1 : 0;
+}

@@ -1,0 +1,64 @@
+#version 300 es
+// Full-resolution composite of the low-res particle target over the host's framebuffer,
+// which already holds the opaque scene: the blend computes dst * T + C (GL_ONE, GL_SRC_ALPHA)
+// from this pass's output (C, T). Upsampling:
+//   UPSAMPLE_BILINEAR       plain bilinear of the four nearest low-res texels;
+//   UPSAMPLE_NEAREST_DEPTH  bilinear where the four low-res depths agree with this pixel's
+//                           depth, else the texel whose depth is closest (no halos at edges).
+// Bilinear is done by hand with texelFetch so RGBA32F targets (not filterable in ES 3.0)
+// take the same path as RGBA16F and RGBA8.
+precision highp float;
+precision highp sampler2D;
+
+uniform sampler2D u_particles;    // low-res: premultiplied light, transmittance
+uniform sampler2D u_low_depth;    // low-res opaque distance / far
+uniform sampler2D u_scene_depth;  // full-res host depth, window depth
+uniform ivec2 u_low_size;
+uniform float u_divisor;
+uniform vec2 u_depth_params;      // projection[10], projection[14]
+uniform float u_far;
+uniform float u_depth_threshold;  // relative depth difference that counts as an edge
+
+out vec4 o_color;
+
+const float HALF_MAX = 65504.0;
+
+vec4 sanitize(vec4 p)
+{
+    // A NaN never reaches the screen; Inf is clamped to the largest half.
+    if (any(isnan(p))) return vec4(0.0, 0.0, 0.0, 1.0);
+    return vec4(clamp(p.rgb, 0.0, HALF_MAX), clamp(p.a, 0.0, 1.0));
+}
+
+vec4 fetch(ivec2 q)
+{
+    return sanitize(texelFetch(u_particles, clamp(q, ivec2(0), u_low_size - 1), 0));
+}
+
+void main()
+{
+    vec2 low = gl_FragCoord.xy / u_divisor - 0.5;
+    ivec2 base = ivec2(floor(low));
+    vec2 f = low - vec2(base);
+    vec4 p00 = fetch(base), p10 = fetch(base + ivec2(1, 0));
+    vec4 p01 = fetch(base + ivec2(0, 1)), p11 = fetch(base + ivec2(1, 1));
+    vec4 result = mix(mix(p00, p10, f.x), mix(p01, p11, f.x), f.y);
+#ifdef UPSAMPLE_NEAREST_DEPTH
+    float window = texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r;
+    float z = window >= 1.0 ? u_far : u_depth_params.y / (window * 2.0 - 1.0 + u_depth_params.x);
+    ivec2 hi = u_low_size - 1;
+    vec4 dz = abs(vec4(texelFetch(u_low_depth, clamp(base, ivec2(0), hi), 0).r,
+                       texelFetch(u_low_depth, clamp(base + ivec2(1, 0), ivec2(0), hi), 0).r,
+                       texelFetch(u_low_depth, clamp(base + ivec2(0, 1), ivec2(0), hi), 0).r,
+                       texelFetch(u_low_depth, clamp(base + ivec2(1, 1), ivec2(0), hi), 0).r)
+                  * u_far - z);
+    if (max(max(dz.x, dz.y), max(dz.z, dz.w)) > u_depth_threshold * z) {
+        result = p00;
+        float best = dz.x;
+        if (dz.y < best) { best = dz.y; result = p10; }
+        if (dz.z < best) { best = dz.z; result = p01; }
+        if (dz.w < best) { result = p11; }
+    }
+#endif
+    o_color = result;
+}

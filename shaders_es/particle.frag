@@ -1,0 +1,180 @@
+#version 300 es
+// The volumetric particle of the spherical-billboards seed, equation (1):
+//   out = in * (1 - alpha) + alpha * albedo * C_in + alpha * (1 - albedo) * L_e
+// written premultiplied into the particle target (rgb = added light, a = alpha; the blend
+// multiplies the target's alpha, which holds transmittance). Specialised at load by defines:
+//   MEDIUM_SCATTERS  dust/smoke: in-scattering through the phase-function table
+//   MEDIUM_EMITS     fire: black-body emission at T = (T0 + T1 * detail), cooled as the
+//                    particle's intensity (its density scale) falls
+//   HAS_DETAIL       perturbation by the animated detail volume
+//   OPACITY_PLANAR | OPACITY_SOFT | OPACITY_SPHERICAL | OPACITY_EXACT
+precision highp float;
+precision highp sampler2D;
+precision highp sampler3D;
+
+flat in vec4 v_center_radius;
+flat in vec4 v_detail;
+
+uniform sampler2D u_depth;       // low-res opaque distance / far (depth texture)
+uniform float u_far;
+uniform float u_near;
+uniform vec4 u_projection;       // projection[0], [5], [8], [9]
+uniform vec2 u_target_size;
+uniform float u_tau;
+uniform float u_soft_scale;
+
+#ifdef HAS_DETAIL
+uniform sampler3D u_detail;
+uniform float u_detail_window;
+uniform float u_detail_strength;
+uniform float u_time;            // in detail-volume loops
+#endif
+#ifdef MEDIUM_SCATTERS
+uniform sampler2D u_phase_lut;   // (cos, g) -> phase, cos = dot(light travel, to eye)
+uniform vec2 u_phase_lut_size;
+uniform float u_g;
+uniform vec3 u_albedo_color;     // albedo * tint
+uniform vec3 u_light_dir;        // view space, direction the light travels in
+uniform vec3 u_light_color;
+uniform vec3 u_ambient;
+#endif
+#ifdef MEDIUM_EMITS
+uniform sampler2D u_blackbody;   // T / max_kelvin -> normalised linear sRGB
+uniform float u_blackbody_size;
+uniform float u_max_kelvin;
+uniform vec3 u_temperature;      // T0, T1, cooling
+uniform float u_emission_scale;   // includes (1 - albedo)
+// Per-fragment radiance ceiling: keeps sums of many layers far below half-float's 65504.
+const float RADIANCE_CEILING = 64.0;
+#endif
+
+out vec4 o_color;
+
+float soft_fade(float x)
+{
+    x = clamp(x, 0.0, 1.0);
+    return x < 0.5 ? 2.0 * x * x : 1.0 - 2.0 * (1.0 - x) * (1.0 - x);
+}
+
+// h * asinh(u / sqrt(h)), odd in u, -> 0 as h -> 0 without dividing by sqrt(h).
+float h_asinh(float h, float u)
+{
+    if (h <= 1e-30) return 0.0;
+    float au = abs(u);
+    float v = h * (log(au + sqrt(h + au * au)) - 0.5 * log(h));
+    return u < 0.0 ? -v : v;
+}
+
+float chord_integral(float h, float a, float b)
+{
+    float fa = a * sqrt(h + a * a) + h_asinh(h, a);
+    float fb = b * sqrt(h + b * b) + h_asinh(h, b);
+    return 0.5 * (fb - fa);
+}
+
+// Optical depth along this pixel's ray; `ray` has z = -1, zs = opaque distance along -z.
+float optical_depth(vec3 c, float r, vec3 ray, float zs)
+{
+    float zc = -c.z;
+#ifdef OPACITY_EXACT
+    vec3 u = normalize(ray);
+    float t0 = dot(c, u);
+    vec3 closest = c - t0 * u;
+    float h = dot(closest, closest);
+    float dist = sqrt(h);
+    if (dist >= r) return 0.0;
+    float w = sqrt((r - dist) * (r + dist));
+    float to_t = 1.0 / -u.z;               // distance along -z -> ray parameter
+    float a = clamp(u_near * to_t - t0, -w, w);
+    float b = clamp(zs * to_t - t0, -w, w);
+    if (b <= a) return 0.0;
+    return u_tau * max((b - a) - chord_integral(h, a, b) / r, 0.0);
+#else
+    vec2 q = ray.xy * zc;                  // the ray's point in the centre's depth plane
+    float d = length(q - c.xy);
+    if (d >= r) return 0.0;
+    float w = sqrt((r - d) * (r + d));
+    float profile = u_tau * (1.0 - d / r);
+#if defined(OPACITY_PLANAR) || defined(OPACITY_SOFT)
+    if (zc < u_near) return 0.0;           // the flat billboard is clipped by the near plane
+#ifdef OPACITY_PLANAR
+    if (zs < zc) return 0.0;               // the depth test of a flat billboard
+#endif
+    return profile * 2.0 * w;
+#else
+    float ds = max(0.0, clamp(zs - zc, -w, w) - clamp(u_near - zc, -w, w));
+    return profile * ds;
+#endif
+#endif
+}
+
+#ifdef HAS_DETAIL
+float detail_sample(vec3 c, float r, vec3 ray)
+{
+    vec2 q = ray.xy * (-c.z);
+    vec2 local = (q - c.xy) / (2.0 * r) + 0.5;   // 0..1 across the particle
+    vec3 uvw = vec3(v_detail.xy + local * u_detail_window, v_detail.z + u_time);
+    return texture(u_detail, uvw).r;
+}
+#endif
+
+#ifdef MEDIUM_SCATTERS
+vec3 in_scattered(vec3 ray)
+{
+    float cos_theta = dot(u_light_dir, -normalize(ray));
+    vec2 lut = (vec2(cos_theta * 0.5 + 0.5, u_g / (2.0 * 0.99) + 0.5) * (u_phase_lut_size - 1.0) + 0.5)
+               / u_phase_lut_size;
+    float phase = texture(u_phase_lut, lut).r;
+    // 4π: a light of colour E scattered isotropically gives back E.
+    return u_ambient + u_light_color * (phase * 12.566370614);
+}
+#endif
+
+#ifdef MEDIUM_EMITS
+vec3 emitted(float kelvin)
+{
+    float x = clamp(kelvin / u_max_kelvin, 0.0, 1.0);
+    float s = (x * (u_blackbody_size - 1.0) + 0.5) / u_blackbody_size;
+    return min(texture(u_blackbody, vec2(s, 0.5)).rgb * u_emission_scale, vec3(RADIANCE_CEILING));
+}
+#endif
+
+// 1 - exp(-x) without losing the small values to cancellation.
+float opacity_from_depth(float x)
+{
+    return x < 1e-3 ? x * (1.0 - 0.5 * x) : 1.0 - exp(-x);
+}
+
+void main()
+{
+    vec3 c = v_center_radius.xyz;
+    float r = v_center_radius.w;
+    vec2 ndc = gl_FragCoord.xy / u_target_size * 2.0 - 1.0;
+    vec3 ray = vec3((ndc + u_projection.zw) / u_projection.xy, -1.0);
+    float zs = texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r * u_far;
+    float intensity = v_detail.w;
+
+    float tau_scale = 1.0;
+    float detail = 0.5;
+#ifdef HAS_DETAIL
+    detail = detail_sample(c, r, ray);
+#endif
+#if defined(MEDIUM_SCATTERS) && defined(HAS_DETAIL)
+    tau_scale = mix(1.0, 2.0 * detail, u_detail_strength);
+#endif
+    tau_scale *= intensity;
+    float alpha = opacity_from_depth(optical_depth(c, r, ray, zs) * tau_scale);
+#ifdef OPACITY_SOFT
+    // RTR's soft particle: the flat billboard's alpha faded by the depth left behind it.
+    alpha *= soft_fade((zs + c.z) / (u_soft_scale > 0.0 ? u_soft_scale : r));
+#endif
+    vec3 light = vec3(0.0);
+#ifdef MEDIUM_SCATTERS
+    light += u_albedo_color * in_scattered(ray);
+#endif
+#ifdef MEDIUM_EMITS
+    float cooled = 1.0 - u_temperature.z * (1.0 - intensity);
+    light += emitted((u_temperature.x + u_temperature.y * detail) * cooled);
+#endif
+    o_color = vec4(light * alpha, alpha);
+}

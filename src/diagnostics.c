@@ -1,0 +1,85 @@
+/* Read-backs for the probe and the GL tests: the particle target and the GPU's view of the
+ * lookup tables. Not used by the frame loop. */
+#include <string.h>
+#include "module.h"
+
+sbfx_result sbfx_read_particle_target(sbfx *fx, float *rgba, size_t capacity, int *w, int *h)
+{
+    sbfx_gl *gl = &fx->gl;
+    if (!gl->target_fbo) return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "no particle target yet: render first");
+    size_t n = (size_t)gl->low_width * gl->low_height;
+    if (!rgba || capacity < n * 4)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "read buffer holds %zu floats, %zu needed",
+                         capacity, n * 4);
+    *w = gl->low_width;
+    *h = gl->low_height;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl->target_fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    if (gl->target_type == GL_UNSIGNED_BYTE) {
+        /* Expand bytes in place from the back so the float buffer can hold them first. */
+        uint8_t *bytes = (uint8_t *)rgba;
+        glReadPixels(0, 0, *w, *h, GL_RGBA, GL_UNSIGNED_BYTE, bytes);
+        for (size_t i = n * 4; i-- > 0;) rgba[i] = bytes[i] / 255.0f;
+    } else {
+        glReadPixels(0, 0, *w, *h, GL_RGBA, GL_FLOAT, rgba);
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    return sbfx_gl_check(fx, "reading back the particle target") ? SBFX_OK : SBFX_ERR_GL;
+}
+
+static sbfx_result ensure_probe_target(sbfx *fx)
+{
+    sbfx_gl *gl = &fx->gl;
+    if (gl->probe_fbo) return SBFX_OK;
+    if (!sbfx_has_extension("GL_EXT_color_buffer_float"))
+        return sbfx_fail(fx, SBFX_ERR_GL, "reading tables back needs GL_EXT_color_buffer_float");
+    if (!gl->lut_program) {
+        gl->lut_program = sbfx_program_build(fx, "fullscreen.vert", "lut_fetch.frag", NULL);
+        if (!gl->lut_program) return SBFX_ERR_SHADER;
+    }
+    glGenTextures(1, &gl->probe_texture);
+    glBindTexture(GL_TEXTURE_2D, gl->probe_texture);
+    sbfx_texture_params(GL_TEXTURE_2D, GL_NEAREST, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 1, 1, 0, GL_RGBA, GL_FLOAT, NULL);
+    glGenFramebuffers(1, &gl->probe_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, gl->probe_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, gl->probe_texture, 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return sbfx_fail(fx, SBFX_ERR_GL, "the 1x1 RGBA32F read-back target is incomplete");
+    return sbfx_gl_check(fx, "creating the table read-back target") ? SBFX_OK : SBFX_ERR_GL;
+}
+
+sbfx_result sbfx_fetch_luts(sbfx *fx, float kelvin, float cos_theta, float g, float rgb[3], float *phase)
+{
+    sbfx_gl *gl = &fx->gl;
+    if (!gl->blackbody_texture || !gl->phase_texture)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "the loaded effects use no black-body or phase table");
+    sbfx_result r = ensure_probe_target(fx);
+    if (r != SBFX_OK) return r;
+    GLuint prog = gl->lut_program;
+    glBindFramebuffer(GL_FRAMEBUFFER, gl->probe_fbo);
+    glViewport(0, 0, 1, 1);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(prog);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, gl->blackbody_texture);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, gl->phase_texture);
+    glUniform1i(glGetUniformLocation(prog, "u_blackbody"), 0);
+    glUniform1i(glGetUniformLocation(prog, "u_phase_lut"), 1);
+    glUniform1f(glGetUniformLocation(prog, "u_blackbody_size"), SBFX_BLACKBODY_SIZE);
+    glUniform1f(glGetUniformLocation(prog, "u_max_kelvin"), fx->max_kelvin);
+    glUniform1f(glGetUniformLocation(prog, "u_kelvin"), kelvin);
+    glUniform2f(glGetUniformLocation(prog, "u_phase_lut_size"), SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE);
+    glUniform1f(glGetUniformLocation(prog, "u_cos_theta"), cos_theta);
+    glUniform1f(glGetUniformLocation(prog, "u_g"), g);
+    glBindVertexArray(gl->fullscreen_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    float out[4];
+    glReadPixels(0, 0, 1, 1, GL_RGBA, GL_FLOAT, out);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    memcpy(rgb, out, 3 * sizeof(float));
+    *phase = out[3];
+    return sbfx_gl_check(fx, "fetching the tables") ? SBFX_OK : SBFX_ERR_GL;
+}

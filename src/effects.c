@@ -1,0 +1,44 @@
+/* The seed's media and the built-in explosion (16 dust, 115 fire, 28 smoke particles). */
+#include <string.h>
+#include "module.h"
+
+void sbfx_default_media(sbfx_medium_params media[SBFX_MEDIUM_COUNT])
+{
+    /* Seed §3.1: dust a = 0.9, smoke a = 0.2, both tau = 0.4; g = 0 "gives satisfactory
+     * results". Fire (§3.2) is a black body: albedo 0. */
+    media[SBFX_DUST] = (sbfx_medium_params){
+        .albedo = 0.9f, .tau = 0.4f, .phase_g = 0.0f, .color = {0.80f, 0.70f, 0.56f},
+        .detail_strength = 0.8f, .detail_window = 0.35f};
+    media[SBFX_SMOKE] = (sbfx_medium_params){
+        .albedo = 0.2f, .tau = 0.4f, .phase_g = 0.0f, .color = {1.0f, 1.0f, 1.0f},
+        .detail_strength = 0.8f, .detail_window = 0.35f};
+    media[SBFX_FIRE] = (sbfx_medium_params){
+        .albedo = 0.0f, .tau = 0.4f, .phase_g = 0.0f, .color = {1.0f, 1.0f, 1.0f},
+        .detail_strength = 1.0f, .detail_window = 0.3f,
+        .t0 = 1300.0f, .t1 = 1900.0f, .cooling = 0.45f, .emission_scale = 6.0f};
+}
+
+void sbfx_builtin_explosion(sbfx_effect *out)
+{
+    memset(out, 0, sizeof(*out));
+    strcpy(out->name, "explosion");
+    out->emitter_count = 3;
+    /* Fire: a fast burst that rises, slows under drag and cools as it thins. */
+    out->emitters[0] = (sbfx_emitter){
+        .medium = SBFX_FIRE, .count = 115, .delay = 0.0f, .spawn_radius = 0.45f,
+        .speed_min = 2.0f, .speed_max = 5.0f, .upward = 0.45f, .life_min = 0.9f, .life_max = 2.0f,
+        .radius_start = 0.35f, .radius_end = 0.95f, .radius_jitter = 0.3f, .drag = 2.2f,
+        .buoyancy = 1.8f, .intensity_start = 1.0f, .intensity_end = 0.0f, .fade_in = 0.06f};
+    /* Smoke: follows the fire, grows and thins for the rest of the 3 s. */
+    out->emitters[1] = (sbfx_emitter){
+        .medium = SBFX_SMOKE, .count = 28, .delay = 0.2f, .spawn_radius = 0.7f,
+        .speed_min = 0.8f, .speed_max = 2.2f, .upward = 0.7f, .life_min = 2.2f, .life_max = 2.8f,
+        .radius_start = 0.6f, .radius_end = 1.9f, .radius_jitter = 0.25f, .drag = 1.0f,
+        .buoyancy = 1.1f, .intensity_start = 1.0f, .intensity_end = 0.0f, .fade_in = 0.2f};
+    /* Dust: thrown sideways along the ground, swirling and settling. */
+    out->emitters[2] = (sbfx_emitter){
+        .medium = SBFX_DUST, .count = 16, .delay = 0.0f, .spawn_radius = 0.5f,
+        .speed_min = 2.5f, .speed_max = 4.5f, .upward = 0.1f, .life_min = 2.0f, .life_max = 3.0f,
+        .radius_start = 0.6f, .radius_end = 1.6f, .radius_jitter = 0.2f, .drag = 1.6f,
+        .buoyancy = 0.15f, .intensity_start = 0.9f, .intensity_end = 0.0f, .fade_in = 0.1f};
+}

@@ -1,0 +1,105 @@
+/* Small GL helpers: error checks that say what failed, program building with defines. */
+#include <stdio.h>
+#include <string.h>
+#include "module.h"
+
+static const char *gl_error_name(GLenum e)
+{
+    switch (e) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    default: return "unknown GL error";
+    }
+}
+
+/* Drains the GL error queue; records the first error against `what`. */
+bool sbfx_gl_check(sbfx *fx, const char *what)
+{
+    GLenum first = glGetError(), e = first;
+    while (e != GL_NO_ERROR) e = glGetError();
+    if (first == GL_NO_ERROR) return true;
+    sbfx_fail(fx, SBFX_ERR_GL, "%s failed with %s (0x%04x)", what, gl_error_name(first), first);
+    return false;
+}
+
+bool sbfx_has_extension(const char *name)
+{
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; i++) {
+        const char *ext = (const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i);
+        if (ext && strcmp(ext, name) == 0) return true;
+    }
+    return false;
+}
+
+void sbfx_texture_params(GLenum target, GLenum filter, GLenum wrap)
+{
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, (GLint)filter);
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, (GLint)filter);
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, (GLint)wrap);
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, (GLint)wrap);
+    if (target == GL_TEXTURE_3D) glTexParameteri(target, GL_TEXTURE_WRAP_R, (GLint)wrap);
+}
+
+/* Compiles one stage: the embedded source with `defines` inserted after its #version line. */
+static GLuint compile_stage(sbfx *fx, GLenum stage, const char *name, const char *defines)
+{
+    const char *text = sbfx_shader_source(name);
+    if (!text) {
+        sbfx_fail(fx, SBFX_ERR_SHADER, "shader %s is not embedded in this build", name);
+        return 0;
+    }
+    const char *body = strchr(text, '\n');
+    body = body ? body + 1 : text;
+    const char *parts[] = {"#version 300 es\n", defines ? defines : "", "#line 2\n", body};
+    GLuint shader = glCreateShader(stage);
+    if (!shader) {
+        sbfx_gl_check(fx, "glCreateShader");
+        return 0;
+    }
+    glShaderSource(shader, (GLsizei)ARRAY_SIZE(parts), parts, NULL);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[1024] = "";
+        glGetShaderInfoLog(shader, sizeof(log), NULL, log);
+        sbfx_fail(fx, SBFX_ERR_SHADER, "compiling %s (%s) failed: %s", name,
+                  defines && *defines ? defines : "no defines", log);
+        glDeleteShader(shader);
+        return 0;
+    }
+    return shader;
+}
+
+GLuint sbfx_program_build(sbfx *fx, const char *vert_name, const char *frag_name, const char *defines)
+{
+    GLuint vs = compile_stage(fx, GL_VERTEX_SHADER, vert_name, defines);
+    if (!vs) return 0;
+    GLuint fs = compile_stage(fx, GL_FRAGMENT_SHADER, frag_name, defines);
+    if (!fs) {
+        glDeleteShader(vs);
+        return 0;
+    }
+    GLuint program = glCreateProgram();
+    glAttachShader(program, vs);
+    glAttachShader(program, fs);
+    glLinkProgram(program);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[1024] = "";
+        glGetProgramInfoLog(program, sizeof(log), NULL, log);
+        sbfx_fail(fx, SBFX_ERR_SHADER, "linking %s + %s failed: %s", vert_name, frag_name, log);
+        glDeleteProgram(program);
+        return 0;
+    }
+    fx->counters.programs++;
+    return program;
+}

@@ -1,0 +1,74 @@
+/* Private to sbfx and its own tools/tests (probe, GL tests, bench). Not installed. */
+#ifndef SBFX_INTERNAL_H
+#define SBFX_INTERNAL_H
+
+#include <GLES3/gl3.h>
+#include <stdarg.h>
+#include "sbfx.h"
+#include "reference.h"
+
+#define ARRAY_SIZE(a) (sizeof(a) / sizeof((a)[0]))
+
+/* Table sizes (the GPU's copies of the reference tables). */
+#define SBFX_BLACKBODY_SIZE 1024
+#define SBFX_PHASE_COS_SIZE 128
+#define SBFX_PHASE_G_SIZE 64
+#define SBFX_DEFAULT_MAX_KELVIN 6000.0
+
+/* Per-medium rendering parameters (the seed's values by default). */
+typedef struct sbfx_medium_params {
+    float albedo;          /* a in equation (1) */
+    float tau;             /* extinction at the particle centre */
+    float phase_g;         /* phase-function asymmetry (positive = forward) */
+    float color[3];        /* tint of the scattering albedo */
+    float detail_strength; /* 0 = no perturbation by the detail volume, 1 = full */
+    float detail_window;   /* size of a particle's detail window, in volume widths */
+    float t0, t1;          /* fire: T = (t0 + t1 * detail) * (1 - cooling * (1 - intensity)) */
+    float cooling;         /* fire: fraction of the temperature lost as intensity reaches 0 */
+    float emission_scale;  /* fire: radiance multiplier on the normalised black-body table */
+} sbfx_medium_params;
+
+/* A particle as the renderer sees it: view space, already validated. */
+typedef struct sbfx_view_particle {
+    float center[3];  /* view space, center[2] < 0 in front of the camera */
+    float radius;
+    float detail[3];  /* detail window origin (u, v) and time offset */
+    float intensity;  /* density scale in [0,1]; fire also cools as it falls */
+    sbfx_medium medium;
+} sbfx_view_particle;
+
+/* True when every input of the particle is finite and the radius is positive. */
+bool sbfx_view_particle_valid(const sbfx_view_particle *p);
+
+/* ---- allocation accounting (alloc.c): every heap allocation of the module goes here ---- */
+void *sbfx_calloc(sbfx *fx, size_t count, size_t size);
+void sbfx_free(sbfx *fx, void *p);
+
+/* ---- errors and logging (sbfx.c) ---- */
+/* Records the message as last error, sends it to the log callback, returns `result`. */
+sbfx_result sbfx_fail(sbfx *fx, sbfx_result result, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+void sbfx_log(sbfx *fx, sbfx_log_level level, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* ---- embedded shaders (generated from shaders_es/ at build time) ---- */
+const char *sbfx_shader_source(const char *name);
+
+/* ---- test / tool entry points ---- */
+/* Mutable media parameters (index by sbfx_medium). */
+sbfx_medium_params *sbfx_media(sbfx *fx);
+/* Sets the world-space direction the light travels in, its irradiance and the ambient term. */
+void sbfx_set_light(sbfx *fx, const float direction[3], const float color[3], const float ambient[3]);
+/* Renders the given view-space particles (sorted back to front here) through the normal passes:
+ * depth downsample, particle passes, composite. Invalid particles are skipped and counted. */
+sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
+                                       const sbfx_view_particle *particles, int count);
+/* Reads back the particle target of the last render as float RGBA (premultiplied radiance,
+ * transmittance in alpha). w*h floats*4 must fit in capacity (floats). */
+sbfx_result sbfx_read_particle_target(sbfx *fx, float *rgba, size_t capacity, int *w, int *h);
+/* Fetches the GPU black-body LUT at kelvin and the phase LUT at (cos, g) through a tiny
+ * shader pass (what the particle shader sees). */
+sbfx_result sbfx_fetch_luts(sbfx *fx, float kelvin, float cos_theta, float g, float rgb[3],
+                            float *phase);
+
+#endif

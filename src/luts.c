@@ -1,0 +1,110 @@
+/* Lookup tables and the detail volume: computed on the CPU in double (reference.h), stored as
+ * half floats (_Float16 rounds to nearest even), uploaded once at load — and only for media
+ * the loaded effects use. */
+#include <stdlib.h>
+#include "module.h"
+
+static GLuint make_texture(sbfx *fx, GLenum target, GLenum filter, GLenum wrap)
+{
+    GLuint tex = 0;
+    glGenTextures(1, &tex);
+    glBindTexture(target, tex);
+    sbfx_texture_params(target, filter, wrap);
+    fx->counters.textures++;
+    return tex;
+}
+
+static sbfx_result upload_blackbody(sbfx *fx)
+{
+    char err[256];
+    sbfx_cmf *cmf = sbfx_calloc(fx, 1, sizeof(*cmf));
+    double *rgb = sbfx_calloc(fx, SBFX_BLACKBODY_SIZE * 3, sizeof(double));
+    _Float16 *texels = sbfx_calloc(fx, SBFX_BLACKBODY_SIZE * 4, sizeof(_Float16));
+    sbfx_result r = SBFX_ERR_OUT_OF_MEMORY;
+    if (!cmf || !rgb || !texels) goto out;
+    r = sbfx_cmf_load(fx->desc.cmf_path, cmf, err, sizeof(err));
+    if (r != SBFX_OK) {
+        sbfx_fail(fx, r, "%s", err);
+        goto out;
+    }
+    sbfx_blackbody_table(cmf, fx->max_kelvin, SBFX_BLACKBODY_SIZE, rgb);
+    for (int i = 0; i < SBFX_BLACKBODY_SIZE; i++) {
+        for (int c = 0; c < 3; c++) texels[4 * i + c] = (_Float16)rgb[3 * i + c];
+        texels[4 * i + 3] = (_Float16)1.0f;
+    }
+    fx->gl.blackbody_texture = make_texture(fx, GL_TEXTURE_2D, GL_LINEAR, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, SBFX_BLACKBODY_SIZE, 1, 0, GL_RGBA, GL_HALF_FLOAT, texels);
+    fx->counters.gpu_bytes += SBFX_BLACKBODY_SIZE * 8;
+    r = sbfx_gl_check(fx, "uploading the black-body table") ? SBFX_OK : SBFX_ERR_GL;
+out:
+    sbfx_free(fx, cmf);
+    sbfx_free(fx, rgb);
+    sbfx_free(fx, texels);
+    return r;
+}
+
+static sbfx_result upload_phase(sbfx *fx)
+{
+    const int n = SBFX_PHASE_COS_SIZE * SBFX_PHASE_G_SIZE;
+    double *table = sbfx_calloc(fx, (size_t)n, sizeof(double));
+    _Float16 *texels = sbfx_calloc(fx, (size_t)n, sizeof(_Float16));
+    sbfx_result r = SBFX_ERR_OUT_OF_MEMORY;
+    if (table && texels) {
+        sbfx_phase_table(SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE, table);
+        for (int i = 0; i < n; i++) texels[i] = (_Float16)table[i];
+        fx->gl.phase_texture = make_texture(fx, GL_TEXTURE_2D, GL_LINEAR, GL_CLAMP_TO_EDGE);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_R16F, SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE, 0, GL_RED,
+                     GL_HALF_FLOAT, texels);
+        fx->counters.gpu_bytes += (size_t)n * 2;
+        r = sbfx_gl_check(fx, "uploading the phase-function table") ? SBFX_OK : SBFX_ERR_GL;
+    }
+    sbfx_free(fx, table);
+    sbfx_free(fx, texels);
+    return r;
+}
+
+static sbfx_result upload_detail(sbfx *fx)
+{
+    int size = fx->desc.detail_size, frames = fx->desc.detail_frames;
+    size_t n = (size_t)size * size * frames;
+    float *values = sbfx_calloc(fx, n, sizeof(float));
+    _Float16 *texels = sbfx_calloc(fx, n, sizeof(_Float16));
+    sbfx_result r = SBFX_ERR_OUT_OF_MEMORY;
+    if (values && texels) {
+        sbfx_detail_generate(size, frames, fx->desc.seed, values);
+        for (size_t i = 0; i < n; i++) texels[i] = (_Float16)values[i];
+        /* R16F: filterable in core ES 3.0 (R32F is not), REPEAT so windows and time wrap. */
+        fx->gl.detail_texture = make_texture(fx, GL_TEXTURE_3D, GL_LINEAR, GL_REPEAT);
+        glTexImage3D(GL_TEXTURE_3D, 0, GL_R16F, size, size, frames, 0, GL_RED, GL_HALF_FLOAT, texels);
+        fx->counters.gpu_bytes += n * 2;
+        r = sbfx_gl_check(fx, "uploading the detail volume") ? SBFX_OK : SBFX_ERR_GL;
+    }
+    sbfx_free(fx, values);
+    sbfx_free(fx, texels);
+    return r;
+}
+
+static bool any_detail(const sbfx *fx)
+{
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
+        if (fx->uses_medium[m] && fx->media[m].detail_strength > 0) return true;
+    return false;
+}
+
+sbfx_result sbfx_luts_create(sbfx *fx)
+{
+    sbfx_result r = SBFX_OK;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    if (fx->uses_medium[SBFX_FIRE] && (r = upload_blackbody(fx)) != SBFX_OK) return r;
+    if ((fx->uses_medium[SBFX_DUST] || fx->uses_medium[SBFX_SMOKE]) && (r = upload_phase(fx)) != SBFX_OK)
+        return r;
+    if (any_detail(fx) && (r = upload_detail(fx)) != SBFX_OK) return r;
+    return SBFX_OK;
+}
+
+void sbfx_luts_destroy(sbfx *fx)
+{
+    GLuint textures[] = {fx->gl.blackbody_texture, fx->gl.phase_texture, fx->gl.detail_texture};
+    glDeleteTextures((GLsizei)ARRAY_SIZE(textures), textures);
+    fx->gl.blackbody_texture = fx->gl.phase_texture = fx->gl.detail_texture = 0;
+}

@@ -1,0 +1,253 @@
+/* The three GPU passes of a frame with live particles, and the GL state they borrow from the
+ * host (saved on entry, restored on exit). */
+#include <string.h>
+#include "module.h"
+
+#define DETAIL_LOOPS_PER_SECOND 0.25 /* the detail animation loops every 4 s */
+#define UNIT_DEPTH 0
+#define UNIT_DETAIL 1
+#define UNIT_PHASE 2
+#define UNIT_BLACKBODY 3
+
+typedef struct frame_params {
+    float projection[4]; /* P[0], P[5], P[8], P[9] */
+    float depth_params[2]; /* P[10], P[14] */
+    float near, far;
+} frame_params;
+
+typedef struct saved_state {
+    GLint viewport[4], framebuffer, program, vao, array_buffer, active_texture;
+    GLboolean blend, depth_test, cull, scissor, depth_mask;
+} saved_state;
+
+static void save_state(saved_state *s)
+{
+    glGetIntegerv(GL_VIEWPORT, s->viewport);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->framebuffer);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &s->program);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vao);
+    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &s->array_buffer);
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &s->active_texture);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &s->depth_mask);
+    s->blend = glIsEnabled(GL_BLEND);
+    s->depth_test = glIsEnabled(GL_DEPTH_TEST);
+    s->cull = glIsEnabled(GL_CULL_FACE);
+    s->scissor = glIsEnabled(GL_SCISSOR_TEST);
+}
+
+static void set_enabled(GLenum cap, GLboolean on)
+{
+    if (on) glEnable(cap);
+    else glDisable(cap);
+}
+
+static void restore_state(const saved_state *s)
+{
+    glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->framebuffer);
+    glUseProgram((GLuint)s->program);
+    glBindVertexArray((GLuint)s->vao);
+    glBindBuffer(GL_ARRAY_BUFFER, (GLuint)s->array_buffer);
+    glActiveTexture((GLenum)s->active_texture);
+    glDepthMask(s->depth_mask);
+    set_enabled(GL_BLEND, s->blend);
+    set_enabled(GL_DEPTH_TEST, s->depth_test);
+    set_enabled(GL_CULL_FACE, s->cull);
+    set_enabled(GL_SCISSOR_TEST, s->scissor);
+}
+
+static void bind_texture(GLenum unit, GLenum target, GLuint tex)
+{
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(target, tex);
+}
+
+static frame_params frame_params_from(const sbfx_frame *f)
+{
+    const float *p = f->projection;
+    frame_params fp = {{p[0], p[5], p[8], p[9]}, {p[10], p[14]}, 0, 0};
+    fp.near = p[14] / (p[10] - 1.0f);
+    fp.far = p[14] / (p[10] + 1.0f);
+    return fp;
+}
+
+/* Pass 1: the closest opaque distance of each low-res texel, as distance / far. */
+static void pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
+{
+    sbfx_gl *gl = &fx->gl;
+    GLuint prog = gl->depth_program;
+    glBindFramebuffer(GL_FRAMEBUFFER, gl->low_depth_fbo);
+    glViewport(0, 0, gl->low_width, gl->low_height);
+    glEnable(GL_DEPTH_TEST); /* depth writes need the test on; ALWAYS keeps every fragment */
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(prog);
+    bind_texture(0, GL_TEXTURE_2D, f->scene_depth_texture);
+    glUniform1i(glGetUniformLocation(prog, "u_scene_depth"), 0);
+    glUniform1i(glGetUniformLocation(prog, "u_divisor"), fx->desc.target_divisor);
+    glUniform2i(glGetUniformLocation(prog, "u_full_size"), f->width, f->height);
+    glUniform2fv(glGetUniformLocation(prog, "u_depth_params"), 1, fp->depth_params);
+    glUniform1f(glGetUniformLocation(prog, "u_far"), fp->far);
+    glBindVertexArray(gl->fullscreen_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    fx->counters.passes++;
+    fx->counters.draw_calls++;
+}
+
+static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m,
+                                const float light_dir_view[3])
+{
+    const sbfx_medium_params *mp = &fx->media[m];
+    glUniform1f(p->tau, mp->tau);
+    glUniform1f(p->soft_scale, 0.0f);
+    glUniform1i(p->detail, UNIT_DETAIL);
+    glUniform1f(p->detail_window, mp->detail_window);
+    glUniform1f(p->detail_strength, mp->detail_strength);
+    glUniform1f(p->time, (float)(fx->time * DETAIL_LOOPS_PER_SECOND));
+    glUniform1i(p->phase_lut, UNIT_PHASE);
+    glUniform2f(p->phase_lut_size, SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE);
+    glUniform1f(p->g, mp->phase_g);
+    glUniform3f(p->albedo_color, mp->albedo * mp->color[0], mp->albedo * mp->color[1],
+                mp->albedo * mp->color[2]);
+    glUniform3fv(p->light_dir, 1, light_dir_view);
+    glUniform3fv(p->light_color, 1, fx->light_color);
+    glUniform3fv(p->ambient, 1, fx->ambient);
+    glUniform1i(p->blackbody, UNIT_BLACKBODY);
+    glUniform1f(p->blackbody_size, SBFX_BLACKBODY_SIZE);
+    glUniform1f(p->max_kelvin, fx->max_kelvin);
+    glUniform3f(p->temperature, mp->t0, mp->t1, mp->cooling);
+    glUniform1f(p->emission_scale, mp->emission_scale * (1.0f - mp->albedo));
+}
+
+static void set_frame_uniforms(sbfx *fx, const sbfx_program *p, const frame_params *fp)
+{
+    const sbfx_gl *gl = &fx->gl;
+    glUniform1f(p->near, fp->near);
+    glUniform1f(p->far, fp->far);
+    glUniform4fv(p->projection, 1, fp->projection);
+    glUniform2f(p->target_size, (float)gl->low_width, (float)gl->low_height);
+    glUniform2f(p->pixel, 2.0f / gl->low_width, 2.0f / gl->low_height);
+    glUniform1i(p->depth, UNIT_DEPTH);
+}
+
+/* Writes the sorted particles into the instance buffer; returns nothing, cannot fail. */
+static void upload_instances(sbfx *fx, int count)
+{
+    for (int i = 0; i < count; i++) {
+        const sbfx_view_particle *v = &fx->view[fx->order[i]];
+        float *dst = &fx->instances[8 * i];
+        memcpy(dst, v->center, 3 * sizeof(float));
+        dst[3] = v->radius;
+        memcpy(dst + 4, v->detail, 3 * sizeof(float));
+        dst[7] = v->intensity;
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, fx->gl.instance_buffer);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(count * 8 * sizeof(float)), fx->instances);
+}
+
+static void draw_run(sbfx *fx, int first, int count)
+{
+    const GLsizei stride = 8 * sizeof(float);
+    const char *base = (const char *)(size_t)((size_t)first * stride);
+    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, stride, base);
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, stride, base + 4 * sizeof(float));
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count);
+    fx->counters.draw_calls++;
+}
+
+static void view_light_direction(const float view[16], const float world[3], float out[3])
+{
+    for (int r = 0; r < 3; r++) out[r] = view[r] * world[0] + view[4 + r] * world[1] + view[8 + r] * world[2];
+}
+
+/* Pass 2: back to front; consecutive particles of one medium share a draw call. ES 3.0 has no
+ * base instance, so each run re-points the instance attributes at its first particle. */
+static void pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count)
+{
+    sbfx_gl *gl = &fx->gl;
+    float light_dir[3];
+    view_light_direction(f->view, fx->light_dir, light_dir);
+    glBindFramebuffer(GL_FRAMEBUFFER, gl->target_fbo);
+    glViewport(0, 0, gl->low_width, gl->low_height);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f); /* no light added, everything transmitted */
+    glClear(GL_COLOR_BUFFER_BIT);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    /* rgb = src + dst (1 - a); transmittance a = dst (1 - a) */
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+    bind_texture(UNIT_DEPTH, GL_TEXTURE_2D, gl->low_depth_texture);
+    bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture);
+    bind_texture(UNIT_PHASE, GL_TEXTURE_2D, gl->phase_texture);
+    bind_texture(UNIT_BLACKBODY, GL_TEXTURE_2D, gl->blackbody_texture);
+    upload_instances(fx, count);
+    glBindVertexArray(gl->particle_vao);
+    for (int first = 0; first < count;) {
+        sbfx_medium m = fx->view[fx->order[first]].medium;
+        int end = first + 1;
+        while (end < count && fx->view[fx->order[end]].medium == m) end++;
+        const sbfx_program *p = &gl->particle[m];
+        glUseProgram(p->id);
+        set_frame_uniforms(fx, p, fp);
+        set_medium_uniforms(fx, p, m, light_dir);
+        draw_run(fx, first, end - first);
+        first = end;
+    }
+    fx->counters.passes++;
+}
+
+/* Pass 3: dst = dst * T + C over the host's framebuffer (its alpha is kept). */
+static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
+{
+    sbfx_gl *gl = &fx->gl;
+    GLuint prog = gl->composite_program;
+    glBindFramebuffer(GL_FRAMEBUFFER, f->out_framebuffer);
+    glViewport(0, 0, f->width, f->height);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
+    glUseProgram(prog);
+    bind_texture(0, GL_TEXTURE_2D, gl->target_texture);
+    bind_texture(1, GL_TEXTURE_2D, gl->low_depth_texture);
+    bind_texture(2, GL_TEXTURE_2D, f->scene_depth_texture);
+    glUniform1i(glGetUniformLocation(prog, "u_particles"), 0);
+    glUniform1i(glGetUniformLocation(prog, "u_low_depth"), 1);
+    glUniform1i(glGetUniformLocation(prog, "u_scene_depth"), 2);
+    glUniform2i(glGetUniformLocation(prog, "u_low_size"), gl->low_width, gl->low_height);
+    glUniform1f(glGetUniformLocation(prog, "u_divisor"), (float)fx->desc.target_divisor);
+    glUniform2fv(glGetUniformLocation(prog, "u_depth_params"), 1, fp->depth_params);
+    glUniform1f(glGetUniformLocation(prog, "u_far"), fp->far);
+    glUniform1f(glGetUniformLocation(prog, "u_depth_threshold"), 0.05f);
+    glBindVertexArray(gl->fullscreen_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
+    fx->counters.passes++;
+    fx->counters.draw_calls++;
+}
+
+/* The host's depth texture is read with texelFetch: NEAREST, no comparison. */
+static void prepare_scene_depth(GLuint tex)
+{
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+}
+
+sbfx_result sbfx_render_particles(sbfx *fx, const sbfx_frame *frame, int count)
+{
+    sbfx_result r = sbfx_targets_ensure(fx, frame->width, frame->height);
+    if (r != SBFX_OK) return r;
+    saved_state saved;
+    save_state(&saved);
+    frame_params fp = frame_params_from(frame);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    prepare_scene_depth(frame->scene_depth_texture);
+    sbfx_sort_back_to_front(fx, count);
+    pass_depth(fx, frame, &fp);
+    pass_particles(fx, frame, &fp, count);
+    pass_composite(fx, frame, &fp);
+    restore_state(&saved);
+    return sbfx_gl_check(fx, "rendering the particle passes") ? SBFX_OK : SBFX_ERR_GL;
+}

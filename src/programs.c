@@ -1,0 +1,118 @@
+/* Shader variants, vertex arrays and the instance buffer, created once at load for the media
+ * the loaded effects use: an effect that does not use a feature does not pay for it. */
+#include <stdio.h>
+#include "module.h"
+
+static const char *const opacity_defines[SBFX_OPACITY_COUNT] = {
+    [SBFX_OPACITY_PLANAR] = "#define OPACITY_PLANAR\n",
+    [SBFX_OPACITY_SOFT] = "#define OPACITY_SOFT\n",
+    [SBFX_OPACITY_SPHERICAL] = "#define OPACITY_SPHERICAL\n",
+    [SBFX_OPACITY_EXACT] = "#define OPACITY_EXACT\n",
+};
+
+static void particle_defines(const sbfx *fx, sbfx_medium m, char *out, size_t size)
+{
+    const sbfx_medium_params *p = &fx->media[m];
+    snprintf(out, size, "%s%s%s%s", opacity_defines[fx->desc.opacity],
+             p->albedo > 0 ? "#define MEDIUM_SCATTERS\n" : "",
+             m == SBFX_FIRE ? "#define MEDIUM_EMITS\n" : "",
+             p->detail_strength > 0 ? "#define HAS_DETAIL\n" : "");
+}
+
+static void locate_uniforms(sbfx_program *p)
+{
+    GLuint id = p->id;
+    p->near = glGetUniformLocation(id, "u_near");
+    p->far = glGetUniformLocation(id, "u_far");
+    p->projection = glGetUniformLocation(id, "u_projection");
+    p->target_size = glGetUniformLocation(id, "u_target_size");
+    p->pixel = glGetUniformLocation(id, "u_pixel");
+    p->tau = glGetUniformLocation(id, "u_tau");
+    p->soft_scale = glGetUniformLocation(id, "u_soft_scale");
+    p->depth = glGetUniformLocation(id, "u_depth");
+    p->detail = glGetUniformLocation(id, "u_detail");
+    p->detail_window = glGetUniformLocation(id, "u_detail_window");
+    p->detail_strength = glGetUniformLocation(id, "u_detail_strength");
+    p->time = glGetUniformLocation(id, "u_time");
+    p->phase_lut = glGetUniformLocation(id, "u_phase_lut");
+    p->phase_lut_size = glGetUniformLocation(id, "u_phase_lut_size");
+    p->g = glGetUniformLocation(id, "u_g");
+    p->albedo_color = glGetUniformLocation(id, "u_albedo_color");
+    p->light_dir = glGetUniformLocation(id, "u_light_dir");
+    p->light_color = glGetUniformLocation(id, "u_light_color");
+    p->ambient = glGetUniformLocation(id, "u_ambient");
+    p->blackbody = glGetUniformLocation(id, "u_blackbody");
+    p->blackbody_size = glGetUniformLocation(id, "u_blackbody_size");
+    p->max_kelvin = glGetUniformLocation(id, "u_max_kelvin");
+    p->temperature = glGetUniformLocation(id, "u_temperature");
+    p->emission_scale = glGetUniformLocation(id, "u_emission_scale");
+}
+
+static sbfx_result build_particle_programs(sbfx *fx)
+{
+    char defines[256];
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) {
+        if (!fx->uses_medium[m]) continue;
+        particle_defines(fx, (sbfx_medium)m, defines, sizeof(defines));
+        sbfx_program *p = &fx->gl.particle[m];
+        p->id = sbfx_program_build(fx, "particle.vert", "particle.frag", defines);
+        if (!p->id) return SBFX_ERR_SHADER;
+        locate_uniforms(p);
+    }
+    return SBFX_OK;
+}
+
+static sbfx_result build_pass_programs(sbfx *fx)
+{
+    const char *upsample = fx->desc.upsample == SBFX_UPSAMPLE_NEAREST_DEPTH
+                               ? "#define UPSAMPLE_NEAREST_DEPTH\n" : "#define UPSAMPLE_BILINEAR\n";
+    fx->gl.depth_program = sbfx_program_build(fx, "fullscreen.vert", "depth_downsample.frag", NULL);
+    if (!fx->gl.depth_program) return SBFX_ERR_SHADER;
+    fx->gl.composite_program = sbfx_program_build(fx, "fullscreen.vert", "composite.frag", upsample);
+    if (!fx->gl.composite_program) return SBFX_ERR_SHADER;
+    return SBFX_OK;
+}
+
+static sbfx_result create_buffers(sbfx *fx)
+{
+    sbfx_gl *gl = &fx->gl;
+    glGenVertexArrays(1, &gl->fullscreen_vao);
+    glGenVertexArrays(1, &gl->particle_vao);
+    glGenBuffers(1, &gl->instance_buffer);
+    glBindVertexArray(gl->particle_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, gl->instance_buffer);
+    size_t bytes = (size_t)fx->pool.capacity * 8 * sizeof(float);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_DRAW);
+    for (GLuint a = 0; a < 2; a++) {
+        glEnableVertexAttribArray(a);
+        glVertexAttribDivisor(a, 1);
+    }
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    fx->counters.gpu_bytes += bytes;
+    return sbfx_gl_check(fx, "creating the particle instance buffer") ? SBFX_OK : SBFX_ERR_GL;
+}
+
+sbfx_result sbfx_programs_create(sbfx *fx)
+{
+    sbfx_result r;
+    if ((r = build_particle_programs(fx)) != SBFX_OK) return r;
+    if ((r = build_pass_programs(fx)) != SBFX_OK) return r;
+    return create_buffers(fx);
+}
+
+void sbfx_programs_destroy(sbfx *fx)
+{
+    sbfx_gl *gl = &fx->gl;
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
+        if (gl->particle[m].id) glDeleteProgram(gl->particle[m].id);
+    GLuint programs[] = {gl->depth_program, gl->composite_program, gl->lut_program};
+    for (size_t i = 0; i < ARRAY_SIZE(programs); i++)
+        if (programs[i]) glDeleteProgram(programs[i]);
+    if (gl->instance_buffer) glDeleteBuffers(1, &gl->instance_buffer);
+    if (gl->probe_texture) glDeleteTextures(1, &gl->probe_texture);
+    if (gl->probe_fbo) glDeleteFramebuffers(1, &gl->probe_fbo);
+    GLuint vaos[] = {gl->fullscreen_vao, gl->particle_vao};
+    for (size_t i = 0; i < ARRAY_SIZE(vaos); i++)
+        if (vaos[i]) glDeleteVertexArrays(1, &vaos[i]);
+}

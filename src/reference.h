@@ -1,0 +1,99 @@
+/* CPU reference of every per-fragment computation, in double precision, usable without GL.
+ * Tests and the benchmark compare the GPU against these functions; the GL code builds its
+ * lookup tables from them. Pure libc (+ lcms2 to read the CIE tables). */
+#ifndef SBFX_REFERENCE_H
+#define SBFX_REFERENCE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "sbfx.h"
+
+/* ---- opacity (DESIGN §2.1) ------------------------------------------------------------ */
+
+/* One spherical particle in view space (camera at origin, looking down -z, so center[2] < 0
+ * for a particle in front of the camera). tau is the extinction at the centre. */
+typedef struct sbfx_ref_particle {
+    double center[3];
+    double radius;
+    double tau;
+} sbfx_ref_particle;
+
+/* The pixel's situation: ray = direction through the pixel scaled so that ray[2] == -1
+ * (i.e. x/(-z), y/(-z), -1); opaque_depth = distance along -z of the opaque surface (Zs);
+ * near = near-plane distance; soft_scale = depth range of the soft-particle fade (soft mode). */
+typedef struct sbfx_ref_pixel {
+    double ray[3];
+    double opaque_depth;
+    double near;
+    double soft_scale;
+} sbfx_ref_pixel;
+
+/* Opacity alpha in [0,1] of one particle for one pixel, in the given mode (DEFAULT = SPHERICAL).
+ * Always finite; a particle with a NaN/Inf input or radius <= 0 gives 0. */
+double sbfx_ref_opacity(sbfx_opacity_mode mode, const sbfx_ref_particle *p, const sbfx_ref_pixel *px);
+/* Optical depth (the exponent) instead of alpha; +inf never returned (clamped to 1e30). */
+double sbfx_ref_optical_depth(sbfx_opacity_mode mode, const sbfx_ref_particle *p,
+                              const sbfx_ref_pixel *px);
+/* ∫_a^b sqrt(h + u^2) du, stable as h -> 0 (h >= 0). */
+double sbfx_ref_chord_integral(double h, double a, double b);
+/* RTR soft-particle contrast curve: 0.5*(2x)^p for x<0.5 else 1-0.5*(2(1-x))^p, x clamped. */
+double sbfx_ref_soft_fade(double x, double power);
+
+/* ---- black body (DESIGN §2.3) --------------------------------------------------------- */
+
+#define SBFX_CMF_MAX_BANDS 512
+#define SBFX_CMF_DEFAULT_PATH "/usr/share/colord/cmf/CIE1931-2deg-XYZ.cmf"
+
+typedef struct sbfx_cmf {
+    int bands;
+    double start_nm, step_nm;
+    double xyz[3][SBFX_CMF_MAX_BANDS];
+} sbfx_cmf;
+
+/* Reads colord's CGATS file (lcms2's IT8 reader). On failure returns SBFX_ERR_MISSING_DATA
+ * and writes a message naming the file and the Debian package (colord-data) into err. */
+sbfx_result sbfx_cmf_load(const char *path, sbfx_cmf *out, char *err, size_t err_size);
+/* Planck's spectral radiance [W sr^-1 m^-3] at wavelength lambda_m and temperature kelvin,
+ * with expm1; 0 for kelvin <= 0, never inf/nan for kelvin in (0, 1e6]. */
+double sbfx_planck(double lambda_m, double kelvin);
+/* XYZ of the black body at kelvin (integral of Planck x CMFs over the table's bands). */
+void sbfx_blackbody_xyz(const sbfx_cmf *cmf, double kelvin, double xyz[3]);
+void sbfx_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
+/* Normalised linear sRGB: XYZ * norm -> sRGB, negative components clipped to 0. */
+void sbfx_blackbody_rgb(const sbfx_cmf *cmf, double kelvin, double norm, double rgb[3]);
+/* The normalisation used by the table: 1 / Y(max_kelvin), so luminance is <= 1 in the table. */
+double sbfx_blackbody_norm(const sbfx_cmf *cmf, double max_kelvin);
+/* Table of `size` entries, entry i at T_i = max_kelvin * i / (size - 1), RGB (3 doubles each). */
+void sbfx_blackbody_table(const sbfx_cmf *cmf, double max_kelvin, int size, double *rgb_out);
+/* Linear interpolation in such a table, T clamped to [0, max_kelvin] (what the GPU does). */
+void sbfx_blackbody_table_lookup(const double *table, int size, double max_kelvin, double kelvin,
+                                 double rgb[3]);
+
+/* ---- phase function (DESIGN §2.3) ----------------------------------------------------- */
+
+/* Cornette–Shanks shaped phase function, normalised to 1 over the sphere (1/sr).
+ * cos_theta is the cosine of the scattering angle between the light's direction of travel and
+ * the direction the scattered light leaves in (1 = light goes straight on), so positive g
+ * peaks forward: P = 3(1-g^2)(1+c^2) / (8π (2+g^2) (1+g^2-2gc)^{3/2}). */
+double sbfx_phase(double cos_theta, double g);
+#define SBFX_PHASE_G_MAX 0.99
+/* Table n_cos x n_g, row-major by g: entry (i, j) at cos = -1 + 2i/(n_cos-1),
+ * g = -G_MAX + 2 G_MAX j/(n_g-1). */
+void sbfx_phase_table(int n_cos, int n_g, double *out);
+/* Bilinear lookup in that table (what the GPU does), arguments clamped to the table's range. */
+double sbfx_phase_table_lookup(const double *table, int n_cos, int n_g, double cos_theta, double g);
+
+/* ---- detail volume (DESIGN §2.4) ------------------------------------------------------ */
+
+/* Tileable (in x, y and t) animated fBm, size x size x frames floats in [0,1], x fastest.
+ * Deterministic from seed. */
+void sbfx_detail_generate(int size, int frames, uint32_t seed, float *out);
+
+/* ---- small deterministic RNG shared by simulation, tests and tools -------------------- */
+typedef struct sbfx_rng { uint64_t state; } sbfx_rng;
+void sbfx_rng_seed(sbfx_rng *rng, uint64_t seed);
+uint32_t sbfx_rng_u32(sbfx_rng *rng);
+double sbfx_rng_uniform(sbfx_rng *rng); /* [0,1) */
+double sbfx_rng_range(sbfx_rng *rng, double lo, double hi);
+
+#endif

@@ -1,0 +1,103 @@
+/* One frame, as the seed's figure 9 draws it:
+ *   collect live particles (view space, bad ones skipped) -> sort back to front
+ *   pass 1: opaque depth -> particle-target resolution
+ *   pass 2: particles -> low-res target (premultiplied light, transmittance)
+ *   pass 3: composite over the host's framebuffer (depth-aware upsample)
+ * With no live particle there is no pass at all. */
+#include <math.h>
+#include <string.h>
+#include "module.h"
+
+
+bool sbfx_view_particle_valid(const sbfx_view_particle *p)
+{
+    const float *f[] = {p->center, p->detail};
+    for (int a = 0; a < 2; a++)
+        for (int i = 0; i < 3; i++)
+            if (!isfinite(f[a][i])) return false;
+    return isfinite(p->radius) && p->radius > 0.0f && isfinite(p->intensity) &&
+           (unsigned)p->medium < SBFX_MEDIUM_COUNT;
+}
+
+static void transform_point(const float m[16], const float p[3], float out[3])
+{
+    for (int r = 0; r < 3; r++) out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+}
+
+static float lifetime_curve(float x) { return 1.0f - (1.0f - x) * (1.0f - x); }
+
+/* Live particles whose delay has passed, in view space, into fx->view. */
+int sbfx_collect_view_particles(sbfx *fx, const float view[16])
+{
+    const sbfx_pool *p = &fx->pool;
+    int n = 0;
+    fx->counters.particles_skipped = 0;
+    for (int i = 0; i < p->alive; i++) {
+        if (p->age[i] < 0.0f) continue;
+        float x = p->age[i] / p->life[i];
+        float fade = p->fade_in[i] > 0.0f ? fminf(1.0f, x / p->fade_in[i]) : 1.0f;
+        sbfx_view_particle *v = &fx->view[n];
+        transform_point(view, &p->pos[3 * i], v->center);
+        v->radius = p->radius0[i] + (p->radius1[i] - p->radius0[i]) * lifetime_curve(x);
+        memcpy(v->detail, &p->detail[3 * i], sizeof(v->detail));
+        v->intensity = (p->intensity0[i] + (p->intensity1[i] - p->intensity0[i]) * x) * fade;
+        v->medium = (sbfx_medium)p->medium[i];
+        if (sbfx_view_particle_valid(v)) n++;
+        else fx->counters.particles_skipped++;
+    }
+    return n;
+}
+
+static bool frame_valid(sbfx *fx, const sbfx_frame *f)
+{
+    if (f->width <= 0 || f->height <= 0 || f->width > 16384 || f->height > 16384) {
+        sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "frame size %dx%d is out of range", f->width, f->height);
+        return false;
+    }
+    if (!f->scene_depth_texture) {
+        sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "frame has no scene_depth_texture: sbfx needs "
+                  "the opaque scene's depth as a texture");
+        return false;
+    }
+    const float *p = f->projection;
+    if (p[11] != -1.0f || p[15] != 0.0f || !(p[0] != 0.0f) || !(p[5] != 0.0f) ||
+        !(p[14] < 0.0f) || !(p[10] < -1.0f)) {
+        sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "frame projection is not a finite-far OpenGL "
+                  "perspective matrix (see sbfx_perspective)");
+        return false;
+    }
+    return true;
+}
+
+sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame)
+{
+    if (!fx || !frame) return SBFX_ERR_INVALID_ARGUMENT;
+    fx->counters.passes = 0;
+    fx->counters.draw_calls = 0;
+    if (!frame_valid(fx, frame)) return SBFX_ERR_INVALID_ARGUMENT;
+    int count = sbfx_collect_view_particles(fx, frame->view);
+    if (count == 0) return SBFX_OK; /* idle: no pass, the host's framebuffer is untouched */
+    return sbfx_render_particles(fx, frame, count);
+}
+
+sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
+                                       const sbfx_view_particle *particles, int count)
+{
+    if (!fx || !frame || (count > 0 && !particles) || count < 0) return SBFX_ERR_INVALID_ARGUMENT;
+    fx->counters.passes = 0;
+    fx->counters.draw_calls = 0;
+    fx->counters.particles_skipped = 0;
+    if (!frame_valid(fx, frame)) return SBFX_ERR_INVALID_ARGUMENT;
+    if (count > fx->pool.capacity)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "%d particles exceed the pool of %d",
+                         count, fx->pool.capacity);
+    int n = 0;
+    for (int i = 0; i < count; i++) {
+        if (sbfx_view_particle_valid(&particles[i]) && fx->uses_medium[particles[i].medium])
+            fx->view[n++] = particles[i];
+        else
+            fx->counters.particles_skipped++;
+    }
+    if (n == 0) return SBFX_OK;
+    return sbfx_render_particles(fx, frame, n);
+}

@@ -1,0 +1,260 @@
+/* Module lifetime, errors and the public entry points that are not rendering. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "module.h"
+
+static const char *const result_strings[] = {
+    [0] = "ok",
+    [1] = "invalid argument",
+    [2] = "no OpenGL ES 3.0 context",
+    [3] = "OpenGL error",
+    [4] = "shader compile or link failed",
+    [5] = "missing data file",
+    [6] = "out of memory",
+    [7] = "particle pool full",
+    [8] = "unknown effect",
+};
+
+const char *sbfx_result_string(sbfx_result result)
+{
+    unsigned index = (unsigned)(-(int)result);
+    return index < ARRAY_SIZE(result_strings) ? result_strings[index] : "unknown error";
+}
+
+static void emit(sbfx *fx, sbfx_log_level level, const char *message)
+{
+    if (fx->desc.log) fx->desc.log(level, message, fx->desc.log_user);
+}
+
+sbfx_result sbfx_fail(sbfx *fx, sbfx_result result, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(fx->last_error, sizeof(fx->last_error), fmt, ap);
+    va_end(ap);
+    emit(fx, SBFX_LOG_ERROR, fx->last_error);
+    return result;
+}
+
+void sbfx_log(sbfx *fx, sbfx_log_level level, const char *fmt, ...)
+{
+    char message[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(message, sizeof(message), fmt, ap);
+    va_end(ap);
+    emit(fx, level, message);
+}
+
+const char *sbfx_last_error(const sbfx *fx)
+{
+    return fx ? fx->last_error : "sbfx: NULL handle";
+}
+
+/* Zero means "default": filled in one place. */
+static sbfx_desc desc_with_defaults(const sbfx_desc *in)
+{
+    sbfx_desc d = in ? *in : (sbfx_desc){0};
+    if (!d.target_divisor) d.target_divisor = 4;
+    if (!d.upsample) d.upsample = SBFX_UPSAMPLE_NEAREST_DEPTH;
+    if (!d.opacity) d.opacity = SBFX_OPACITY_SPHERICAL;
+    if (!d.seed) d.seed = 1;
+    if (!d.max_particles) d.max_particles = 2048;
+    if (!d.cmf_path) d.cmf_path = SBFX_CMF_DEFAULT_PATH;
+    if (!(d.blackbody_max_kelvin > 0)) d.blackbody_max_kelvin = (float)SBFX_DEFAULT_MAX_KELVIN;
+    if (!d.detail_size) d.detail_size = 64;
+    if (!d.detail_frames) d.detail_frames = 32;
+    if (!(d.sim_step > 0)) d.sim_step = 1.0f / 120.0f;
+    return d;
+}
+
+static bool is_power_of_two(int v) { return v > 0 && (v & (v - 1)) == 0; }
+
+static sbfx_result validate_desc(sbfx *fx, const sbfx_desc *d)
+{
+    if (d->target_divisor != 1 && d->target_divisor != 2 && d->target_divisor != 4 &&
+        d->target_divisor != 8)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT,
+                         "target_divisor %d: use 1, 2, 4 or 8", d->target_divisor);
+    if ((unsigned)d->target_format >= SBFX_FORMAT_COUNT || (unsigned)d->upsample >= SBFX_UPSAMPLE_COUNT ||
+        (unsigned)d->opacity >= SBFX_OPACITY_COUNT)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "unknown target format, upsample or opacity mode");
+    if (d->max_particles < 1 || d->max_particles > (1 << 20))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "max_particles %d: use 1 .. 1048576",
+                         d->max_particles);
+    if (!is_power_of_two(d->detail_size) || !is_power_of_two(d->detail_frames) ||
+        d->detail_size < 4 || d->detail_frames < 4 || d->detail_size > 256 || d->detail_frames > 256)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT,
+                         "detail volume %dx%dx%d: use powers of two from 4 to 256",
+                         d->detail_size, d->detail_size, d->detail_frames);
+    if (!(d->sim_step <= 0.1f))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "sim_step %g s: use at most 0.1 s",
+                         (double)d->sim_step);
+    return SBFX_OK;
+}
+
+/* ES 3.0 or newer must be current: glGetString answers NULL without a context. */
+static sbfx_result check_context(sbfx *fx)
+{
+    const char *version = (const char *)glGetString(GL_VERSION);
+    if (!version)
+        return sbfx_fail(fx, SBFX_ERR_NO_GLES3,
+                         "no current OpenGL ES context: make a GLES 3.0 context current "
+                         "(eglMakeCurrent) before sbfx_create");
+    int major = 0;
+    if (sscanf(version, "OpenGL ES %d", &major) != 1 || major < 3)
+        return sbfx_fail(fx, SBFX_ERR_NO_GLES3,
+                         "the current context is \"%s\"; sbfx needs OpenGL ES 3.0 or newer "
+                         "(request EGL_CONTEXT_MAJOR_VERSION 3 with EGL_OPENGL_ES3_BIT)", version);
+    return SBFX_OK;
+}
+
+static void set_default_light(sbfx *fx)
+{
+    const float dir[3] = {-0.45f, -0.8f, -0.4f}; /* travelling down from a high sun */
+    const float color[3] = {1.6f, 1.5f, 1.35f};
+    const float ambient[3] = {0.28f, 0.32f, 0.4f};
+    sbfx_set_light(fx, dir, color, ambient);
+}
+
+static sbfx_result load(sbfx *fx)
+{
+    sbfx_result r;
+    sbfx_default_media(fx->media);
+    set_default_light(fx);
+    fx->max_kelvin = fx->desc.blackbody_max_kelvin;
+    sbfx_builtin_explosion(&fx->effects[0]);
+    fx->effect_count = 1;
+    for (int e = 0; e < fx->effect_count; e++)
+        for (int i = 0; i < fx->effects[e].emitter_count; i++)
+            fx->uses_medium[fx->effects[e].emitters[i].medium] = true;
+    if ((r = check_context(fx)) != SBFX_OK) return r;
+    if ((r = sbfx_pool_create(fx, fx->desc.max_particles)) != SBFX_OK) return r;
+    if ((r = sbfx_luts_create(fx)) != SBFX_OK) return r;
+    if ((r = sbfx_programs_create(fx)) != SBFX_OK) return r;
+    return SBFX_OK;
+}
+
+sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out)
+{
+    if (!out) return SBFX_ERR_INVALID_ARGUMENT;
+    *out = NULL;
+    sbfx *fx = calloc(1, sizeof(*fx));
+    if (!fx) return SBFX_ERR_OUT_OF_MEMORY;
+    fx->desc = desc_with_defaults(desc);
+    sbfx_result r = validate_desc(fx, &fx->desc);
+    if (r == SBFX_OK) r = load(fx);
+    if (r != SBFX_OK) {
+        /* Hand the message to the caller's log before the handle goes away. */
+        sbfx_destroy(fx);
+        return r;
+    }
+    fx->loaded = true;
+    *out = fx;
+    return SBFX_OK;
+}
+
+void sbfx_destroy(sbfx *fx)
+{
+    if (!fx) return;
+    sbfx_targets_destroy(fx);
+    sbfx_programs_destroy(fx);
+    sbfx_luts_destroy(fx);
+    sbfx_pool_destroy(fx);
+    free(fx);
+}
+
+sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float position[3])
+{
+    if (!fx || !effect || !position) return SBFX_ERR_INVALID_ARGUMENT;
+    if (!isfinite(position[0]) || !isfinite(position[1]) || !isfinite(position[2]))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "trigger \"%s\": position is not finite", effect);
+    for (int i = 0; i < fx->effect_count; i++)
+        if (strcmp(fx->effects[i].name, effect) == 0)
+            return sbfx_spawn_effect(fx, &fx->effects[i], position);
+    return sbfx_fail(fx, SBFX_ERR_UNKNOWN_EFFECT, "trigger: no effect named \"%s\"", effect);
+}
+
+sbfx_result sbfx_update(sbfx *fx, double dt)
+{
+    if (!fx) return SBFX_ERR_INVALID_ARGUMENT;
+    if (!(dt >= 0.0) || !isfinite(dt))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "sbfx_update: dt %g is not a finite time >= 0", dt);
+    double step = fx->desc.sim_step;
+    /* A stall (debugger, suspended board) must not make the simulation spin: cap the debt. */
+    fx->accumulator = fmin(fx->accumulator + dt, 0.25 + step);
+    fx->particles_simulated = 0;
+    while (fx->accumulator >= step) {
+        fx->particles_simulated += fx->pool.alive;
+        sbfx_simulate_step(fx, (float)step);
+        fx->accumulator -= step;
+        fx->time += step;
+        fx->step_index++;
+    }
+    return SBFX_OK;
+}
+
+void sbfx_stats(const sbfx *fx, sbfx_counters *out)
+{
+    if (!fx || !out) return;
+    *out = fx->counters;
+    out->particles_simulated = fx->particles_simulated;
+    out->particles_alive = fx->pool.alive;
+    out->heap_allocs_after_load = fx->heap_allocs_after_load;
+}
+
+sbfx_medium_params *sbfx_media(sbfx *fx) { return fx->media; }
+
+void sbfx_set_light(sbfx *fx, const float direction[3], const float color[3], const float ambient[3])
+{
+    float len = sqrtf(direction[0] * direction[0] + direction[1] * direction[1] +
+                      direction[2] * direction[2]);
+    for (int i = 0; i < 3; i++) {
+        fx->light_dir[i] = len > 0 ? direction[i] / len : (i == 1 ? -1.0f : 0.0f);
+        fx->light_color[i] = color[i];
+        fx->ambient[i] = ambient[i];
+    }
+}
+
+/* ---- host helpers: column-major matrices ---- */
+void sbfx_perspective(float m[16], float fov_y, float aspect, float n, float f)
+{
+    float t = 1.0f / tanf(fov_y * 0.5f);
+    memset(m, 0, 16 * sizeof(float));
+    m[0] = t / aspect;
+    m[5] = t;
+    m[10] = -(f + n) / (f - n);
+    m[11] = -1.0f;
+    m[14] = -2.0f * f * n / (f - n);
+}
+
+static void normalize3(float v[3])
+{
+    float len = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (len > 0) v[0] /= len, v[1] /= len, v[2] /= len;
+}
+
+static void cross3(const float a[3], const float b[3], float out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+void sbfx_look_at(float m[16], const float eye[3], const float target[3], const float up[3])
+{
+    float f[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]}, s[3], u[3];
+    normalize3(f);
+    cross3(f, up, s);
+    normalize3(s);
+    cross3(s, f, u);
+    const float rows[3][3] = {{s[0], s[1], s[2]}, {u[0], u[1], u[2]}, {-f[0], -f[1], -f[2]}};
+    memset(m, 0, 16 * sizeof(float));
+    for (int r = 0; r < 3; r++) {
+        for (int c = 0; c < 3; c++) m[c * 4 + r] = rows[r][c];
+        m[12 + r] = -(rows[r][0] * eye[0] + rows[r][1] * eye[1] + rows[r][2] * eye[2]);
+    }
+    m[15] = 1.0f;
+}

@@ -1,0 +1,127 @@
+/* sbfx — volumetric particle effects (spherical billboards) on OpenGL ES 3.0.
+ *
+ * The one public header. The module is created on the caller's *current* GLES 3.0 context; it
+ * never owns a window, display or context. Every call that can fail returns an sbfx_result and
+ * leaves a message readable with sbfx_last_error(); the library never exits the process.
+ *
+ * Conventions: matrices are column-major float[16] (OpenGL order); view space has the camera at
+ * the origin looking down -z; depths are reported as positive distances along -z.
+ */
+#ifndef SBFX_H
+#define SBFX_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum sbfx_result {
+    SBFX_OK = 0,
+    SBFX_ERR_INVALID_ARGUMENT = -1, /* a NULL pointer, a value out of range */
+    SBFX_ERR_NO_GLES3 = -2,         /* no current context, or it is not OpenGL ES 3.0+ */
+    SBFX_ERR_GL = -3,               /* a GL call or framebuffer failed */
+    SBFX_ERR_SHADER = -4,           /* a shader failed to compile or link */
+    SBFX_ERR_MISSING_DATA = -5,     /* a data file (CIE tables) is missing or unreadable */
+    SBFX_ERR_OUT_OF_MEMORY = -6,
+    SBFX_ERR_POOL_FULL = -7,        /* a trigger found no room in the particle pool */
+    SBFX_ERR_UNKNOWN_EFFECT = -8,
+} sbfx_result;
+
+const char *sbfx_result_string(sbfx_result result);
+
+typedef enum sbfx_log_level { SBFX_LOG_ERROR, SBFX_LOG_WARN, SBFX_LOG_INFO } sbfx_log_level;
+typedef void (*sbfx_log_fn)(sbfx_log_level level, const char *message, void *user);
+
+/* Accuracy knobs. Zero in a desc always means "the default" (marked). */
+typedef enum sbfx_opacity_mode {
+    SBFX_OPACITY_DEFAULT = 0, /* = SPHERICAL */
+    SBFX_OPACITY_PLANAR,      /* classic billboard: radial profile, emulated depth test */
+    SBFX_OPACITY_SOFT,        /* planar faded by an S-curve of the depth difference (RTR) */
+    SBFX_OPACITY_SPHERICAL,   /* the seed: parallel rays, (1 - d/r) * clipped chord */
+    SBFX_OPACITY_EXACT,       /* perspective ray, exact integral of the linear density */
+    SBFX_OPACITY_COUNT
+} sbfx_opacity_mode;
+
+typedef enum sbfx_target_format {
+    SBFX_FORMAT_DEFAULT = 0, /* RGBA16F when colour-renderable, else RGBA8 (logged once) */
+    SBFX_FORMAT_RGBA8,
+    SBFX_FORMAT_RGBA16F,
+    SBFX_FORMAT_RGBA32F,
+    SBFX_FORMAT_COUNT
+} sbfx_target_format;
+
+typedef enum sbfx_upsample {
+    SBFX_UPSAMPLE_DEFAULT = 0, /* = NEAREST_DEPTH */
+    SBFX_UPSAMPLE_BILINEAR,
+    SBFX_UPSAMPLE_NEAREST_DEPTH,
+    SBFX_UPSAMPLE_COUNT
+} sbfx_upsample;
+
+typedef enum sbfx_medium { SBFX_DUST, SBFX_SMOKE, SBFX_FIRE, SBFX_MEDIUM_COUNT } sbfx_medium;
+
+typedef struct sbfx_desc {
+    int target_divisor;              /* particle target = output / divisor per axis: 1,2,4,8 (4) */
+    sbfx_target_format target_format;
+    sbfx_upsample upsample;
+    sbfx_opacity_mode opacity;
+    uint32_t seed;                   /* random seed of spawns and detail windows (1) */
+    int max_particles;               /* particle pool size (2048) */
+    const char *cmf_path;            /* CIE 1931 2° CMF (colord-data's file) */
+    float blackbody_max_kelvin;      /* upper end of the black-body table (6000 K) */
+    int detail_size;                 /* detail volume width = height (64) */
+    int detail_frames;               /* detail volume depth = animation frames (32) */
+    float sim_step;                  /* fixed simulation step in seconds (1/120) */
+    sbfx_log_fn log;                 /* NULL: messages go nowhere, sbfx_last_error() still works */
+    void *log_user;
+} sbfx_desc;
+
+/* One frame to render. The opaque scene has been drawn by the host into colour and depth
+ * textures of width x height; sbfx composites into out_framebuffer (0 = default). sbfx sets the
+ * depth texture's filters to NEAREST and its compare mode to NONE. */
+typedef struct sbfx_frame {
+    float view[16];          /* world -> view */
+    float projection[16];    /* a perspective projection, OpenGL clip conventions */
+    uint32_t scene_color_texture;
+    uint32_t scene_depth_texture;
+    uint32_t out_framebuffer;
+    int width, height;
+} sbfx_frame;
+
+typedef struct sbfx_counters {
+    int programs;             /* GL programs linked */
+    int textures;             /* GL textures created by sbfx */
+    int framebuffers;
+    size_t gpu_bytes;         /* texture + buffer storage held */
+    int passes;               /* render passes of the last sbfx_render */
+    int draw_calls;           /* draw calls of the last sbfx_render */
+    int particles_simulated;  /* particles advanced by the last sbfx_update */
+    int particles_alive;
+    int particles_skipped;    /* bad particles (NaN/Inf/negative radius) skipped last render */
+    uint64_t heap_allocs_after_load; /* sbfx heap allocations since sbfx_create returned */
+    sbfx_target_format target_format; /* the format actually in use */
+} sbfx_counters;
+
+typedef struct sbfx sbfx;
+
+sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out);
+void sbfx_destroy(sbfx *fx);
+const char *sbfx_last_error(const sbfx *fx);
+
+/* Starts an instance of a named effect at a world position. Built in: "explosion". */
+sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float position[3]);
+/* Advances the simulation by dt seconds in fixed steps (an accumulator keeps the remainder). */
+sbfx_result sbfx_update(sbfx *fx, double dt);
+sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);
+void sbfx_stats(const sbfx *fx, sbfx_counters *out);
+
+/* Helpers for hosts: column-major perspective and look-at matrices. */
+void sbfx_perspective(float out[16], float fov_y_radians, float aspect, float near_z, float far_z);
+void sbfx_look_at(float out[16], const float eye[3], const float target[3], const float up[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
