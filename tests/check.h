@@ -107,7 +107,11 @@ static inline int check_main_args(int argc, char **argv)
             status = check_run_one(t);
         } else {
             pid_t pid = fork();
-            if (pid == 0) _exit(check_run_one(t));
+            if (pid == 0) {
+                int rc = check_run_one(t);
+                fflush(stdout);
+                _exit(rc);
+            }
             int ws = 0;
             if (pid < 0 || waitpid(pid, &ws, 0) < 0) status = 2;
             else if (WIFEXITED(ws)) status = WEXITSTATUS(ws);

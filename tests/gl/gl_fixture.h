@@ -1,0 +1,148 @@
+/* Shared set-up of the GL tests: a surfaceless GLES 3.0 context per (forked) test, a host
+ * depth texture built from view distances, and an output framebuffer. Header-only. */
+#ifndef SBFX_GL_FIXTURE_H
+#define SBFX_GL_FIXTURE_H
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "check.h"
+#include "egl_headless.h"
+#include "internal.h"
+
+typedef struct gl_fixture {
+    struct egl_headless egl;
+    GLuint depth_texture, out_texture, out_fbo;
+    int width, height;
+    sbfx_frame frame;
+    int warnings;
+    char last_warning[512];
+} gl_fixture;
+
+static gl_fixture *fixture_current;
+
+static void fixture_log(sbfx_log_level level, const char *message, void *user)
+{
+    gl_fixture *f = user;
+    if (level == SBFX_LOG_WARN && f) {
+        f->warnings++;
+        snprintf(f->last_warning, sizeof(f->last_warning), "%s", message);
+    }
+    if (getenv("SBFX_TEST_VERBOSE")) fprintf(stdout, "# sbfx: %s\n", message);
+}
+
+/* Opens the context; skips the test (with the reason) when no EGL/GLES3 is available. */
+static void fixture_open(gl_fixture *f, int width, int height)
+{
+    char err[512];
+    memset(f, 0, sizeof(*f));
+    if (egl_headless_open(&f->egl, err, sizeof(err)) != 0)
+        CHECK_SKIP("no headless GLES 3.0 context: %s", err);
+    f->width = width;
+    f->height = height;
+    glGenTextures(1, &f->depth_texture);
+    glBindTexture(GL_TEXTURE_2D, f->depth_texture);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glGenTextures(1, &f->out_texture);
+    glBindTexture(GL_TEXTURE_2D, f->out_texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glGenFramebuffers(1, &f->out_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, f->out_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, f->out_texture, 0);
+    CHECK(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    f->frame = (sbfx_frame){.scene_depth_texture = f->depth_texture, .out_framebuffer = f->out_fbo,
+                            .width = width, .height = height};
+    f->frame.view[0] = f->frame.view[5] = f->frame.view[10] = f->frame.view[15] = 1.0f;
+    fixture_current = f;
+}
+
+static void fixture_close(gl_fixture *f)
+{
+    glDeleteFramebuffers(1, &f->out_fbo);
+    GLuint t[] = {f->depth_texture, f->out_texture};
+    glDeleteTextures(2, t);
+    egl_headless_close(&f->egl);
+}
+
+static sbfx *fixture_module(gl_fixture *f, sbfx_desc desc)
+{
+    desc.log = fixture_log;
+    desc.log_user = f;
+    sbfx *fx = NULL;
+    sbfx_result r = sbfx_create(&desc, &fx);
+    CHECK(r == SBFX_OK, "sbfx_create: %s", fx ? sbfx_last_error(fx) : sbfx_result_string(r));
+    if (!fx) exit(1);
+    return fx;
+}
+
+static void fixture_projection(gl_fixture *f, float fov_y, float near, float far)
+{
+    sbfx_perspective(f->frame.projection, fov_y, (float)f->width / f->height, near, far);
+}
+
+/* Fills the host depth texture (DEPTH_COMPONENT32F) so that every pixel linearises to the
+ * view distance given by distance_at(x, y); +inf or >= far stays at the clear value 1. */
+static void fixture_depth(gl_fixture *f, double (*distance_at)(int x, int y, void *), void *user)
+{
+    const float *p = f->frame.projection;
+    double far = p[14] / (p[10] + 1.0);
+    float *d = calloc((size_t)f->width * f->height, sizeof(float));
+    for (int y = 0; y < f->height; y++)
+        for (int x = 0; x < f->width; x++) {
+            double z = distance_at(x, y, user);
+            double ndc = p[14] / z - p[10];
+            d[y * f->width + x] = z >= far ? 1.0f : (float)fmin(1.0, fmax(0.0, 0.5 * ndc + 0.5));
+        }
+    glBindTexture(GL_TEXTURE_2D, f->depth_texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, f->width, f->height, 0,
+                 GL_DEPTH_COMPONENT, GL_FLOAT, d);
+    free(d);
+}
+
+static double depth_far_everywhere(int x, int y, void *user)
+{
+    (void)x, (void)y, (void)user;
+    return INFINITY;
+}
+
+/* The pixel's ray (z = -1) in the CPU reference's terms, at the centre of target pixel (x, y). */
+static void fixture_ray(const gl_fixture *f, const sbfx_frame *frame, int tw, int th, int x, int y,
+                        double ray[3])
+{
+    (void)f;
+    const float *p = frame->projection;
+    double ndc_x = (x + 0.5) / tw * 2.0 - 1.0, ndc_y = (y + 0.5) / th * 2.0 - 1.0;
+    ray[0] = (ndc_x + p[8]) / p[0];
+    ray[1] = (ndc_y + p[9]) / p[5];
+    ray[2] = -1.0;
+}
+
+static double fixture_near(const sbfx_frame *frame)
+{
+    return frame->projection[14] / (frame->projection[10] - 1.0);
+}
+
+static double fixture_far(const sbfx_frame *frame)
+{
+    return frame->projection[14] / (frame->projection[10] + 1.0);
+}
+
+/* Reads the particle target; returns a malloc'ed RGBA float array. */
+static float *fixture_read_target(sbfx *fx, int *w, int *h)
+{
+    size_t cap = 4u * 4096u * 4096u;
+    float *rgba = malloc(cap * sizeof(float) / 64);
+    CHECK(sbfx_read_particle_target(fx, rgba, cap / 64, w, h) == SBFX_OK, "%s", sbfx_last_error(fx));
+    return rgba;
+}
+
+static bool all_finite(const float *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i])) return false;
+    return true;
+}
+
+#endif

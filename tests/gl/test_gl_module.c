@@ -1,0 +1,279 @@
+/* The module as a host uses it: fallbacks, errors, idle frames, allocation counts, tables. */
+#include "gl_fixture.h"
+#include "test_scene.h"
+
+/* ---- process-wide heap-allocation counter (not under ASan, which owns malloc) ---- */
+#if !defined(__SANITIZE_ADDRESS__)
+extern void *__libc_malloc(size_t);
+extern void *__libc_calloc(size_t, size_t);
+extern void *__libc_realloc(void *, size_t);
+static volatile int counting;
+static volatile long counted;
+void *malloc(size_t n)
+{
+    if (counting) counted++;
+    return __libc_malloc(n);
+}
+void *calloc(size_t a, size_t b)
+{
+    if (counting) counted++;
+    return __libc_calloc(a, b);
+}
+void *realloc(void *p, size_t n)
+{
+    if (counting) counted++;
+    return __libc_realloc(p, n);
+}
+#define HAVE_MALLOC_COUNT 1
+#endif
+
+CHECK_TEST(no_context_is_a_clear_error)
+{
+    sbfx *fx = (sbfx *)1;
+    sbfx_result r = sbfx_create(NULL, &fx);
+    CHECK(r == SBFX_ERR_NO_GLES3, "got %d (%s)", r, sbfx_result_string(r));
+    CHECK(fx == NULL);
+}
+
+static char captured[512];
+static void capture_log(sbfx_log_level level, const char *message, void *user)
+{
+    (void)level, (void)user;
+    snprintf(captured, sizeof(captured), "%s", message);
+}
+
+CHECK_TEST(missing_colour_matching_data_names_file_and_package)
+{
+    gl_fixture f;
+    fixture_open(&f, 8, 8);
+    sbfx *fx = NULL;
+    sbfx_desc desc = {.cmf_path = "/nonexistent/CIE1931-2deg-XYZ.cmf", .log = capture_log};
+    sbfx_result r = sbfx_create(&desc, &fx);
+    CHECK(r == SBFX_ERR_MISSING_DATA, "got %d", r);
+    CHECK(strstr(captured, "/nonexistent/CIE1931-2deg-XYZ.cmf") != NULL, "message: %s", captured);
+    CHECK(strstr(captured, "colord-data") != NULL, "message: %s", captured);
+    fixture_close(&f);
+}
+
+CHECK_TEST(bad_desc_is_rejected)
+{
+    gl_fixture f;
+    fixture_open(&f, 8, 8);
+    sbfx *fx = NULL;
+    CHECK(sbfx_create(&(sbfx_desc){.target_divisor = 3}, &fx) == SBFX_ERR_INVALID_ARGUMENT);
+    CHECK(sbfx_create(&(sbfx_desc){.detail_size = 63}, &fx) == SBFX_ERR_INVALID_ARGUMENT);
+    CHECK(sbfx_create(&(sbfx_desc){.max_particles = -5}, &fx) == SBFX_ERR_INVALID_ARGUMENT);
+    CHECK(fx == NULL);
+    fixture_close(&f);
+}
+
+/* Without any live particle, sbfx_render issues no pass and leaves the host framebuffer alone. */
+CHECK_TEST(idle_frame_runs_no_pass)
+{
+    gl_fixture f;
+    fixture_open(&f, 64, 48);
+    fixture_projection(&f, 1.0f, 0.1f, 100.0f);
+    fixture_depth(&f, depth_far_everywhere, NULL);
+    sbfx *fx = fixture_module(&f, (sbfx_desc){0});
+    glBindFramebuffer(GL_FRAMEBUFFER, f.out_fbo);
+    glClearColor(0.25f, 0.5f, 0.75f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    for (int i = 0; i < 10; i++) {
+        CHECK(sbfx_update(fx, 1.0 / 30) == SBFX_OK);
+        CHECK(sbfx_render(fx, &f.frame) == SBFX_OK);
+    }
+    sbfx_counters c;
+    sbfx_stats(fx, &c);
+    CHECK(c.passes == 0 && c.draw_calls == 0 && c.particles_simulated == 0,
+          "idle: %d passes, %d draws, %d simulated", c.passes, c.draw_calls, c.particles_simulated);
+    uint8_t px[4];
+    glBindFramebuffer(GL_FRAMEBUFFER, f.out_fbo);
+    glReadPixels(10, 10, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    CHECK(px[0] == 64 && px[1] == 128 && px[2] == 191, "host pixel changed to %d %d %d", px[0], px[1], px[2]);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
+typedef struct run_result {
+    long mallocs;
+    uint64_t module_allocs;
+    int max_passes, max_draws, frames_with_particles;
+    bool finite;
+} run_result;
+
+/* The built-in explosion over the test scene for `frames` frames at 30 fps. */
+static run_result run_explosion(gl_fixture *f, sbfx *fx, struct test_scene *scene, int frames, int warmup)
+{
+    run_result out = {.finite = true};
+    const float origin[3] = {0, 0, 0};
+    CHECK(sbfx_trigger(fx, "explosion", origin) == SBFX_OK);
+    float *target = malloc(sizeof(float) * 4 * f->width * f->height);
+    for (int i = 0; i < frames; i++) {
+        test_scene_orbit_camera(i / 30.0, (float)f->width / f->height, f->frame.view, f->frame.projection);
+        test_scene_draw(scene, f->frame.view, f->frame.projection);
+        f->frame.scene_depth_texture = scene->depth_texture;
+        f->frame.out_framebuffer = scene->framebuffer;
+#ifdef HAVE_MALLOC_COUNT
+        counting = i >= warmup;
+#endif
+        CHECK(sbfx_update(fx, 1.0 / 30) == SBFX_OK);
+#ifdef HAVE_MALLOC_COUNT
+        counting = 0;
+        out.mallocs = counted;
+#endif
+        CHECK(sbfx_render(fx, &f->frame) == SBFX_OK, "%s", sbfx_last_error(fx));
+        sbfx_counters c;
+        sbfx_stats(fx, &c);
+        if (i == warmup - 1) out.module_allocs = c.heap_allocs_after_load;
+        if (i >= warmup) out.module_allocs = c.heap_allocs_after_load - out.module_allocs;
+        out.max_passes = c.passes > out.max_passes ? c.passes : out.max_passes;
+        out.max_draws = c.draw_calls > out.max_draws ? c.draw_calls : out.max_draws;
+        if (c.passes) {
+            out.frames_with_particles++;
+            int w, h;
+            sbfx_read_particle_target(fx, target, 4u * f->width * f->height, &w, &h);
+            if (!all_finite(target, 4u * w * h)) out.finite = false;
+        }
+    }
+    free(target);
+    return out;
+}
+
+CHECK_TEST(no_heap_allocation_per_frame_after_warmup)
+{
+    gl_fixture f;
+    fixture_open(&f, 160, 90);
+    struct test_scene scene;
+    char err[256];
+    CHECK(test_scene_create(&scene, 160, 90, err, sizeof(err)) == 0, "%s", err);
+    sbfx *fx = fixture_module(&f, (sbfx_desc){0});
+    /* Warm up across the first frames (targets are made on the first render). */
+    uint64_t before = 0;
+    for (int i = 0; i < 3; i++) {
+        test_scene_orbit_camera(0, 160.0f / 90, f.frame.view, f.frame.projection);
+        f.frame.scene_depth_texture = scene.depth_texture;
+        f.frame.out_framebuffer = scene.framebuffer;
+        sbfx_render(fx, &f.frame);
+    }
+    sbfx_counters c;
+    sbfx_stats(fx, &c);
+    before = c.heap_allocs_after_load;
+    run_result r = run_explosion(&f, fx, &scene, 60, 5);
+    sbfx_stats(fx, &c);
+    /* sbfx_render's own allocations are counted by the module (every allocation of sbfx goes
+     * through sbfx_calloc); the process-wide count covers sbfx_update only, because the GL
+     * driver (llvmpipe) allocates inside draw calls, which is not ours to control. */
+    printf("# heap allocations after warm-up: module %llu, whole process during sbfx_update %ld\n",
+           (unsigned long long)(c.heap_allocs_after_load - before), r.mallocs);
+    CHECK(c.heap_allocs_after_load == before, "module allocated %llu times per run",
+          (unsigned long long)(c.heap_allocs_after_load - before));
+#ifdef HAVE_MALLOC_COUNT
+    CHECK(r.mallocs == 0, "%ld heap allocations during 55 frames of sbfx_update", r.mallocs);
+#endif
+    sbfx_destroy(fx);
+    test_scene_destroy(&scene);
+    fixture_close(&f);
+}
+
+CHECK_TEST(explosion_renders_three_passes_and_finite_pixels)
+{
+    gl_fixture f;
+    fixture_open(&f, 160, 90);
+    struct test_scene scene;
+    char err[256];
+    CHECK(test_scene_create(&scene, 160, 90, err, sizeof(err)) == 0, "%s", err);
+    sbfx *fx = fixture_module(&f, (sbfx_desc){0});
+    run_result r = run_explosion(&f, fx, &scene, 90, 0);
+    CHECK(r.finite, "a particle-target pixel is NaN or Inf");
+    CHECK(r.max_passes == 3, "passes %d, want depth + particles + composite", r.max_passes);
+    CHECK(r.frames_with_particles >= 80, "only %d of 90 frames had particles", r.frames_with_particles);
+    sbfx_counters c;
+    sbfx_stats(fx, &c);
+    CHECK(c.programs == 5, "programs %d: dust, smoke, fire, depth, composite", c.programs);
+    sbfx_destroy(fx);
+    test_scene_destroy(&scene);
+    fixture_close(&f);
+}
+
+/* With the half-float colour-buffer extensions hidden, the target falls back to RGBA8, says so
+ * once, and still renders the same picture within 8-bit precision. */
+CHECK_TEST(rgba8_fallback_when_half_float_not_renderable)
+{
+    setenv("MESA_EXTENSION_OVERRIDE", "-GL_EXT_color_buffer_half_float -GL_EXT_color_buffer_float", 1);
+    gl_fixture f;
+    fixture_open(&f, 64, 64);
+    fixture_projection(&f, 1.0f, 0.1f, 100.0f);
+    fixture_depth(&f, depth_far_everywhere, NULL);
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.target_divisor = 1});
+    sbfx_view_particle p = {.center = {0, 0, -6}, .radius = 2.0f, .intensity = 1, .medium = SBFX_SMOKE};
+    CHECK(sbfx_render_view_particles(fx, &f.frame, &p, 1) == SBFX_OK, "%s", sbfx_last_error(fx));
+    f.frame.width = 32, f.frame.height = 32; /* a resize remakes the target: no second warning */
+    CHECK(sbfx_render_view_particles(fx, &f.frame, &p, 1) == SBFX_OK);
+    f.frame.width = 64, f.frame.height = 64;
+    CHECK(sbfx_render_view_particles(fx, &f.frame, &p, 1) == SBFX_OK);
+    sbfx_counters c;
+    sbfx_stats(fx, &c);
+    CHECK(c.target_format == SBFX_FORMAT_RGBA8, "format %d", c.target_format);
+    CHECK(f.warnings == 1, "%d warnings (want exactly one)", f.warnings);
+    CHECK(strstr(f.last_warning, "RGBA8") != NULL, "warning: %s", f.last_warning);
+    int w, h;
+    float *rgba = fixture_read_target(fx, &w, &h);
+    sbfx_media(fx)[SBFX_SMOKE].detail_strength = 0.0f;
+    double worst = 0;
+    CHECK(sbfx_render_view_particles(fx, &f.frame, &p, 1) == SBFX_OK);
+    free(rgba);
+    rgba = fixture_read_target(fx, &w, &h);
+    sbfx_ref_particle rp = {{0, 0, -6}, 2.0, sbfx_media(fx)[SBFX_SMOKE].tau};
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            sbfx_ref_pixel px = {{0}, fixture_far(&f.frame), fixture_near(&f.frame), 0};
+            fixture_ray(&f, &f.frame, w, h, x, y, px.ray);
+            double cpu = sbfx_ref_opacity(SBFX_OPACITY_SPHERICAL, &rp, &px);
+            worst = fmax(worst, fabs(cpu - (1.0 - rgba[4 * (y * w + x) + 3])));
+        }
+    printf("# RGBA8 fallback: max alpha error %.4f (8-bit step %.4f)\n", worst, 1.0 / 255);
+    CHECK(worst <= 1.0 / 255, "RGBA8 alpha off by %g", worst);
+    free(rgba);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
+CHECK_TEST(gpu_tables_match_cpu_tables)
+{
+    gl_fixture f;
+    fixture_open(&f, 8, 8);
+    sbfx *fx = fixture_module(&f, (sbfx_desc){0});
+    sbfx_cmf *cmf = malloc(sizeof(*cmf));
+    char err[256];
+    CHECK(sbfx_cmf_load(SBFX_CMF_DEFAULT_PATH, cmf, err, sizeof(err)) == SBFX_OK, "%s", err);
+    double *table = calloc(SBFX_BLACKBODY_SIZE * 3, sizeof(double));
+    double *phase_table = calloc(SBFX_PHASE_COS_SIZE * SBFX_PHASE_G_SIZE, sizeof(double));
+    sbfx_blackbody_table(cmf, SBFX_DEFAULT_MAX_KELVIN, SBFX_BLACKBODY_SIZE, table);
+    sbfx_phase_table(SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE, phase_table);
+    double bb_worst = 0, phase_worst = 0;
+    sbfx_rng rng;
+    sbfx_rng_seed(&rng, 7);
+    for (int i = 0; i < 200; i++) {
+        double t = sbfx_rng_range(&rng, 800.0, SBFX_DEFAULT_MAX_KELVIN);
+        double c = sbfx_rng_range(&rng, -1.0, 1.0), g = sbfx_rng_range(&rng, -0.95, 0.95);
+        double cpu[3];
+        float gpu[3], phase;
+        sbfx_blackbody_table_lookup(table, SBFX_BLACKBODY_SIZE, SBFX_DEFAULT_MAX_KELVIN, t, cpu);
+        CHECK(sbfx_fetch_luts(fx, (float)t, (float)c, (float)g, gpu, &phase) == SBFX_OK);
+        for (int k = 0; k < 3; k++)
+            bb_worst = fmax(bb_worst, fabs(gpu[k] - cpu[k]) / fmax(cpu[k], 1e-4));
+        double p = sbfx_phase_table_lookup(phase_table, SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE, c, g);
+        phase_worst = fmax(phase_worst, fabs(phase - p) / p);
+    }
+    printf("# GPU LUT vs CPU table: black body max rel err %.2e, phase max rel err %.2e\n", bb_worst, phase_worst);
+    /* half float has an 11-bit significand (4.9e-4); the GPU interpolates in fixed point */
+    CHECK(bb_worst < 4e-3, "black body %g", bb_worst);
+    CHECK(phase_worst < 4e-3, "phase %g", phase_worst);
+    free(cmf);
+    free(table);
+    free(phase_table);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
+int main(int argc, char **argv) { return check_main_args(argc, argv); }
