@@ -17,7 +17,7 @@ include boards/$(BOARD).mk
 BUILD := build/$(BOARD)
 endif
 
-SRC_PKGS := glesv2 lcms2
+SRC_PKGS := glesv2 lcms2 libconfig
 PLATFORM_PKGS := egl glesv2 libpng
 
 WARN := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Wno-unused-parameter
@@ -79,7 +79,7 @@ $(BUILD)/libsbfx.a: $(LIB_OBJ)
 $(BUILD)/libsbfx.so: $(LIB_OBJ)
 	$(CC) -shared -Wl,-soname,libsbfx.so.0 $(LDSAN) -o $@ $^ $(SRC_LIBS)
 
-$(BUILD)/sbfx-play: $(BUILD)/obj/platform/player.o $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+$(BUILD)/sbfx-play: $(BUILD)/obj/platform/player.o $(BUILD)/obj/platform/player_args.o $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
 $(BUILD)/sbfx-probe: $(BUILD)/obj/platform/probe.o $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a

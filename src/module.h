@@ -26,10 +26,22 @@ typedef struct sbfx_emitter {
     float fade_in;                      /* fraction of life spent fading in */
 } sbfx_emitter;
 
+/* A light-flash step: a point light at the effect's position (+ offset) that rises at once
+ * and decays linearly over `duration`. */
+typedef struct sbfx_flash {
+    float delay, duration;
+    float color[3];
+    float offset[3];
+} sbfx_flash;
+
+#define SBFX_MAX_FLASHES 4
+
 typedef struct sbfx_effect {
     char name[SBFX_NAME_MAX];
     int emitter_count;
     sbfx_emitter emitters[SBFX_MAX_EMITTERS];
+    int flash_count;
+    sbfx_flash flashes[SBFX_MAX_FLASHES];
 } sbfx_effect;
 
 /* Particle pool, structure of arrays, sized once at load. Live particles are [0, alive). */
@@ -50,7 +62,7 @@ typedef struct sbfx_program {
     /* uniform locations used every frame */
     GLint near, far, projection, target_size, pixel, tau, soft_scale;
     GLint depth, detail, detail_window, detail_strength, time;
-    GLint phase_lut, phase_lut_size, g, albedo_color, light_dir, light_color, ambient;
+    GLint phase_lut, phase_lut_size, g, albedo_color, light_count, light_vector, light_color, ambient;
     GLint blackbody, blackbody_size, max_kelvin, temperature, emission_scale;
 } sbfx_program;
 
@@ -67,6 +79,27 @@ typedef struct sbfx_gl {
     size_t target_bytes;
 } sbfx_gl;
 
+#define SBFX_MAX_SCHEDULE 128
+#define SBFX_MAX_LIVE_FLASHES 8
+#define SBFX_SHADER_LIGHTS 8 /* scene lights (<= 4) + live flashes share these slots */
+
+typedef struct sbfx_scheduled {
+    int effect;
+    double time;
+    float position[3];
+} sbfx_scheduled;
+
+typedef struct sbfx_live_flash {
+    double start;
+    float duration;
+    float color[3], position[3];
+} sbfx_live_flash;
+
+typedef struct sbfx_scene_light { /* scene light, as the module keeps it */
+    bool point;
+    float vector[3], color[3];
+} sbfx_scene_light;
+
 struct sbfx {
     sbfx_desc desc;
     char last_error[512];
@@ -76,7 +109,13 @@ struct sbfx {
 
     sbfx_medium_params media[SBFX_MEDIUM_COUNT];
     bool uses_medium[SBFX_MEDIUM_COUNT];
-    float light_dir[3], light_color[3], ambient[3];
+    int light_count;
+    sbfx_scene_light lights[SBFX_SHADER_LIGHTS];
+    float ambient[3];
+    sbfx_scheduled schedule[SBFX_MAX_SCHEDULE]; /* sorted by time; [next_scheduled, count) pending */
+    int schedule_count, next_scheduled;
+    sbfx_live_flash flashes[SBFX_MAX_LIVE_FLASHES];
+    int flash_count;
     float max_kelvin;
 
     sbfx_effect effects[SBFX_MAX_EFFECTS];
@@ -103,6 +142,9 @@ sbfx_result sbfx_pool_create(sbfx *fx, int capacity);
 void sbfx_pool_destroy(sbfx *fx);
 sbfx_result sbfx_spawn_effect(sbfx *fx, const sbfx_effect *effect, const float position[3]);
 void sbfx_simulate_step(sbfx *fx, float step);
+
+/* sbfx.c */
+sbfx_result sbfx_fire(sbfx *fx, int effect, const float position[3]);
 
 /* effects.c */
 void sbfx_default_media(sbfx_medium_params media[SBFX_MEDIUM_COUNT]);

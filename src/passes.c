@@ -96,8 +96,39 @@ static void pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
     fx->counters.draw_calls++;
 }
 
-static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m,
-                                const float light_dir_view[3])
+/* The lights of this frame in view space: the scene's, then the live flashes (fading out
+ * linearly over their duration). */
+typedef struct frame_lights {
+    int count;
+    float vector[SBFX_SHADER_LIGHTS][4];
+    float color[SBFX_SHADER_LIGHTS][3];
+} frame_lights;
+
+static void to_view(const float m[16], const float v[3], float w, float out[4])
+{
+    for (int r = 0; r < 3; r++) out[r] = m[r] * v[0] + m[4 + r] * v[1] + m[8 + r] * v[2] + m[12 + r] * w;
+    out[3] = w;
+}
+
+static void gather_lights(const sbfx *fx, const float view[16], frame_lights *out)
+{
+    out->count = 0;
+    for (int i = 0; i < fx->light_count && out->count < SBFX_SHADER_LIGHTS; i++, out->count++) {
+        const sbfx_scene_light *l = &fx->lights[i];
+        to_view(view, l->vector, l->point ? 1.0f : 0.0f, out->vector[out->count]);
+        memcpy(out->color[out->count], l->color, sizeof(l->color));
+    }
+    for (int i = 0; i < fx->flash_count && out->count < SBFX_SHADER_LIGHTS; i++) {
+        const sbfx_live_flash *f = &fx->flashes[i];
+        double t = (fx->time - f->start) / f->duration;
+        if (t < 0.0 || t >= 1.0) continue;
+        to_view(view, f->position, 1.0f, out->vector[out->count]);
+        for (int k = 0; k < 3; k++) out->color[out->count][k] = f->color[k] * (float)(1.0 - t);
+        out->count++;
+    }
+}
+
+static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m, const frame_lights *lights)
 {
     const sbfx_medium_params *mp = &fx->media[m];
     glUniform1f(p->tau, mp->tau);
@@ -111,8 +142,9 @@ static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m,
     glUniform1f(p->g, mp->phase_g);
     glUniform3f(p->albedo_color, mp->albedo * mp->color[0], mp->albedo * mp->color[1],
                 mp->albedo * mp->color[2]);
-    glUniform3fv(p->light_dir, 1, light_dir_view);
-    glUniform3fv(p->light_color, 1, fx->light_color);
+    glUniform1i(p->light_count, lights->count);
+    glUniform4fv(p->light_vector, lights->count, &lights->vector[0][0]);
+    glUniform3fv(p->light_color, lights->count, &lights->color[0][0]);
     glUniform3fv(p->ambient, 1, fx->ambient);
     glUniform1i(p->blackbody, UNIT_BLACKBODY);
     glUniform1f(p->blackbody_size, SBFX_BLACKBODY_SIZE);
@@ -157,18 +189,13 @@ static void draw_run(sbfx *fx, int first, int count)
     fx->counters.draw_calls++;
 }
 
-static void view_light_direction(const float view[16], const float world[3], float out[3])
-{
-    for (int r = 0; r < 3; r++) out[r] = view[r] * world[0] + view[4 + r] * world[1] + view[8 + r] * world[2];
-}
-
 /* Pass 2: back to front; consecutive particles of one medium share a draw call. ES 3.0 has no
  * base instance, so each run re-points the instance attributes at its first particle. */
 static void pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count)
 {
     sbfx_gl *gl = &fx->gl;
-    float light_dir[3];
-    view_light_direction(f->view, fx->light_dir, light_dir);
+    frame_lights lights;
+    gather_lights(fx, f->view, &lights);
     glBindFramebuffer(GL_FRAMEBUFFER, gl->target_fbo);
     glViewport(0, 0, gl->low_width, gl->low_height);
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f); /* no light added, everything transmitted */
@@ -190,7 +217,7 @@ static void pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp
         const sbfx_program *p = &gl->particle[m];
         glUseProgram(p->id);
         set_frame_uniforms(fx, p, fp);
-        set_medium_uniforms(fx, p, m, light_dir);
+        set_medium_uniforms(fx, p, m, &lights);
         draw_run(fx, first, end - first);
         first = end;
     }

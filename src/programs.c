@@ -38,7 +38,8 @@ static void locate_uniforms(sbfx_program *p)
     p->phase_lut_size = glGetUniformLocation(id, "u_phase_lut_size");
     p->g = glGetUniformLocation(id, "u_g");
     p->albedo_color = glGetUniformLocation(id, "u_albedo_color");
-    p->light_dir = glGetUniformLocation(id, "u_light_dir");
+    p->light_count = glGetUniformLocation(id, "u_light_count");
+    p->light_vector = glGetUniformLocation(id, "u_light_vector");
     p->light_color = glGetUniformLocation(id, "u_light_color");
     p->ambient = glGetUniformLocation(id, "u_ambient");
     p->blackbody = glGetUniformLocation(id, "u_blackbody");

@@ -4,6 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include "module.h"
+#include "scene.h"
+
+static void normalize3(float v[3]);
 
 static const char *const result_strings[] = {
     [0] = "ok",
@@ -53,10 +56,21 @@ const char *sbfx_last_error(const sbfx *fx)
     return fx ? fx->last_error : "sbfx: NULL handle";
 }
 
-/* Zero means "default": filled in one place. */
+/* Zero means "default": filled in one place. The desc's own fields win over the scene's. */
 static sbfx_desc desc_with_defaults(const sbfx_desc *in)
 {
     sbfx_desc d = in ? *in : (sbfx_desc){0};
+    if (d.scene) {
+        const sbfx_desc *s = &d.scene->render;
+        if (!d.target_divisor) d.target_divisor = s->target_divisor;
+        if (!d.target_format) d.target_format = s->target_format;
+        if (!d.upsample) d.upsample = s->upsample;
+        if (!d.opacity) d.opacity = s->opacity;
+        if (!d.seed) d.seed = s->seed;
+        if (!d.max_particles) d.max_particles = s->max_particles;
+        if (!(d.sim_step > 0)) d.sim_step = s->sim_step;
+        if (!(d.blackbody_max_kelvin > 0)) d.blackbody_max_kelvin = s->blackbody_max_kelvin;
+    }
     if (!d.target_divisor) d.target_divisor = 4;
     if (!d.upsample) d.upsample = SBFX_UPSAMPLE_NEAREST_DEPTH;
     if (!d.opacity) d.opacity = SBFX_OPACITY_SPHERICAL;
@@ -111,25 +125,45 @@ static sbfx_result check_context(sbfx *fx)
     return SBFX_OK;
 }
 
-static void set_default_light(sbfx *fx)
+/* Copies what the module keeps of a scene: media, lights, effects, the timeline. */
+static void adopt_scene(sbfx *fx, const sbfx_scene *scene)
 {
-    const float dir[3] = {-0.45f, -0.8f, -0.4f}; /* travelling down from a high sun */
-    const float color[3] = {1.6f, 1.5f, 1.35f};
-    const float ambient[3] = {0.28f, 0.32f, 0.4f};
-    sbfx_set_light(fx, dir, color, ambient);
+    memcpy(fx->media, scene->media, sizeof(fx->media));
+    fx->light_count = scene->light_count;
+    for (int i = 0; i < scene->light_count; i++) {
+        const sbfx_light *l = &scene->lights[i];
+        fx->lights[i].point = l->type == SBFX_LIGHT_POINT;
+        memcpy(fx->lights[i].vector, l->vector, sizeof(l->vector));
+        memcpy(fx->lights[i].color, l->color, sizeof(l->color));
+        if (!fx->lights[i].point) normalize3(fx->lights[i].vector);
+    }
+    memcpy(fx->ambient, scene->ambient, sizeof(fx->ambient));
+    memcpy(fx->effects, scene->effects, sizeof(fx->effects));
+    fx->effect_count = scene->effect_count;
+    for (int e = 0; e < fx->effect_count; e++)
+        for (int i = 0; i < fx->effects[e].emitter_count; i++)
+            fx->uses_medium[fx->effects[e].emitters[i].medium] = true;
+    if (!fx->desc.ignore_timeline)
+        for (int i = 0; i < scene->timeline_count; i++) {
+            const sbfx_timeline_entry *t = &scene->timeline[i];
+            sbfx_schedule(fx, fx->effects[t->effect].name, t->time, t->position);
+        }
 }
 
 static sbfx_result load(sbfx *fx)
 {
     sbfx_result r;
-    sbfx_default_media(fx->media);
-    set_default_light(fx);
+    sbfx_scene *builtin = NULL;
+    const sbfx_scene *scene = fx->desc.scene;
+    if (!scene) {
+        if (!(builtin = sbfx_calloc(fx, 1, sizeof(*builtin))))
+            return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
+        sbfx_scene_builtin(builtin);
+        scene = builtin;
+    }
+    adopt_scene(fx, scene);
+    sbfx_free(fx, builtin);
     fx->max_kelvin = fx->desc.blackbody_max_kelvin;
-    sbfx_builtin_explosion(&fx->effects[0]);
-    fx->effect_count = 1;
-    for (int e = 0; e < fx->effect_count; e++)
-        for (int i = 0; i < fx->effects[e].emitter_count; i++)
-            fx->uses_medium[fx->effects[e].emitters[i].medium] = true;
     if ((r = check_context(fx)) != SBFX_OK) return r;
     if ((r = sbfx_pool_create(fx, fx->desc.max_particles)) != SBFX_OK) return r;
     if ((r = sbfx_luts_create(fx)) != SBFX_OK) return r;
@@ -166,15 +200,90 @@ void sbfx_destroy(sbfx *fx)
     free(fx);
 }
 
+static int find_effect(const sbfx *fx, const char *name)
+{
+    for (int i = 0; i < fx->effect_count; i++)
+        if (strcmp(fx->effects[i].name, name) == 0) return i;
+    return -1;
+}
+
+static bool position_valid(const float p[3])
+{
+    return p && isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+}
+
+/* Starts one instance: its particles, and its light flashes as live point lights. */
+sbfx_result sbfx_fire(sbfx *fx, int index, const float position[3])
+{
+    const sbfx_effect *e = &fx->effects[index];
+    sbfx_result r = sbfx_spawn_effect(fx, e, position);
+    if (r != SBFX_OK) {
+        fx->counters.triggers_refused++;
+        return r;
+    }
+    fx->counters.triggers_fired++;
+    for (int i = 0; i < e->flash_count && fx->flash_count < SBFX_MAX_LIVE_FLASHES; i++) {
+        const sbfx_flash *f = &e->flashes[i];
+        sbfx_live_flash *live = &fx->flashes[fx->flash_count++];
+        live->start = fx->time + f->delay;
+        live->duration = f->duration;
+        memcpy(live->color, f->color, sizeof(live->color));
+        for (int k = 0; k < 3; k++) live->position[k] = position[k] + f->offset[k];
+    }
+    return SBFX_OK;
+}
+
 sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float position[3])
 {
     if (!fx || !effect || !position) return SBFX_ERR_INVALID_ARGUMENT;
-    if (!isfinite(position[0]) || !isfinite(position[1]) || !isfinite(position[2]))
+    if (!position_valid(position))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "trigger \"%s\": position is not finite", effect);
-    for (int i = 0; i < fx->effect_count; i++)
-        if (strcmp(fx->effects[i].name, effect) == 0)
-            return sbfx_spawn_effect(fx, &fx->effects[i], position);
-    return sbfx_fail(fx, SBFX_ERR_UNKNOWN_EFFECT, "trigger: no effect named \"%s\"", effect);
+    int index = find_effect(fx, effect);
+    if (index < 0) return sbfx_fail(fx, SBFX_ERR_UNKNOWN_EFFECT, "trigger: no effect named \"%s\"", effect);
+    return sbfx_fire(fx, index, position);
+}
+
+sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds, const float position[3])
+{
+    if (!fx || !effect) return SBFX_ERR_INVALID_ARGUMENT;
+    if (!position_valid(position) || !isfinite(seconds) || seconds < 0)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "schedule \"%s\": time or position is not finite", effect);
+    int index = find_effect(fx, effect);
+    if (index < 0) return sbfx_fail(fx, SBFX_ERR_UNKNOWN_EFFECT, "schedule: no effect named \"%s\"", effect);
+    if (fx->schedule_count == SBFX_MAX_SCHEDULE)
+        return sbfx_fail(fx, SBFX_ERR_POOL_FULL, "schedule \"%s\": %d triggers already pending", effect, SBFX_MAX_SCHEDULE);
+    /* Keep the queue sorted (stable: equal times fire in the order they were scheduled). */
+    int at = fx->schedule_count;
+    while (at > fx->next_scheduled && fx->schedule[at - 1].time > seconds) {
+        fx->schedule[at] = fx->schedule[at - 1];
+        at--;
+    }
+    fx->schedule[at] = (sbfx_scheduled){index, seconds, {position[0], position[1], position[2]}};
+    fx->schedule_count++;
+    return SBFX_OK;
+}
+
+double sbfx_time(const sbfx *fx) { return fx ? fx->time : 0.0; }
+
+/* Scheduled triggers due at the current step; a refused one is counted and dropped. */
+static void fire_due(sbfx *fx)
+{
+    while (fx->next_scheduled < fx->schedule_count &&
+           fx->schedule[fx->next_scheduled].time <= fx->time + 1e-9) {
+        const sbfx_scheduled *s = &fx->schedule[fx->next_scheduled++];
+        sbfx_fire(fx, s->effect, s->position);
+    }
+    if (fx->next_scheduled == fx->schedule_count) fx->next_scheduled = fx->schedule_count = 0;
+}
+
+static void expire_flashes(sbfx *fx)
+{
+    for (int i = 0; i < fx->flash_count;) {
+        if (fx->time >= fx->flashes[i].start + fx->flashes[i].duration)
+            fx->flashes[i] = fx->flashes[--fx->flash_count];
+        else
+            i++;
+    }
 }
 
 sbfx_result sbfx_update(sbfx *fx, double dt)
@@ -182,16 +291,19 @@ sbfx_result sbfx_update(sbfx *fx, double dt)
     if (!fx) return SBFX_ERR_INVALID_ARGUMENT;
     if (!(dt >= 0.0) || !isfinite(dt))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "sbfx_update: dt %g is not a finite time >= 0", dt);
+    /* Time is counted in whole steps (step_index * step), so no rounding drift accumulates. */
     double step = fx->desc.sim_step;
     /* A stall (debugger, suspended board) must not make the simulation spin: cap the debt. */
     fx->accumulator = fmin(fx->accumulator + dt, 0.25 + step);
     fx->particles_simulated = 0;
     while (fx->accumulator >= step) {
+        fire_due(fx);
         fx->particles_simulated += fx->pool.alive;
         sbfx_simulate_step(fx, (float)step);
         fx->accumulator -= step;
-        fx->time += step;
         fx->step_index++;
+        fx->time = (double)fx->step_index * step;
+        expire_flashes(fx);
     }
     return SBFX_OK;
 }
@@ -209,13 +321,12 @@ sbfx_medium_params *sbfx_media(sbfx *fx) { return fx->media; }
 
 void sbfx_set_light(sbfx *fx, const float direction[3], const float color[3], const float ambient[3])
 {
-    float len = sqrtf(direction[0] * direction[0] + direction[1] * direction[1] +
-                      direction[2] * direction[2]);
-    for (int i = 0; i < 3; i++) {
-        fx->light_dir[i] = len > 0 ? direction[i] / len : (i == 1 ? -1.0f : 0.0f);
-        fx->light_color[i] = color[i];
-        fx->ambient[i] = ambient[i];
-    }
+    fx->light_count = 1;
+    fx->lights[0].point = false;
+    memcpy(fx->lights[0].vector, direction, 3 * sizeof(float));
+    normalize3(fx->lights[0].vector);
+    memcpy(fx->lights[0].color, color, 3 * sizeof(float));
+    memcpy(fx->ambient, ambient, 3 * sizeof(float));
 }
 
 /* ---- host helpers: column-major matrices ---- */

@@ -62,6 +62,32 @@ typedef enum sbfx_upsample {
 
 typedef enum sbfx_medium { SBFX_DUST, SBFX_SMOKE, SBFX_FIRE, SBFX_MEDIUM_COUNT } sbfx_medium;
 
+/* A parsed scene file (libconfig syntax; README "Scene files"): render settings, lights,
+ * media, effects made of steps, and triggers. Loading either succeeds whole or leaves nothing
+ * behind; errors name the file and line. */
+typedef struct sbfx_scene sbfx_scene;
+
+sbfx_result sbfx_scene_load(const char *path, sbfx_scene **out, char *err, size_t err_size);
+/* The same from text in memory; `name` stands for the file name in messages. */
+sbfx_result sbfx_scene_parse(const char *text, const char *name, sbfx_scene **out, char *err,
+                             size_t err_size);
+void sbfx_scene_free(sbfx_scene *scene);
+
+typedef enum sbfx_edge { SBFX_EDGE_RISING = 1, SBFX_EDGE_FALLING = 2, SBFX_EDGE_BOTH = 3 } sbfx_edge;
+
+/* A GPIO line that fires an effect: read by the platform layer, which calls sbfx_trigger. */
+typedef struct sbfx_gpio_trigger {
+    char chip[64];        /* "gpiochip0" or a path */
+    int line;
+    sbfx_edge edge;
+    int debounce_ms;
+    char effect[32];
+    float position[3];
+} sbfx_gpio_trigger;
+
+/* The scene's GPIO triggers; returns their count and sets *out to an array owned by the scene. */
+int sbfx_scene_gpio_triggers(const sbfx_scene *scene, const sbfx_gpio_trigger **out);
+
 typedef struct sbfx_desc {
     int target_divisor;              /* particle target = output / divisor per axis: 1,2,4,8 (4) */
     sbfx_target_format target_format;
@@ -74,6 +100,10 @@ typedef struct sbfx_desc {
     int detail_size;                 /* detail volume width = height (64) */
     int detail_frames;               /* detail volume depth = animation frames (32) */
     float sim_step;                  /* fixed simulation step in seconds (1/120) */
+    const sbfx_scene *scene;         /* NULL: the built-in explosion. Non-zero fields of this
+                                        desc override the scene's render settings. The scene
+                                        may be freed once sbfx_create returns. */
+    bool ignore_timeline;            /* do not fire the scene's timeline triggers */
     sbfx_log_fn log;                 /* NULL: messages go nowhere, sbfx_last_error() still works */
     void *log_user;
 } sbfx_desc;
@@ -100,6 +130,8 @@ typedef struct sbfx_counters {
     int particles_simulated;  /* particles advanced by the last sbfx_update */
     int particles_alive;
     int particles_skipped;    /* bad particles (NaN/Inf/negative radius) skipped last render */
+    int triggers_fired;       /* effect instances started since load */
+    int triggers_refused;     /* triggers refused because the pool was full */
     uint64_t heap_allocs_after_load; /* sbfx heap allocations since sbfx_create returned */
     sbfx_target_format target_format; /* the format actually in use */
 } sbfx_counters;
@@ -110,8 +142,16 @@ sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out);
 void sbfx_destroy(sbfx *fx);
 const char *sbfx_last_error(const sbfx *fx);
 
-/* Starts an instance of a named effect at a world position. Built in: "explosion". */
+/* Starts an instance of a named effect at a world position now (at the next simulation step).
+ * Without a scene the one effect is "explosion". When the pool cannot hold the whole instance
+ * the trigger is refused (SBFX_ERR_POOL_FULL, counted in triggers_refused); live instances
+ * are never cut short. */
 sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float position[3]);
+/* Schedules a trigger at simulation time `seconds` (since sbfx_create); it fires at the first
+ * simulation step at or after that time, so results do not depend on frame times. */
+sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds, const float position[3]);
+/* Simulation time in seconds since sbfx_create. */
+double sbfx_time(const sbfx *fx);
 /* Advances the simulation by dt seconds in fixed steps (an accumulator keeps the remainder). */
 sbfx_result sbfx_update(sbfx *fx, double dt);
 sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);

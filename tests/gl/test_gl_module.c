@@ -74,7 +74,7 @@ CHECK_TEST(idle_frame_runs_no_pass)
     fixture_open(&f, 64, 48);
     fixture_projection(&f, 1.0f, 0.1f, 100.0f);
     fixture_depth(&f, depth_far_everywhere, NULL);
-    sbfx *fx = fixture_module(&f, (sbfx_desc){0});
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.ignore_timeline = true});
     glBindFramebuffer(GL_FRAMEBUFFER, f.out_fbo);
     glClearColor(0.25f, 0.5f, 0.75f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
@@ -146,7 +146,7 @@ CHECK_TEST(no_heap_allocation_per_frame_after_warmup)
     struct test_scene scene;
     char err[256];
     CHECK(test_scene_create(&scene, 160, 90, err, sizeof(err)) == 0, "%s", err);
-    sbfx *fx = fixture_module(&f, (sbfx_desc){0});
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.ignore_timeline = true});
     /* Warm up across the first frames (targets are made on the first render). */
     uint64_t before = 0;
     for (int i = 0; i < 3; i++) {
@@ -182,7 +182,7 @@ CHECK_TEST(explosion_renders_three_passes_and_finite_pixels)
     struct test_scene scene;
     char err[256];
     CHECK(test_scene_create(&scene, 160, 90, err, sizeof(err)) == 0, "%s", err);
-    sbfx *fx = fixture_module(&f, (sbfx_desc){0});
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.ignore_timeline = true});
     run_result r = run_explosion(&f, fx, &scene, 90, 0);
     CHECK(r.finite, "a particle-target pixel is NaN or Inf");
     CHECK(r.max_passes == 3, "passes %d, want depth + particles + composite", r.max_passes);

@@ -1,0 +1,230 @@
+/* Black-body colour of fire (DESIGN §2.3): Planck's law integrated against the CIE 1931 2°
+ * colour-matching functions, XYZ -> linear sRGB, normalised, tabulated over temperature.
+ *
+ * The CMFs come from colord-data's CGATS file, read with lcms2's IT8 parser in a private lcms2
+ * context whose error handler captures lcms2's message for our error string (the global
+ * handler is left alone: the host may have installed its own). */
+#include <errno.h>
+#include <lcms2.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+#include "reference.h"
+
+/* ---- loading the colour-matching functions ------------------------------------------------ */
+
+typedef struct cmf_log {
+    char text[256]; /* lcms2's last error message, "" if none */
+} cmf_log;
+
+static void cmf_log_handler(cmsContext ctx, cmsUInt32Number code, const char *text)
+{
+    (void)code;
+    cmf_log *log = cmsGetContextUserData(ctx);
+    if (log && text) snprintf(log->text, sizeof log->text, "%s", text);
+}
+
+static sbfx_result cmf_fail(char *err, size_t err_size, const char *path, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+/* Formats "cannot read ... from <path>: <reason>; install ..." into err. */
+static sbfx_result cmf_fail(char *err, size_t err_size, const char *path, const char *fmt, ...)
+{
+    if (!err || err_size == 0) return SBFX_ERR_MISSING_DATA;
+    char reason[320];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(reason, sizeof reason, fmt, ap);
+    va_end(ap);
+    snprintf(err, err_size,
+             "cannot read CIE 1931 colour-matching functions from %s: %s; install the Debian "
+             "package colord-data (apt-get install colord-data)",
+             path, reason);
+    return SBFX_ERR_MISSING_DATA;
+}
+
+/* Reads a numeric header property; 0 if it is absent or not finite. */
+static int cmf_property(cmsHANDLE it8, const char *name, double *value)
+{
+    if (!cmsIT8GetProperty(it8, name)) return 0;
+    *value = cmsIT8GetPropertyDbl(it8, name);
+    return isfinite(*value);
+}
+
+/* Checks the spectral header and fills bands, start and step. */
+static sbfx_result cmf_read_header(cmsHANDLE it8, sbfx_cmf *out, const char *path, char *err,
+                                   size_t err_size)
+{
+    double start, end, bands;
+    if (!cmf_property(it8, "SPECTRAL_START_NM", &start) ||
+        !cmf_property(it8, "SPECTRAL_END_NM", &end) || !cmf_property(it8, "SPECTRAL_BANDS", &bands))
+        return cmf_fail(err, err_size, path,
+                        "no SPECTRAL_START_NM / SPECTRAL_END_NM / SPECTRAL_BANDS header");
+    if (bands != floor(bands) || bands < 2 || bands > SBFX_CMF_MAX_BANDS || !(end > start) ||
+        !(start > 0))
+        return cmf_fail(err, err_size, path, "bad spectral range %g..%g nm in %g bands", start,
+                        end, bands);
+    out->bands = (int)bands;
+    out->start_nm = start;
+    out->step_nm = (end - start) / (bands - 1);
+    return SBFX_OK;
+}
+
+/* Rows 0, 1, 2 of the data are x̄, ȳ, z̄; every cell must be present and finite. */
+static sbfx_result cmf_read_data(cmsHANDLE it8, sbfx_cmf *out, const char *path, char *err,
+                                 size_t err_size)
+{
+    for (int k = 0; k < 3; k++) {
+        for (int i = 0; i < out->bands; i++) {
+            if (!cmsIT8GetDataRowCol(it8, k, i))
+                return cmf_fail(err, err_size, path, "data row %d has no value in band %d", k, i);
+            double v = cmsIT8GetDataRowColDbl(it8, k, i);
+            if (!isfinite(v))
+                return cmf_fail(err, err_size, path, "data row %d band %d is not a number", k, i);
+            out->xyz[k][i] = v;
+        }
+    }
+    return SBFX_OK;
+}
+
+sbfx_result sbfx_cmf_load(const char *path, sbfx_cmf *out, char *err, size_t err_size)
+{
+    if (err && err_size) err[0] = '\0';
+    if (!path) path = SBFX_CMF_DEFAULT_PATH;
+    if (!out) return SBFX_ERR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    /* lcms2 only says "File not found"; the OS says why (missing, no permission, a directory,
+     * which fopen accepts and the first read refuses). */
+    FILE *f = fopen(path, "rb");
+    if (!f) return cmf_fail(err, err_size, path, "%s", strerror(errno));
+    errno = 0;
+    int first = fgetc(f);
+    int read_errno = ferror(f) ? errno : 0;
+    fclose(f);
+    if (read_errno) return cmf_fail(err, err_size, path, "%s", strerror(read_errno));
+    if (first == EOF) return cmf_fail(err, err_size, path, "the file is empty");
+
+    cmf_log log = {{0}};
+    cmsContext ctx = cmsCreateContext(NULL, &log);
+    if (!ctx) return cmf_fail(err, err_size, path, "lcms2 could not create a context");
+    cmsSetLogErrorHandlerTHR(ctx, cmf_log_handler);
+    cmsHANDLE it8 = cmsIT8LoadFromFile(ctx, path);
+    sbfx_result result;
+    if (!it8) {
+        result = cmf_fail(err, err_size, path, "not a CGATS/IT8 file (%s)",
+                          log.text[0] ? log.text : "lcms2 gave no reason");
+    } else {
+        result = cmf_read_header(it8, out, path, err, err_size);
+        if (result == SBFX_OK) result = cmf_read_data(it8, out, path, err, err_size);
+        cmsIT8Free(it8);
+    }
+    cmsDeleteContext(ctx);
+    if (result != SBFX_OK) memset(out, 0, sizeof *out);
+    return result;
+}
+
+/* ---- Planck's law ------------------------------------------------------------------------ */
+
+/* CODATA 2018 exact SI values. The seed prints L = 2 C1 / (λ^5 (e^{C2/λT} - 1)) with
+ * C1 = 3.7418e-16 W m^2, which is the first radiation constant 2πhc² (it gives exitance when
+ * used once); spectral *radiance* is 2hc²/(λ^5 (e^{hc/λkT} - 1)), used here. The seed's 2·C1
+ * differs from 2hc² by the constant factor 2π and its C2 = 1.4388e-2 m K is hc/k rounded, so
+ * nothing but the scale changes, and the table is normalised by 1/Y(T_max): the scale cancels. */
+#define PLANCK_H 6.62607015e-34   /* J s */
+#define LIGHT_C 299792458.0       /* m / s */
+#define BOLTZMANN_K 1.380649e-23  /* J / K */
+#define PLANCK_C1L (2.0 * PLANCK_H * LIGHT_C * LIGHT_C)    /* 1.191042972e-16 W m^2 sr^-1 */
+#define PLANCK_C2 (PLANCK_H * LIGHT_C / BOLTZMANN_K)        /* 1.438776877e-2 m K */
+
+double sbfx_planck(double lambda_m, double kelvin)
+{
+    if (!(kelvin > 0.0) || !(lambda_m > 0.0) || !isfinite(kelvin) || !isfinite(lambda_m))
+        return 0.0;
+    double x = PLANCK_C2 / (lambda_m * kelvin);
+    /* 1/(e^x - 1) = e^-x / (1 - e^-x): e^-x underflows quietly to 0 for cold bodies instead of
+     * e^x overflowing, and -expm1(-x) keeps full precision for x -> 0 (very hot bodies). */
+    double l5 = lambda_m * lambda_m * lambda_m * lambda_m * lambda_m;
+    double value = PLANCK_C1L / l5 * (exp(-x) / -expm1(-x));
+    return isfinite(value) ? value : 0.0;
+}
+
+/* ---- colour ----------------------------------------------------------------------------- */
+
+void sbfx_blackbody_xyz(const sbfx_cmf *cmf, double kelvin, double xyz[3])
+{
+    xyz[0] = xyz[1] = xyz[2] = 0.0;
+    if (!cmf || cmf->bands < 2 || cmf->bands > SBFX_CMF_MAX_BANDS) return;
+    double step_m = cmf->step_nm * 1e-9;
+    /* Trapezoid rule on the file's own band grid (the CMFs are only known there). */
+    for (int i = 0; i < cmf->bands; i++) {
+        double lambda_m = (cmf->start_nm + cmf->step_nm * i) * 1e-9;
+        double weight = (i == 0 || i == cmf->bands - 1) ? 0.5 * step_m : step_m;
+        double radiance = sbfx_planck(lambda_m, kelvin) * weight;
+        for (int k = 0; k < 3; k++) xyz[k] += cmf->xyz[k][i] * radiance;
+    }
+}
+
+/* IEC 61966-2-1 (sRGB, D65 white) XYZ -> linear RGB matrix, as the standard prints it. */
+void sbfx_xyz_to_linear_srgb(const double xyz[3], double rgb[3])
+{
+    static const double m[3][3] = {
+        {3.2406, -1.5372, -0.4986},
+        {-0.9689, 1.8758, 0.0415},
+        {0.0557, -0.2040, 1.0570},
+    };
+    for (int i = 0; i < 3; i++) rgb[i] = m[i][0] * xyz[0] + m[i][1] * xyz[1] + m[i][2] * xyz[2];
+}
+
+void sbfx_blackbody_rgb(const sbfx_cmf *cmf, double kelvin, double norm, double rgb[3])
+{
+    double xyz[3];
+    sbfx_blackbody_xyz(cmf, kelvin, xyz);
+    for (int k = 0; k < 3; k++) xyz[k] *= norm;
+    sbfx_xyz_to_linear_srgb(xyz, rgb);
+    /* Low temperatures (below about 2000 K) lie outside the sRGB gamut, beyond its red–green
+     * edge: blue comes out negative. A display cannot emit negative light, so the component is
+     * clipped to 0 (hue shifts slightly toward the gamut edge, luminance rises slightly). */
+    for (int k = 0; k < 3; k++)
+        if (!(rgb[k] > 0.0) || !isfinite(rgb[k])) rgb[k] = 0.0;
+}
+
+double sbfx_blackbody_norm(const sbfx_cmf *cmf, double max_kelvin)
+{
+    double xyz[3];
+    sbfx_blackbody_xyz(cmf, max_kelvin, xyz);
+    double norm = 1.0 / xyz[1];
+    /* A table with no light at its top (T_max <= 0, or so cold Y underflows) stays black. */
+    return (xyz[1] > 0.0 && isfinite(norm)) ? norm : 0.0;
+}
+
+static double table_kelvin(int i, int size, double max_kelvin)
+{
+    return size > 1 ? max_kelvin * i / (size - 1) : max_kelvin;
+}
+
+void sbfx_blackbody_table(const sbfx_cmf *cmf, double max_kelvin, int size, double *rgb_out)
+{
+    if (!rgb_out || size < 1) return;
+    double norm = sbfx_blackbody_norm(cmf, max_kelvin);
+    for (int i = 0; i < size; i++)
+        sbfx_blackbody_rgb(cmf, table_kelvin(i, size, max_kelvin), norm, rgb_out + 3 * (size_t)i);
+}
+
+void sbfx_blackbody_table_lookup(const double *table, int size, double max_kelvin, double kelvin,
+                                 double rgb[3])
+{
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    if (!table || size < 1) return;
+    if (size == 1 || !(max_kelvin > 0.0)) {
+        for (int k = 0; k < 3; k++) rgb[k] = table[k];
+        return;
+    }
+    double t = kelvin > 0.0 ? (kelvin < max_kelvin ? kelvin : max_kelvin) : 0.0; /* NaN -> 0 */
+    double pos = t / max_kelvin * (size - 1);
+    int i = (int)pos;
+    if (i > size - 2) i = size - 2;
+    double f = pos - i;
+    const double *a = table + 3 * (size_t)i, *b = a + 3;
+    for (int k = 0; k < 3; k++) rgb[k] = a[k] + (b[k] - a[k]) * f;
+}

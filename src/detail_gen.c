@@ -1,0 +1,163 @@
+/* Procedural detail volume (DESIGN §2.4): tileable, looping, animated fBm of 3D gradient noise.
+ *
+ * Axes x, y (size texels) and t (frames) are all periodic: octave k has a lattice of
+ * cells[axis] cells per axis, texel x maps to lattice coordinate x * cells / size, and lattice
+ * indices are taken modulo cells, so texel size is the same lattice point as texel 0. That makes
+ * the volume tile in x and y and loop in time (the GPU's REPEAT wrap then interpolates across the
+ * seams) for any size, not only powers of two; with power-of-two sizes each octave's period is a
+ * whole number of texels.
+ *
+ * The sum of octaves is standardised over the whole volume and mapped through a tanh curve to
+ * (0, 1): mean 0.5, standard deviation about 0.19, no hard clipping (a clamp would leave flat
+ * plateaus in the perturbation). Deterministic from the seed; no allocation but the output. */
+#include <math.h>
+#include "reference.h"
+
+#define MAX_OCTAVES 5
+#define BASE_CELLS_XY 4 /* coarsest octave: 4 features across the image */
+#define BASE_CELLS_T 2  /* ...and 2 across the animation loop: slow evolution */
+#define OUTPUT_GAIN 0.45 /* tanh gain on the standardised sum: output std ≈ 0.19 */
+
+typedef struct octave {
+    int cells[3];      /* lattice period per axis (x, y, t) */
+    double offset[3];  /* random lattice shift, so lattice points do not sit on texels */
+    uint32_t salt;     /* decorrelates the octaves' gradients */
+    double amplitude;
+} octave;
+
+/* "lowbias32" integer mixer (C. Wellons): good avalanche, cheap, portable. */
+static uint32_t mix32(uint32_t x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352dU;
+    x ^= x >> 15;
+    x *= 0x846ca68bU;
+    x ^= x >> 16;
+    return x;
+}
+
+static int wrap(int i, int period)
+{
+    int m = i % period;
+    return m < 0 ? m + period : m;
+}
+
+/* Dot product of the lattice point's pseudo-random gradient (one of the 12 cube-edge directions
+ * of improved Perlin noise) with the offset (fx, fy, ft) from that point. */
+static double lattice_dot(const octave *o, int ix, int iy, int it, double fx, double fy, double ft)
+{
+    uint32_t h = mix32(o->salt ^ mix32((uint32_t)wrap(ix, o->cells[0]) ^
+                                       mix32((uint32_t)wrap(iy, o->cells[1]) ^
+                                             mix32((uint32_t)wrap(it, o->cells[2])))));
+    switch (h % 12) {
+    case 0: return fx + fy;
+    case 1: return -fx + fy;
+    case 2: return fx - fy;
+    case 3: return -fx - fy;
+    case 4: return fx + ft;
+    case 5: return -fx + ft;
+    case 6: return fx - ft;
+    case 7: return -fx - ft;
+    case 8: return fy + ft;
+    case 9: return -fy + ft;
+    case 10: return fy - ft;
+    default: return -fy - ft;
+    }
+}
+
+/* Quintic fade: C2-continuous across cells, so the fBm has no visible lattice creases. */
+static double fade(double t)
+{
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+static double lerp(double a, double b, double t)
+{
+    return a + (b - a) * t;
+}
+
+/* Periodic gradient noise at lattice coordinates p (roughly in [-1, 1]). */
+static double gradient_noise(const octave *o, const double p[3])
+{
+    int i[3];
+    double f[3], s[3];
+    for (int k = 0; k < 3; k++) {
+        double fl = floor(p[k]);
+        i[k] = (int)fl;
+        f[k] = p[k] - fl;
+        s[k] = fade(f[k]);
+    }
+    double c[2][2][2];
+    for (int dz = 0; dz < 2; dz++)
+        for (int dy = 0; dy < 2; dy++)
+            for (int dx = 0; dx < 2; dx++)
+                c[dz][dy][dx] = lattice_dot(o, i[0] + dx, i[1] + dy, i[2] + dz, f[0] - dx,
+                                            f[1] - dy, f[2] - dz);
+    double y0 = lerp(lerp(c[0][0][0], c[0][0][1], s[0]), lerp(c[0][1][0], c[0][1][1], s[0]), s[1]);
+    double y1 = lerp(lerp(c[1][0][0], c[1][0][1], s[0]), lerp(c[1][1][0], c[1][1][1], s[0]), s[1]);
+    return lerp(y0, y1, s[2]);
+}
+
+static int min_int(int a, int b)
+{
+    return a < b ? a : b;
+}
+
+/* Octave k doubles the previous octave's lattice, up to a cap per axis: no finer than 2 texels
+ * per cell in x/y (finer would alias) and 4 frames per cell in t (finer would flicker). Stops
+ * early when x/y cannot get finer any more. Returns the number of octaves. */
+static int plan_octaves(int size, int frames, uint32_t seed, octave *o)
+{
+    int cap_xy = size / 2 > 1 ? size / 2 : 1;
+    int cap_t = frames / 4 > 1 ? frames / 4 : 1;
+    sbfx_rng rng;
+    sbfx_rng_seed(&rng, ((uint64_t)seed << 32) ^ UINT64_C(0x5bf03635d7e1a2c9));
+    int n = 0;
+    double amplitude = 1.0;
+    for (int k = 0; k < MAX_OCTAVES; k++) {
+        int cells_xy = min_int(BASE_CELLS_XY << k, cap_xy);
+        if (k > 0 && cells_xy == o[n - 1].cells[0]) break;
+        o[n].cells[0] = o[n].cells[1] = cells_xy;
+        o[n].cells[2] = min_int(BASE_CELLS_T << k, cap_t);
+        for (int a = 0; a < 3; a++) o[n].offset[a] = sbfx_rng_uniform(&rng);
+        o[n].salt = sbfx_rng_u32(&rng);
+        o[n].amplitude = amplitude;
+        amplitude *= 0.5;
+        n++;
+    }
+    return n;
+}
+
+static double fbm(const octave *o, int n, double x, double y, double t, int size, int frames)
+{
+    double sum = 0.0;
+    for (int k = 0; k < n; k++) {
+        double p[3] = {x * o[k].cells[0] / size + o[k].offset[0],
+                       y * o[k].cells[1] / size + o[k].offset[1],
+                       t * o[k].cells[2] / frames + o[k].offset[2]};
+        sum += o[k].amplitude * gradient_noise(&o[k], p);
+    }
+    return sum;
+}
+
+void sbfx_detail_generate(int size, int frames, uint32_t seed, float *out)
+{
+    if (!out || size < 1 || frames < 1) return;
+    octave o[MAX_OCTAVES];
+    int n = plan_octaves(size, frames, seed, o);
+    size_t count = (size_t)size * (size_t)size * (size_t)frames, idx = 0;
+    double sum = 0.0, sum2 = 0.0;
+    for (int t = 0; t < frames; t++)
+        for (int y = 0; y < size; y++)
+            for (int x = 0; x < size; x++) {
+                double v = fbm(o, n, x, y, t, size, frames);
+                out[idx++] = (float)v;
+                sum += v;
+                sum2 += v * v;
+            }
+    double mean = sum / (double)count;
+    double var = sum2 / (double)count - mean * mean;
+    double inv_std = var > 1e-24 ? 1.0 / sqrt(var) : 0.0; /* constant volume: all 0.5 */
+    for (size_t i = 0; i < count; i++)
+        out[i] = (float)(0.5 + 0.5 * tanh(OUTPUT_GAIN * (out[i] - mean) * inv_std));
+}

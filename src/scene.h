@@ -1,0 +1,45 @@
+/* Scene contents after parsing (private). The module copies what it needs at sbfx_create. */
+#ifndef SBFX_SCENE_H
+#define SBFX_SCENE_H
+
+#include "module.h"
+
+#define SBFX_MAX_LIGHTS 4
+#define SBFX_MAX_TIMELINE 64
+#define SBFX_MAX_GPIO 16
+#define SBFX_MAX_EMITTER_COUNT 100000 /* particles of one emitter step */
+
+typedef enum sbfx_light_type { SBFX_LIGHT_DIRECTIONAL, SBFX_LIGHT_POINT } sbfx_light_type;
+
+typedef struct sbfx_light {
+    sbfx_light_type type;
+    float vector[3]; /* direction the light travels in (directional) or position (point) */
+    float color[3];  /* irradiance; point lights at 1 m */
+} sbfx_light;
+
+typedef struct sbfx_timeline_entry {
+    int effect;
+    double time;
+    float position[3];
+} sbfx_timeline_entry;
+
+struct sbfx_scene {
+    char name[128];
+    sbfx_desc render;   /* render settings given by the file (zero = not given) */
+    int light_count;
+    sbfx_light lights[SBFX_MAX_LIGHTS];
+    float ambient[3];
+    bool has_medium[SBFX_MEDIUM_COUNT];
+    sbfx_medium_params media[SBFX_MEDIUM_COUNT];
+    int effect_count;
+    sbfx_effect effects[SBFX_MAX_EFFECTS];
+    int timeline_count;
+    sbfx_timeline_entry timeline[SBFX_MAX_TIMELINE];
+    int gpio_count;
+    sbfx_gpio_trigger gpio[SBFX_MAX_GPIO];
+};
+
+/* The scene sbfx uses when the desc names none: the seed's explosion, fired at t = 0. */
+void sbfx_scene_builtin(sbfx_scene *scene);
+
+#endif
