@@ -8,14 +8,14 @@ void sbfx_default_media(sbfx_medium_params media[SBFX_MEDIUM_COUNT])
      * results". Fire (§3.2) is a black body: albedo 0. */
     media[SBFX_DUST] = (sbfx_medium_params){
         .albedo = 0.9f, .tau = 0.4f, .phase_g = 0.0f, .color = {0.80f, 0.70f, 0.56f},
-        .detail_strength = 0.8f, .detail_window = 0.35f};
+        .detail_strength = 0.8f, .detail_window = 0.15f};
     media[SBFX_SMOKE] = (sbfx_medium_params){
         .albedo = 0.2f, .tau = 0.4f, .phase_g = 0.0f, .color = {1.0f, 1.0f, 1.0f},
-        .detail_strength = 0.8f, .detail_window = 0.35f};
+        .detail_strength = 0.8f, .detail_window = 0.15f};
     media[SBFX_FIRE] = (sbfx_medium_params){
         .albedo = 0.0f, .tau = 0.4f, .phase_g = 0.0f, .color = {1.0f, 1.0f, 1.0f},
-        .detail_strength = 1.0f, .detail_window = 0.3f,
-        .t0 = 1300.0f, .t1 = 1900.0f, .cooling = 0.45f, .emission_scale = 6.0f};
+        .detail_strength = 1.0f, .detail_window = 0.15f,
+        .t0 = 1500.0f, .t1 = 2000.0f, .cooling = 0.45f, .emission_scale = 150.0f};
 }
 
 void sbfx_builtin_explosion(sbfx_effect *out)
@@ -26,7 +26,7 @@ void sbfx_builtin_explosion(sbfx_effect *out)
     /* Fire: a fast burst that rises, slows under drag and cools as it thins. */
     out->emitters[0] = (sbfx_emitter){
         .medium = SBFX_FIRE, .count = 115, .delay = 0.0f, .spawn_radius = 0.45f,
-        .speed_min = 2.0f, .speed_max = 5.0f, .upward = 0.45f, .life_min = 0.9f, .life_max = 2.0f,
+        .speed_min = 2.0f, .speed_max = 5.0f, .upward = 0.45f, .life_min = 1.2f, .life_max = 2.4f,
         .radius_start = 0.35f, .radius_end = 0.95f, .radius_jitter = 0.3f, .drag = 2.2f,
         .buoyancy = 1.8f, .intensity_start = 1.0f, .intensity_end = 0.0f, .fade_in = 0.06f};
     /* Smoke: follows the fire, grows and thins for the rest of the 3 s. */
@@ -41,4 +41,8 @@ void sbfx_builtin_explosion(sbfx_effect *out)
         .speed_min = 2.5f, .speed_max = 4.5f, .upward = 0.1f, .life_min = 2.0f, .life_max = 3.0f,
         .radius_start = 0.6f, .radius_end = 1.6f, .radius_jitter = 0.2f, .drag = 1.6f,
         .buoyancy = 0.15f, .intensity_start = 0.9f, .intensity_end = 0.0f, .fade_in = 0.1f};
+    /* The blast lights its own smoke and dust for half a second. */
+    out->flash_count = 1;
+    out->flashes[0] = (sbfx_flash){.delay = 0.0f, .duration = 0.5f, .color = {6.0f, 4.0f, 2.0f},
+                                   .offset = {0.0f, 0.8f, 0.0f}};
 }

@@ -71,4 +71,7 @@ sbfx_result sbfx_read_particle_target(sbfx *fx, float *rgba, size_t capacity, in
 sbfx_result sbfx_fetch_luts(sbfx *fx, float kelvin, float cos_theta, float g, float rgb[3],
                             float *phase);
 
+/* Hash of the live particles' simulation state (determinism tests). */
+uint64_t sbfx_state_hash(const sbfx *fx);
+
 #endif

@@ -25,7 +25,9 @@ static int fail_at(parser *p, const config_setting_t *s, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(message, sizeof(message), fmt, ap);
     va_end(ap);
-    snprintf(p->err, p->err_size, "%s:%d: %s", p->name, s ? (int)config_setting_source_line(s) : 0, message);
+    int line = s ? (int)config_setting_source_line(s) : 0;
+    if (line > 0) snprintf(p->err, p->err_size, "%s:%d: %s", p->name, line, message);
+    else snprintf(p->err, p->err_size, "%s: %s", p->name, message); /* the file as a whole */
     return -1;
 }
 

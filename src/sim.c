@@ -149,3 +149,19 @@ void sbfx_simulate_step(sbfx *fx, float h)
         i++;
     }
 }
+
+/* FNV-1a over the live particles' state: equal hashes mean bit-identical simulations. */
+uint64_t sbfx_state_hash(const sbfx *fx)
+{
+    const sbfx_pool *p = &fx->pool;
+    uint64_t h = 1469598103934665603ull;
+    const struct { const void *data; size_t size; } parts[] = {
+        {p->pos, 3 * sizeof(float)}, {p->vel, 3 * sizeof(float)}, {p->age, sizeof(float)},
+        {p->life, sizeof(float)}, {p->radius0, sizeof(float)}, {p->detail, 3 * sizeof(float)},
+        {p->medium, 1}};
+    for (size_t k = 0; k < ARRAY_SIZE(parts); k++) {
+        const unsigned char *bytes = parts[k].data;
+        for (size_t i = 0; i < (size_t)p->alive * parts[k].size; i++) h = (h ^ bytes[i]) * 1099511628211ull;
+    }
+    return h ^ (uint64_t)p->alive;
+}

@@ -21,7 +21,7 @@ typedef struct gl_fixture {
 
 static gl_fixture *fixture_current;
 
-static void fixture_log(sbfx_log_level level, const char *message, void *user)
+static inline void fixture_log(sbfx_log_level level, const char *message, void *user)
 {
     gl_fixture *f = user;
     if (level == SBFX_LOG_WARN && f) {
@@ -32,7 +32,7 @@ static void fixture_log(sbfx_log_level level, const char *message, void *user)
 }
 
 /* Opens the context; skips the test (with the reason) when no EGL/GLES3 is available. */
-static void fixture_open(gl_fixture *f, int width, int height)
+static inline void fixture_open(gl_fixture *f, int width, int height)
 {
     char err[512];
     memset(f, 0, sizeof(*f));
@@ -58,7 +58,7 @@ static void fixture_open(gl_fixture *f, int width, int height)
     fixture_current = f;
 }
 
-static void fixture_close(gl_fixture *f)
+static inline void fixture_close(gl_fixture *f)
 {
     glDeleteFramebuffers(1, &f->out_fbo);
     GLuint t[] = {f->depth_texture, f->out_texture};
@@ -66,7 +66,7 @@ static void fixture_close(gl_fixture *f)
     egl_headless_close(&f->egl);
 }
 
-static sbfx *fixture_module(gl_fixture *f, sbfx_desc desc)
+static inline sbfx *fixture_module(gl_fixture *f, sbfx_desc desc)
 {
     desc.log = fixture_log;
     desc.log_user = f;
@@ -77,14 +77,14 @@ static sbfx *fixture_module(gl_fixture *f, sbfx_desc desc)
     return fx;
 }
 
-static void fixture_projection(gl_fixture *f, float fov_y, float near, float far)
+static inline void fixture_projection(gl_fixture *f, float fov_y, float near, float far)
 {
     sbfx_perspective(f->frame.projection, fov_y, (float)f->width / f->height, near, far);
 }
 
 /* Fills the host depth texture (DEPTH_COMPONENT32F) so that every pixel linearises to the
  * view distance given by distance_at(x, y); +inf or >= far stays at the clear value 1. */
-static void fixture_depth(gl_fixture *f, double (*distance_at)(int x, int y, void *), void *user)
+static inline void fixture_depth(gl_fixture *f, double (*distance_at)(int x, int y, void *), void *user)
 {
     const float *p = f->frame.projection;
     double far = p[14] / (p[10] + 1.0);
@@ -101,14 +101,14 @@ static void fixture_depth(gl_fixture *f, double (*distance_at)(int x, int y, voi
     free(d);
 }
 
-static double depth_far_everywhere(int x, int y, void *user)
+static inline double depth_far_everywhere(int x, int y, void *user)
 {
     (void)x, (void)y, (void)user;
     return INFINITY;
 }
 
 /* The pixel's ray (z = -1) in the CPU reference's terms, at the centre of target pixel (x, y). */
-static void fixture_ray(const gl_fixture *f, const sbfx_frame *frame, int tw, int th, int x, int y,
+static inline void fixture_ray(const gl_fixture *f, const sbfx_frame *frame, int tw, int th, int x, int y,
                         double ray[3])
 {
     (void)f;
@@ -119,18 +119,18 @@ static void fixture_ray(const gl_fixture *f, const sbfx_frame *frame, int tw, in
     ray[2] = -1.0;
 }
 
-static double fixture_near(const sbfx_frame *frame)
+static inline double fixture_near(const sbfx_frame *frame)
 {
     return frame->projection[14] / (frame->projection[10] - 1.0);
 }
 
-static double fixture_far(const sbfx_frame *frame)
+static inline double fixture_far(const sbfx_frame *frame)
 {
     return frame->projection[14] / (frame->projection[10] + 1.0);
 }
 
 /* Reads the particle target; returns a malloc'ed RGBA float array. */
-static float *fixture_read_target(sbfx *fx, int *w, int *h)
+static inline float *fixture_read_target(sbfx *fx, int *w, int *h)
 {
     size_t cap = 4u * 4096u * 4096u;
     float *rgba = malloc(cap * sizeof(float) / 64);
@@ -138,7 +138,7 @@ static float *fixture_read_target(sbfx *fx, int *w, int *h)
     return rgba;
 }
 
-static bool all_finite(const float *v, size_t n)
+static inline bool all_finite(const float *v, size_t n)
 {
     for (size_t i = 0; i < n; i++)
         if (!isfinite(v[i])) return false;

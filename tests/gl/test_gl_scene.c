@@ -1,0 +1,146 @@
+/* The plan: only what a scene uses is created; idle costs nothing; the simulation is
+ * deterministic whatever the frame times; a full pool refuses triggers cleanly. */
+#include "gl_fixture.h"
+
+#define BLACKBODY_BYTES (SBFX_BLACKBODY_SIZE * 8)
+#define PHASE_BYTES (SBFX_PHASE_COS_SIZE * SBFX_PHASE_G_SIZE * 2)
+#define DETAIL_BYTES (64 * 64 * 32 * 2)
+
+static sbfx_scene *load_scene(const char *name)
+{
+    char path[256], err[512];
+    snprintf(path, sizeof(path), "scenes/%s.cfg", name);
+    sbfx_scene *scene = NULL;
+    CHECK(sbfx_scene_load(path, &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
+    if (!scene) exit(1);
+    return scene;
+}
+
+typedef struct plan {
+    const char *scene;
+    int particle_programs; /* one per medium used */
+    bool blackbody, phase;
+    int max_particles;
+} plan;
+
+static const plan plans[] = {
+    {"explosion", 3, true, true, 2048},
+    {"smoke", 1, false, true, 512},
+    {"campfire", 2, true, true, 1024},
+    {"dust-storm", 1, false, true, 1024},
+    {"barrage", 3, true, true, 4096},
+};
+
+CHECK_TEST(plan_holds_only_what_each_scene_uses)
+{
+    gl_fixture f;
+    fixture_open(&f, 64, 64);
+    for (size_t i = 0; i < ARRAY_SIZE(plans); i++) {
+        const plan *want = &plans[i];
+        sbfx_scene *scene = load_scene(want->scene);
+        sbfx *fx = fixture_module(&f, (sbfx_desc){.scene = scene});
+        sbfx_scene_free(scene);
+        sbfx_counters c;
+        sbfx_stats(fx, &c);
+        int textures = want->blackbody + want->phase + 1; /* + the detail volume */
+        size_t bytes = (want->blackbody ? BLACKBODY_BYTES : 0) + (want->phase ? PHASE_BYTES : 0) +
+                       DETAIL_BYTES + (size_t)want->max_particles * 32;
+        printf("# %-10s programs %d textures %d framebuffers %d gpu_bytes %zu\n", want->scene, c.programs,
+               c.textures, c.framebuffers, c.gpu_bytes);
+        CHECK(c.programs == want->particle_programs + 2, "%s: %d programs", want->scene, c.programs);
+        CHECK(c.textures == textures, "%s: %d textures, want %d", want->scene, c.textures, textures);
+        CHECK(c.framebuffers == 0, "%s: targets exist before the first frame", want->scene);
+        CHECK(c.gpu_bytes == bytes, "%s: %zu GPU bytes, want %zu", want->scene, c.gpu_bytes, bytes);
+        sbfx_destroy(fx);
+    }
+    fixture_close(&f);
+}
+
+CHECK_TEST(idle_scene_simulates_and_draws_nothing)
+{
+    gl_fixture f;
+    fixture_open(&f, 64, 64);
+    fixture_projection(&f, 1.0f, 0.1f, 100.0f);
+    fixture_depth(&f, depth_far_everywhere, NULL);
+    sbfx_scene *scene = load_scene("barrage");
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.scene = scene, .ignore_timeline = true});
+    sbfx_scene_free(scene);
+    for (int i = 0; i < 30; i++) {
+        CHECK(sbfx_update(fx, 1.0 / 30) == SBFX_OK);
+        CHECK(sbfx_render(fx, &f.frame) == SBFX_OK);
+        sbfx_counters c;
+        sbfx_stats(fx, &c);
+        CHECK(c.passes == 0 && c.draw_calls == 0 && c.particles_simulated == 0 && c.framebuffers == 0,
+              "frame %d: %d passes %d draws %d simulated", i, c.passes, c.draw_calls, c.particles_simulated);
+    }
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
+/* Advances to exactly `steps` simulation steps with frame times from `next_dt`. */
+static uint64_t run_to_step(sbfx *fx, int steps, double (*next_dt)(sbfx_rng *), sbfx_rng *rng)
+{
+    const double step = 1.0 / 120.0;
+    while (sbfx_time(fx) < steps * step - 1e-6) CHECK(sbfx_update(fx, next_dt(rng)) == SBFX_OK);
+    CHECK(fabs(sbfx_time(fx) - steps * step) < 1e-6, "overshot to %.6f s", sbfx_time(fx));
+    return sbfx_state_hash(fx);
+}
+
+static double steady_dt(sbfx_rng *rng) { (void)rng; return 1.0 / 120.0; }
+static double jittery_dt(sbfx_rng *rng) { return sbfx_rng_range(rng, 0.0, 1.0 / 120.0); }
+static double tiny_dt(sbfx_rng *rng) { (void)rng; return 1.0 / 1000.0; }
+
+CHECK_TEST(simulation_is_deterministic_across_frame_times)
+{
+    gl_fixture f;
+    fixture_open(&f, 16, 16);
+    sbfx_scene *scene = load_scene("barrage");
+    double (*sequences[])(sbfx_rng *) = {steady_dt, jittery_dt, tiny_dt};
+    uint64_t hashes[3];
+    for (int s = 0; s < 3; s++) {
+        sbfx *fx = fixture_module(&f, (sbfx_desc){.scene = scene});
+        sbfx_rng rng;
+        sbfx_rng_seed(&rng, 99 + s);
+        hashes[s] = run_to_step(fx, 300, sequences[s], &rng); /* 2.5 s: many instances live */
+        sbfx_counters c;
+        sbfx_stats(fx, &c);
+        CHECK(c.particles_alive > 1000, "only %d particles alive", c.particles_alive);
+        sbfx_destroy(fx);
+    }
+    CHECK(hashes[0] == hashes[1] && hashes[1] == hashes[2], "states differ: %llx %llx %llx",
+          (unsigned long long)hashes[0], (unsigned long long)hashes[1], (unsigned long long)hashes[2]);
+    sbfx *other_seed = fixture_module(&f, (sbfx_desc){.scene = scene, .seed = 2});
+    sbfx_rng rng;
+    sbfx_rng_seed(&rng, 1);
+    CHECK(run_to_step(other_seed, 300, steady_dt, &rng) != hashes[0], "a different seed gave the same state");
+    sbfx_destroy(other_seed);
+    sbfx_scene_free(scene);
+    fixture_close(&f);
+}
+
+/* Pool full: the trigger is refused and counted, live instances keep going, and room made by
+ * dying particles is used again. */
+CHECK_TEST(full_pool_refuses_triggers_without_harm)
+{
+    gl_fixture f;
+    fixture_open(&f, 16, 16);
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.max_particles = 200, .ignore_timeline = true});
+    const float at[3] = {0, 0, 0};
+    CHECK(sbfx_trigger(fx, "explosion", at) == SBFX_OK);
+    CHECK(sbfx_trigger(fx, "explosion", at) == SBFX_ERR_POOL_FULL);
+    CHECK(strstr(sbfx_last_error(fx), "refused") != NULL, "%s", sbfx_last_error(fx));
+    CHECK(sbfx_schedule(fx, "explosion", 0.5, at) == SBFX_OK);
+    for (int i = 0; i < 60; i++) sbfx_update(fx, 1.0 / 60);
+    sbfx_counters c;
+    sbfx_stats(fx, &c);
+    CHECK(c.triggers_fired == 1 && c.triggers_refused == 2, "fired %d refused %d", c.triggers_fired,
+          c.triggers_refused);
+    CHECK(c.particles_alive == 159, "%d alive", c.particles_alive);
+    for (int i = 0; i < 240; i++) sbfx_update(fx, 1.0 / 60); /* the first instance dies out */
+    CHECK(sbfx_trigger(fx, "explosion", at) == SBFX_OK, "%s", sbfx_last_error(fx));
+    CHECK(sbfx_trigger(fx, "no-such-effect", at) == SBFX_ERR_UNKNOWN_EFFECT);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
+int main(int argc, char **argv) { return check_main_args(argc, argv); }

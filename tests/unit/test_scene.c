@@ -1,0 +1,122 @@
+/* Scene files: the examples load; every kind of bad input gets one message with the file name
+ * and line number, an error code, and no scene. */
+#include <string.h>
+#include "check.h"
+#include "sbfx.h"
+
+#define MEDIA "media = { smoke = { albedo = 0.2; density = 0.4; }; };\n"
+#define EFFECT(body) "effects = { puff = { steps = ( " body " ); }; };\n"
+#define EMITTER "{ type = \"emitter\"; medium = \"smoke\"; count = 10; }"
+
+static const char *const examples[] = {"explosion", "smoke", "campfire", "dust-storm", "barrage"};
+
+CHECK_TEST(example_scenes_load)
+{
+    for (size_t i = 0; i < sizeof(examples) / sizeof(examples[0]); i++) {
+        char path[256], err[512] = "";
+        snprintf(path, sizeof(path), "scenes/%s.cfg", examples[i]);
+        sbfx_scene *scene = NULL;
+        sbfx_result r = sbfx_scene_load(path, &scene, err, sizeof(err));
+        CHECK(r == SBFX_OK && scene, "%s: %s", path, err);
+        sbfx_scene_free(scene);
+    }
+}
+
+/* Parses `text` and expects failure with a message containing each of `needles`. */
+static void expect_error(const char *text, int line, const char *needle)
+{
+    char err[512] = "", where[64];
+    sbfx_scene *scene = (sbfx_scene *)1;
+    sbfx_result r = sbfx_scene_parse(text, "bad.cfg", &scene, err, sizeof(err));
+    CHECK(r == SBFX_ERR_INVALID_ARGUMENT, "accepted: %s", text);
+    CHECK(scene == NULL, "a failed parse left a scene behind");
+    if (line > 0) snprintf(where, sizeof(where), "bad.cfg:%d:", line);
+    else snprintf(where, sizeof(where), "bad.cfg: "); /* about the file as a whole */
+    CHECK(strncmp(err, where, strlen(where)) == 0, "message \"%s\" does not start with %s", err, where);
+    CHECK(strstr(err, needle) != NULL, "message \"%s\" lacks \"%s\"", err, needle);
+}
+
+CHECK_TEST(minimal_scene_parses)
+{
+    char err[256];
+    sbfx_scene *scene = NULL;
+    CHECK(sbfx_scene_parse(MEDIA EFFECT(EMITTER), "ok.cfg", &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
+    sbfx_scene_free(scene);
+}
+
+CHECK_TEST(syntax_error_names_line)
+{
+    expect_error(MEDIA "\neffects = { puff = { steps = ( { type = \"emitter\"; count = ; } ); }; };\n", 3,
+                 "syntax error");
+}
+
+CHECK_TEST(unknown_key_suggests_nearest)
+{
+    expect_error("media = { smoke = { albedo = 0.2;\n densty = 0.4; }; };\n" EFFECT(EMITTER), 2,
+                 "did you mean 'density'");
+    expect_error(MEDIA "\n\nrender = { target_scal = 4; };\n" EFFECT(EMITTER), 4, "did you mean 'target_scale'");
+    expect_error(MEDIA "effekts = {};\n", 2, "did you mean 'effects'");
+}
+
+CHECK_TEST(wrong_type_is_named)
+{
+    expect_error("media = { smoke = { albedo = \"high\"; }; };\n" EFFECT(EMITTER), 1, "'albedo' must be a number");
+    expect_error(MEDIA EFFECT("{ type = \"emitter\"; medium = \"smoke\"; count = 2.5; }"), 2,
+                 "'count' must be an integer");
+    expect_error(MEDIA EFFECT("{ type = \"emitter\"; medium = \"smoke\"; speed = 3.0; }"), 2,
+                 "'speed' must be an array of 2 numbers");
+}
+
+CHECK_TEST(out_of_range_values_are_named)
+{
+    expect_error("media = { smoke = { density = -1.0; }; };\n" EFFECT(EMITTER), 1, "'density' = -1 is out of range");
+    expect_error(MEDIA EFFECT("{ type = \"emitter\"; medium = \"smoke\"; radius = [-1.0, 2.0]; }"), 2,
+                 "'radius'[0] = -1 is out of range");
+    expect_error(MEDIA EFFECT("{ type = \"emitter\"; medium = \"smoke\"; count = 5000000; }"), 2,
+                 "'count' = 5000000 is out of range");
+    expect_error(MEDIA "render = { target_scale = 3; };\n" EFFECT(EMITTER), 2, "use 1, 2, 4 or 8");
+    expect_error(MEDIA EFFECT("{ type = \"emitter\"; medium = \"smoke\"; lifetime = [3.0, 1.0]; }"), 2,
+                 "must not exceed");
+}
+
+CHECK_TEST(missing_or_undefined_medium)
+{
+    expect_error(MEDIA EFFECT("{ type = \"emitter\"; count = 3; }"), 2, "needs 'medium'");
+    expect_error(MEDIA EFFECT("{ type = \"emitter\"; medium = \"fire\"; }"), 2, "'fire', which is not defined in media");
+    expect_error(MEDIA EFFECT("{ type = \"emitter\"; medium = \"lava\"; }"), 2, "\"lava\" is not one of: dust, smoke, fire");
+    expect_error(EFFECT(EMITTER), 0, "no 'media'");
+}
+
+CHECK_TEST(triggers_must_name_defined_effects)
+{
+    expect_error(MEDIA EFFECT(EMITTER) "triggers = { timeline = ( { effect = \"boom\"; time = 1.0; } ); };\n", 3,
+                 "effect 'boom', which is not defined");
+    expect_error(MEDIA EFFECT(EMITTER) "triggers = { gpio = ( { chip = \"gpiochip0\"; effect = \"puff\"; } ); };\n", 3,
+                 "needs 'line'");
+}
+
+CHECK_TEST(missing_file_is_named)
+{
+    char err[512];
+    sbfx_scene *scene = (sbfx_scene *)1;
+    CHECK(sbfx_scene_load("/nonexistent/scene.cfg", &scene, err, sizeof(err)) == SBFX_ERR_INVALID_ARGUMENT);
+    CHECK(scene == NULL);
+    CHECK(strstr(err, "/nonexistent/scene.cfg") != NULL, "%s", err);
+}
+
+CHECK_TEST(gpio_triggers_are_exposed)
+{
+    char err[256];
+    sbfx_scene *scene = NULL;
+    const char *text = MEDIA EFFECT(EMITTER)
+        "triggers = { gpio = ( { chip = \"gpiochip1\"; line = 17; edge = \"falling\"; debounce_ms = 25;"
+        " effect = \"puff\"; position = [1.0, 0.0, -2.0]; } ); };\n";
+    CHECK(sbfx_scene_parse(text, "gpio.cfg", &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
+    const sbfx_gpio_trigger *g = NULL;
+    CHECK(sbfx_scene_gpio_triggers(scene, &g) == 1);
+    CHECK(g && strcmp(g->chip, "gpiochip1") == 0 && g->line == 17 && g->edge == SBFX_EDGE_FALLING &&
+          g->debounce_ms == 25 && strcmp(g->effect, "puff") == 0 && g->position[2] == -2.0f);
+    sbfx_scene_free(scene);
+}
+
+int main(int argc, char **argv) { return check_main_args(argc, argv); }
