@@ -25,6 +25,7 @@ typedef struct sbfx_medium_params {
     float detail_window;   /* size of a particle's detail window, in volume widths */
     float t0, t1;          /* fire: T = (t0 + t1 * detail) * (1 - cooling * (1 - intensity)) */
     float cooling;         /* fire: fraction of the temperature lost as intensity reaches 0 */
+    bool live_detail;      /* detail source "v4l2": slices come from sbfx_detail_push_slice */
     float emission_scale;  /* fire: radiance multiplier on the normalised black-body table */
 } sbfx_medium_params;
 

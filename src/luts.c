@@ -108,3 +108,33 @@ void sbfx_luts_destroy(sbfx *fx)
     glDeleteTextures((GLsizei)ARRAY_SIZE(textures), textures);
     fx->gl.blackbody_texture = fx->gl.phase_texture = fx->gl.detail_texture = 0;
 }
+
+void sbfx_detail_dimensions(const sbfx *fx, int *size, int *frames)
+{
+    if (size) *size = fx ? fx->desc.detail_size : 0;
+    if (frames) *frames = fx ? fx->desc.detail_frames : 0;
+}
+
+bool sbfx_wants_live_detail(const sbfx *fx)
+{
+    if (!fx) return false;
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
+        if (fx->uses_medium[m] && fx->media[m].live_detail && fx->media[m].detail_strength > 0) return true;
+    return false;
+}
+
+/* One slice of the time ring: glTexSubImage3D of size x size half floats, no allocation. */
+sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int size)
+{
+    if (!fx || !half_texels) return SBFX_ERR_INVALID_ARGUMENT;
+    if (!fx->gl.detail_texture)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "the loaded scene uses no detail volume");
+    if (size != fx->desc.detail_size)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "detail slice is %dx%d, the volume is %dx%d", size,
+                         size, fx->desc.detail_size, fx->desc.detail_size);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    glBindTexture(GL_TEXTURE_3D, fx->gl.detail_texture);
+    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, fx->detail_ring_next, size, size, 1, GL_RED, GL_HALF_FLOAT, half_texels);
+    fx->detail_ring_next = (fx->detail_ring_next + 1) % fx->desc.detail_frames;
+    return sbfx_gl_check(fx, "writing a detail slice") ? SBFX_OK : SBFX_ERR_GL;
+}

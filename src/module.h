@@ -135,6 +135,7 @@ struct sbfx {
 
     sbfx_gl gl;
     sbfx_counters counters;
+    int detail_ring_next;        /* next slice sbfx_detail_push_slice writes */
 };
 
 /* sim.c */

@@ -157,6 +157,14 @@ sbfx_result sbfx_update(sbfx *fx, double dt);
 sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);
 void sbfx_stats(const sbfx *fx, sbfx_counters *out);
 
+/* Live detail images (e.g. from a V4L2 camera). The detail volume is size x size x frames
+ * half floats in [0,1] whose third axis is a time ring; each call writes the next slice
+ * (size * size IEEE half-float bit patterns, row 0 first) and advances the ring. */
+void sbfx_detail_dimensions(const sbfx *fx, int *size, int *frames);
+/* True when a medium of the loaded scene asks for detail source "v4l2". */
+bool sbfx_wants_live_detail(const sbfx *fx);
+sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int size);
+
 /* Helpers for hosts: column-major perspective and look-at matrices. */
 void sbfx_perspective(float out[16], float fov_y_radians, float aspect, float near_z, float far_z);
 void sbfx_look_at(float out[16], const float eye[3], const float target[3], const float up[3]);

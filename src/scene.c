@@ -239,10 +239,11 @@ static int parse_detail(parser *p, const config_setting_t *g, sbfx_medium_params
     static const char *const keys[] = {"source", "strength", "window", NULL};
     static const char *const sources[] = {"procedural", "v4l2", NULL};
     int source = 0;
-    return check_keys(p, g, "detail", keys) || get_choice(p, g, "source", sources, 0, &source) ||
-                   get_float(p, g, "strength", 0, 1, &m->detail_strength) ||
-                   get_float(p, g, "window", 0.01, 1, &m->detail_window)
-               ? -1 : 0;
+    if (check_keys(p, g, "detail", keys) || get_choice(p, g, "source", sources, 0, &source) ||
+        get_float(p, g, "strength", 0, 1, &m->detail_strength) || get_float(p, g, "window", 0.01, 1, &m->detail_window))
+        return -1;
+    m->live_detail = source == 1;
+    return 0;
 }
 
 static int parse_medium(parser *p, const config_setting_t *g, sbfx_medium which)
