@@ -8,6 +8,10 @@
 //                    particle's intensity (its density scale) falls
 //   HAS_DETAIL       perturbation by the animated detail volume
 //   OPACITY_PLANAR | OPACITY_SOFT | OPACITY_SPHERICAL | OPACITY_EXACT
+//   OPACITY_FLOOR    benchmark only: the same quads, a trivial shader (the fill-rate floor)
+//   BLACKBODY_ANALYTIC, PHASE_ANALYTIC   evaluate per fragment instead of fetching the tables
+// Light and colour are mediump (what a Mali-class GPU runs at half precision); geometry,
+// depth and opacity stay highp.
 precision highp float;
 precision highp sampler2D;
 precision highp sampler3D;
@@ -34,9 +38,17 @@ uniform sampler2D u_phase_lut;   // (cos, g) -> phase, cos = dot(light travel, t
 uniform vec2 u_phase_lut_size;
 uniform float u_g;
 uniform vec3 u_albedo_color;     // albedo * tint
-uniform vec3 u_light_dir;        // view space, direction the light travels in
-uniform vec3 u_light_color;
+#define MAX_LIGHTS 8
+uniform int u_light_count;
+uniform vec4 u_light_vector[MAX_LIGHTS]; // view space: w = 0 direction of travel, w = 1 position
+uniform vec3 u_light_color[MAX_LIGHTS];  // irradiance (point lights: at 1 m)
 uniform vec3 u_ambient;
+#endif
+#ifdef BLACKBODY_ANALYTIC
+#define MAX_BANDS 96
+uniform int u_cmf_count;
+uniform vec3 u_cmf_rgb[MAX_BANDS]; // sRGB weight of each band (CMF, trapezoid, 2hc², norm)
+uniform float u_cmf_band[MAX_BANDS]; // wavelength [µm]
 #endif
 #ifdef MEDIUM_EMITS
 uniform sampler2D u_blackbody;   // T / max_kelvin -> normalised linear sRGB
@@ -119,23 +131,78 @@ float detail_sample(vec3 c, float r, vec3 ray)
 #endif
 
 #ifdef MEDIUM_SCATTERS
-vec3 in_scattered(vec3 ray)
+mediump float phase(float cos_theta)
 {
-    float cos_theta = dot(u_light_dir, -normalize(ray));
+#ifdef PHASE_ANALYTIC
+    // Cornette-Shanks, cos_theta between the light's travel and the way to the eye
+    float g = u_g, gg = g * g;
+    float denom = max(1.0 + gg - 2.0 * g * cos_theta, 1e-6);
+    return 3.0 * (1.0 - gg) * (1.0 + cos_theta * cos_theta) /
+           (25.132741229 * (2.0 + gg) * denom * sqrt(denom));
+#else
     vec2 lut = (vec2(cos_theta * 0.5 + 0.5, u_g / (2.0 * 0.99) + 0.5) * (u_phase_lut_size - 1.0) + 0.5)
                / u_phase_lut_size;
-    float phase = texture(u_phase_lut, lut).r;
-    // 4π: a light of colour E scattered isotropically gives back E.
-    return u_ambient + u_light_color * (phase * 12.566370614);
+    return texture(u_phase_lut, lut).r;
+#endif
+}
+
+// Single scattering of every light toward the eye at point p; the 4π makes a light of colour E
+// scattered isotropically give back E. Point lights fall off as 1/d², no closer than 0.5 m
+// (a flash inside the particle stays finite).
+mediump vec3 in_scattered(vec3 ray, vec3 p)
+{
+    vec3 to_eye = -normalize(ray);
+    mediump vec3 sum = u_ambient;
+    for (int i = 0; i < MAX_LIGHTS; i++) {
+        if (i >= u_light_count) break;
+        vec4 l = u_light_vector[i];
+        vec3 travel = l.xyz;
+        float falloff = 1.0;
+        if (l.w > 0.5) {
+            vec3 d = p - l.xyz;
+            float d2 = max(dot(d, d), 0.25);
+            travel = d * inversesqrt(d2);
+            falloff = 1.0 / d2;
+        }
+        sum += u_light_color[i] * (falloff * phase(dot(travel, to_eye)) * 12.566370614);
+    }
+    return sum;
 }
 #endif
 
-#ifdef MEDIUM_EMITS
-vec3 emitted(float kelvin)
+// -expm1(-x) = 1 - e^-x, accurate for small x too
+float expm1_safe(float x)
 {
+    return abs(x) < 1e-3 ? x * (1.0 + 0.5 * x) : exp(x) - 1.0;
+}
+
+#ifdef MEDIUM_EMITS
+vec3 blackbody(float kelvin)
+{
+#ifdef BLACKBODY_ANALYTIC
+    // Planck x CIE 1931 per band (λ in µm, C2 = hc/k = 14387.77 µm K), like the table's rows.
+    vec3 rgb = vec3(0.0);
+    float t = clamp(kelvin, 0.0, u_max_kelvin);
+    if (t <= 0.0) return rgb;
+    for (int i = 0; i < MAX_BANDS; i++) {
+        if (i >= u_cmf_count) break;
+        float lambda = u_cmf_band[i];
+        float x = 14387.77 / (lambda * t);
+        if (x > 80.0) continue;                   // e^-x underflows: no light in this band
+        float l2 = lambda * lambda;
+        rgb += u_cmf_rgb[i] * (exp(-x) / (-expm1_safe(-x) * l2 * l2 * lambda));
+    }
+    return max(rgb, vec3(0.0));                   // out of gamut: clipped like the table
+#else
     float x = clamp(kelvin / u_max_kelvin, 0.0, 1.0);
     float s = (x * (u_blackbody_size - 1.0) + 0.5) / u_blackbody_size;
-    return min(texture(u_blackbody, vec2(s, 0.5)).rgb * u_emission_scale, vec3(RADIANCE_CEILING));
+    return texture(u_blackbody, vec2(s, 0.5)).rgb;
+#endif
+}
+
+mediump vec3 emitted(float kelvin)
+{
+    return min(blackbody(kelvin) * u_emission_scale, vec3(RADIANCE_CEILING));
 }
 #endif
 
@@ -147,6 +214,10 @@ float opacity_from_depth(float x)
 
 void main()
 {
+#ifdef OPACITY_FLOOR
+    o_color = vec4(0.01, 0.01, 0.01, 0.05);   // the cheapest fragment that still blends
+    return;
+#endif
     vec3 c = v_center_radius.xyz;
     float r = v_center_radius.w;
     vec2 ndc = gl_FragCoord.xy / u_target_size * 2.0 - 1.0;
@@ -168,9 +239,9 @@ void main()
     // RTR's soft particle: the flat billboard's alpha faded by the depth left behind it.
     alpha *= soft_fade((zs + c.z) / (u_soft_scale > 0.0 ? u_soft_scale : r));
 #endif
-    vec3 light = vec3(0.0);
+    mediump vec3 light = vec3(0.0);
 #ifdef MEDIUM_SCATTERS
-    light += u_albedo_color * in_scattered(ray);
+    light += u_albedo_color * in_scattered(ray, c);
 #endif
 #ifdef MEDIUM_EMITS
     float cooled = 1.0 - u_temperature.z * (1.0 - intensity);

@@ -2,6 +2,7 @@
  * half floats (_Float16 rounds to nearest even), uploaded once at load — and only for media
  * the loaded effects use. */
 #include <stdlib.h>
+#include <string.h>
 #include "module.h"
 
 static GLuint make_texture(sbfx *fx, GLenum target, GLenum filter, GLenum wrap)
@@ -12,6 +13,31 @@ static GLuint make_texture(sbfx *fx, GLenum target, GLenum filter, GLenum wrap)
     sbfx_texture_params(target, filter, wrap);
     fx->counters.textures++;
     return tex;
+}
+
+/* The analytic black body sums Planck x CMF per fragment; the per-band constants fold the
+ * XYZ -> sRGB matrix, the trapezoid weight, 2hc² (with λ in µm) and the table's normalisation,
+ * so the shader's sum equals the table's value at every temperature. */
+#define PLANCK_C1L_UM (2.0 * 6.62607015e-34 * 299792458.0 * 299792458.0 * 1e30)
+
+static sbfx_result prepare_analytic_blackbody(sbfx *fx, const sbfx_cmf *cmf)
+{
+    if (cmf->bands > SBFX_ANALYTIC_MAX_BANDS)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "the analytic black body takes at most %d CMF bands, "
+                         "%s has %d", SBFX_ANALYTIC_MAX_BANDS, fx->desc.cmf_path, cmf->bands);
+    fx->cmf_rgb = sbfx_calloc(fx, (size_t)cmf->bands * 3, sizeof(float));
+    fx->cmf_band = sbfx_calloc(fx, (size_t)cmf->bands, sizeof(float));
+    if (!fx->cmf_rgb || !fx->cmf_band) return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
+    double norm = sbfx_blackbody_norm(cmf, fx->max_kelvin), step_m = cmf->step_nm * 1e-9;
+    for (int i = 0; i < cmf->bands; i++) {
+        double weight = (i == 0 || i == cmf->bands - 1) ? 0.5 * step_m : step_m;
+        double xyz[3] = {cmf->xyz[0][i], cmf->xyz[1][i], cmf->xyz[2][i]}, rgb[3];
+        sbfx_xyz_to_linear_srgb(xyz, rgb);
+        for (int k = 0; k < 3; k++) fx->cmf_rgb[3 * i + k] = (float)(rgb[k] * weight * PLANCK_C1L_UM * norm);
+        fx->cmf_band[i] = (float)((cmf->start_nm + cmf->step_nm * i) * 1e-3);
+    }
+    fx->cmf_bands = cmf->bands;
+    return SBFX_OK;
 }
 
 static sbfx_result upload_blackbody(sbfx *fx)
@@ -28,6 +54,7 @@ static sbfx_result upload_blackbody(sbfx *fx)
         goto out;
     }
     sbfx_blackbody_table(cmf, fx->max_kelvin, SBFX_BLACKBODY_SIZE, rgb);
+    if (fx->desc.analytic_blackbody && (r = prepare_analytic_blackbody(fx, cmf)) != SBFX_OK) goto out;
     for (int i = 0; i < SBFX_BLACKBODY_SIZE; i++) {
         for (int c = 0; c < 3; c++) texels[4 * i + c] = (_Float16)rgb[3 * i + c];
         texels[4 * i + 3] = (_Float16)1.0f;
@@ -70,13 +97,25 @@ static sbfx_result upload_detail(sbfx *fx)
     float *values = sbfx_calloc(fx, n, sizeof(float));
     _Float16 *texels = sbfx_calloc(fx, n, sizeof(_Float16));
     sbfx_result r = SBFX_ERR_OUT_OF_MEMORY;
+    if (fx->desc.detail_format == SBFX_DETAIL_R32F &&
+        !(fx->detail_scratch = sbfx_calloc(fx, (size_t)size * size, sizeof(float)))) {
+        sbfx_free(fx, values);
+        values = NULL; /* reported as out of memory below */
+    }
     if (values && texels) {
         sbfx_detail_generate(size, frames, fx->desc.seed, values);
-        for (size_t i = 0; i < n; i++) texels[i] = (_Float16)values[i];
-        /* R16F: filterable in core ES 3.0 (R32F is not), REPEAT so windows and time wrap. */
-        fx->gl.detail_texture = make_texture(fx, GL_TEXTURE_3D, GL_LINEAR, GL_REPEAT);
-        glTexImage3D(GL_TEXTURE_3D, 0, GL_R16F, size, size, frames, 0, GL_RED, GL_HALF_FLOAT, texels);
-        fx->counters.gpu_bytes += n * 2;
+        if (fx->desc.detail_format == SBFX_DETAIL_R32F) {
+            /* R32F is not filterable in core ES 3.0: sampled NEAREST, which is its cost. */
+            fx->gl.detail_texture = make_texture(fx, GL_TEXTURE_3D, GL_NEAREST, GL_REPEAT);
+            glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size, size, frames, 0, GL_RED, GL_FLOAT, values);
+            fx->counters.gpu_bytes += n * 4;
+        } else {
+            for (size_t i = 0; i < n; i++) texels[i] = (_Float16)values[i];
+            /* R16F: filterable in core ES 3.0, REPEAT so windows and time wrap. */
+            fx->gl.detail_texture = make_texture(fx, GL_TEXTURE_3D, GL_LINEAR, GL_REPEAT);
+            glTexImage3D(GL_TEXTURE_3D, 0, GL_R16F, size, size, frames, 0, GL_RED, GL_HALF_FLOAT, texels);
+            fx->counters.gpu_bytes += n * 2;
+        }
         r = sbfx_gl_check(fx, "uploading the detail volume") ? SBFX_OK : SBFX_ERR_GL;
     }
     sbfx_free(fx, values);
@@ -106,6 +145,10 @@ void sbfx_luts_destroy(sbfx *fx)
 {
     GLuint textures[] = {fx->gl.blackbody_texture, fx->gl.phase_texture, fx->gl.detail_texture};
     glDeleteTextures((GLsizei)ARRAY_SIZE(textures), textures);
+    sbfx_free(fx, fx->cmf_rgb);
+    sbfx_free(fx, fx->cmf_band);
+    sbfx_free(fx, fx->detail_scratch);
+    fx->cmf_rgb = fx->cmf_band = fx->detail_scratch = NULL;
     fx->gl.blackbody_texture = fx->gl.phase_texture = fx->gl.detail_texture = 0;
 }
 
@@ -134,7 +177,19 @@ sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int si
                          size, fx->desc.detail_size, fx->desc.detail_size);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
     glBindTexture(GL_TEXTURE_3D, fx->gl.detail_texture);
-    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, fx->detail_ring_next, size, size, 1, GL_RED, GL_HALF_FLOAT, half_texels);
+    if (fx->desc.detail_format == SBFX_DETAIL_R32F) {
+        float *row = fx->detail_scratch; /* sized at load: no allocation per slice */
+        for (int i = 0; i < size * size; i++) {
+            _Float16 h;
+            memcpy(&h, &half_texels[i], sizeof(h));
+            row[i] = (float)h;
+        }
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, fx->detail_ring_next, size, size, 1, GL_RED, GL_FLOAT, row);
+    } else {
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, fx->detail_ring_next, size, size, 1, GL_RED, GL_HALF_FLOAT,
+                        half_texels);
+    }
     fx->detail_ring_next = (fx->detail_ring_next + 1) % fx->desc.detail_frames;
     return sbfx_gl_check(fx, "writing a detail slice") ? SBFX_OK : SBFX_ERR_GL;
 }

@@ -63,7 +63,7 @@ typedef struct sbfx_program {
     GLint near, far, projection, target_size, pixel, tau, soft_scale;
     GLint depth, detail, detail_window, detail_strength, time;
     GLint phase_lut, phase_lut_size, g, albedo_color, light_count, light_vector, light_color, ambient;
-    GLint blackbody, blackbody_size, max_kelvin, temperature, emission_scale;
+    GLint blackbody, blackbody_size, max_kelvin, temperature, emission_scale, cmf_rgb, cmf_band;
 } sbfx_program;
 
 typedef struct sbfx_gl {
@@ -80,6 +80,7 @@ typedef struct sbfx_gl {
 } sbfx_gl;
 
 #define SBFX_MAX_SCHEDULE 128
+#define SBFX_ANALYTIC_MAX_BANDS 96 /* MAX_BANDS in particle.frag */
 #define SBFX_MAX_LIVE_FLASHES 8
 #define SBFX_SHADER_LIGHTS 8 /* scene lights (<= 4) + live flashes share these slots */
 
@@ -136,6 +137,11 @@ struct sbfx {
     sbfx_gl gl;
     sbfx_counters counters;
     int detail_ring_next;        /* next slice sbfx_detail_push_slice writes */
+    /* analytic black body: per band, sRGB weight (matrix x CMF x trapezoid x norm) and the
+     * band's wavelength in micrometres; loaded once with the program */
+    int cmf_bands;
+    float *cmf_rgb, *cmf_band;
+    float *detail_scratch;       /* one R32F slice, only with SBFX_DETAIL_R32F */
 };
 
 /* sim.c */

@@ -8,15 +8,18 @@ static const char *const opacity_defines[SBFX_OPACITY_COUNT] = {
     [SBFX_OPACITY_SOFT] = "#define OPACITY_SOFT\n",
     [SBFX_OPACITY_SPHERICAL] = "#define OPACITY_SPHERICAL\n",
     [SBFX_OPACITY_EXACT] = "#define OPACITY_EXACT\n",
+    [SBFX_OPACITY_FLOOR] = "#define OPACITY_FLOOR\n",
 };
 
 static void particle_defines(const sbfx *fx, sbfx_medium m, char *out, size_t size)
 {
     const sbfx_medium_params *p = &fx->media[m];
-    snprintf(out, size, "%s%s%s%s", opacity_defines[fx->desc.opacity],
-             p->albedo > 0 ? "#define MEDIUM_SCATTERS\n" : "",
-             m == SBFX_FIRE ? "#define MEDIUM_EMITS\n" : "",
-             p->detail_strength > 0 ? "#define HAS_DETAIL\n" : "");
+    bool scatters = p->albedo > 0, emits = m == SBFX_FIRE;
+    snprintf(out, size, "%s%s%s%s%s%s", opacity_defines[fx->desc.opacity],
+             scatters ? "#define MEDIUM_SCATTERS\n" : "", emits ? "#define MEDIUM_EMITS\n" : "",
+             p->detail_strength > 0 ? "#define HAS_DETAIL\n" : "",
+             emits && fx->desc.analytic_blackbody ? "#define BLACKBODY_ANALYTIC\n" : "",
+             scatters && fx->desc.analytic_phase ? "#define PHASE_ANALYTIC\n" : "");
 }
 
 static void locate_uniforms(sbfx_program *p)
@@ -47,6 +50,18 @@ static void locate_uniforms(sbfx_program *p)
     p->max_kelvin = glGetUniformLocation(id, "u_max_kelvin");
     p->temperature = glGetUniformLocation(id, "u_temperature");
     p->emission_scale = glGetUniformLocation(id, "u_emission_scale");
+    p->cmf_rgb = glGetUniformLocation(id, "u_cmf_rgb");
+    p->cmf_band = glGetUniformLocation(id, "u_cmf_band");
+}
+
+/* Constant for the program's life: set once here, not per frame. */
+static void load_cmf_uniforms(sbfx *fx, const sbfx_program *p)
+{
+    glUseProgram(p->id);
+    glUniform1i(glGetUniformLocation(p->id, "u_cmf_count"), fx->cmf_bands);
+    glUniform3fv(p->cmf_rgb, fx->cmf_bands, fx->cmf_rgb);
+    glUniform1fv(p->cmf_band, fx->cmf_bands, fx->cmf_band);
+    glUseProgram(0);
 }
 
 static sbfx_result build_particle_programs(sbfx *fx)
@@ -59,6 +74,7 @@ static sbfx_result build_particle_programs(sbfx *fx)
         p->id = sbfx_program_build(fx, "particle.vert", "particle.frag", defines);
         if (!p->id) return SBFX_ERR_SHADER;
         locate_uniforms(p);
+        if (m == SBFX_FIRE && fx->desc.analytic_blackbody) load_cmf_uniforms(fx, p);
     }
     return SBFX_OK;
 }

@@ -80,6 +80,7 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
     if (!(d.blackbody_max_kelvin > 0)) d.blackbody_max_kelvin = (float)SBFX_DEFAULT_MAX_KELVIN;
     if (!d.detail_size) d.detail_size = 64;
     if (!d.detail_frames) d.detail_frames = 32;
+    if (!d.detail_format) d.detail_format = SBFX_DETAIL_R16F;
     if (!(d.sim_step > 0)) d.sim_step = 1.0f / 120.0f;
     return d;
 }
@@ -93,7 +94,7 @@ static sbfx_result validate_desc(sbfx *fx, const sbfx_desc *d)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT,
                          "target_divisor %d: use 1, 2, 4 or 8", d->target_divisor);
     if ((unsigned)d->target_format >= SBFX_FORMAT_COUNT || (unsigned)d->upsample >= SBFX_UPSAMPLE_COUNT ||
-        (unsigned)d->opacity >= SBFX_OPACITY_COUNT)
+        (unsigned)d->opacity >= SBFX_OPACITY_COUNT || (unsigned)d->detail_format >= SBFX_DETAIL_COUNT)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "unknown target format, upsample or opacity mode");
     if (d->max_particles < 1 || d->max_particles > (1 << 20))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "max_particles %d: use 1 .. 1048576",

@@ -42,6 +42,7 @@ typedef enum sbfx_opacity_mode {
     SBFX_OPACITY_SOFT,        /* planar faded by an S-curve of the depth difference (RTR) */
     SBFX_OPACITY_SPHERICAL,   /* the seed: parallel rays, (1 - d/r) * clipped chord */
     SBFX_OPACITY_EXACT,       /* perspective ray, exact integral of the linear density */
+    SBFX_OPACITY_FLOOR,       /* benchmark only: the same quads with a trivial shader */
     SBFX_OPACITY_COUNT
 } sbfx_opacity_mode;
 
@@ -59,6 +60,13 @@ typedef enum sbfx_upsample {
     SBFX_UPSAMPLE_NEAREST_DEPTH,
     SBFX_UPSAMPLE_COUNT
 } sbfx_upsample;
+
+typedef enum sbfx_detail_format {
+    SBFX_DETAIL_DEFAULT = 0, /* = R16F: half float, filterable in core ES 3.0 */
+    SBFX_DETAIL_R16F,
+    SBFX_DETAIL_R32F,        /* not filterable in ES 3.0: sampled NEAREST (shows the cost) */
+    SBFX_DETAIL_COUNT
+} sbfx_detail_format;
 
 typedef enum sbfx_medium { SBFX_DUST, SBFX_SMOKE, SBFX_FIRE, SBFX_MEDIUM_COUNT } sbfx_medium;
 
@@ -99,6 +107,9 @@ typedef struct sbfx_desc {
     float blackbody_max_kelvin;      /* upper end of the black-body table (6000 K) */
     int detail_size;                 /* detail volume width = height (64) */
     int detail_frames;               /* detail volume depth = animation frames (32) */
+    sbfx_detail_format detail_format;
+    bool analytic_blackbody;         /* Planck x CIE evaluated per fragment, not the table */
+    bool analytic_phase;             /* phase function evaluated per fragment, not the table */
     float sim_step;                  /* fixed simulation step in seconds (1/120) */
     const sbfx_scene *scene;         /* NULL: the built-in explosion. Non-zero fields of this
                                         desc override the scene's render settings. The scene
