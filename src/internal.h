@@ -72,6 +72,18 @@ sbfx_result sbfx_read_particle_target(sbfx *fx, float *rgba, size_t capacity, in
 sbfx_result sbfx_fetch_luts(sbfx *fx, float kelvin, float cos_theta, float g, float rgb[3],
                             float *phase);
 
+/* What the renderer would draw for this view: live particles in view space (unsorted,
+ * invalid ones skipped), as the last sbfx_render saw them. Returns the count; *out is owned
+ * by the module and valid until the next render or update. */
+int sbfx_frame_particles(sbfx *fx, const float view[16], const sbfx_view_particle **out);
+/* The frame's lights in view space, as the particle shader gets them: w = 0 direction of
+ * travel, w = 1 position; colours already faded for light flashes. Returns the count. */
+typedef struct sbfx_view_light { float vector[4]; float color[3]; } sbfx_view_light;
+int sbfx_frame_lights(const sbfx *fx, const float view[16], sbfx_view_light *out, int capacity);
+void sbfx_frame_ambient(const sbfx *fx, float ambient[3]);
+/* The detail time coordinate the shader samples at (in detail-volume loops). */
+double sbfx_detail_time(const sbfx *fx);
+
 /* Hash of the live particles' simulation state (determinism tests). */
 uint64_t sbfx_state_hash(const sbfx *fx);
 

@@ -3,7 +3,6 @@
 #include <string.h>
 #include "module.h"
 
-#define DETAIL_LOOPS_PER_SECOND 0.25 /* the detail animation loops every 4 s */
 #define UNIT_DEPTH 0
 #define UNIT_DETAIL 1
 #define UNIT_PHASE 2
@@ -136,7 +135,7 @@ static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m, 
     glUniform1i(p->detail, UNIT_DETAIL);
     glUniform1f(p->detail_window, mp->detail_window);
     glUniform1f(p->detail_strength, mp->detail_strength);
-    glUniform1f(p->time, (float)(fx->time * DETAIL_LOOPS_PER_SECOND));
+    glUniform1f(p->time, (float)sbfx_detail_time(fx));
     glUniform1i(p->phase_lut, UNIT_PHASE);
     glUniform2f(p->phase_lut_size, SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE);
     glUniform1f(p->g, mp->phase_g);
@@ -278,3 +277,20 @@ sbfx_result sbfx_render_particles(sbfx *fx, const sbfx_frame *frame, int count)
     restore_state(&saved);
     return sbfx_gl_check(fx, "rendering the particle passes") ? SBFX_OK : SBFX_ERR_GL;
 }
+
+int sbfx_frame_lights(const sbfx *fx, const float view[16], sbfx_view_light *out, int capacity)
+{
+    frame_lights lights;
+    gather_lights(fx, view, &lights);
+    int n = lights.count < capacity ? lights.count : capacity;
+    for (int i = 0; i < n; i++) {
+        memcpy(out[i].vector, lights.vector[i], sizeof(out[i].vector));
+        memcpy(out[i].color, lights.color[i], sizeof(out[i].color));
+    }
+    return n;
+}
+
+void sbfx_frame_ambient(const sbfx *fx, float ambient[3]) { memcpy(ambient, fx->ambient, 3 * sizeof(float)); }
+
+/* The detail animation loops every 4 s. */
+double sbfx_detail_time(const sbfx *fx) { return fx->time * 0.25; }

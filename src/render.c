@@ -101,3 +101,10 @@ sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
     if (n == 0) return SBFX_OK;
     return sbfx_render_particles(fx, frame, n);
 }
+
+int sbfx_frame_particles(sbfx *fx, const float view[16], const sbfx_view_particle **out)
+{
+    int n = sbfx_collect_view_particles(fx, view);
+    *out = fx->view;
+    return n;
+}
