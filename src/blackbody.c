@@ -146,6 +146,7 @@ double sbfx_planck(double lambda_m, double kelvin)
      * e^x overflowing, and -expm1(-x) keeps full precision for x -> 0 (very hot bodies). */
     double l5 = lambda_m * lambda_m * lambda_m * lambda_m * lambda_m;
     double value = PLANCK_C1L / l5 * (exp(-x) / -expm1(-x));
+    /* Only absurd inputs (T > ~1e290 K, λ < ~1e-60 m) leave the double range: 0, never inf/NaN. */
     return isfinite(value) ? value : 0.0;
 }
 

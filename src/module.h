@@ -66,7 +66,14 @@ typedef struct sbfx_program {
     GLint blackbody, blackbody_size, max_kelvin, temperature, emission_scale, cmf_rgb, cmf_band;
 } sbfx_program;
 
+/* Uniform locations of the full-screen passes, looked up once at load. */
+typedef struct sbfx_pass_uniforms {
+    GLint scene_depth, divisor, full_size, depth_params, far;         /* depth downsample */
+    GLint particles, low_depth, low_size, depth_threshold;            /* composite */
+} sbfx_pass_uniforms;
+
 typedef struct sbfx_gl {
+    sbfx_pass_uniforms depth_u, composite_u;
     GLuint fullscreen_vao, particle_vao, instance_buffer;
     GLuint depth_program, composite_program, lut_program;
     sbfx_program particle[SBFX_MEDIUM_COUNT];

@@ -21,13 +21,15 @@
 
 /* Optical depth never exceeds this (+inf would make downstream products NaN). */
 #define OD_MAX 1e30
-/* sqrt(DBL_MIN): below this, radius^2-sized terms would underflow; such a particle has optical
- * depth at most 2*tau*r, i.e. nothing visible, so it is skipped. */
+/* sqrt(DBL_MIN) ≈ 1.5e-154: a smaller radius is treated as no particle. Its optical depth is
+ * at most 2*tau*r, invisible for any sane tau, and its square (which shaders and callers form)
+ * would underflow to 0 and turn d/r-type ratios into inf or NaN. */
 #define SMALLEST_RADIUS 1.4916681462400413e-154
 /* The closed-form chord integral is a difference of two terms of the size of the chord; when the
  * mean density along the clipped chord falls below this fraction of the centre density, the
  * difference would cancel and a quadrature of a cancellation-free integrand is used instead. */
 #define CLOSED_FORM_MIN_MEAN 0.05
+#define LN2 0.69314718055994530942
 
 static double clamp(double x, double lo, double hi)
 {
@@ -253,7 +255,7 @@ static double h_asinh_term(double h, double abs_u)
     double x = abs_u / sqrt(h);
     if (isfinite(x)) return h * asinh(x); /* asinh is accurate for small and large x alike */
     /* |u| / sqrt(h) overflowed: asinh(x) = log(2x) there, taken apart in logarithms. */
-    return h * (log(2.0 * abs_u) - 0.5 * log(h));
+    return h * (log(abs_u) + LN2 - 0.5 * log(h));
 }
 
 /* ∫_0^u sqrt(h + s^2) ds = ½(u sqrt(h + u^2) + h asinh(u / sqrt h)), odd in u. */
@@ -267,8 +269,10 @@ static double chord_antiderivative(double h, double u)
 
 double sbfx_ref_chord_integral(double h, double a, double b)
 {
-    /* Outside the contract (NaN, infinite bounds or h): 0 rather than NaN/inf. */
+    /* Outside the contract (NaN, infinite bounds or h, or a result beyond the double range,
+     * |a|, |b| > 1e154): 0 rather than NaN/inf. */
     if (!isfinite(h) || !isfinite(a) || !isfinite(b)) return 0.0;
     if (h < 0.0) h = 0.0;
-    return chord_antiderivative(h, b) - chord_antiderivative(h, a);
+    double value = chord_antiderivative(h, b) - chord_antiderivative(h, a);
+    return isfinite(value) ? value : 0.0;
 }

@@ -79,6 +79,19 @@ static sbfx_result build_particle_programs(sbfx *fx)
     return SBFX_OK;
 }
 
+static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
+{
+    u->scene_depth = glGetUniformLocation(id, "u_scene_depth");
+    u->divisor = glGetUniformLocation(id, "u_divisor");
+    u->full_size = glGetUniformLocation(id, "u_full_size");
+    u->depth_params = glGetUniformLocation(id, "u_depth_params");
+    u->far = glGetUniformLocation(id, "u_far");
+    u->particles = glGetUniformLocation(id, "u_particles");
+    u->low_depth = glGetUniformLocation(id, "u_low_depth");
+    u->low_size = glGetUniformLocation(id, "u_low_size");
+    u->depth_threshold = glGetUniformLocation(id, "u_depth_threshold");
+}
+
 static sbfx_result build_pass_programs(sbfx *fx)
 {
     const char *upsample = fx->desc.upsample == SBFX_UPSAMPLE_NEAREST_DEPTH
@@ -87,6 +100,8 @@ static sbfx_result build_pass_programs(sbfx *fx)
     if (!fx->gl.depth_program) return SBFX_ERR_SHADER;
     fx->gl.composite_program = sbfx_program_build(fx, "fullscreen.vert", "composite.frag", upsample);
     if (!fx->gl.composite_program) return SBFX_ERR_SHADER;
+    locate_pass_uniforms(fx->gl.depth_program, &fx->gl.depth_u);
+    locate_pass_uniforms(fx->gl.composite_program, &fx->gl.composite_u);
     return SBFX_OK;
 }
 

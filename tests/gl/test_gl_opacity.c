@@ -118,7 +118,7 @@ CHECK_TEST(particle_behind_wall_contributes_nothing)
     gl_fixture f;
     fixture_open(&f, SIZE, SIZE);
     fixture_projection(&f, 1.0f, 0.1f, 100.0f);
-    for (int mode = SBFX_OPACITY_PLANAR; mode < SBFX_OPACITY_COUNT; mode++) {
+    for (int mode = SBFX_OPACITY_PLANAR; mode <= SBFX_OPACITY_EXACT; mode++) {
         sbfx *fx = fixture_module(&f, (sbfx_desc){.target_divisor = 1, .target_format = SBFX_FORMAT_RGBA32F,
                                                   .opacity = mode, .max_particles = 8});
         fixture_depth(&f, wall_at_5, NULL);
