@@ -184,8 +184,10 @@ static double od_exact(const sbfx_ref_particle *p, const sbfx_ref_pixel *px, dou
     if (!(dist < r)) return 0.0;
     double cos_z = -u[2]; /* > 0: ray parameter t reaches depth t * cos_z */
     /* Near plane and opaque surface as ray parameters relative to the closest point, in units
-     * of r (see above), clamped to the chord [-w, w]. */
-    double dist_r = dist / r, w = half_chord(1.0, dist_r);
+     * of r (see above), clamped to the chord [-w, w]. The half chord is taken in world units,
+     * where r - dist is exact near the surface, and then scaled: half_chord(1, dist / r) would
+     * carry the rounding of dist / r into 1 - dist / r and lose the grazing rays' precision. */
+    double dist_r = dist / r, w = half_chord(r, dist) / r;
     double a = clamp((near / cos_z - t0) / r, -w, w);
     double b = clamp((px->opaque_depth / cos_z - t0) / r, -w, w);
     if (!(b > a)) return 0.0;

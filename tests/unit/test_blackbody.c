@@ -1,0 +1,372 @@
+/* Unit tests of the black-body reference (src/blackbody.c): CMF loading, Planck's law, XYZ ->
+ * linear sRGB, the normalised table and its lookup (DESIGN §2.3, hard cases of §2.2). No GL. */
+#include <errno.h>
+#include <sys/stat.h>
+#include "check.h"
+#include "reference.h"
+
+#define TABLE_MAX_K 6000.0 /* the module's default black-body range */
+
+/* Loads colord-data's CMF or skips the test (the missing-file path is tested on its own). */
+static void load_cmf(sbfx_cmf *cmf)
+{
+    char err[512];
+    if (sbfx_cmf_load(SBFX_CMF_DEFAULT_PATH, cmf, err, sizeof err) != SBFX_OK)
+        CHECK_SKIP("%s", err);
+}
+
+static double luminance(const double rgb[3])
+{
+    return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; /* Y of linear sRGB */
+}
+
+static double rel_err(double a, double b)
+{
+    return fabs(a - b) / (fabs(b) > 0 ? fabs(b) : 1.0);
+}
+
+/* ---- loading ------------------------------------------------------------------------------ */
+
+CHECK_TEST(cmf_loads_colord_file)
+{
+    static sbfx_cmf cmf;
+    load_cmf(&cmf);
+    CHECK(cmf.bands == 95, "bands %d", cmf.bands);
+    CHECK_NEAR(cmf.start_nm, 360.0, 1e-12);
+    CHECK_NEAR(cmf.step_nm, 5.0, 1e-12);
+    /* Spot values of the CIE 1931 table (colord's copy). */
+    CHECK_NEAR(cmf.xyz[0][0], 0.0001299, 1e-12);
+    CHECK_NEAR(cmf.xyz[1][(555 - 360) / 5], 1.0, 1e-12); /* ȳ peaks at 555 nm */
+    CHECK_NEAR(cmf.xyz[2][(445 - 360) / 5], 1.7826, 1e-12);
+    CHECK_NEAR(cmf.xyz[0][94], 0.000001251141, 1e-15);
+    /* ∫ȳ dλ ≈ 106.86 nm for the 1931 observer: a check that all 95 bands were read. */
+    double sum = 0;
+    for (int i = 0; i < cmf.bands; i++) sum += cmf.xyz[1][i] * cmf.step_nm * (i == 0 || i == 94 ? 0.5 : 1);
+    CHECK_NEAR(sum, 106.86, 0.05);
+}
+
+static void check_missing_message(const char *path, const char *reason)
+{
+    static sbfx_cmf cmf;
+    char err[512] = "untouched";
+    cmf.bands = 123;
+    sbfx_result r = sbfx_cmf_load(path, &cmf, err, sizeof err);
+    CHECK(r == SBFX_ERR_MISSING_DATA, "%s: result %d", path, r);
+    CHECK(strstr(err, "colord-data") != NULL, "message: %s", err);
+    CHECK(strstr(err, "apt-get install colord-data") != NULL, "message: %s", err);
+    CHECK(strstr(err, path) != NULL, "message does not name the file: %s", err);
+    CHECK(strstr(err, "CIE 1931") != NULL, "message: %s", err);
+    if (reason) CHECK(strstr(err, reason) != NULL, "no reason '%s' in: %s", reason, err);
+    CHECK(cmf.bands == 0, "output not cleared");
+    printf("# %s\n", err);
+}
+
+CHECK_TEST(cmf_missing_file_names_colord_data)
+{
+    check_missing_message("/nonexistent/sbfx/CIE1931-2deg-XYZ.cmf", strerror(ENOENT));
+    /* NULL or tiny error buffers are fine. */
+    static sbfx_cmf cmf;
+    CHECK(sbfx_cmf_load("/nonexistent/x.cmf", &cmf, NULL, 0) == SBFX_ERR_MISSING_DATA);
+    char tiny[8];
+    CHECK(sbfx_cmf_load("/nonexistent/x.cmf", &cmf, tiny, sizeof tiny) == SBFX_ERR_MISSING_DATA);
+    CHECK(strlen(tiny) == sizeof tiny - 1);
+    CHECK(sbfx_cmf_load("/nonexistent/x.cmf", NULL, NULL, 0) == SBFX_ERR_INVALID_ARGUMENT);
+}
+
+CHECK_TEST(cmf_unreadable_or_malformed_file)
+{
+    char dir[] = "/tmp/sbfx-cmf-XXXXXX";
+    CHECK(mkdtemp(dir) != NULL);
+    char path[600];
+    /* A directory, an empty file. */
+    check_missing_message(dir, strerror(EISDIR));
+    snprintf(path, sizeof path, "%s/empty.cmf", dir);
+    FILE *e = fopen(path, "w");
+    if (e) fclose(e);
+    check_missing_message(path, "empty");
+    remove(path);
+    /* Not a CGATS file at all. */
+    snprintf(path, sizeof path, "%s/garbage.cmf", dir);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (f) {
+        fputs("\x01\x02 this is not a colour-matching function table\n", f);
+        fclose(f);
+    }
+    check_missing_message(path, NULL);
+    /* A CGATS file without the spectral header. */
+    snprintf(path, sizeof path, "%s/noheader.cmf", dir);
+    f = fopen(path, "w");
+    if (f) {
+        fputs("CMF\nNUMBER_OF_FIELDS 2\nBEGIN_DATA_FORMAT\nSPEC_360 SPEC_365\nEND_DATA_FORMAT\n"
+              "NUMBER_OF_SETS 3\nBEGIN_DATA\n1 2\n3 4\n5 6\nEND_DATA\n", f);
+        fclose(f);
+    }
+    check_missing_message(path, "SPECTRAL_START_NM");
+    /* Truncated data: fewer rows than X, Y, Z. */
+    snprintf(path, sizeof path, "%s/tworows.cmf", dir);
+    f = fopen(path, "w");
+    if (f) {
+        fputs("CMF\nSPECTRAL_START_NM 360.0\nSPECTRAL_END_NM 365.0\nSPECTRAL_BANDS 2\n"
+              "NUMBER_OF_FIELDS 2\nBEGIN_DATA_FORMAT\nSPEC_360 SPEC_365\nEND_DATA_FORMAT\n"
+              "NUMBER_OF_SETS 2\nBEGIN_DATA\n1 2\n3 4\nEND_DATA\n", f);
+        fclose(f);
+    }
+    check_missing_message(path, NULL);
+    /* Unreadable file (only meaningful when not root). */
+    snprintf(path, sizeof path, "%s/noperm.cmf", dir);
+    f = fopen(path, "w");
+    if (f) fclose(f);
+    chmod(path, 0);
+    if (geteuid() != 0) check_missing_message(path, strerror(EACCES));
+    remove(path);
+    snprintf(path, sizeof path, "%s/garbage.cmf", dir);
+    remove(path);
+    snprintf(path, sizeof path, "%s/noheader.cmf", dir);
+    remove(path);
+    snprintf(path, sizeof path, "%s/tworows.cmf", dir);
+    remove(path);
+    rmdir(dir);
+}
+
+/* ---- Planck ------------------------------------------------------------------------------ */
+
+CHECK_TEST(planck_wien_peak)
+{
+    /* Wien's displacement law: λ_max T = 2.897771955e-3 m K (CODATA 2018). */
+    double temps[] = {800, 1500, 5000, 1e5};
+    for (size_t k = 0; k < 4; k++) {
+        double t = temps[k], lo = 1e-9, hi = 1e-4, g = (sqrt(5) - 1) / 2;
+        for (int i = 0; i < 200; i++) { /* golden-section search in log λ */
+            double a = exp(log(hi) - g * (log(hi) - log(lo))), b = exp(log(lo) + g * (log(hi) - log(lo)));
+            if (sbfx_planck(a, t) > sbfx_planck(b, t)) hi = b;
+            else lo = a;
+        }
+        CHECK(rel_err(lo * t, 2.897771955e-3) < 1e-6, "T %g: λmax T = %.10g", t, lo * t);
+    }
+}
+
+CHECK_TEST(planck_stefan_boltzmann)
+{
+    /* ∫ L dλ = σ T^4 / π, σ = 5.670374419e-8 W m^-2 K^-4. Simpson in log λ. */
+    double temps[] = {300, 1500, 6500, 1e5};
+    for (size_t k = 0; k < 4; k++) {
+        double t = temps[k], a = log(1e-10), b = log(1.0), sum = 0;
+        int n = 200000;
+        for (int i = 0; i <= n; i++) {
+            double y = a + (b - a) * i / n, l = exp(y);
+            sum += sbfx_planck(l, t) * l * (i == 0 || i == n ? 1 : (i % 2 ? 4 : 2));
+        }
+        sum *= (b - a) / n / 3;
+        double want = 5.670374419e-8 * pow(t, 4) / 3.14159265358979323846;
+        CHECK(rel_err(sum, want) < 1e-6, "T %g: %.10g vs %.10g", t, sum, want);
+    }
+}
+
+CHECK_TEST(planck_t_to_zero)
+{
+    CHECK(sbfx_planck(550e-9, 0.0) == 0.0);
+    CHECK(sbfx_planck(550e-9, -0.0) == 0.0);
+    CHECK(sbfx_planck(550e-9, -100.0) == 0.0);
+    CHECK(sbfx_planck(550e-9, NAN) == 0.0);
+    CHECK(sbfx_planck(550e-9, -INFINITY) == 0.0);
+    CHECK(sbfx_planck(550e-9, INFINITY) == 0.0);
+    CHECK(sbfx_planck(0.0, 1000.0) == 0.0);
+    CHECK(sbfx_planck(-1e-6, 1000.0) == 0.0);
+    CHECK(sbfx_planck(NAN, 1000.0) == 0.0);
+    /* Approaching 0 K: the exponent overflows, the value underflows to 0 without inf/NaN. */
+    double prev = INFINITY;
+    for (double t = 3000; t > 1e-300; t *= 0.5) {
+        double v = sbfx_planck(360e-9, t);
+        CHECK(isfinite(v) && v >= 0 && v <= prev, "T %g: %g", t, v);
+        prev = v;
+    }
+    CHECK(prev == 0.0);
+    CHECK(sbfx_planck(360e-9, 4.9406564584124654e-324) == 0.0);
+}
+
+CHECK_TEST(planck_hot_1e5_and_1e6)
+{
+    for (double t = 1e4; t <= 1e6; t *= 1.5) {
+        for (double l = 360e-9; l <= 830e-9; l += 5e-9) {
+            double v = sbfx_planck(l, t);
+            CHECK(isfinite(v) && v > 0, "T %g λ %g: %g", t, l, v);
+        }
+    }
+    /* Rayleigh–Jeans limit: L -> 2 c k T / λ^4 when hc/λkT -> 0 (x = 0.0173 here). */
+    double l = 830e-9, t = 1e6, x = 6.62607015e-34 * 299792458.0 / (l * 1.380649e-23 * t);
+    double rj = 2 * 299792458.0 * 1.380649e-23 * t / pow(l, 4);
+    CHECK(rel_err(sbfx_planck(l, t), rj * x / expm1(x)) < 1e-13);
+    CHECK(rel_err(sbfx_planck(l, t), rj) < x);
+}
+
+/* ---- colour ------------------------------------------------------------------------------ */
+
+CHECK_TEST(srgb_matrix_maps_d65_to_white)
+{
+    double d65[3] = {0.95047, 1.0, 1.08883}, rgb[3];
+    sbfx_xyz_to_linear_srgb(d65, rgb);
+    for (int k = 0; k < 3; k++) CHECK_NEAR(rgb[k], 1.0, 1e-3);
+    double red[3] = {0.4124, 0.2126, 0.0193};
+    sbfx_xyz_to_linear_srgb(red, rgb);
+    CHECK_NEAR(rgb[0], 1.0, 1e-3);
+    CHECK_NEAR(rgb[1], 0.0, 1e-3);
+    CHECK_NEAR(rgb[2], 0.0, 1e-3);
+}
+
+CHECK_TEST(blackbody_t_zero_is_exactly_zero)
+{
+    static sbfx_cmf cmf;
+    load_cmf(&cmf);
+    double xyz[3], rgb[3];
+    double temps[] = {0.0, -5.0, NAN, 1e-300, 1.0, 10.0};
+    for (size_t i = 0; i < sizeof temps / sizeof temps[0]; i++) {
+        sbfx_blackbody_xyz(&cmf, temps[i], xyz);
+        sbfx_blackbody_rgb(&cmf, temps[i], 1.0, rgb);
+        for (int k = 0; k < 3; k++) {
+            CHECK(xyz[k] == 0.0, "T %g xyz[%d] = %g", temps[i], k, xyz[k]);
+            CHECK(rgb[k] == 0.0, "T %g rgb[%d] = %g", temps[i], k, rgb[k]);
+        }
+    }
+    /* Small but visible: positive and finite. */
+    sbfx_blackbody_xyz(&cmf, 300.0, xyz);
+    CHECK(isfinite(xyz[1]) && xyz[1] >= 0);
+    sbfx_blackbody_xyz(&cmf, 800.0, xyz);
+    CHECK(isfinite(xyz[1]) && xyz[1] > 0);
+}
+
+CHECK_TEST(blackbody_1e5_kelvin_finite)
+{
+    static sbfx_cmf cmf;
+    load_cmf(&cmf);
+    double norm = sbfx_blackbody_norm(&cmf, 1e5), rgb[3], xyz[3];
+    CHECK(isfinite(norm) && norm > 0);
+    sbfx_blackbody_rgb(&cmf, 1e5, norm, rgb);
+    for (int k = 0; k < 3; k++) CHECK(isfinite(rgb[k]) && rgb[k] >= 0);
+    CHECK(rgb[2] > rgb[0], "1e5 K should be blue: %g %g %g", rgb[0], rgb[1], rgb[2]);
+    sbfx_blackbody_xyz(&cmf, 1e6, xyz);
+    for (int k = 0; k < 3; k++) CHECK(isfinite(xyz[k]) && xyz[k] > 0);
+    /* Table up to 1e5 K, un-normalised path stays finite too. */
+    static double table[3 * 256];
+    sbfx_blackbody_table(&cmf, 1e5, 256, table);
+    for (int i = 0; i < 3 * 256; i++) CHECK(isfinite(table[i]) && table[i] >= 0);
+}
+
+CHECK_TEST(blackbody_6500_is_roughly_white)
+{
+    static sbfx_cmf cmf;
+    load_cmf(&cmf);
+    double xyz[3], rgb[3];
+    sbfx_blackbody_xyz(&cmf, 6500, xyz);
+    sbfx_blackbody_rgb(&cmf, 6500, 1.0 / xyz[1], rgb);
+    double lo = fmin(rgb[0], fmin(rgb[1], rgb[2])), hi = fmax(rgb[0], fmax(rgb[1], rgb[2]));
+    printf("# 6500 K, Y = 1: linear sRGB %.4f %.4f %.4f, chromaticity x %.4f y %.4f\n", rgb[0],
+           rgb[1], rgb[2], xyz[0] / (xyz[0] + xyz[1] + xyz[2]), xyz[1] / (xyz[0] + xyz[1] + xyz[2]));
+    CHECK(hi <= 1.15 * lo, "not white: %g %g %g", rgb[0], rgb[1], rgb[2]);
+    CHECK_NEAR(luminance(rgb), 1.0, 1e-3);
+    /* Planckian locus at 6500 K: x = 0.3135, y = 0.3237 (CIE 1931). */
+    CHECK_NEAR(xyz[0] / (xyz[0] + xyz[1] + xyz[2]), 0.3135, 2e-3);
+    CHECK_NEAR(xyz[1] / (xyz[0] + xyz[1] + xyz[2]), 0.3237, 2e-3);
+}
+
+CHECK_TEST(blackbody_low_temperatures_are_red)
+{
+    static sbfx_cmf cmf;
+    load_cmf(&cmf);
+    double norm = sbfx_blackbody_norm(&cmf, TABLE_MAX_K);
+    printf("# table normalisation 1/Y(%g K) = %.6g (Y in W sr^-1 m^-2, trapezoid over 5 nm bands)\n",
+           TABLE_MAX_K, norm);
+    double temps[] = {1000, 1500, 2000, 3000, 4000, 6500};
+    for (size_t i = 0; i < sizeof temps / sizeof temps[0]; i++) {
+        double rgb[3], xyz[3], by_y[3];
+        sbfx_blackbody_rgb(&cmf, temps[i], norm, rgb);
+        sbfx_blackbody_xyz(&cmf, temps[i], xyz);
+        sbfx_blackbody_rgb(&cmf, temps[i], 1.0 / xyz[1], by_y);
+        printf("# %6.0f K: table rgb %.6g %.6g %.6g | at Y = 1: %.4f %.4f %.4f\n", temps[i], rgb[0],
+               rgb[1], rgb[2], by_y[0], by_y[1], by_y[2]);
+        if (temps[i] <= 3000) CHECK(rgb[0] > rgb[1] && rgb[1] > rgb[2], "T %g: %g %g %g", temps[i], rgb[0], rgb[1], rgb[2]);
+    }
+    /* 1500 K lies outside the sRGB gamut: blue clipped to 0, not negative. */
+    double rgb[3];
+    sbfx_blackbody_rgb(&cmf, 1500, norm, rgb);
+    CHECK(rgb[2] == 0.0, "blue %g", rgb[2]);
+}
+
+CHECK_TEST(blackbody_norm_is_inverse_y_of_max)
+{
+    static sbfx_cmf cmf;
+    load_cmf(&cmf);
+    double xyz[3];
+    sbfx_blackbody_xyz(&cmf, TABLE_MAX_K, xyz);
+    double norm = sbfx_blackbody_norm(&cmf, TABLE_MAX_K);
+    CHECK(rel_err(norm * xyz[1], 1.0) < 1e-15);
+    CHECK(sbfx_blackbody_norm(&cmf, 0.0) == 0.0);
+    CHECK(sbfx_blackbody_norm(&cmf, -1.0) == 0.0);
+    CHECK(sbfx_blackbody_norm(&cmf, NAN) == 0.0);
+    CHECK(sbfx_blackbody_norm(&cmf, 10.0) == 0.0); /* Y underflows: a black table, not inf */
+    CHECK(sbfx_blackbody_norm(NULL, 6000.0) == 0.0);
+}
+
+CHECK_TEST(table_monotone_luminance_and_half_float_range)
+{
+    static sbfx_cmf cmf;
+    load_cmf(&cmf);
+    enum { N = 1024 };
+    static double table[3 * N];
+    sbfx_blackbody_table(&cmf, TABLE_MAX_K, N, table);
+    double prev = -1, max_c = 0;
+    for (int i = 0; i < N; i++) {
+        double *c = table + 3 * i, y = luminance(c);
+        for (int k = 0; k < 3; k++) {
+            CHECK(isfinite(c[k]) && c[k] >= 0, "entry %d", i);
+            if (c[k] > max_c) max_c = c[k];
+        }
+        CHECK(y >= prev, "luminance drops at entry %d (%g K): %g < %g", i, TABLE_MAX_K * i / (N - 1), y, prev);
+        prev = y;
+    }
+    CHECK(table[0] == 0 && table[1] == 0 && table[2] == 0);
+    /* Top entry: Y = 1 before clipping; clipping negative blue can only raise it a little. */
+    CHECK_NEAR(luminance(table + 3 * (N - 1)), 1.0, 1e-3);
+    printf("# table %d x RGB up to %g K: largest component %.4f (half float max 65504)\n", N,
+           TABLE_MAX_K, max_c);
+    CHECK(max_c < 4.0);
+}
+
+CHECK_TEST(table_lookup_matches_direct)
+{
+    static sbfx_cmf cmf;
+    load_cmf(&cmf);
+    enum { N = 1024 };
+    static double table[3 * N];
+    sbfx_blackbody_table(&cmf, TABLE_MAX_K, N, table);
+    double norm = sbfx_blackbody_norm(&cmf, TABLE_MAX_K), worst = 0, worst_t = 0;
+    for (int i = 0; i < N; i++) { /* entries are exact */
+        double rgb[3], want[3];
+        double t = TABLE_MAX_K * i / (N - 1);
+        sbfx_blackbody_table_lookup(table, N, TABLE_MAX_K, t, rgb);
+        sbfx_blackbody_rgb(&cmf, t, norm, want);
+        for (int k = 0; k < 3; k++) CHECK_NEAR(rgb[k], want[k], 1e-12 * (1 + want[k]));
+    }
+    for (double t = 800; t <= TABLE_MAX_K; t += 7.3) { /* between entries: linear error */
+        double rgb[3], want[3];
+        sbfx_blackbody_table_lookup(table, N, TABLE_MAX_K, t, rgb);
+        sbfx_blackbody_rgb(&cmf, t, norm, want);
+        double e = fabs(luminance(rgb) - luminance(want)) / luminance(want);
+        if (e > worst) worst = e, worst_t = t;
+    }
+    printf("# table lookup (1024 entries, 0..6000 K) max relative luminance error above 800 K: "
+           "%.3g at %.0f K\n", worst, worst_t);
+    CHECK(worst < 0.05);
+    /* Clamping: below 0 K and NaN give entry 0, above the top gives the top. */
+    double rgb[3];
+    sbfx_blackbody_table_lookup(table, N, TABLE_MAX_K, -50, rgb);
+    CHECK(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0);
+    sbfx_blackbody_table_lookup(table, N, TABLE_MAX_K, NAN, rgb);
+    CHECK(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0);
+    sbfx_blackbody_table_lookup(table, N, TABLE_MAX_K, 1e9, rgb);
+    for (int k = 0; k < 3; k++) CHECK(rgb[k] == table[3 * (N - 1) + k]);
+    sbfx_blackbody_table_lookup(table, N, TABLE_MAX_K, INFINITY, rgb);
+    for (int k = 0; k < 3; k++) CHECK(rgb[k] == table[3 * (N - 1) + k]);
+}
+
+int main(int argc, char **argv) { return check_main_args(argc, argv); }
