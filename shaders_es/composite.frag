@@ -7,6 +7,9 @@
 //                           depth, else the texel whose depth is closest (no halos at edges).
 // Bilinear is done by hand with texelFetch so RGBA32F targets (not filterable in ES 3.0)
 // take the same path as RGBA16F and RGBA8.
+//   OWN_SCENE     post effects follow: read the scene colour texture instead of blending over
+//                 the host's framebuffer, and write an opaque image
+//   HAS_SHIMMER   (with OWN_SCENE) heat particles' screen offsets displace the scene lookup
 precision highp float;
 precision highp sampler2D;
 
@@ -18,6 +21,13 @@ uniform float u_divisor;
 uniform vec2 u_depth_params;      // projection[10], projection[14]
 uniform float u_far;
 uniform float u_depth_threshold;  // relative depth difference that counts as an edge
+#ifdef OWN_SCENE
+uniform sampler2D u_scene_color;  // full res, LINEAR filtering for the shimmer offset
+uniform vec2 u_full_size;
+#endif
+#ifdef HAS_SHIMMER
+uniform sampler2D u_distortion;   // low-res: offset of the scene lookup in UV units (rg)
+#endif
 
 out vec4 o_color;
 
@@ -60,5 +70,16 @@ void main()
         if (dz.w < best) { result = p11; }
     }
 #endif
+#ifdef OWN_SCENE
+    vec2 uv = gl_FragCoord.xy / u_full_size;
+#ifdef HAS_SHIMMER
+    vec2 offset = texelFetch(u_distortion, clamp(ivec2(low + 0.5), ivec2(0), u_low_size - 1), 0).rg;
+    if (!(abs(offset.x) < 1.0 && abs(offset.y) < 1.0)) offset = vec2(0.0);   // NaN, Inf, absurd
+    uv = clamp(uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);
+#endif
+    vec3 scene = texture(u_scene_color, uv).rgb;
+    o_color = vec4(scene * result.a + result.rgb, 1.0);
+#else
     o_color = result;
+#endif
 }

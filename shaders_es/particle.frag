@@ -10,6 +10,9 @@
 //   OPACITY_PLANAR | OPACITY_SOFT | OPACITY_SPHERICAL | OPACITY_EXACT
 //   OPACITY_FLOOR    benchmark only: the same quads, a trivial shader (the fill-rate floor)
 //   BLACKBODY_ANALYTIC, PHASE_ANALYTIC   evaluate per fragment instead of fetching the tables
+//   LIGHTING_LIT     (with MEDIUM_SCATTERS) the lit-smoke seed instead of the phase function:
+//                    per-pixel normals, wrap-around Lambert, back-lighting, up to 4 lights
+//   LIT_SHADOW       (with LIGHTING_LIT) ray-marched self-shadowing through the height field
 // Light and colour are mediump (what a Mali-class GPU runs at half precision); geometry,
 // depth and opacity stay highp.
 precision highp float;
@@ -18,6 +21,12 @@ precision highp sampler3D;
 
 flat in vec4 v_center_radius;
 flat in vec4 v_detail;
+#ifdef HAS_VELOCITY_TARGET
+flat in vec2 v_velocity;
+#endif
+#ifdef MEDIUM_HEAT
+uniform float u_heat_strength;   // largest shimmer offset, UV units
+#endif
 
 uniform sampler2D u_depth;       // low-res opaque distance / far (depth texture)
 uniform float u_far;
@@ -44,6 +53,17 @@ uniform vec4 u_light_vector[MAX_LIGHTS]; // view space: w = 0 direction of trave
 uniform vec3 u_light_color[MAX_LIGHTS];  // irradiance (point lights: at 1 m)
 uniform vec3 u_ambient;
 #endif
+#ifdef LIGHTING_LIT
+precision highp sampler2DArray;
+uniform sampler2DArray u_smoke;  // per variant v: layer 2v normal*0.5+0.5, height; 2v+1 brightness, translucency
+uniform float u_smoke_variants;
+uniform vec2 u_wrap;             // wrap-around scale 1/(1+w), bias w/(1+w)
+uniform float u_translucency;
+uniform float u_dampening;       // the lights' direct term is scaled by 1 - dampening
+uniform vec2 u_steps;            // nMin, nMax of the ray march
+#define MAX_LIT_LIGHTS 4
+#define MAX_STEPS 64             // SBFX_LIT_MAX_STEPS
+#endif
 #ifdef BLACKBODY_ANALYTIC
 #define MAX_BANDS 96
 uniform int u_cmf_count;
@@ -60,7 +80,15 @@ uniform float u_emission_scale;   // includes (1 - albedo)
 const float RADIANCE_CEILING = 64.0;
 #endif
 
-out vec4 o_color;
+// 0: premultiplied light, alpha; 1: shimmer offset (heat adds, others occlude by alpha);
+// 2: premultiplied screen velocity, alpha (velocity motion blur)
+layout(location = 0) out vec4 o_color;
+#ifdef HAS_DISTORTION_TARGET
+layout(location = 1) out vec4 o_distortion;
+#endif
+#ifdef HAS_VELOCITY_TARGET
+layout(location = 2) out vec4 o_velocity;
+#endif
 
 float soft_fade(float x)
 {
@@ -170,6 +198,88 @@ mediump vec3 in_scattered(vec3 ray, vec3 p)
 }
 #endif
 
+#ifdef LIGHTING_LIT
+// The lit-smoke seed, mirrored by src/lit_ref.c (see there for the texture space). The view
+// matrix is the tangent basis of these screen-aligned particles: tangent = view x, bitangent =
+// view y, normal = view +z (toward the eye), so a normal-map texel is already a view-space normal.
+struct lit_maps {
+    vec3 normal;
+    float height, brightness, translucency;
+};
+
+lit_maps lit_fetch(vec2 st, float layer)
+{
+    vec4 a = textureLod(u_smoke, vec3(st, layer), 0.0);
+    vec4 b = textureLod(u_smoke, vec3(st, layer + 1.0), 0.0);
+    vec3 n = a.xyz * 2.0 - 1.0;
+    float len2 = dot(n, n);
+    lit_maps m;
+    m.normal = len2 > 1e-8 ? n * inversesqrt(len2) : vec3(0.0, 0.0, 1.0);
+    m.height = a.w;
+    m.brightness = b.x;
+    m.translucency = b.y;
+    return m;
+}
+
+#ifdef LIT_SHADOW
+// Transmittance toward the light: midpoint samples of the slab density max(0, h - 2|z|) from
+// the front surface to where the ray leaves the particle's box, n = nMin + (N.V)(nMax - nMin)
+// steps (the seed's eq. 5.2.5, rounded half up). tau_2r = extinction x diameter.
+float lit_shadow(vec3 start, vec3 l, float layer, float n_dot_v, float tau_2r)
+{
+    float n = floor(u_steps.x + clamp(n_dot_v, 0.0, 1.0) * (u_steps.y - u_steps.x) + 0.5);
+    if (n < 0.5) return 1.0;
+    vec3 lo = vec3(0.0, 0.0, -0.5), hi = vec3(1.0, 1.0, 0.5);
+    float t_exit = 1e30;
+    for (int a = 0; a < 3; a++)
+        if (abs(l[a]) > 1e-6) t_exit = min(t_exit, ((l[a] > 0.0 ? hi[a] : lo[a]) - start[a]) / l[a]);
+    float dt = max(t_exit, 0.0) / n, sum = 0.0;
+    for (int k = 0; k < MAX_STEPS; k++) {
+        if (float(k) >= n) break;
+        vec3 p = start + (float(k) + 0.5) * dt * l;
+        sum += max(textureLod(u_smoke, vec3(p.xy, layer), 0.0).w - 2.0 * abs(p.z), 0.0);
+    }
+    return exp(-tau_2r * sum * dt);
+}
+#endif
+
+// albedo is applied by the caller: B (ambient + (1 - dampening) sum_i E_i f_i S_i (wrap_i + back_i)).
+// back_i = translucency x map x max(0, -V.L): the seed prints min(0, E.L) x map, which would
+// darken smoke lit from behind; its magnitude brightens the thin rim of backlit smoke and adds
+// nothing for a light in front (V = surface -> eye, L = surface -> light).
+mediump vec3 lit_scattered(vec3 ray, vec3 c, float r, float tau_scale)
+{
+    vec2 q = ray.xy * (-c.z);
+    vec2 st = (q - c.xy) / (2.0 * r) + 0.5;
+    float layer = 2.0 * min(floor(clamp(v_detail.x, 0.0, 1.0) * u_smoke_variants), u_smoke_variants - 1.0);
+    lit_maps m = lit_fetch(st, layer);
+    vec3 p = vec3(q, c.z + r * m.height);     // the front surface of the relief
+    vec3 v = -normalize(ray);
+    float n_dot_v = dot(m.normal, v);
+    mediump vec3 sum = vec3(0.0);
+    for (int i = 0; i < MAX_LIT_LIGHTS; i++) {
+        if (i >= u_light_count) break;
+        vec4 lv = u_light_vector[i];
+        vec3 l = -lv.xyz;
+        float falloff = 1.0;
+        if (lv.w > 0.5) {
+            vec3 d = lv.xyz - p;
+            float d2 = dot(d, d);
+            falloff = 1.0 / max(d2, 0.25);
+            l = d2 > 1e-12 ? d * inversesqrt(d2) : m.normal;   // a light at the point: along N
+        }
+        float diffuse = max(dot(m.normal, l) * u_wrap.x + u_wrap.y, 0.0);
+        float back = u_translucency * m.translucency * max(-dot(v, l), 0.0);
+        float shadow = 1.0;
+#ifdef LIT_SHADOW
+        shadow = lit_shadow(vec3(st, 0.5 * m.height), l, layer, n_dot_v, u_tau * tau_scale * 2.0 * r);
+#endif
+        sum += u_light_color[i] * (falloff * shadow * (diffuse + back));
+    }
+    return m.brightness * (u_ambient + (1.0 - u_dampening) * sum);
+}
+#endif
+
 // -expm1(-x) = 1 - e^-x, accurate for small x too
 float expm1_safe(float x)
 {
@@ -216,6 +326,12 @@ void main()
 {
 #ifdef OPACITY_FLOOR
     o_color = vec4(0.01, 0.01, 0.01, 0.05);   // the cheapest fragment that still blends
+#ifdef HAS_DISTORTION_TARGET
+    o_distortion = vec4(0.0);
+#endif
+#ifdef HAS_VELOCITY_TARGET
+    o_velocity = vec4(0.0);
+#endif
     return;
 #endif
     vec3 c = v_center_radius.xyz;
@@ -240,12 +356,37 @@ void main()
     alpha *= soft_fade((zs + c.z) / (u_soft_scale > 0.0 ? u_soft_scale : r));
 #endif
     mediump vec3 light = vec3(0.0);
-#ifdef MEDIUM_SCATTERS
+#if defined(MEDIUM_SCATTERS) && defined(LIGHTING_LIT)
+    light += u_albedo_color * lit_scattered(ray, c, r, tau_scale);
+#elif defined(MEDIUM_SCATTERS)
     light += u_albedo_color * in_scattered(ray, c);
 #endif
 #ifdef MEDIUM_EMITS
     float cooled = 1.0 - u_temperature.z * (1.0 - intensity);
     light += emitted((u_temperature.x + u_temperature.y * detail) * cooled);
 #endif
+#ifdef MEDIUM_HEAT
+    // Heat neither absorbs nor lights: it adds a screen offset, two decorrelated detail
+    // samples shaped by the particle's opacity profile (zero where the sphere is clipped).
+#ifdef HAS_DETAIL
+    vec2 noise = vec2(detail, detail_sample(c + vec3(0.37, 0.61, 0.0) * r, r, ray)) - 0.5;
+#else
+    vec2 noise = v_detail.xy - 0.5;   // without the volume: one random direction per particle
+#endif
+    o_color = vec4(0.0);
+#ifdef HAS_DISTORTION_TARGET
+    o_distortion = vec4(2.0 * u_heat_strength * alpha * noise, 0.0, 0.0);
+#endif
+#ifdef HAS_VELOCITY_TARGET
+    o_velocity = vec4(0.0);
+#endif
+#else
     o_color = vec4(light * alpha, alpha);
+#ifdef HAS_DISTORTION_TARGET
+    o_distortion = vec4(0.0, 0.0, 0.0, alpha);   // shimmer behind this particle is covered
+#endif
+#ifdef HAS_VELOCITY_TARGET
+    o_velocity = vec4(v_velocity * alpha, 0.0, alpha);
+#endif
+#endif
 }

@@ -6,14 +6,14 @@
 sbfx_result sbfx_read_particle_target(sbfx *fx, float *rgba, size_t capacity, int *w, int *h)
 {
     sbfx_gl *gl = &fx->gl;
-    if (!gl->target_fbo) return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "no particle target yet: render first");
+    if (!gl->particles.framebuffer) return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "no particle target yet: render first");
     size_t n = (size_t)gl->low_width * gl->low_height;
     if (!rgba || capacity < n * 4)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "read buffer holds %zu floats, %zu needed",
                          capacity, n * 4);
     *w = gl->low_width;
     *h = gl->low_height;
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl->target_fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl->particles.framebuffer);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     if (gl->target_type == GL_UNSIGNED_BYTE) {
         /* Expand bytes in place from the back so the float buffer can hold them first. */

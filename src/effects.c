@@ -16,6 +16,17 @@ void sbfx_default_media(sbfx_medium_params media[SBFX_MEDIUM_COUNT])
         .albedo = 0.0f, .tau = 0.4f, .phase_g = 0.0f, .color = {1.0f, 1.0f, 1.0f},
         .detail_strength = 1.0f, .detail_window = 0.15f,
         .t0 = 1500.0f, .t1 = 2000.0f, .cooling = 0.45f, .emission_scale = 150.0f};
+    /* Heat: shimmer of up to 1% of the image, noise a quarter of the volume per particle. */
+    media[SBFX_HEAT] = (sbfx_medium_params){
+        .albedo = 0.0f, .tau = 1.0f, .color = {1.0f, 1.0f, 1.0f}, .detail_strength = 1.0f,
+        .detail_window = 0.25f, .heat_strength = 0.01f};
+    /* Lighting defaults for media a scene switches to "lit" (the lit-smoke seed's w = 0.6). */
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) {
+        media[m].wrap = 0.6f;
+        media[m].translucency = 1.0f;
+        media[m].steps_min = 4, media[m].steps_max = 16;
+        media[m].texture_size = 128, media[m].texture_variants = 4;
+    }
 }
 
 void sbfx_builtin_explosion(sbfx_effect *out)

@@ -26,7 +26,15 @@ typedef struct sbfx_medium_params {
     float t0, t1;          /* fire: T = (t0 + t1 * detail) * (1 - cooling * (1 - intensity)) */
     float cooling;         /* fire: fraction of the temperature lost as intensity reaches 0 */
     bool live_detail;      /* detail source "v4l2": slices come from sbfx_detail_push_slice */
+    float heat_strength;   /* heat: largest screen offset of the shimmer, in UV units */
     float emission_scale;  /* fire: radiance multiplier on the normalised black-body table */
+    /* lit-smoke seed (lighting = "lit"; lit_ref.h): per-pixel lit instead of the phase model */
+    bool lit;
+    float wrap;            /* wrap-around coefficient w (0.6 in the seed) */
+    float translucency;    /* strength of the back-lighting term */
+    float dampening;       /* fraction of the lights' direct term removed (dense groups) */
+    int steps_min, steps_max;          /* ray-march steps nMin, nMax; nMax = 0: no self-shadow */
+    int texture_size, texture_variants; /* procedural smoke texture array */
 } sbfx_medium_params;
 
 /* A particle as the renderer sees it: view space, already validated. */
@@ -36,6 +44,7 @@ typedef struct sbfx_view_particle {
     float detail[3];  /* detail window origin (u, v) and time offset */
     float intensity;  /* density scale in [0,1]; fire also cools as it falls */
     sbfx_medium medium;
+    float previous_center[3]; /* view-space centre one frame ago, as seen then (velocity blur) */
 } sbfx_view_particle;
 
 /* True when every input of the particle is finite and the radius is positive. */
@@ -80,6 +89,9 @@ int sbfx_frame_particles(sbfx *fx, const float view[16], const sbfx_view_particl
  * travel, w = 1 position; colours already faded for light flashes. Returns the count. */
 typedef struct sbfx_view_light { float vector[4]; float color[3]; } sbfx_view_light;
 int sbfx_frame_lights(const sbfx *fx, const float view[16], sbfx_view_light *out, int capacity);
+/* Replaces the scene's lights: world space, w = 0 direction of travel, w = 1 position (no
+ * orbit); count <= 8. */
+void sbfx_set_lights(sbfx *fx, const sbfx_view_light *lights, int count, const float ambient[3]);
 void sbfx_frame_ambient(const sbfx *fx, float ambient[3]);
 /* The detail time coordinate the shader samples at (in detail-volume loops). */
 double sbfx_detail_time(const sbfx *fx);

@@ -3,6 +3,7 @@
  * the loaded effects use. */
 #include <stdlib.h>
 #include <string.h>
+#include "lit_ref.h"
 #include "module.h"
 
 static GLuint make_texture(sbfx *fx, GLenum target, GLenum filter, GLenum wrap)
@@ -123,6 +124,49 @@ static sbfx_result upload_detail(sbfx *fx)
     return r;
 }
 
+/* A lit medium's smoke textures (lit_ref.h): 2 RGBA8 layers per variant in one array, so a
+ * particle picks its variant by layer, all under one binding. Made at load from the seed. */
+static sbfx_result upload_smoke(sbfx *fx, sbfx_medium m)
+{
+    const sbfx_medium_params *mp = &fx->media[m];
+    int size = mp->texture_size, variants = mp->texture_variants;
+    size_t bytes = sbfx_smoke_texture_bytes(size, variants);
+    uint8_t *texels = sbfx_calloc(fx, bytes, 1);
+    float *scratch = sbfx_calloc(fx, sbfx_smoke_scratch_floats(size), sizeof(float));
+    sbfx_result r = SBFX_ERR_OUT_OF_MEMORY;
+    if (texels && scratch) {
+        r = SBFX_ERR_INVALID_ARGUMENT;
+        if (sbfx_smoke_texture_generate(size, variants, sbfx_smoke_texture_seed(fx->desc.seed, m), texels,
+                                        scratch) != 0) {
+            sbfx_fail(fx, r, "smoke texture %dx%d x %d variants is out of range", size, size, variants);
+            goto out;
+        }
+        /* CLAMP_TO_EDGE: the puff's height is 0 at the border, a lit particle's rim must not
+         * pick up the opposite side. */
+        fx->gl.smoke_texture[m] = make_texture(fx, GL_TEXTURE_2D_ARRAY, GL_LINEAR, GL_CLAMP_TO_EDGE);
+        glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, size, size, SBFX_SMOKE_LAYERS_PER_VARIANT * variants, 0,
+                     GL_RGBA, GL_UNSIGNED_BYTE, texels);
+        fx->counters.gpu_bytes += bytes;
+        r = sbfx_gl_check(fx, "uploading the smoke texture array") ? SBFX_OK : SBFX_ERR_GL;
+    }
+out:
+    sbfx_free(fx, texels);
+    sbfx_free(fx, scratch);
+    return r;
+}
+
+static bool lit(const sbfx *fx, sbfx_medium m)
+{
+    return fx->uses_medium[m] && fx->media[m].lit && fx->media[m].albedo > 0;
+}
+
+/* Dust or smoke lit through the phase function (a lit medium does not sample the table). */
+static bool any_phase(const sbfx *fx)
+{
+    return (fx->uses_medium[SBFX_DUST] && !lit(fx, SBFX_DUST)) ||
+           (fx->uses_medium[SBFX_SMOKE] && !lit(fx, SBFX_SMOKE));
+}
+
 static bool any_detail(const sbfx *fx)
 {
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
@@ -135,9 +179,10 @@ sbfx_result sbfx_luts_create(sbfx *fx)
     sbfx_result r = SBFX_OK;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     if (fx->uses_medium[SBFX_FIRE] && (r = upload_blackbody(fx)) != SBFX_OK) return r;
-    if ((fx->uses_medium[SBFX_DUST] || fx->uses_medium[SBFX_SMOKE]) && (r = upload_phase(fx)) != SBFX_OK)
-        return r;
+    if (any_phase(fx) && (r = upload_phase(fx)) != SBFX_OK) return r;
     if (any_detail(fx) && (r = upload_detail(fx)) != SBFX_OK) return r;
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
+        if (lit(fx, (sbfx_medium)m) && (r = upload_smoke(fx, (sbfx_medium)m)) != SBFX_OK) return r;
     return SBFX_OK;
 }
 
@@ -145,6 +190,8 @@ void sbfx_luts_destroy(sbfx *fx)
 {
     GLuint textures[] = {fx->gl.blackbody_texture, fx->gl.phase_texture, fx->gl.detail_texture};
     glDeleteTextures((GLsizei)ARRAY_SIZE(textures), textures);
+    glDeleteTextures(SBFX_MEDIUM_COUNT, fx->gl.smoke_texture);
+    memset(fx->gl.smoke_texture, 0, sizeof(fx->gl.smoke_texture));
     sbfx_free(fx, fx->cmf_rgb);
     sbfx_free(fx, fx->cmf_band);
     sbfx_free(fx, fx->detail_scratch);

@@ -26,6 +26,22 @@ typedef struct sbfx_emitter {
     float fade_in;                      /* fraction of life spent fading in */
 } sbfx_emitter;
 
+/* Post effects a scene asks for (each exists in the plan only if asked for). */
+typedef enum sbfx_blur_mode { SBFX_BLUR_NONE, SBFX_BLUR_HISTORY, SBFX_BLUR_VELOCITY } sbfx_blur_mode;
+
+typedef struct sbfx_post_params {
+    sbfx_blur_mode blur;
+    float persistence;     /* history: seconds for the old image to fade to 1/e */
+    int tile;              /* velocity: tile size = largest blur radius, pixels */
+    int samples;           /* velocity: gather samples */
+    float shutter;         /* velocity: fraction of the frame interval the shutter is open */
+    bool dof;
+    float dof_near[2];     /* full near blur at [0], sharp from [1] (view distances) */
+    float dof_far[2];      /* sharp until [0], full far blur at [1] */
+    float dof_max_radius;  /* full-resolution pixels */
+    int dof_scale;         /* blur resolution divisor */
+} sbfx_post_params;
+
 /* A light-flash step: a point light at the effect's position (+ offset) that rises at once
  * and decays linearly over `duration`. */
 typedef struct sbfx_flash {
@@ -60,16 +76,59 @@ typedef struct sbfx_pool {
 typedef struct sbfx_program {
     GLuint id;
     /* uniform locations used every frame */
-    GLint near, far, projection, target_size, pixel, tau, soft_scale;
+    GLint near, far, projection, target_size, pixel, tau, soft_scale, full_size, heat_strength;
     GLint depth, detail, detail_window, detail_strength, time;
     GLint phase_lut, phase_lut_size, g, albedo_color, light_count, light_vector, light_color, ambient;
     GLint blackbody, blackbody_size, max_kelvin, temperature, emission_scale, cmf_rgb, cmf_band;
+    GLint smoke, smoke_variants, wrap, translucency, dampening, steps; /* LIGHTING_LIT */
 } sbfx_program;
+
+/* A framebuffer with up to SBFX_RT_MAX colour textures and an optional depth texture. */
+#define SBFX_RT_MAX 3
+typedef struct sbfx_rt_format {
+    GLenum internal, format, type;
+    int bytes;
+} sbfx_rt_format;
+extern const sbfx_rt_format sbfx_rt_rgba8, sbfx_rt_rgba16f, sbfx_rt_rgba32f, sbfx_rt_depth32f;
+
+typedef struct sbfx_rt {
+    GLuint framebuffer;
+    GLuint texture[SBFX_RT_MAX];
+    GLuint depth;
+    int width, height;
+    size_t bytes;
+} sbfx_rt;
+
+/* Post-effect state: programs at load, targets with the output size. */
+typedef struct sbfx_post_gl {
+    GLuint velocity_program, tile_program, neighbor_program, blur_program;
+    GLuint history_program, copy_program, dof_setup_program, dof_blur_program, dof_composite_program;
+    const sbfx_rt_format *color_format, *velocity_format;
+    bool encode_velocity;      /* RGBA8 velocity: stored as v / (2 max) + 0.5 */
+    sbfx_rt frame[2];          /* full-res images between post passes */
+    sbfx_rt history[2];        /* history blur ping-pong */
+    int history_next;
+    bool history_valid;
+    sbfx_rt velocity, tiles, neighbors;
+    sbfx_rt dof[2];            /* each: far field + near field, ping-pong of the separable blur */
+    int width, height;
+    double last_time;          /* simulation time of the previous render */
+    bool have_previous;
+    double previous_view_projection[16];
+} sbfx_post_gl;
+
+/* What the scene's plan needs beyond the particle passes. */
+typedef struct sbfx_plan {
+    bool distortion;           /* heat medium: shimmer offsets */
+    bool particle_velocity;    /* velocity blur: particles write their screen motion */
+    bool owns_scene;           /* any post effect: sbfx reads the scene colour and writes out */
+} sbfx_plan;
 
 /* Uniform locations of the full-screen passes, looked up once at load. */
 typedef struct sbfx_pass_uniforms {
     GLint scene_depth, divisor, full_size, depth_params, far;         /* depth downsample */
     GLint particles, low_depth, low_size, depth_threshold;            /* composite */
+    GLint scene_color, distortion;                                    /* composite, own scene */
 } sbfx_pass_uniforms;
 
 typedef struct sbfx_gl {
@@ -78,12 +137,13 @@ typedef struct sbfx_gl {
     GLuint depth_program, composite_program, lut_program;
     sbfx_program particle[SBFX_MEDIUM_COUNT];
     GLuint blackbody_texture, phase_texture, detail_texture;
+    GLuint smoke_texture[SBFX_MEDIUM_COUNT]; /* 2D arrays, lit media only (lit_ref.h layout) */
     /* targets, (re)made when the output size changes */
-    GLuint target_texture, target_fbo, low_depth_texture, low_depth_fbo;
+    sbfx_rt particles, low_depth;
     GLuint probe_texture, probe_fbo;
     int out_width, out_height, low_width, low_height;
-    GLenum target_internal, target_type;
-    size_t target_bytes;
+    GLenum target_type;
+    sbfx_post_gl post;
 } sbfx_gl;
 
 #define SBFX_MAX_SCHEDULE 128
@@ -103,9 +163,18 @@ typedef struct sbfx_live_flash {
     float color[3], position[3];
 } sbfx_live_flash;
 
+/* A point light circling `center` in the world's horizontal plane, counter-clockwise seen from
+ * above (+y) for period > 0: position = center + radius (cos a, 0, -sin a),
+ * a = 2 pi t / period + phase (radians), t = simulation time. */
+typedef struct sbfx_orbit {
+    bool on;
+    float center[3], radius, period, phase;
+} sbfx_orbit;
+
 typedef struct sbfx_scene_light { /* scene light, as the module keeps it */
     bool point;
     float vector[3], color[3];
+    sbfx_orbit orbit;  /* point lights: vector follows it (sbfx_orbit_lights) */
 } sbfx_scene_light;
 
 struct sbfx {
@@ -117,6 +186,8 @@ struct sbfx {
 
     sbfx_medium_params media[SBFX_MEDIUM_COUNT];
     bool uses_medium[SBFX_MEDIUM_COUNT];
+    sbfx_post_params post;
+    sbfx_plan plan;
     int light_count;
     sbfx_scene_light lights[SBFX_SHADER_LIGHTS];
     float ambient[3];
@@ -139,11 +210,15 @@ struct sbfx {
     sbfx_view_particle *view;
     float *sort_keys;
     uint32_t *order, *order_tmp;
-    float *instances;            /* 8 floats per particle */
+    float *instances;            /* instance_floats per particle */
+    int instance_floats;         /* 8, or 12 with the previous centre (velocity blur) */
 
     sbfx_gl gl;
     sbfx_counters counters;
     int detail_ring_next;        /* next slice sbfx_detail_push_slice writes */
+    float previous_view[16];     /* the last render's view and time (particle velocities) */
+    double previous_render_time;
+    bool have_previous_view;
     /* analytic black body: per band, sRGB weight (matrix x CMF x trapezoid x norm) and the
      * band's wavelength in micrometres; loaded once with the program */
     int cmf_bands;
@@ -157,8 +232,21 @@ void sbfx_pool_destroy(sbfx *fx);
 sbfx_result sbfx_spawn_effect(sbfx *fx, const sbfx_effect *effect, const float position[3]);
 void sbfx_simulate_step(sbfx *fx, float step);
 
+/* post.c */
+void sbfx_default_post(sbfx_post_params *post);
+bool sbfx_post_owns_scene(const sbfx *fx);
+sbfx_result sbfx_post_programs_create(sbfx *fx);
+void sbfx_post_destroy(sbfx *fx);
+sbfx_result sbfx_post_targets_ensure(sbfx *fx, int width, int height);
+sbfx_result sbfx_post_run(sbfx *fx, const sbfx_frame *frame, GLuint source);
+GLuint sbfx_post_composite_target(const sbfx *fx, const sbfx_frame *f);
+GLuint sbfx_post_composite_texture(const sbfx *fx);
+
 /* sbfx.c */
 sbfx_result sbfx_fire(sbfx *fx, int effect, const float position[3]);
+
+/* lights.c: moves orbiting point lights to their place at fx->time */
+void sbfx_orbit_lights(sbfx *fx);
 
 /* effects.c */
 void sbfx_default_media(sbfx_medium_params media[SBFX_MEDIUM_COUNT]);
@@ -179,6 +267,13 @@ void sbfx_luts_destroy(sbfx *fx);
 sbfx_result sbfx_programs_create(sbfx *fx);
 void sbfx_programs_destroy(sbfx *fx);
 
+/* rt.c */
+bool sbfx_rt_create(sbfx *fx, sbfx_rt *rt, int w, int h, const sbfx_rt_format *const colors[SBFX_RT_MAX],
+                    const sbfx_rt_format *depth, GLenum filter);
+void sbfx_rt_destroy(sbfx *fx, sbfx_rt *rt);
+void sbfx_rt_bind(const sbfx_rt *rt);
+bool sbfx_half_float_renderable(void);
+
 /* targets.c */
 sbfx_result sbfx_targets_ensure(sbfx *fx, int width, int height);
 void sbfx_targets_destroy(sbfx *fx);
@@ -187,7 +282,7 @@ void sbfx_targets_destroy(sbfx *fx);
 void sbfx_sort_back_to_front(sbfx *fx, int count);
 
 /* render.c */
-sbfx_result sbfx_render_particles(sbfx *fx, const sbfx_frame *frame, int count);
+sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, int count);
 int sbfx_collect_view_particles(sbfx *fx, const float view[16]);
 
 #endif

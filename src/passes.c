@@ -7,6 +7,7 @@
 #define UNIT_DETAIL 1
 #define UNIT_PHASE 2
 #define UNIT_BLACKBODY 3
+#define UNIT_SMOKE 4 /* a lit medium's smoke texture array */
 
 typedef struct frame_params {
     float projection[4]; /* P[0], P[5], P[8], P[9] */
@@ -75,7 +76,7 @@ static void pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
 {
     sbfx_gl *gl = &fx->gl;
     GLuint prog = gl->depth_program;
-    glBindFramebuffer(GL_FRAMEBUFFER, gl->low_depth_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, gl->low_depth.framebuffer);
     glViewport(0, 0, gl->low_width, gl->low_height);
     glEnable(GL_DEPTH_TEST); /* depth writes need the test on; ALWAYS keeps every fragment */
     glDepthFunc(GL_ALWAYS);
@@ -128,10 +129,24 @@ static void gather_lights(const sbfx *fx, const float view[16], frame_lights *ou
     }
 }
 
+/* Lit media (LIGHTING_LIT): their own texture array, wrap as scale and bias (seed eq. 5.2.3). */
+static void set_lit_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m)
+{
+    const sbfx_medium_params *mp = &fx->media[m];
+    bind_texture(UNIT_SMOKE, GL_TEXTURE_2D_ARRAY, fx->gl.smoke_texture[m]);
+    glUniform1i(p->smoke, UNIT_SMOKE);
+    glUniform1f(p->smoke_variants, (float)mp->texture_variants);
+    glUniform2f(p->wrap, 1.0f / (1.0f + mp->wrap), mp->wrap / (1.0f + mp->wrap));
+    glUniform1f(p->translucency, mp->translucency);
+    glUniform1f(p->dampening, mp->dampening);
+    glUniform2f(p->steps, (float)mp->steps_min, (float)mp->steps_max);
+}
+
 static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m, const frame_lights *lights)
 {
     const sbfx_medium_params *mp = &fx->media[m];
     glUniform1f(p->tau, mp->tau);
+    glUniform1f(p->heat_strength, mp->heat_strength);
     glUniform1f(p->soft_scale, 0.0f);
     glUniform1i(p->detail, UNIT_DETAIL);
     glUniform1f(p->detail_window, mp->detail_window);
@@ -151,6 +166,7 @@ static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m, 
     glUniform1f(p->max_kelvin, fx->max_kelvin);
     glUniform3f(p->temperature, mp->t0, mp->t1, mp->cooling);
     glUniform1f(p->emission_scale, mp->emission_scale * (1.0f - mp->albedo));
+    if (fx->gl.smoke_texture[m]) set_lit_uniforms(fx, p, m);
 }
 
 static void set_frame_uniforms(sbfx *fx, const sbfx_program *p, const frame_params *fp)
@@ -162,29 +178,36 @@ static void set_frame_uniforms(sbfx *fx, const sbfx_program *p, const frame_para
     glUniform2f(p->target_size, (float)gl->low_width, (float)gl->low_height);
     glUniform2f(p->pixel, 2.0f / gl->low_width, 2.0f / gl->low_height);
     glUniform1i(p->depth, UNIT_DEPTH);
+    glUniform2f(p->full_size, (float)gl->out_width, (float)gl->out_height);
 }
 
 /* Writes the sorted particles into the instance buffer; returns nothing, cannot fail. */
 static void upload_instances(sbfx *fx, int count)
 {
+    const int stride = fx->instance_floats;
     for (int i = 0; i < count; i++) {
         const sbfx_view_particle *v = &fx->view[fx->order[i]];
-        float *dst = &fx->instances[8 * i];
+        float *dst = &fx->instances[stride * i];
         memcpy(dst, v->center, 3 * sizeof(float));
         dst[3] = v->radius;
         memcpy(dst + 4, v->detail, 3 * sizeof(float));
         dst[7] = v->intensity;
+        if (stride == 12) {
+            memcpy(dst + 8, v->previous_center, 3 * sizeof(float));
+            dst[11] = 0.0f;
+        }
     }
     glBindBuffer(GL_ARRAY_BUFFER, fx->gl.instance_buffer);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(count * 8 * sizeof(float)), fx->instances);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)((size_t)count * stride * sizeof(float)), fx->instances);
 }
 
 static void draw_run(sbfx *fx, int first, int count)
 {
-    const GLsizei stride = 8 * sizeof(float);
-    const char *base = (const char *)(size_t)((size_t)first * stride);
+    const GLsizei stride = (GLsizei)(fx->instance_floats * sizeof(float));
+    const char *base = (const char *)(size_t)((size_t)first * (size_t)stride);
     glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, stride, base);
     glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, stride, base + 4 * sizeof(float));
+    if (fx->instance_floats == 12) glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride, base + 8 * sizeof(float));
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count);
     fx->counters.draw_calls++;
 }
@@ -196,7 +219,7 @@ static void pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     sbfx_gl *gl = &fx->gl;
     frame_lights lights;
     gather_lights(fx, f->view, &lights);
-    glBindFramebuffer(GL_FRAMEBUFFER, gl->target_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, gl->particles.framebuffer);
     glViewport(0, 0, gl->low_width, gl->low_height);
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f); /* no light added, everything transmitted */
     glClear(GL_COLOR_BUFFER_BIT);
@@ -204,7 +227,7 @@ static void pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     glBlendEquation(GL_FUNC_ADD);
     /* rgb = src + dst (1 - a); transmittance a = dst (1 - a) */
     glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
-    bind_texture(UNIT_DEPTH, GL_TEXTURE_2D, gl->low_depth_texture);
+    bind_texture(UNIT_DEPTH, GL_TEXTURE_2D, gl->low_depth.depth);
     bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture);
     bind_texture(UNIT_PHASE, GL_TEXTURE_2D, gl->phase_texture);
     bind_texture(UNIT_BLACKBODY, GL_TEXTURE_2D, gl->blackbody_texture);
@@ -229,13 +252,25 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
 {
     sbfx_gl *gl = &fx->gl;
     GLuint prog = gl->composite_program;
-    glBindFramebuffer(GL_FRAMEBUFFER, f->out_framebuffer);
+    bool owns = fx->plan.owns_scene;
+    glBindFramebuffer(GL_FRAMEBUFFER, owns ? sbfx_post_composite_target(fx, f) : f->out_framebuffer);
     glViewport(0, 0, f->width, f->height);
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
+    if (owns) {
+        glDisable(GL_BLEND); /* writes the whole image: scene * T + C */
+    } else {
+        glEnable(GL_BLEND);
+        glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
+    }
     glUseProgram(prog);
-    bind_texture(0, GL_TEXTURE_2D, gl->target_texture);
-    bind_texture(1, GL_TEXTURE_2D, gl->low_depth_texture);
+    if (owns) {
+        bind_texture(3, GL_TEXTURE_2D, f->scene_color_texture);
+        bind_texture(4, GL_TEXTURE_2D, gl->particles.texture[1]);
+        glUniform1i(gl->composite_u.scene_color, 3);
+        glUniform1i(gl->composite_u.distortion, 4);
+        glUniform2f(gl->composite_u.full_size, (float)f->width, (float)f->height);
+    }
+    bind_texture(0, GL_TEXTURE_2D, gl->particles.texture[0]);
+    bind_texture(1, GL_TEXTURE_2D, gl->low_depth.depth);
     bind_texture(2, GL_TEXTURE_2D, f->scene_depth_texture);
     const sbfx_pass_uniforms *u = &gl->composite_u;
     glUniform1i(u->particles, 0);
@@ -262,9 +297,13 @@ static void prepare_scene_depth(GLuint tex)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
 }
 
-sbfx_result sbfx_render_particles(sbfx *fx, const sbfx_frame *frame, int count)
+/* The frame: particle passes when particles live, then the post chain when the scene has one.
+ * Where the post chain reads from: the composite's image, nothing (the composite already
+ * wrote the host's framebuffer), or on a frame without particles the bare scene. */
+sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, int count)
 {
-    sbfx_result r = sbfx_targets_ensure(fx, frame->width, frame->height);
+    sbfx_result r = count > 0 ? sbfx_targets_ensure(fx, frame->width, frame->height) : SBFX_OK;
+    if (r == SBFX_OK) r = sbfx_post_targets_ensure(fx, frame->width, frame->height);
     if (r != SBFX_OK) return r;
     saved_state saved;
     save_state(&saved);
@@ -272,12 +311,20 @@ sbfx_result sbfx_render_particles(sbfx *fx, const sbfx_frame *frame, int count)
     glDisable(GL_CULL_FACE);
     glDisable(GL_SCISSOR_TEST);
     prepare_scene_depth(frame->scene_depth_texture);
-    sbfx_sort_back_to_front(fx, count);
-    pass_depth(fx, frame, &fp);
-    pass_particles(fx, frame, &fp, count);
-    pass_composite(fx, frame, &fp);
+    if (count > 0) {
+        sbfx_sort_back_to_front(fx, count);
+        pass_depth(fx, frame, &fp);
+        pass_particles(fx, frame, &fp, count);
+        pass_composite(fx, frame, &fp);
+    }
+    if (fx->plan.owns_scene) {
+        bool composited_to_out = sbfx_post_composite_target(fx, frame) == frame->out_framebuffer;
+        GLuint source = count == 0 ? frame->scene_color_texture
+                        : composited_to_out ? 0 : sbfx_post_composite_texture(fx);
+        sbfx_post_run(fx, frame, source);
+    }
     restore_state(&saved);
-    return sbfx_gl_check(fx, "rendering the particle passes") ? SBFX_OK : SBFX_ERR_GL;
+    return sbfx_gl_check(fx, "rendering the frame's passes") ? SBFX_OK : SBFX_ERR_GL;
 }
 
 int sbfx_frame_lights(const sbfx *fx, const float view[16], sbfx_view_light *out, int capacity)

@@ -11,15 +11,24 @@ static const char *const opacity_defines[SBFX_OPACITY_COUNT] = {
     [SBFX_OPACITY_FLOOR] = "#define OPACITY_FLOOR\n",
 };
 
+/* Lit media (the lit-smoke seed) replace the phase function by per-pixel lighting; the ray
+ * march is compiled only where it has steps to take. */
 static void particle_defines(const sbfx *fx, sbfx_medium m, char *out, size_t size)
 {
     const sbfx_medium_params *p = &fx->media[m];
-    bool scatters = p->albedo > 0, emits = m == SBFX_FIRE;
-    snprintf(out, size, "%s%s%s%s%s%s", opacity_defines[fx->desc.opacity],
+    bool heat = m == SBFX_HEAT;
+    bool scatters = p->albedo > 0 && !heat, emits = m == SBFX_FIRE, lit = scatters && p->lit;
+    bool float_targets = sbfx_half_float_renderable();
+    size_t used = (size_t)snprintf(out, size, "%s%s%s", heat ? "#define MEDIUM_HEAT\n" : "",
+                                   fx->plan.distortion && float_targets ? "#define HAS_DISTORTION_TARGET\n" : "",
+                                   fx->plan.particle_velocity ? "#define HAS_VELOCITY_TARGET\n" : "");
+    out += used, size -= used;
+    snprintf(out, size, "%s%s%s%s%s%s%s%s", opacity_defines[fx->desc.opacity],
              scatters ? "#define MEDIUM_SCATTERS\n" : "", emits ? "#define MEDIUM_EMITS\n" : "",
              p->detail_strength > 0 ? "#define HAS_DETAIL\n" : "",
              emits && fx->desc.analytic_blackbody ? "#define BLACKBODY_ANALYTIC\n" : "",
-             scatters && fx->desc.analytic_phase ? "#define PHASE_ANALYTIC\n" : "");
+             scatters && !lit && fx->desc.analytic_phase ? "#define PHASE_ANALYTIC\n" : "",
+             lit ? "#define LIGHTING_LIT\n" : "", lit && p->steps_max > 0 ? "#define LIT_SHADOW\n" : "");
 }
 
 static void locate_uniforms(sbfx_program *p)
@@ -31,6 +40,8 @@ static void locate_uniforms(sbfx_program *p)
     p->target_size = glGetUniformLocation(id, "u_target_size");
     p->pixel = glGetUniformLocation(id, "u_pixel");
     p->tau = glGetUniformLocation(id, "u_tau");
+    p->full_size = glGetUniformLocation(id, "u_full_size");
+    p->heat_strength = glGetUniformLocation(id, "u_heat_strength");
     p->soft_scale = glGetUniformLocation(id, "u_soft_scale");
     p->depth = glGetUniformLocation(id, "u_depth");
     p->detail = glGetUniformLocation(id, "u_detail");
@@ -52,6 +63,12 @@ static void locate_uniforms(sbfx_program *p)
     p->emission_scale = glGetUniformLocation(id, "u_emission_scale");
     p->cmf_rgb = glGetUniformLocation(id, "u_cmf_rgb");
     p->cmf_band = glGetUniformLocation(id, "u_cmf_band");
+    p->smoke = glGetUniformLocation(id, "u_smoke");
+    p->smoke_variants = glGetUniformLocation(id, "u_smoke_variants");
+    p->wrap = glGetUniformLocation(id, "u_wrap");
+    p->translucency = glGetUniformLocation(id, "u_translucency");
+    p->dampening = glGetUniformLocation(id, "u_dampening");
+    p->steps = glGetUniformLocation(id, "u_steps");
 }
 
 /* Constant for the program's life: set once here, not per frame. */
@@ -66,7 +83,7 @@ static void load_cmf_uniforms(sbfx *fx, const sbfx_program *p)
 
 static sbfx_result build_particle_programs(sbfx *fx)
 {
-    char defines[256];
+    char defines[384];
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) {
         if (!fx->uses_medium[m]) continue;
         particle_defines(fx, (sbfx_medium)m, defines, sizeof(defines));
@@ -90,12 +107,18 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->low_depth = glGetUniformLocation(id, "u_low_depth");
     u->low_size = glGetUniformLocation(id, "u_low_size");
     u->depth_threshold = glGetUniformLocation(id, "u_depth_threshold");
+    u->scene_color = glGetUniformLocation(id, "u_scene_color");
+    u->distortion = glGetUniformLocation(id, "u_distortion");
 }
 
 static sbfx_result build_pass_programs(sbfx *fx)
 {
-    const char *upsample = fx->desc.upsample == SBFX_UPSAMPLE_NEAREST_DEPTH
-                               ? "#define UPSAMPLE_NEAREST_DEPTH\n" : "#define UPSAMPLE_BILINEAR\n";
+    char upsample[160];
+    snprintf(upsample, sizeof(upsample), "%s%s%s",
+             fx->desc.upsample == SBFX_UPSAMPLE_NEAREST_DEPTH ? "#define UPSAMPLE_NEAREST_DEPTH\n"
+                                                               : "#define UPSAMPLE_BILINEAR\n",
+             fx->plan.owns_scene ? "#define OWN_SCENE\n" : "",
+             fx->plan.distortion && sbfx_half_float_renderable() ? "#define HAS_SHIMMER\n" : "");
     fx->gl.depth_program = sbfx_program_build(fx, "fullscreen.vert", "depth_downsample.frag", NULL);
     if (!fx->gl.depth_program) return SBFX_ERR_SHADER;
     fx->gl.composite_program = sbfx_program_build(fx, "fullscreen.vert", "composite.frag", upsample);
@@ -113,9 +136,10 @@ static sbfx_result create_buffers(sbfx *fx)
     glGenBuffers(1, &gl->instance_buffer);
     glBindVertexArray(gl->particle_vao);
     glBindBuffer(GL_ARRAY_BUFFER, gl->instance_buffer);
-    size_t bytes = (size_t)fx->pool.capacity * 8 * sizeof(float);
+    size_t bytes = (size_t)fx->pool.capacity * fx->instance_floats * sizeof(float);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_DRAW);
-    for (GLuint a = 0; a < 2; a++) {
+    GLuint attributes = fx->plan.particle_velocity ? 3 : 2; /* + previous centre for velocity blur */
+    for (GLuint a = 0; a < attributes; a++) {
         glEnableVertexAttribArray(a);
         glVertexAttribDivisor(a, 1);
     }

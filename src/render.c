@@ -26,6 +26,21 @@ static void transform_point(const float m[16], const float p[3], float out[3])
 
 static float lifetime_curve(float x) { return 1.0f - (1.0f - x) * (1.0f - x); }
 
+/* Where the particle was at the previous render, seen by the previous camera (velocity blur
+ * only; otherwise the current centre, which means no motion). */
+static void previous_center(const sbfx *fx, const float pos[3], const float vel[3], const float view[16],
+                            sbfx_view_particle *v)
+{
+    if (!fx->plan.particle_velocity || !fx->have_previous_view) {
+        memcpy(v->previous_center, v->center, sizeof(v->center));
+        return;
+    }
+    float dt = (float)(fx->time - fx->previous_render_time), before[3];
+    for (int k = 0; k < 3; k++) before[k] = pos[k] - vel[k] * dt;
+    transform_point(fx->previous_view, before, v->previous_center);
+    (void)view;
+}
+
 /* Live particles whose delay has passed, in view space, into fx->view. */
 int sbfx_collect_view_particles(sbfx *fx, const float view[16])
 {
@@ -42,6 +57,7 @@ int sbfx_collect_view_particles(sbfx *fx, const float view[16])
         memcpy(v->detail, &p->detail[3 * i], sizeof(v->detail));
         v->intensity = (p->intensity0[i] + (p->intensity1[i] - p->intensity0[i]) * x) * fade;
         v->medium = (sbfx_medium)p->medium[i];
+        previous_center(fx, &p->pos[3 * i], &p->vel[3 * i], view, v);
         if (sbfx_view_particle_valid(v)) n++;
         else fx->counters.particles_skipped++;
     }
@@ -57,6 +73,11 @@ static bool frame_valid(sbfx *fx, const sbfx_frame *f)
     if (!f->scene_depth_texture) {
         sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "frame has no scene_depth_texture: sbfx needs "
                   "the opaque scene's depth as a texture");
+        return false;
+    }
+    if (fx->plan.owns_scene && !f->scene_color_texture) {
+        sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "this scene's post effects (heat shimmer, motion blur or "
+                  "depth of field) need frame.scene_color_texture");
         return false;
     }
     const float *p = f->projection;
@@ -76,8 +97,13 @@ sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame)
     fx->counters.draw_calls = 0;
     if (!frame_valid(fx, frame)) return SBFX_ERR_INVALID_ARGUMENT;
     int count = sbfx_collect_view_particles(fx, frame->view);
-    if (count == 0) return SBFX_OK; /* idle: no pass, the host's framebuffer is untouched */
-    return sbfx_render_particles(fx, frame, count);
+    sbfx_result r = SBFX_OK;
+    /* Idle without post effects: no pass at all, the host's framebuffer is untouched. */
+    if (count > 0 || fx->plan.owns_scene) r = sbfx_render_frame(fx, frame, count);
+    memcpy(fx->previous_view, frame->view, sizeof(fx->previous_view));
+    fx->previous_render_time = fx->time;
+    fx->have_previous_view = true;
+    return r;
 }
 
 sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
@@ -93,13 +119,15 @@ sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
                          count, fx->pool.capacity);
     int n = 0;
     for (int i = 0; i < count; i++) {
-        if (sbfx_view_particle_valid(&particles[i]) && fx->uses_medium[particles[i].medium])
-            fx->view[n++] = particles[i];
+        if (sbfx_view_particle_valid(&particles[i]) && fx->uses_medium[particles[i].medium]) {
+            fx->view[n] = particles[i];
+            memcpy(fx->view[n++].previous_center, particles[i].center, sizeof(particles[i].center));
+        }
         else
             fx->counters.particles_skipped++;
     }
-    if (n == 0) return SBFX_OK;
-    return sbfx_render_particles(fx, frame, n);
+    if (n == 0 && !fx->plan.owns_scene) return SBFX_OK;
+    return sbfx_render_frame(fx, frame, n);
 }
 
 int sbfx_frame_particles(sbfx *fx, const float view[16], const sbfx_view_particle **out)

@@ -136,14 +136,20 @@ static void adopt_scene(sbfx *fx, const sbfx_scene *scene)
         fx->lights[i].point = l->type == SBFX_LIGHT_POINT;
         memcpy(fx->lights[i].vector, l->vector, sizeof(l->vector));
         memcpy(fx->lights[i].color, l->color, sizeof(l->color));
+        fx->lights[i].orbit = l->orbit;
         if (!fx->lights[i].point) normalize3(fx->lights[i].vector);
     }
     memcpy(fx->ambient, scene->ambient, sizeof(fx->ambient));
     memcpy(fx->effects, scene->effects, sizeof(fx->effects));
+    fx->post = scene->post;
     fx->effect_count = scene->effect_count;
     for (int e = 0; e < fx->effect_count; e++)
         for (int i = 0; i < fx->effects[e].emitter_count; i++)
             fx->uses_medium[fx->effects[e].emitters[i].medium] = true;
+    fx->plan.distortion = fx->uses_medium[SBFX_HEAT];
+    fx->plan.particle_velocity = fx->post.blur == SBFX_BLUR_VELOCITY;
+    fx->plan.owns_scene = fx->plan.distortion || fx->post.blur != SBFX_BLUR_NONE || fx->post.dof;
+    fx->instance_floats = fx->plan.particle_velocity ? 12 : 8;
     if (!fx->desc.ignore_timeline)
         for (int i = 0; i < scene->timeline_count; i++) {
             const sbfx_timeline_entry *t = &scene->timeline[i];
@@ -164,11 +170,13 @@ static sbfx_result load(sbfx *fx)
     }
     adopt_scene(fx, scene);
     sbfx_free(fx, builtin);
+    sbfx_orbit_lights(fx); /* where orbiting lights are at t = 0 */
     fx->max_kelvin = fx->desc.blackbody_max_kelvin;
     if ((r = check_context(fx)) != SBFX_OK) return r;
     if ((r = sbfx_pool_create(fx, fx->desc.max_particles)) != SBFX_OK) return r;
     if ((r = sbfx_luts_create(fx)) != SBFX_OK) return r;
     if ((r = sbfx_programs_create(fx)) != SBFX_OK) return r;
+    if ((r = sbfx_post_programs_create(fx)) != SBFX_OK) return r;
     return SBFX_OK;
 }
 
@@ -195,6 +203,7 @@ void sbfx_destroy(sbfx *fx)
 {
     if (!fx) return;
     sbfx_targets_destroy(fx);
+    sbfx_post_destroy(fx);
     sbfx_programs_destroy(fx);
     sbfx_luts_destroy(fx);
     sbfx_pool_destroy(fx);
@@ -306,6 +315,7 @@ sbfx_result sbfx_update(sbfx *fx, double dt)
         fx->time = (double)fx->step_index * step;
         expire_flashes(fx);
     }
+    sbfx_orbit_lights(fx);
     return SBFX_OK;
 }
 
@@ -324,6 +334,7 @@ void sbfx_set_light(sbfx *fx, const float direction[3], const float color[3], co
 {
     fx->light_count = 1;
     fx->lights[0].point = false;
+    fx->lights[0].orbit.on = false;
     memcpy(fx->lights[0].vector, direction, 3 * sizeof(float));
     normalize3(fx->lights[0].vector);
     memcpy(fx->lights[0].color, color, 3 * sizeof(float));

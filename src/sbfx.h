@@ -68,7 +68,9 @@ typedef enum sbfx_detail_format {
     SBFX_DETAIL_COUNT
 } sbfx_detail_format;
 
-typedef enum sbfx_medium { SBFX_DUST, SBFX_SMOKE, SBFX_FIRE, SBFX_MEDIUM_COUNT } sbfx_medium;
+/* Media of the particle family. Heat neither absorbs nor emits: it displaces the scene behind
+ * it (heat shimmer). */
+typedef enum sbfx_medium { SBFX_DUST, SBFX_SMOKE, SBFX_FIRE, SBFX_HEAT, SBFX_MEDIUM_COUNT } sbfx_medium;
 
 /* A parsed scene file (libconfig syntax; README "Scene files"): render settings, lights,
  * media, effects made of steps, and triggers. Loading either succeeds whole or leaves nothing

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "lit_ref.h"
 #include "scene.h"
 
 typedef struct parser {
@@ -141,6 +142,29 @@ static int get_range(parser *p, const config_setting_t *g, const char *key, doub
     return 0;
 }
 
+/* [a, b] of integers in [lo, hi] with a <= b */
+static int get_int_range(parser *p, const config_setting_t *g, const char *key, long lo, long hi, int *a,
+                         int *b)
+{
+    const config_setting_t *s = config_setting_get_member(g, key);
+    if (!s) return 0;
+    if (!config_setting_is_array(s) || config_setting_length(s) != 2)
+        return fail_at(p, s, "'%s' must be an array of 2 integers [ ... ]", key);
+    long long v[2];
+    for (int i = 0; i < 2; i++) {
+        const config_setting_t *e = config_setting_get_elem(s, (unsigned)i);
+        int t = config_setting_type(e);
+        if (t != CONFIG_TYPE_INT && t != CONFIG_TYPE_INT64) return fail_at(p, s, "'%s' must be an array of 2 integers", key);
+        v[i] = config_setting_get_int64(e);
+        if (v[i] < lo || v[i] > hi)
+            return fail_at(p, s, "'%s'[%d] = %lld is out of range [%ld, %ld]", key, i, v[i], lo, hi);
+    }
+    if (v[0] > v[1])
+        return fail_at(p, s, "'%s' = [%lld, %lld]: the first must not exceed the second", key, v[0], v[1]);
+    *a = (int)v[0], *b = (int)v[1];
+    return 0;
+}
+
 /* A string that must be one of `names`; *out becomes its index + base. */
 static int get_choice(parser *p, const config_setting_t *g, const char *key, const char *const *names,
                       int base, int *out)
@@ -171,7 +195,7 @@ static int get_name(parser *p, const config_setting_t *g, const char *key, char 
     return 0;
 }
 
-static const char *const medium_names[] = {"dust", "smoke", "fire", NULL};
+static const char *const medium_names[] = {"dust", "smoke", "fire", "heat", NULL};
 
 /* ---- render ---- */
 static int parse_render(parser *p, const config_setting_t *g)
@@ -206,9 +230,25 @@ static int parse_render(parser *p, const config_setting_t *g)
 }
 
 /* ---- lights ---- */
+static int parse_orbit(parser *p, const config_setting_t *g, sbfx_orbit *o)
+{
+    static const char *const keys[] = {"center", "radius", "period", "phase", NULL};
+    float phase_degrees = 0;
+    *o = (sbfx_orbit){.on = true, .radius = 1.0f, .period = 8.0f};
+    if (check_keys(p, g, "an orbit", keys) || get_vector(p, g, "center", 3, -1e6, 1e6, o->center) ||
+        get_float(p, g, "radius", 0, 1e6, &o->radius) || get_float(p, g, "period", -1e6, 1e6, &o->period) ||
+        get_float(p, g, "phase", -360, 360, &phase_degrees))
+        return -1;
+    if (fabsf(o->period) < 0.01f)
+        return fail_at(p, config_setting_get_member(g, "period"),
+                       "'period' = %g: use at least 0.01 s (negative: clockwise)", (double)o->period);
+    o->phase = phase_degrees * (float)(M_PI / 180.0);
+    return 0;
+}
+
 static int parse_lights(parser *p, const config_setting_t *list)
 {
-    static const char *const keys[] = {"type", "direction", "position", "color", NULL};
+    static const char *const keys[] = {"type", "direction", "position", "color", "orbit", NULL};
     static const char *const types[] = {"directional", "point", NULL};
     if (!config_setting_is_list(list)) return fail_at(p, list, "'lights' must be a list ( {...}, ... )");
     int n = config_setting_length(list);
@@ -221,7 +261,10 @@ static int parse_lights(parser *p, const config_setting_t *list)
         if (check_keys(p, g, "a light", keys) || get_choice(p, g, "type", types, 0, &type)) return -1;
         l->type = (sbfx_light_type)type;
         const char *vector_key = type == SBFX_LIGHT_POINT ? "position" : "direction";
-        if (!config_setting_get_member(g, vector_key))
+        const config_setting_t *orbit = config_setting_get_member(g, "orbit");
+        if (orbit && type != SBFX_LIGHT_POINT) return fail_at(p, orbit, "'orbit' needs a point light");
+        if (orbit && parse_orbit(p, orbit, &l->orbit)) return -1;
+        if (!orbit && !config_setting_get_member(g, vector_key))
             return fail_at(p, g, "a %s light needs '%s'", types[type], vector_key);
         if (get_vector(p, g, vector_key, 3, -1e6, 1e6, l->vector) ||
             get_vector(p, g, "color", 3, 0, 1e4, l->color))
@@ -246,10 +289,39 @@ static int parse_detail(parser *p, const config_setting_t *g, sbfx_medium_params
     return 0;
 }
 
+static int parse_texture(parser *p, const config_setting_t *g, sbfx_medium_params *m)
+{
+    static const char *const keys[] = {"size", "variants", NULL};
+    return check_keys(p, g, "texture", keys) ||
+                   get_int(p, g, "size", SBFX_SMOKE_MIN_SIZE, SBFX_SMOKE_MAX_SIZE, &m->texture_size) ||
+                   get_int(p, g, "variants", 1, SBFX_SMOKE_MAX_VARIANTS, &m->texture_variants)
+               ? -1 : 0;
+}
+
+/* The lit-smoke keys; they are kept (and harmless) on a medium that stays "phase". */
+static int parse_lighting(parser *p, const config_setting_t *g, sbfx_medium_params *m, const char *what)
+{
+    static const char *const models[] = {"phase", "lit", NULL};
+    int model = m->lit ? 1 : 0;
+    const config_setting_t *texture = config_setting_get_member(g, "texture");
+    if (get_choice(p, g, "lighting", models, 0, &model) || get_float(p, g, "wrap", 0, 1, &m->wrap) ||
+        get_float(p, g, "translucency", 0, 100, &m->translucency) ||
+        get_float(p, g, "dampening", 0, 1, &m->dampening) ||
+        get_int_range(p, g, "steps", 0, SBFX_LIT_MAX_STEPS, &m->steps_min, &m->steps_max) ||
+        (texture && parse_texture(p, texture, m)))
+        return -1;
+    m->lit = model == 1;
+    if (m->lit && !(m->albedo > 0))
+        return fail_at(p, config_setting_get_member(g, "lighting"),
+                       "%s: lighting = \"lit\" lights scattered light, and its albedo is 0", what);
+    return 0;
+}
+
 static int parse_medium(parser *p, const config_setting_t *g, sbfx_medium which)
 {
     static const char *const keys[] = {"albedo", "density", "phase_g", "color", "temperature",
-                                       "cooling", "emission", "detail", NULL};
+                                       "cooling", "emission", "detail", "lighting", "wrap",
+                                       "translucency", "dampening", "steps", "texture", "strength", NULL};
     sbfx_medium_params *m = &p->scene->media[which];
     float temperature[2] = {m->t0, m->t1};
     char what[32];
@@ -258,9 +330,11 @@ static int parse_medium(parser *p, const config_setting_t *g, sbfx_medium which)
         get_float(p, g, "density", 0, 1e6, &m->tau) || get_float(p, g, "phase_g", -0.99, 0.99, &m->phase_g) ||
         get_vector(p, g, "color", 3, 0, 100, m->color) ||
         get_vector(p, g, "temperature", 2, 0, 1e5, temperature) ||
-        get_float(p, g, "cooling", 0, 1, &m->cooling) || get_float(p, g, "emission", 0, 1e4, &m->emission_scale))
+        get_float(p, g, "cooling", 0, 1, &m->cooling) || get_float(p, g, "emission", 0, 1e4, &m->emission_scale) ||
+        get_float(p, g, "strength", 0, 0.2, &m->heat_strength))
         return -1;
     m->t0 = temperature[0], m->t1 = temperature[1];
+    if (parse_lighting(p, g, m, what)) return -1;
     const config_setting_t *detail = config_setting_get_member(g, "detail");
     if (detail && parse_detail(p, detail, m)) return -1;
     p->scene->has_medium[which] = true;
@@ -424,9 +498,49 @@ static int parse_triggers(parser *p, const config_setting_t *g)
     return 0;
 }
 
+/* ---- post effects ---- */
+static int parse_motion_blur(parser *p, const config_setting_t *g, sbfx_post_params *post)
+{
+    static const char *const keys[] = {"mode", "persistence", "tile", "samples", "shutter", NULL};
+    static const char *const modes[] = {"history", "velocity", NULL};
+    int mode = SBFX_BLUR_HISTORY;
+    if (check_keys(p, g, "post.motion_blur", keys) || get_choice(p, g, "mode", modes, SBFX_BLUR_HISTORY, &mode) ||
+        get_float(p, g, "persistence", 0.001, 60, &post->persistence) || get_int(p, g, "tile", 2, 32, &post->tile) ||
+        get_int(p, g, "samples", 3, 63, &post->samples) || get_float(p, g, "shutter", 0, 1, &post->shutter))
+        return -1;
+    post->blur = (sbfx_blur_mode)mode;
+    return 0;
+}
+
+static int parse_dof(parser *p, const config_setting_t *g, sbfx_post_params *post)
+{
+    static const char *const keys[] = {"near", "far", "max_radius", "scale", NULL};
+    if (check_keys(p, g, "post.depth_of_field", keys) ||
+        get_range(p, g, "near", 0, 1e6, &post->dof_near[0], &post->dof_near[1]) ||
+        get_range(p, g, "far", 0, 1e6, &post->dof_far[0], &post->dof_far[1]) ||
+        get_float(p, g, "max_radius", 0.5, 32, &post->dof_max_radius) || get_int(p, g, "scale", 1, 4, &post->dof_scale))
+        return -1;
+    if (post->dof_near[1] > post->dof_far[0])
+        return fail_at(p, g, "depth_of_field: the focus range near[1] .. far[0] is empty (%g > %g)",
+                       (double)post->dof_near[1], (double)post->dof_far[0]);
+    post->dof = true;
+    return 0;
+}
+
+static int parse_post(parser *p, const config_setting_t *g)
+{
+    static const char *const keys[] = {"motion_blur", "depth_of_field", NULL};
+    const config_setting_t *blur = config_setting_get_member(g, "motion_blur");
+    const config_setting_t *dof = config_setting_get_member(g, "depth_of_field");
+    if (check_keys(p, g, "post", keys) || (blur && parse_motion_blur(p, blur, &p->scene->post)) ||
+        (dof && parse_dof(p, dof, &p->scene->post)))
+        return -1;
+    return 0;
+}
+
 static int parse_root(parser *p, const config_setting_t *root)
 {
-    static const char *const keys[] = {"render", "lights", "ambient", "media", "effects", "triggers", NULL};
+    static const char *const keys[] = {"render", "lights", "ambient", "media", "effects", "triggers", "post", NULL};
     if (check_keys(p, root, "the scene", keys)) return -1;
     const config_setting_t *s;
     if ((s = config_setting_get_member(root, "render")) && parse_render(p, s)) return -1;
@@ -437,6 +551,7 @@ static int parse_root(parser *p, const config_setting_t *root)
     if (!(s = config_setting_get_member(root, "effects"))) return fail_at(p, root, "the scene has no 'effects'");
     if (parse_effects(p, s)) return -1;
     if ((s = config_setting_get_member(root, "triggers")) && parse_triggers(p, s)) return -1;
+    if ((s = config_setting_get_member(root, "post")) && parse_post(p, s)) return -1;
     return 0;
 }
 
@@ -446,8 +561,10 @@ static void scene_defaults(sbfx_scene *scene, const char *name)
     memset(scene, 0, sizeof(*scene));
     snprintf(scene->name, sizeof(scene->name), "%s", name);
     sbfx_default_media(scene->media);
+    sbfx_default_post(&scene->post);
     scene->light_count = 1;
-    scene->lights[0] = (sbfx_light){SBFX_LIGHT_DIRECTIONAL, {-0.45f, -0.8f, -0.4f}, {1.6f, 1.5f, 1.35f}};
+    scene->lights[0] = (sbfx_light){.type = SBFX_LIGHT_DIRECTIONAL, .vector = {-0.45f, -0.8f, -0.4f},
+                                    .color = {1.6f, 1.5f, 1.35f}};
     scene->ambient[0] = 0.28f, scene->ambient[1] = 0.32f, scene->ambient[2] = 0.4f;
 }
 

@@ -15,6 +15,7 @@ typedef struct sbfx_light {
     sbfx_light_type type;
     float vector[3]; /* direction the light travels in (directional) or position (point) */
     float color[3];  /* irradiance; point lights at 1 m */
+    sbfx_orbit orbit; /* point lights: circles instead of standing at vector */
 } sbfx_light;
 
 typedef struct sbfx_timeline_entry {
@@ -37,6 +38,7 @@ struct sbfx_scene {
     sbfx_timeline_entry timeline[SBFX_MAX_TIMELINE];
     int gpio_count;
     sbfx_gpio_trigger gpio[SBFX_MAX_GPIO];
+    sbfx_post_params post;
 };
 
 /* The scene sbfx uses when the desc names none: the seed's explosion, fired at t = 0. */

@@ -15,7 +15,7 @@ sbfx_result sbfx_pool_create(sbfx *fx, int capacity)
     fx->sort_keys = sbfx_calloc(fx, (size_t)capacity, sizeof(float));
     fx->order = sbfx_calloc(fx, (size_t)capacity, sizeof(uint32_t));
     fx->order_tmp = sbfx_calloc(fx, (size_t)capacity, sizeof(uint32_t));
-    fx->instances = sbfx_calloc(fx, (size_t)capacity * 8, sizeof(float));
+    fx->instances = sbfx_calloc(fx, (size_t)capacity * fx->instance_floats, sizeof(float));
     if (!block || !p->medium || !fx->view || !fx->sort_keys || !fx->order || !fx->order_tmp ||
         !fx->instances) {
         sbfx_free(fx, block);

@@ -1,0 +1,82 @@
+#version 300 es
+// Velocity blur, step 4 (McGuire, Hennessy, Bukowski, Osman 2012; RTR 12.5): gather along the
+// neighbourhood's dominant velocity; each sample's weight says whether it can blur over this
+// pixel (cones of its own and this pixel's velocity) and which is in front (soft depth
+// compare). A half-pixel jitter per pixel hides the sample pattern. Below half a pixel of
+// motion the pixel is returned unchanged.
+precision highp float;
+precision highp sampler2D;
+
+uniform sampler2D u_color;
+uniform sampler2D u_velocity;
+uniform sampler2D u_neighbor_max;
+uniform sampler2D u_scene_depth;
+uniform ivec2 u_size;
+uniform int u_tile;
+uniform int u_samples;
+uniform float u_max_radius;
+uniform vec2 u_depth_params;       // projection[10], projection[14]
+uniform float u_far;
+#ifdef ENCODE_UNORM
+const bool encode = true;
+#else
+const bool encode = false;
+#endif
+
+out vec4 o_color;
+
+const float SOFT_Z = 0.1;          // metres over which depth ordering fades
+
+vec2 decode(vec4 t) { return encode ? (t.xy - 0.5) * 2.0 * u_max_radius : t.xy; }
+
+float view_depth(ivec2 q)
+{
+    float w = texelFetch(u_scene_depth, q, 0).r;
+    return w >= 1.0 ? u_far : u_depth_params.y / (w * 2.0 - 1.0 + u_depth_params.x);
+}
+
+float cone(float distance, float speed) { return clamp(1.0 - distance / max(speed, 1e-4), 0.0, 1.0); }
+
+float cylinder(float distance, float speed)
+{
+    return 1.0 - smoothstep(0.95 * speed, 1.05 * speed, distance);
+}
+
+float soft_depth_compare(float za, float zb) { return clamp(1.0 - (za - zb) / SOFT_Z, 0.0, 1.0); }
+
+// Interleaved gradient noise in [-0.5, 0.5): a cheap per-pixel jitter.
+float jitter(vec2 p) { return fract(52.9829189 * fract(dot(p, vec2(0.06711056, 0.00583715)))) - 0.5; }
+
+void main()
+{
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 center = texelFetch(u_color, p, 0);
+    vec2 vmax = decode(texelFetch(u_neighbor_max, p / u_tile, 0));
+    if (length(vmax) < 0.5) {
+        o_color = center;
+        return;
+    }
+    vec2 vc = decode(texelFetch(u_velocity, p, 0));
+    float speed_c = max(length(vc), 0.5);
+    float zc = view_depth(p);
+    float weight = 1.0 / speed_c;
+    vec3 sum = center.rgb * weight;
+    float j = jitter(gl_FragCoord.xy);
+    for (int i = 0; i < 64; i++) {
+        if (i >= u_samples) break;
+        if (i == (u_samples - 1) / 2) continue;
+        float t = mix(-1.0, 1.0, (float(i) + j + 1.0) / float(u_samples + 1));
+        ivec2 y = clamp(ivec2(floor(vec2(p) + 0.5 + vmax * t)), ivec2(0), u_size - 1);
+        float distance = length(vec2(y - p));
+        vec2 vy = decode(texelFetch(u_velocity, y, 0));
+        float speed_y = max(length(vy), 0.5);
+        float zy = view_depth(y);
+        // distances grow away from the eye: "front" = the sample is nearer than this pixel
+        float front = soft_depth_compare(zy, zc), back = soft_depth_compare(zc, zy);
+        float a = front * cone(distance, speed_y) + back * cone(distance, speed_c) +
+                  cylinder(distance, speed_y) * cylinder(distance, speed_c) * 2.0;
+        weight += a;
+        sum += a * texelFetch(u_color, y, 0).rgb;
+    }
+    o_color = vec4(sum / weight, 1.0);
+}

@@ -1,0 +1,46 @@
+#version 300 es
+// Per-pixel motion for the velocity blur (RTR 12.5, McGuire et al.): the opaque scene moves
+// with the camera (its depth reprojected into the previous frame); particles carry their own
+// screen motion, written premultiplied by the particle pass, and cover the scene's motion by
+// their transmittance. Stored as the blur's half-extent in pixels (half the displacement
+// during the open shutter), clamped to the tile size; encoded for an RGBA8 target when float
+// targets are not renderable.
+precision highp float;
+precision highp sampler2D;
+
+uniform sampler2D u_scene_depth;       // full-res window depth
+uniform mat4 u_reproject;              // current NDC -> previous clip
+uniform vec2 u_size;                   // full-resolution size
+uniform float u_shutter;               // fraction of the frame the shutter is open
+uniform float u_max_radius;            // = tile size in pixels
+#ifdef HAS_PARTICLE_VELOCITY
+uniform sampler2D u_particle_velocity; // low-res: premultiplied velocity [px], transmittance
+uniform float u_divisor;
+uniform ivec2 u_low_size;
+#endif
+#ifdef ENCODE_UNORM
+const bool encode = true;
+#else
+const bool encode = false;
+#endif
+
+out vec4 o_velocity;
+
+void main()
+{
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(u_scene_depth, p, 0).r;
+    vec2 ndc = gl_FragCoord.xy / u_size * 2.0 - 1.0;
+    vec4 previous = u_reproject * vec4(ndc, depth * 2.0 - 1.0, 1.0);
+    vec2 motion = previous.w > 1e-6 ? (ndc - previous.xy / previous.w) * 0.5 * u_size : vec2(0.0);
+#ifdef HAS_PARTICLE_VELOCITY
+    ivec2 q = clamp(ivec2(gl_FragCoord.xy / u_divisor), ivec2(0), u_low_size - 1);
+    vec4 particles = texelFetch(u_particle_velocity, q, 0);
+    motion = particles.xy + motion * particles.a;
+#endif
+    vec2 v = motion * 0.5 * u_shutter;
+    float len = length(v);
+    if (!(len < 1e30)) v = vec2(0.0);                    // NaN or Inf: no blur
+    else if (len > u_max_radius) v *= u_max_radius / len;
+    o_velocity = encode ? vec4(v / (2.0 * u_max_radius) + 0.5, 0.0, 1.0) : vec4(v, 0.0, 1.0);
+}

@@ -1,0 +1,40 @@
+/* Scene lights that move: orbiting point lights are placed from the simulation time (so they
+ * are deterministic whatever the frame times, like the particles), and a test entry point that
+ * replaces the lights. */
+#include <math.h>
+#include <string.h>
+#include "module.h"
+
+void sbfx_orbit_lights(sbfx *fx)
+{
+    for (int i = 0; i < fx->light_count; i++) {
+        sbfx_scene_light *l = &fx->lights[i];
+        const sbfx_orbit *o = &l->orbit;
+        if (!l->point || !o->on) continue;
+        /* fmod keeps the angle small: sin/cos of a huge float angle would lose the phase */
+        double turns = fmod(fx->time / o->period, 1.0);
+        double a = 2.0 * M_PI * turns + o->phase;
+        l->vector[0] = o->center[0] + o->radius * (float)cos(a);
+        l->vector[1] = o->center[1];
+        l->vector[2] = o->center[2] - o->radius * (float)sin(a);
+    }
+}
+
+void sbfx_set_lights(sbfx *fx, const sbfx_view_light *lights, int count, const float ambient[3])
+{
+    if (count < 0) count = 0;
+    if (count > SBFX_SHADER_LIGHTS) count = SBFX_SHADER_LIGHTS;
+    fx->light_count = count;
+    for (int i = 0; i < count; i++) {
+        sbfx_scene_light *l = &fx->lights[i];
+        memset(l, 0, sizeof(*l));
+        l->point = lights[i].vector[3] > 0.5f;
+        memcpy(l->vector, lights[i].vector, sizeof(l->vector));
+        memcpy(l->color, lights[i].color, sizeof(l->color));
+        float len = sqrtf(l->vector[0] * l->vector[0] + l->vector[1] * l->vector[1] +
+                          l->vector[2] * l->vector[2]);
+        if (!l->point && len > 0.0f)
+            for (int k = 0; k < 3; k++) l->vector[k] /= len; /* the shader takes unit directions */
+    }
+    memcpy(fx->ambient, ambient, sizeof(fx->ambient));
+}

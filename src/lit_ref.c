@@ -1,0 +1,133 @@
+/* CPU reference (double) of the lit-smoke shading: texture fetches as the GPU filters them,
+ * wrap-around Lambert, back-lighting, the view-dependent step count and the height-field ray
+ * march toward each light. shaders_es/particle.frag (LIGHTING_LIT) mirrors it line by line. */
+#include <math.h>
+#include "lit_ref.h"
+
+static int clamp_int(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
+
+static double texel(const sbfx_smoke_texture *tex, int layer, int x, int y, int c)
+{
+    x = clamp_int(x, 0, tex->size - 1);
+    y = clamp_int(y, 0, tex->size - 1);
+    size_t i = (((size_t)layer * tex->size + y) * tex->size + x) * 4 + c;
+    return tex->texels[i] / 255.0;
+}
+
+void sbfx_smoke_sample(const sbfx_smoke_texture *tex, int layer, double s, double t, double rgba[4])
+{
+    layer = clamp_int(layer, 0, tex->layers - 1);
+    double x = s * tex->size - 0.5, y = t * tex->size - 0.5;
+    if (!isfinite(x)) x = 0.0;
+    if (!isfinite(y)) y = 0.0;
+    x = fmax(-1.0, fmin(x, tex->size)); /* beyond the edge every tap is clamped anyway */
+    y = fmax(-1.0, fmin(y, tex->size));
+    double fx = floor(x), fy = floor(y), ax = x - fx, ay = y - fy;
+    int x0 = (int)fx, y0 = (int)fy;
+    for (int c = 0; c < 4; c++) {
+        double bottom = texel(tex, layer, x0, y0, c) * (1 - ax) + texel(tex, layer, x0 + 1, y0, c) * ax;
+        double top = texel(tex, layer, x0, y0 + 1, c) * (1 - ax) + texel(tex, layer, x0 + 1, y0 + 1, c) * ax;
+        rgba[c] = bottom * (1 - ay) + top * ay;
+    }
+}
+
+void sbfx_lit_maps_at(const sbfx_smoke_texture *tex, int variant, double s, double t, sbfx_lit_maps *out)
+{
+    double a[4], b[4];
+    sbfx_smoke_sample(tex, SBFX_SMOKE_LAYERS_PER_VARIANT * variant, s, t, a);
+    sbfx_smoke_sample(tex, SBFX_SMOKE_LAYERS_PER_VARIANT * variant + 1, s, t, b);
+    double n[3] = {a[0] * 2 - 1, a[1] * 2 - 1, a[2] * 2 - 1};
+    double len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    for (int k = 0; k < 3; k++) out->normal[k] = len2 > 1e-8 ? n[k] / sqrt(len2) : (k == 2);
+    out->height = a[3];
+    out->brightness = b[0];
+    out->translucency = b[1];
+}
+
+int sbfx_lit_variant(double detail_u, int variants)
+{
+    if (!(detail_u > 0.0)) return 0; /* NaN too */
+    double v = floor(fmin(detail_u, 1.0) * variants);
+    return v > variants - 1 ? variants - 1 : (int)v;
+}
+
+double sbfx_lit_wrap(double n_dot_l, double wrap)
+{
+    return fmax(n_dot_l * (1.0 / (1.0 + wrap)) + wrap / (1.0 + wrap), 0.0);
+}
+
+double sbfx_lit_backlight(double v_dot_l, double translucency_map, double translucency)
+{
+    return translucency * translucency_map * fmax(-v_dot_l, 0.0);
+}
+
+int sbfx_lit_steps(double n_dot_v, int n_min, int n_max)
+{
+    double x = fmin(fmax(n_dot_v, 0.0), 1.0); /* NaN -> 0 */
+    return (int)floor(n_min + x * (n_max - n_min) + 0.5);
+}
+
+/* Distance along unit d from p to where it leaves [lo, hi] on each axis; 0 if already out. */
+static double box_exit(const double p[3], const double d[3])
+{
+    const double lo[3] = {0.0, 0.0, -0.5}, hi[3] = {1.0, 1.0, 0.5};
+    double t = 1e30;
+    for (int a = 0; a < 3; a++)
+        if (fabs(d[a]) > 1e-6) t = fmin(t, ((d[a] > 0 ? hi[a] : lo[a]) - p[a]) / d[a]);
+    return fmax(t, 0.0);
+}
+
+double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, const double st[2], double height,
+                       const double to_light[3], double radius, double tau, int steps)
+{
+    if (steps <= 0) return 1.0;
+    const double start[3] = {st[0], st[1], 0.5 * height};
+    double dt = box_exit(start, to_light) / steps, sum = 0.0;
+    for (int k = 0; k < steps; k++) {
+        double t = (k + 0.5) * dt, rgba[4];
+        double p[3] = {start[0] + t * to_light[0], start[1] + t * to_light[1], start[2] + t * to_light[2]};
+        sbfx_smoke_sample(tex, SBFX_SMOKE_LAYERS_PER_VARIANT * variant, p[0], p[1], rgba);
+        sum += fmax(rgba[3] - 2.0 * fabs(p[2]), 0.0);
+    }
+    return exp(-tau * 2.0 * radius * sum * dt);
+}
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* Unit direction from the shaded point toward the light, and the light's falloff there. */
+static double toward_light(const sbfx_lit_light *l, const double p[3], const double normal[3], double dir[3])
+{
+    if (l->vector[3] < 0.5) {
+        for (int k = 0; k < 3; k++) dir[k] = -l->vector[k];
+        return 1.0;
+    }
+    double d[3] = {l->vector[0] - p[0], l->vector[1] - p[1], l->vector[2] - p[2]};
+    double d2 = dot3(d, d);
+    for (int k = 0; k < 3; k++) dir[k] = d2 > 1e-12 ? d[k] / sqrt(d2) : normal[k];
+    return 1.0 / fmax(d2, 0.25);
+}
+
+void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, int variant,
+                       const double center[3], double radius, const double ray[3],
+                       const sbfx_lit_light *lights, int light_count, const double ambient[3],
+                       double rgb[3])
+{
+    double zc = -center[2], q[2] = {ray[0] * zc, ray[1] * zc};
+    double st[2] = {(q[0] - center[0]) / (2 * radius) + 0.5, (q[1] - center[1]) / (2 * radius) + 0.5};
+    sbfx_lit_maps maps;
+    sbfx_lit_maps_at(tex, variant, st[0], st[1], &maps);
+    const double p[3] = {q[0], q[1], center[2] + radius * maps.height}; /* the front surface */
+    double len = sqrt(dot3(ray, ray)), v[3] = {-ray[0] / len, -ray[1] / len, -ray[2] / len};
+    int steps = sbfx_lit_steps(dot3(maps.normal, v), m->steps_min, m->steps_max);
+    double sum[3] = {0, 0, 0};
+    for (int i = 0; i < light_count && i < SBFX_LIT_MAX_LIGHTS; i++) {
+        double l[3];
+        double falloff = toward_light(&lights[i], p, maps.normal, l);
+        double diffuse = sbfx_lit_wrap(dot3(maps.normal, l), m->wrap);
+        double back = sbfx_lit_backlight(dot3(v, l), maps.translucency, m->translucency);
+        double shadow = sbfx_lit_shadow(tex, variant, st, maps.height, l, radius, m->tau, steps);
+        for (int k = 0; k < 3; k++) sum[k] += lights[i].color[k] * falloff * shadow * (diffuse + back);
+    }
+    for (int k = 0; k < 3; k++)
+        rgb[k] = m->albedo_color[k] * maps.brightness * (ambient[k] + (1.0 - m->dampening) * sum[k]);
+}

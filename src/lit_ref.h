@@ -1,0 +1,105 @@
+/* Per-pixel lit smoke (the lit-smoke seed): the procedural smoke textures made at load, and a
+ * CPU reference in double precision of every lighting term and of the height-field ray march.
+ * The particle shader's LIGHTING_LIT variant (shaders_es/particle.frag) computes the same
+ * things in float; tests and the lighting bench compare the two. Pure libc, no GL.
+ *
+ * Texture space of a lit particle (centre c, radius r, view space; the view matrix is the
+ * tangent basis, so tangent = view x, bitangent = view y, normal = view +z, toward the eye):
+ *   st = (p.xy - c.xy) / (2r) + 0.5     zt = (p.z - c.z) / (2r)
+ * The height field h(st) in [0,1] describes a slab |zt| <= h/2 — a sphere of radius r where
+ * h = sqrt(1 - |2st - 1|^2) — with density max(0, h - 2|zt|): 1 on the centre plane of the
+ * thickest part, 0 on its surfaces. A pixel is shaded at the front surface zt = h/2. */
+#ifndef SBFX_LIT_REF_H
+#define SBFX_LIT_REF_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* ---- procedural smoke textures (the seed's appendix) ---------------------------------- */
+
+/* Each variant is two RGBA8 layers of size x size texels, row 0 at t = 0:
+ *   layer 2v:     rgb = unit normal * 0.5 + 0.5 (tangent space), a = height
+ *   layer 2v + 1: r = brightness, g = translucency, b = 0, a = 1 */
+#define SBFX_SMOKE_LAYERS_PER_VARIANT 2
+#define SBFX_SMOKE_MIN_SIZE 16
+#define SBFX_SMOKE_MAX_SIZE 512
+#define SBFX_SMOKE_MAX_VARIANTS 16
+
+/* Bytes of the texels of `variants` variants, and of the float scratch the generator needs. */
+size_t sbfx_smoke_texture_bytes(int size, int variants);
+size_t sbfx_smoke_scratch_floats(int size);
+/* Writes the texels into out (sbfx_smoke_texture_bytes) using scratch (sbfx_smoke_scratch_floats
+ * floats); allocates nothing. Deterministic from seed. Returns 0, or -1 for a size outside
+ * [SBFX_SMOKE_MIN_SIZE, SBFX_SMOKE_MAX_SIZE] or variants outside [1, SBFX_SMOKE_MAX_VARIANTS]. */
+int sbfx_smoke_texture_generate(int size, int variants, uint32_t seed, uint8_t *out, float *scratch);
+/* The seed the module generates a medium's texture with (desc seed, medium index). */
+uint32_t sbfx_smoke_texture_seed(uint32_t seed, int medium);
+
+typedef struct sbfx_smoke_texture {
+    int size, layers;
+    const uint8_t *texels; /* layers x size x size RGBA8 */
+} sbfx_smoke_texture;
+
+/* Bilinear fetch as the GPU does it (LINEAR, CLAMP_TO_EDGE, texel centres at (i + 0.5)/size),
+ * channels in [0,1]. */
+void sbfx_smoke_sample(const sbfx_smoke_texture *tex, int layer, double s, double t, double rgba[4]);
+
+/* The maps of one variant at st: normal renormalised after filtering ((0,0,1) if it vanished). */
+typedef struct sbfx_lit_maps {
+    double normal[3];
+    double height, brightness, translucency;
+} sbfx_lit_maps;
+void sbfx_lit_maps_at(const sbfx_smoke_texture *tex, int variant, double s, double t, sbfx_lit_maps *out);
+/* The variant a particle uses: floor(detail_u * variants), clamped to [0, variants - 1]. */
+int sbfx_lit_variant(double detail_u, int variants);
+
+/* ---- lighting terms ------------------------------------------------------------------ */
+
+/* Wrap-around Lambert: max(0, N.L * 1/(1+w) + w/(1+w)). */
+double sbfx_lit_wrap(double n_dot_l, double wrap);
+/* Back-lighting. The seed prints min(0, E.L) * map, which is negative (it would darken) for a
+ * light behind the particle and 0 for one in front. We use its magnitude, max(0, -E.L):
+ * E = surface -> eye, L = surface -> light, so a light straight behind gives the full
+ * translucency map (the thin rim glows), one in front or to the side gives 0. */
+double sbfx_lit_backlight(double v_dot_l, double translucency_map, double translucency);
+/* Step count of the march, the seed's n = nMin + (N.V)(nMax - nMin), N.V clamped to [0,1],
+ * rounded half up. */
+int sbfx_lit_steps(double n_dot_v, int n_min, int n_max);
+/* Transmittance from the front surface at (st, height) toward the unit direction to_light
+ * (view space), marched through the height field of `variant` in `steps` equal steps (midpoint
+ * samples) to where the ray leaves the particle's box st in [0,1]^2, zt in [-1/2, 1/2]:
+ *   exp(-tau * 2r * sum_k max(0, h(st_k) - 2|zt_k|) * dt),  dt in texture units.
+ * tau = extinction at the densest point (per metre), as for the particle's opacity. steps = 0
+ * gives 1 (no self-shadowing). */
+double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, const double st[2], double height,
+                       const double to_light[3], double radius, double tau, int steps);
+
+/* ---- one fragment ---------------------------------------------------------------------- */
+
+#define SBFX_LIT_MAX_LIGHTS 4 /* the seed's four; lit media use the frame's first four lights */
+#define SBFX_LIT_MAX_STEPS 64 /* MAX_STEPS in particle.frag */
+
+typedef struct sbfx_lit_medium {
+    double albedo_color[3]; /* albedo * tint */
+    double tau;             /* extinction at the centre x the fragment's density scale */
+    double wrap, translucency, dampening;
+    int steps_min, steps_max;
+} sbfx_lit_medium;
+
+typedef struct sbfx_lit_light {
+    double vector[4]; /* view space: w = 0 direction of travel (unit), w = 1 position */
+    double color[3];  /* irradiance; point lights at 1 m, falling off as 1/max(d^2, 0.25) */
+} sbfx_lit_light;
+
+/* The light a lit particle sends toward the eye through this pixel's ray (ray.z = -1), before
+ * the particle's opacity multiplies it:
+ *   albedo * B * (ambient + (1 - dampening) * sum_i E_i falloff_i S_i (wrap_i + back_i))
+ * over the first SBFX_LIT_MAX_LIGHTS lights, with N, B, translucency from the maps at the
+ * pixel's st, V = -normalize(ray), S_i the march toward light i. A point light at the shaded
+ * point itself lights it along N. Finite for any finite input. */
+void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, int variant,
+                       const double center[3], double radius, const double ray[3],
+                       const sbfx_lit_light *lights, int light_count, const double ambient[3],
+                       double rgb[3]);
+
+#endif

@@ -1,0 +1,316 @@
+/* CPU reference renderer of whole particle frames: see reference_frame.h.
+ *
+ * Every function here mirrors one of particle.frag's, in the same order of operations, so that
+ * the difference between this and the GPU is the model and the precision, never a forgotten
+ * term. Pure libc + reference.h. */
+#include "reference_frame.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define FOUR_PI 12.566370614359172
+
+/* IEEE half rounding (nearest even) where the shader has a mediump value, else nothing. */
+static double mp(const sbfx_rf_frame *f, double v)
+{
+    return f->precision == SBFX_RF_MEDIUMP ? (double)(_Float16)v : v;
+}
+
+static double clampd(double x, double lo, double hi)
+{
+    return x > lo ? (x < hi ? x : hi) : lo; /* NaN -> lo */
+}
+
+bool sbfx_rf_particle_valid(const sbfx_rf_particle *p)
+{
+    for (int i = 0; i < 3; i++)
+        if (!isfinite(p->center[i]) || !isfinite(p->detail[i])) return false;
+    return isfinite(p->radius) && p->radius > 0.0 && isfinite(p->intensity) &&
+           (unsigned)p->medium < SBFX_MEDIUM_COUNT;
+}
+
+/* ---- order ------------------------------------------------------------------------------ */
+
+/* sort.c's key: the float distance's IEEE bits, inverted so that far comes first. The float
+ * arithmetic is the same expression on the same float inputs, so the keys are bit-identical. */
+static uint32_t sort_key(const sbfx_rf_particle *p)
+{
+    float c0 = (float)p->center[0], c1 = (float)p->center[1], c2 = (float)p->center[2];
+    float distance = sqrtf(c0 * c0 + c1 * c1 + c2 * c2);
+    uint32_t bits;
+    memcpy(&bits, &distance, sizeof(bits));
+    return ~bits;
+}
+
+/* Insertion sort by ascending key, stable: the radix sort's result, with no allocation. */
+void sbfx_rf_sort(const sbfx_rf_particle *particles, int count, int *order)
+{
+    for (int i = 0; i < count; i++) {
+        uint32_t key = sort_key(&particles[i]);
+        int at = i;
+        while (at > 0 && sort_key(&particles[order[at - 1]]) > key) {
+            order[at] = order[at - 1];
+            at--;
+        }
+        order[at] = i;
+    }
+}
+
+/* ---- per fragment ----------------------------------------------------------------------- */
+
+void sbfx_rf_pixel_ray(const sbfx_rf_frame *f, int x, int y, double ray[3])
+{
+    double ndc_x = (x + 0.5) / f->width * 2.0 - 1.0, ndc_y = (y + 0.5) / f->height * 2.0 - 1.0;
+    ray[0] = (ndc_x + f->projection[2]) / f->projection[0];
+    ray[1] = (ndc_y + f->projection[3]) / f->projection[1];
+    ray[2] = -1.0;
+}
+
+static int wrap(int i, int n)
+{
+    int m = i % n;
+    return m < 0 ? m + n : m;
+}
+
+/* GL LINEAR + REPEAT on one axis: texel-centre convention, the two texels and the weight. */
+static void linear_taps(double coord, int n, int *i0, int *i1, double *frac)
+{
+    double x = coord * n - 0.5, fl = floor(x);
+    *frac = x - fl;
+    /* fmod keeps huge coordinates (a long-running time axis) inside int range */
+    double base = fmod(fl, (double)n);
+    *i0 = wrap((int)base, n);
+    *i1 = wrap(*i0 + 1, n);
+}
+
+static double detail_texel(const sbfx_rf_frame *f, int x, int y, int t)
+{
+    size_t n = (size_t)f->detail_size;
+    return f->detail[((size_t)t * n + (size_t)y) * n + (size_t)x];
+}
+
+/* texture(u_detail, uvw).r, trilinear with REPEAT on all three axes. */
+static double detail_lookup(const sbfx_rf_frame *f, const double uvw[3])
+{
+    int x0, x1, y0, y1, t0, t1;
+    double fx, fy, ft;
+    linear_taps(uvw[0], f->detail_size, &x0, &x1, &fx);
+    linear_taps(uvw[1], f->detail_size, &y0, &y1, &fy);
+    linear_taps(uvw[2], f->detail_frames, &t0, &t1, &ft);
+    double slice[2];
+    for (int s = 0; s < 2; s++) {
+        int t = s ? t1 : t0;
+        double a = detail_texel(f, x0, y0, t) * (1 - fx) + detail_texel(f, x1, y0, t) * fx;
+        double b = detail_texel(f, x0, y1, t) * (1 - fx) + detail_texel(f, x1, y1, t) * fx;
+        slice[s] = a * (1 - fy) + b * fy;
+    }
+    return slice[0] * (1 - ft) + slice[1] * ft;
+}
+
+/* detail_sample(): the particle's window of the volume, 0..1 across its billboard. */
+static double detail_sample(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const sbfx_rf_medium *m,
+                            const double ray[3])
+{
+    if (!f->detail || f->detail_size < 1 || f->detail_frames < 1) return 0.5;
+    const double *c = p->center;
+    double zc = -c[2], uvw[3];
+    for (int k = 0; k < 2; k++) {
+        double local = (ray[k] * zc - c[k]) / (2.0 * p->radius) + 0.5;
+        uvw[k] = p->detail[k] + local * m->detail_window;
+    }
+    uvw[2] = p->detail[2] + f->detail_time;
+    return detail_lookup(f, uvw);
+}
+
+static double phase(const sbfx_rf_frame *f, double cos_theta, double g)
+{
+    if (f->phase_table)
+        return sbfx_phase_table_lookup(f->phase_table, f->phase_table_cos, f->phase_table_g, cos_theta, g);
+    return sbfx_phase(cos_theta, g);
+}
+
+/* in_scattered(): single scattering of every light toward the eye at the particle centre. */
+static void in_scattered(const sbfx_rf_frame *f, const sbfx_rf_medium *m, const double c[3],
+                         const double ray[3], double sum[3])
+{
+    double len = sqrt(ray[0] * ray[0] + ray[1] * ray[1] + ray[2] * ray[2]);
+    double to_eye[3] = {-ray[0] / len, -ray[1] / len, -ray[2] / len};
+    for (int k = 0; k < 3; k++) sum[k] = mp(f, f->ambient[k]);
+    int n = f->light_count < SBFX_RF_MAX_LIGHTS ? f->light_count : SBFX_RF_MAX_LIGHTS;
+    for (int i = 0; i < n; i++) {
+        const sbfx_rf_light *l = &f->lights[i];
+        double travel[3] = {l->vector[0], l->vector[1], l->vector[2]}, falloff = 1.0;
+        if (l->vector[3] > 0.5) {
+            double d[3] = {c[0] - l->vector[0], c[1] - l->vector[1], c[2] - l->vector[2]};
+            double d2 = fmax(d[0] * d[0] + d[1] * d[1] + d[2] * d[2], SBFX_RF_MIN_LIGHT_D2);
+            for (int k = 0; k < 3; k++) travel[k] = d[k] / sqrt(d2);
+            falloff = 1.0 / d2;
+        }
+        double cos_theta = travel[0] * to_eye[0] + travel[1] * to_eye[1] + travel[2] * to_eye[2];
+        double ph = mp(f, phase(f, cos_theta, m->phase_g));
+        for (int k = 0; k < 3; k++) sum[k] = mp(f, sum[k] + l->color[k] * (falloff * ph * FOUR_PI));
+    }
+}
+
+static void blackbody(const sbfx_rf_frame *f, double kelvin, double rgb[3])
+{
+    if (f->blackbody_table) {
+        sbfx_blackbody_table_lookup(f->blackbody_table, f->blackbody_table_size, f->max_kelvin, kelvin, rgb);
+        return;
+    }
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    double t = clampd(kelvin, 0.0, f->max_kelvin);
+    if (t > 0.0 && f->cmf) sbfx_blackbody_rgb(f->cmf, t, f->blackbody_norm, rgb);
+}
+
+/* emitted(): black body x emission scale x (1 - albedo), capped at the radiance ceiling. */
+static void emitted(const sbfx_rf_frame *f, const sbfx_rf_medium *m, double kelvin, double e[3])
+{
+    double bb[3];
+    blackbody(f, kelvin, bb);
+    /* the shader gets the scale as a float uniform: emission_scale * (1 - albedo) */
+    double scale = (double)(float)(m->emission_scale * (1.0 - m->albedo));
+    for (int k = 0; k < 3; k++) e[k] = mp(f, fmin(bb[k] * scale, SBFX_RF_RADIANCE_CEILING));
+}
+
+void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
+                   double opaque_distance, double rgb[3], double *alpha)
+{
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    *alpha = 0.0;
+    if (!sbfx_rf_particle_valid(p) || f->opacity == SBFX_OPACITY_FLOOR) return;
+    const sbfx_rf_medium *m = &f->media[p->medium];
+    bool scatters = m->albedo > 0.0, emits = p->medium == SBFX_FIRE;
+    double detail = m->has_detail ? detail_sample(f, p, m, ray) : 0.5;
+    double tau_scale = 1.0;
+    if (scatters && m->has_detail) tau_scale = 1.0 * (1.0 - m->detail_strength) + 2.0 * detail * m->detail_strength;
+    tau_scale *= p->intensity;
+    /* optical depth is linear in tau in every mode: the scale folds into the particle's tau */
+    sbfx_ref_particle rp = {{p->center[0], p->center[1], p->center[2]}, p->radius, m->tau * tau_scale};
+    sbfx_ref_pixel px = {{ray[0], ray[1], ray[2]}, opaque_distance, f->near, f->soft_scale};
+    double a = sbfx_ref_opacity(f->opacity, &rp, &px);
+    if (!(a > 0.0)) return; /* the shader multiplies its light by 0 */
+    double light[3] = {0.0, 0.0, 0.0};
+    if (scatters) {
+        double s[3];
+        in_scattered(f, m, p->center, ray, s);
+        for (int k = 0; k < 3; k++) light[k] = mp(f, light[k] + m->albedo * m->color[k] * s[k]);
+    }
+    if (emits) {
+        double cooled = 1.0 - m->cooling * (1.0 - p->intensity), e[3];
+        emitted(f, m, (m->t0 + m->t1 * detail) * cooled, e);
+        for (int k = 0; k < 3; k++) light[k] = mp(f, light[k] + e[k]);
+    }
+    for (int k = 0; k < 3; k++) rgb[k] = light[k] * a;
+    *alpha = a;
+}
+
+/* ---- whole frame ------------------------------------------------------------------------ */
+
+typedef struct pixel_rect { int x0, x1, y0, y1; } pixel_rect;
+
+/* Range of slope x / (-z) over the sphere (particle.vert's slope_range). */
+static void slope_range(double cx, double zc, double r, double out[2])
+{
+    double denom = (zc - r) * (zc + r);
+    double root = r * sqrt(fmax(cx * cx + denom, 0.0));
+    out[0] = (cx * zc - root) / denom;
+    out[1] = (cx * zc + root) / denom;
+}
+
+static void slopes_to_pixels(double s0, double s1, double scale, double offset, int n, int *lo, int *hi)
+{
+    double a = ((s0 * scale - offset) + 1.0) * 0.5 * n, b = ((s1 * scale - offset) + 1.0) * 0.5 * n;
+    double mn = fmin(a, b) - 2.0, mx = fmax(a, b) + 2.0; /* 2 px of margin on each side */
+    *lo = mn < 0.0 ? 0 : (mn > n ? n : (int)mn);
+    *hi = mx < 0.0 ? -1 : (mx > n - 1 ? n - 1 : (int)mx);
+}
+
+/* Pixels the particle can touch (a generous superset of particle.vert's quad); false when the
+ * sphere is wholly behind the near plane (the GPU draws no fragment of it either). */
+static bool particle_rect(const sbfx_rf_frame *f, const sbfx_rf_particle *p, pixel_rect *out)
+{
+    double zc = -p->center[2], r = p->radius;
+    if (zc + r <= f->near) return false;
+    *out = (pixel_rect){0, f->width - 1, 0, f->height - 1};
+    if (zc - r <= f->near) return true; /* camera inside or near: the whole grid */
+    double sx[2], sy[2];
+    slope_range(p->center[0], zc, r, sx);
+    slope_range(p->center[1], zc, r, sy);
+    slopes_to_pixels(sx[0], sx[1], f->projection[0], f->projection[2], f->width, &out->x0, &out->x1);
+    slopes_to_pixels(sy[0], sy[1], f->projection[1], f->projection[3], f->height, &out->y0, &out->y1);
+    return out->x0 <= out->x1 && out->y0 <= out->y1;
+}
+
+/* The ray passes within the radius of the centre, in front of the camera (depth ignored). */
+static bool ray_hits_sphere(const sbfx_rf_particle *p, const double ray[3])
+{
+    double len = sqrt(ray[0] * ray[0] + ray[1] * ray[1] + ray[2] * ray[2]), u[3];
+    for (int k = 0; k < 3; k++) u[k] = ray[k] / len;
+    const double *c = p->center;
+    double cross[3] = {c[1] * u[2] - c[2] * u[1], c[2] * u[0] - c[0] * u[2], c[0] * u[1] - c[1] * u[0]};
+    double dist = sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
+    double t0 = c[0] * u[0] + c[1] * u[1] + c[2] * u[2];
+    return dist < p->radius && t0 > -p->radius;
+}
+
+/* One pixel: the sorted particles that may touch it, blended back to front. */
+static void render_pixel(const sbfx_rf_frame *f, const sbfx_rf_particle *v, const int *order,
+                         const pixel_rect *rects, int n, int x, int y, double *out, uint8_t *footprint)
+{
+    double ray[3], c[3] = {0.0, 0.0, 0.0}, t = 1.0;
+    sbfx_rf_pixel_ray(f, x, y, ray);
+    double zs = f->opaque_distance[(size_t)y * f->width + x];
+    bool hit = false;
+    for (int i = 0; i < n; i++) {
+        const pixel_rect *r = &rects[order[i]];
+        if (x < r->x0 || x > r->x1 || y < r->y0 || y > r->y1) continue;
+        const sbfx_rf_particle *p = &v[order[i]];
+        double rgb[3], a;
+        sbfx_rf_shade(f, p, ray, zs, rgb, &a);
+        for (int k = 0; k < 3; k++) c[k] = rgb[k] + c[k] * (1.0 - a);
+        t *= 1.0 - a;
+        if (footprint && !hit) hit = ray_hits_sphere(p, ray);
+    }
+    memcpy(out, c, sizeof(c));
+    out[3] = t;
+    if (footprint) footprint[(size_t)y * f->width + x] = hit;
+}
+
+int sbfx_rf_render_layer(const sbfx_rf_frame *f, const sbfx_rf_particle *particles, int count,
+                         double *layer, uint8_t *footprint)
+{
+    size_t n = count > 0 ? (size_t)count : 1;
+    sbfx_rf_particle *valid = calloc(n, sizeof(*valid));
+    int *order = calloc(n, sizeof(*order));
+    pixel_rect *rects = calloc(n, sizeof(*rects));
+    if (!valid || !order || !rects) {
+        free(valid), free(order), free(rects);
+        return -1;
+    }
+    int kept = 0, skipped = 0;
+    for (int i = 0; i < count; i++) {
+        if (!sbfx_rf_particle_valid(&particles[i])) skipped++;
+        else valid[kept++] = particles[i]; /* the module keeps input order, then sorts */
+    }
+    sbfx_rf_sort(valid, kept, order);
+    for (int i = 0; i < kept; i++)
+        if (!particle_rect(f, &valid[i], &rects[i])) rects[i] = (pixel_rect){1, 0, 1, 0};
+    for (int y = 0; y < f->height; y++)
+        for (int x = 0; x < f->width; x++)
+            render_pixel(f, valid, order, rects, kept, x, y, &layer[4 * ((size_t)y * f->width + x)], footprint);
+    free(valid), free(order), free(rects);
+    return skipped;
+}
+
+void sbfx_rf_composite(const double *layer, const uint8_t *scene_rgba8, int width, int height,
+                       double *out_rgb)
+{
+    size_t n = (size_t)width * (size_t)height;
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            double v = scene_rgba8[4 * i + k] / 255.0 * layer[4 * i + 3] + layer[4 * i + k];
+            out_rgb[3 * i + k] = clampd(v, 0.0, 1.0) * 255.0;
+        }
+}

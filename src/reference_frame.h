@@ -1,0 +1,118 @@
+/* CPU reference renderer of whole particle frames (DESIGN §2, §4), in double precision,
+ * usable without GL (pure libc + reference.h).
+ *
+ * It evaluates, per full-resolution pixel, what particle.frag evaluates per particle-target
+ * pixel — same ray, same detail lookup, same medium and light model, same emission ceiling —
+ * but in double, with the opacity model chosen per frame (EXACT for the benchmark's reference),
+ * the black body and the phase function analytic (or, for tests of the GPU tables, through the
+ * same tables), and accumulates the particles back to front in the order src/sort.c gives them:
+ *     C <- c_i + C (1 - a_i),   T <- T (1 - a_i)      (C = premultiplied light, T = transmittance)
+ * then composites over the opaque scene like composite.frag and an RGBA8 framebuffer do:
+ *     out = clamp(scene * T + C, 0, 1) * 255.
+ *
+ * Precision can be switched to an emulation of the shader's mediump declarations (IEEE half,
+ * _Float16, rounding to nearest even, at exactly the points the shader declares mediump), which
+ * is how the tests bound what a Mali-class GPU loses there. */
+#ifndef SBFX_REFERENCE_FRAME_H
+#define SBFX_REFERENCE_FRAME_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include "reference.h"
+
+/* particle.frag's per-fragment radiance ceiling (RADIANCE_CEILING). */
+#define SBFX_RF_RADIANCE_CEILING 64.0
+/* The shader's light falloff floor: point lights act no closer than 0.5 m (d² >= 0.25). */
+#define SBFX_RF_MIN_LIGHT_D2 0.25
+
+/* A particle in view space, as sbfx_view_particle (internal.h) holds it. */
+typedef struct sbfx_rf_particle {
+    double center[3];  /* view space, center[2] < 0 in front of the camera */
+    double radius;
+    double detail[3];  /* detail window origin (u, v) and time offset */
+    double intensity;  /* density scale; fire also cools as it falls */
+    sbfx_medium medium;
+} sbfx_rf_particle;
+
+/* One medium's parameters, as sbfx_medium_params (internal.h) holds them. */
+typedef struct sbfx_rf_medium {
+    double albedo, tau, phase_g, color[3];
+    double detail_strength, detail_window;
+    double t0, t1, cooling, emission_scale;
+    /* The GPU program samples the detail volume (it was built with detail_strength > 0). Fire
+     * takes its temperature from the detail whenever this is set, whatever the strength. */
+    bool has_detail;
+} sbfx_rf_medium;
+
+/* A light in view space: vector[3] = 0 direction the light travels in, 1 position. */
+typedef struct sbfx_rf_light {
+    double vector[4];
+    double color[3];
+} sbfx_rf_light;
+
+typedef enum sbfx_rf_precision {
+    SBFX_RF_DOUBLE = 0,  /* the reference */
+    SBFX_RF_MEDIUMP,     /* round to IEEE half where particle.frag declares mediump */
+} sbfx_rf_precision;
+
+typedef struct sbfx_rf_frame {
+    int width, height;             /* pixel grid (full resolution for the reference) */
+    double projection[4];          /* P[0], P[5], P[8], P[9] of the GL projection */
+    double near;                   /* near-plane distance */
+    const double *opaque_distance; /* width*height view distances along -z, row 0 = bottom */
+    sbfx_opacity_mode opacity;     /* EXACT for the reference; FLOOR draws nothing here */
+    double soft_scale;             /* soft mode's fade range; <= 0: the particle radius */
+
+    sbfx_rf_medium media[SBFX_MEDIUM_COUNT];
+    const sbfx_rf_light *lights;
+    int light_count;               /* at most SBFX_RF_MAX_LIGHTS are used, like the shader */
+    double ambient[3];
+
+    const float *detail;           /* size x size x frames, x fastest; NULL: detail = 0.5 */
+    int detail_size, detail_frames;
+    double detail_time;            /* sbfx_detail_time(): added to the time coordinate */
+
+    const sbfx_cmf *cmf;           /* black body: analytic Planck x CMF... */
+    double max_kelvin;             /* ...clamped to [0, max_kelvin] like the shader */
+    double blackbody_norm;         /* sbfx_blackbody_norm(cmf, max_kelvin) */
+    /* Tables instead of the analytic functions (NULL: analytic). Only tests of the GPU's own
+     * tables set these; the benchmark's reference is analytic. */
+    const double *blackbody_table; /* blackbody_table_size RGB entries up to max_kelvin */
+    int blackbody_table_size;
+    const double *phase_table;     /* phase_table_cos x phase_table_g, see sbfx_phase_table */
+    int phase_table_cos, phase_table_g;
+
+    sbfx_rf_precision precision;
+} sbfx_rf_frame;
+
+#define SBFX_RF_MAX_LIGHTS 8
+
+/* True when every input is finite, the radius positive and the medium known (the module's
+ * sbfx_view_particle_valid: an invalid particle is skipped, never drawn). */
+bool sbfx_rf_particle_valid(const sbfx_rf_particle *p);
+
+/* Back-to-front order exactly as src/sort.c computes it: key = sqrtf of the float squared
+ * distance of the float centre, descending, ties in input order. order[] gets count indices. */
+void sbfx_rf_sort(const sbfx_rf_particle *particles, int count, int *order);
+
+/* The view ray (z = -1) through the centre of pixel (x, y) of the frame's grid. */
+void sbfx_rf_pixel_ray(const sbfx_rf_frame *f, int x, int y, double ray[3]);
+
+/* One particle at one pixel, as particle.frag computes it: premultiplied light rgb (light x
+ * alpha) and alpha. A particle the ray misses gives alpha 0, rgb 0. */
+void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
+                   double opaque_distance, double rgb[3], double *alpha);
+
+/* The particle layer of the whole grid: layer[4 * (y * width + x)] = premultiplied light rgb,
+ * transmittance. Invalid particles are skipped; returns how many were. If footprint is not
+ * NULL it gets 1 where the pixel's ray passes through at least one valid particle's sphere
+ * (depth ignored: where a particle *could* show), else 0. Returns -1 if out of memory. */
+int sbfx_rf_render_layer(const sbfx_rf_frame *f, const sbfx_rf_particle *particles, int count,
+                         double *layer, uint8_t *footprint);
+
+/* out[3 * i + k] = clamp(scene_k / 255 * T + C_k, 0, 1) * 255 for the RGBA8 scene colour
+ * (rows in the same order as the layer). */
+void sbfx_rf_composite(const double *layer, const uint8_t *scene_rgba8, int width, int height,
+                       double *out_rgb);
+
+#endif
