@@ -56,7 +56,9 @@ uniform vec3 u_ambient;
 #ifdef LIGHTING_LIT
 precision highp sampler2DArray;
 uniform sampler2DArray u_smoke;  // per variant v: layer 2v normal*0.5+0.5, height; 2v+1 brightness, translucency
+uniform float u_smoke_size;      // texels across level 0
 uniform float u_smoke_variants;
+uniform vec2 u_pixel;            // one target pixel in NDC units (the vertex shader's too)
 uniform vec2 u_wrap;             // wrap-around scale 1/(1+w), bias w/(1+w)
 uniform float u_translucency;
 uniform float u_dampening;       // the lights' direct term is scaled by 1 - dampening
@@ -207,10 +209,10 @@ struct lit_maps {
     float height, brightness, translucency;
 };
 
-lit_maps lit_fetch(vec2 st, float layer)
+lit_maps lit_fetch(vec2 st, float layer, float lod)
 {
-    vec4 a = textureLod(u_smoke, vec3(st, layer), 0.0);
-    vec4 b = textureLod(u_smoke, vec3(st, layer + 1.0), 0.0);
+    vec4 a = textureLod(u_smoke, vec3(st, layer), lod);
+    vec4 b = textureLod(u_smoke, vec3(st, layer + 1.0), lod);
     vec3 n = a.xyz * 2.0 - 1.0;
     float len2 = dot(n, n);
     lit_maps m;
@@ -225,7 +227,7 @@ lit_maps lit_fetch(vec2 st, float layer)
 // Transmittance toward the light: midpoint samples of the slab density max(0, h - 2|z|) from
 // the front surface to where the ray leaves the particle's box, n = nMin + (N.V)(nMax - nMin)
 // steps (the seed's eq. 5.2.5, rounded half up). tau_2r = extinction x diameter.
-float lit_shadow(vec3 start, vec3 l, float layer, float n_dot_v, float tau_2r)
+float lit_shadow(vec3 start, vec3 l, float layer, float lod, float n_dot_v, float tau_2r)
 {
     float n = floor(u_steps.x + clamp(n_dot_v, 0.0, 1.0) * (u_steps.y - u_steps.x) + 0.5);
     if (n < 0.5) return 1.0;
@@ -237,7 +239,7 @@ float lit_shadow(vec3 start, vec3 l, float layer, float n_dot_v, float tau_2r)
     for (int k = 0; k < MAX_STEPS; k++) {
         if (float(k) >= n) break;
         vec3 p = start + (float(k) + 0.5) * dt * l;
-        sum += max(textureLod(u_smoke, vec3(p.xy, layer), 0.0).w - 2.0 * abs(p.z), 0.0);
+        sum += max(textureLod(u_smoke, vec3(p.xy, layer), lod).w - 2.0 * abs(p.z), 0.0);
     }
     return exp(-tau_2r * sum * dt);
 }
@@ -252,7 +254,11 @@ mediump vec3 lit_scattered(vec3 ray, vec3 c, float r, float tau_scale)
     vec2 q = ray.xy * (-c.z);
     vec2 st = (q - c.xy) / (2.0 * r) + 0.5;
     float layer = 2.0 * min(floor(clamp(v_detail.x, 0.0, 1.0) * u_smoke_variants), u_smoke_variants - 1.0);
-    lit_maps m = lit_fetch(st, layer);
+    // one level of detail per particle: log2 of texels per target pixel at the centre's depth
+    // (explicit, because the march's fetches sit in a loop where derivatives are undefined)
+    float texels = u_smoke_size * (u_pixel.x / u_projection.x) * (-c.z) / (2.0 * r);
+    float lod = texels > 1.0 ? min(log2(texels), 30.0) : 0.0;
+    lit_maps m = lit_fetch(st, layer, lod);
     vec3 p = vec3(q, c.z + r * m.height);     // the front surface of the relief
     vec3 v = -normalize(ray);
     float n_dot_v = dot(m.normal, v);
@@ -272,7 +278,7 @@ mediump vec3 lit_scattered(vec3 ray, vec3 c, float r, float tau_scale)
         float back = u_translucency * m.translucency * max(-dot(v, l), 0.0);
         float shadow = 1.0;
 #ifdef LIT_SHADOW
-        shadow = lit_shadow(vec3(st, 0.5 * m.height), l, layer, n_dot_v, u_tau * tau_scale * 2.0 * r);
+        shadow = lit_shadow(vec3(st, 0.5 * m.height), l, layer, lod, n_dot_v, u_tau * tau_scale * 2.0 * r);
 #endif
         sum += u_light_color[i] * (falloff * shadow * (diffuse + back));
     }

@@ -15,6 +15,7 @@ uniform float u_shutter;               // fraction of the frame the shutter is o
 uniform float u_max_radius;            // = tile size in pixels
 #ifdef HAS_PARTICLE_VELOCITY
 uniform sampler2D u_particle_velocity; // low-res: premultiplied velocity [px], transmittance
+uniform bool u_particles_drawn;        // false on frames without particles
 uniform float u_divisor;
 uniform ivec2 u_low_size;
 #endif
@@ -34,9 +35,11 @@ void main()
     vec4 previous = u_reproject * vec4(ndc, depth * 2.0 - 1.0, 1.0);
     vec2 motion = previous.w > 1e-6 ? (ndc - previous.xy / previous.w) * 0.5 * u_size : vec2(0.0);
 #ifdef HAS_PARTICLE_VELOCITY
-    ivec2 q = clamp(ivec2(gl_FragCoord.xy / u_divisor), ivec2(0), u_low_size - 1);
-    vec4 particles = texelFetch(u_particle_velocity, q, 0);
-    motion = particles.xy + motion * particles.a;
+    if (u_particles_drawn) {
+        ivec2 q = clamp(ivec2(gl_FragCoord.xy / u_divisor), ivec2(0), u_low_size - 1);
+        vec4 particles = texelFetch(u_particle_velocity, q, 0);
+        motion = particles.xy + motion * particles.a;
+    }
 #endif
     vec2 v = motion * 0.5 * u_shutter;
     float len = length(v);

@@ -6,36 +6,70 @@
 
 static int clamp_int(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
 
-static double texel(const sbfx_smoke_texture *tex, int layer, int x, int y, int c)
+/* One level of the texture: its side and first texel. */
+typedef struct level_view {
+    int side;
+    const uint8_t *texels;
+} level_view;
+
+static level_view level_of(const sbfx_smoke_texture *tex, int level)
 {
-    x = clamp_int(x, 0, tex->size - 1);
-    y = clamp_int(y, 0, tex->size - 1);
-    size_t i = (((size_t)layer * tex->size + y) * tex->size + x) * 4 + c;
-    return tex->texels[i] / 255.0;
+    level_view v = {tex->size >> level > 0 ? tex->size >> level : 1,
+                    tex->texels + sbfx_smoke_level_offset(tex->size, tex->layers, level)};
+    return v;
 }
 
-void sbfx_smoke_sample(const sbfx_smoke_texture *tex, int layer, double s, double t, double rgba[4])
+static double texel(const level_view *v, int layer, int x, int y, int c)
 {
-    layer = clamp_int(layer, 0, tex->layers - 1);
-    double x = s * tex->size - 0.5, y = t * tex->size - 0.5;
+    x = clamp_int(x, 0, v->side - 1);
+    y = clamp_int(y, 0, v->side - 1);
+    size_t i = (((size_t)layer * v->side + y) * v->side + x) * 4 + c;
+    return v->texels[i] / 255.0;
+}
+
+static void bilinear(const level_view *v, int layer, double s, double t, double rgba[4])
+{
+    double x = s * v->side - 0.5, y = t * v->side - 0.5;
     if (!isfinite(x)) x = 0.0;
     if (!isfinite(y)) y = 0.0;
-    x = fmax(-1.0, fmin(x, tex->size)); /* beyond the edge every tap is clamped anyway */
-    y = fmax(-1.0, fmin(y, tex->size));
+    x = fmax(-1.0, fmin(x, v->side)); /* beyond the edge every tap is clamped anyway */
+    y = fmax(-1.0, fmin(y, v->side));
     double fx = floor(x), fy = floor(y), ax = x - fx, ay = y - fy;
     int x0 = (int)fx, y0 = (int)fy;
     for (int c = 0; c < 4; c++) {
-        double bottom = texel(tex, layer, x0, y0, c) * (1 - ax) + texel(tex, layer, x0 + 1, y0, c) * ax;
-        double top = texel(tex, layer, x0, y0 + 1, c) * (1 - ax) + texel(tex, layer, x0 + 1, y0 + 1, c) * ax;
+        double bottom = texel(v, layer, x0, y0, c) * (1 - ax) + texel(v, layer, x0 + 1, y0, c) * ax;
+        double top = texel(v, layer, x0, y0 + 1, c) * (1 - ax) + texel(v, layer, x0 + 1, y0 + 1, c) * ax;
         rgba[c] = bottom * (1 - ay) + top * ay;
     }
 }
 
-void sbfx_lit_maps_at(const sbfx_smoke_texture *tex, int variant, double s, double t, sbfx_lit_maps *out)
+void sbfx_smoke_sample(const sbfx_smoke_texture *tex, int layer, double s, double t, double lod, double rgba[4])
+{
+    layer = clamp_int(layer, 0, tex->layers - 1);
+    lod = isnan(lod) ? 0.0 : fmin(fmax(lod, 0.0), tex->levels - 1);
+    int l0 = (int)floor(lod);
+    double f = lod - l0;
+    level_view v0 = level_of(tex, l0);
+    bilinear(&v0, layer, s, t, rgba);
+    if (f <= 0.0) return;
+    double upper[4];
+    level_view v1 = level_of(tex, l0 + 1);
+    bilinear(&v1, layer, s, t, upper);
+    for (int c = 0; c < 4; c++) rgba[c] = rgba[c] * (1 - f) + upper[c] * f;
+}
+
+double sbfx_lit_lod(int size, double radius, double depth, double pixel_slope)
+{
+    double texels = size * pixel_slope * depth / (2.0 * radius);
+    return texels > 1.0 ? fmin(log2(texels), 30.0) : 0.0; /* NaN -> 0, inf -> the coarsest */
+}
+
+void sbfx_lit_maps_at(const sbfx_smoke_texture *tex, int variant, double s, double t, double lod,
+                      sbfx_lit_maps *out)
 {
     double a[4], b[4];
-    sbfx_smoke_sample(tex, SBFX_SMOKE_LAYERS_PER_VARIANT * variant, s, t, a);
-    sbfx_smoke_sample(tex, SBFX_SMOKE_LAYERS_PER_VARIANT * variant + 1, s, t, b);
+    sbfx_smoke_sample(tex, SBFX_SMOKE_LAYERS_PER_VARIANT * variant, s, t, lod, a);
+    sbfx_smoke_sample(tex, SBFX_SMOKE_LAYERS_PER_VARIANT * variant + 1, s, t, lod, b);
     double n[3] = {a[0] * 2 - 1, a[1] * 2 - 1, a[2] * 2 - 1};
     double len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
     for (int k = 0; k < 3; k++) out->normal[k] = len2 > 1e-8 ? n[k] / sqrt(len2) : (k == 2);
@@ -77,8 +111,8 @@ static double box_exit(const double p[3], const double d[3])
     return fmax(t, 0.0);
 }
 
-double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, const double st[2], double height,
-                       const double to_light[3], double radius, double tau, int steps)
+double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, double lod, const double st[2],
+                       double height, const double to_light[3], double radius, double tau, int steps)
 {
     if (steps <= 0) return 1.0;
     const double start[3] = {st[0], st[1], 0.5 * height};
@@ -86,7 +120,7 @@ double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, const double 
     for (int k = 0; k < steps; k++) {
         double t = (k + 0.5) * dt, rgba[4];
         double p[3] = {start[0] + t * to_light[0], start[1] + t * to_light[1], start[2] + t * to_light[2]};
-        sbfx_smoke_sample(tex, SBFX_SMOKE_LAYERS_PER_VARIANT * variant, p[0], p[1], rgba);
+        sbfx_smoke_sample(tex, SBFX_SMOKE_LAYERS_PER_VARIANT * variant, p[0], p[1], lod, rgba);
         sum += fmax(rgba[3] - 2.0 * fabs(p[2]), 0.0);
     }
     return exp(-tau * 2.0 * radius * sum * dt);
@@ -107,7 +141,7 @@ static double toward_light(const sbfx_lit_light *l, const double p[3], const dou
     return 1.0 / fmax(d2, 0.25);
 }
 
-void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, int variant,
+void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, int variant, double lod,
                        const double center[3], double radius, const double ray[3],
                        const sbfx_lit_light *lights, int light_count, const double ambient[3],
                        double rgb[3])
@@ -115,7 +149,7 @@ void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, 
     double zc = -center[2], q[2] = {ray[0] * zc, ray[1] * zc};
     double st[2] = {(q[0] - center[0]) / (2 * radius) + 0.5, (q[1] - center[1]) / (2 * radius) + 0.5};
     sbfx_lit_maps maps;
-    sbfx_lit_maps_at(tex, variant, st[0], st[1], &maps);
+    sbfx_lit_maps_at(tex, variant, st[0], st[1], lod, &maps);
     const double p[3] = {q[0], q[1], center[2] + radius * maps.height}; /* the front surface */
     double len = sqrt(dot3(ray, ray)), v[3] = {-ray[0] / len, -ray[1] / len, -ray[2] / len};
     int steps = sbfx_lit_steps(dot3(maps.normal, v), m->steps_min, m->steps_max);
@@ -125,7 +159,7 @@ void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, 
         double falloff = toward_light(&lights[i], p, maps.normal, l);
         double diffuse = sbfx_lit_wrap(dot3(maps.normal, l), m->wrap);
         double back = sbfx_lit_backlight(dot3(v, l), maps.translucency, m->translucency);
-        double shadow = sbfx_lit_shadow(tex, variant, st, maps.height, l, radius, m->tau, steps);
+        double shadow = sbfx_lit_shadow(tex, variant, lod, st, maps.height, l, radius, m->tau, steps);
         for (int k = 0; k < 3; k++) sum[k] += lights[i].color[k] * falloff * shadow * (diffuse + back);
     }
     for (int k = 0; k < 3; k++)

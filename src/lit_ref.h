@@ -19,37 +19,51 @@
 
 /* Each variant is two RGBA8 layers of size x size texels, row 0 at t = 0:
  *   layer 2v:     rgb = unit normal * 0.5 + 0.5 (tangent space), a = height
- *   layer 2v + 1: r = brightness, g = translucency, b = 0, a = 1 */
+ *   layer 2v + 1: r = brightness, g = translucency, b = 0, a = 1
+ * with a full mip chain (size a power of two, down to 1 x 1): each level is the rounded 2x2
+ * box average of the one above, made here so that the GPU and this reference sample the same
+ * texels (glGenerateMipmap's filter is the implementation's choice). Texels are stored level
+ * by level, each level layer by layer. */
 #define SBFX_SMOKE_LAYERS_PER_VARIANT 2
 #define SBFX_SMOKE_MIN_SIZE 16
 #define SBFX_SMOKE_MAX_SIZE 512
 #define SBFX_SMOKE_MAX_VARIANTS 16
 
-/* Bytes of the texels of `variants` variants, and of the float scratch the generator needs. */
+/* Mip levels of a size x size texture (log2(size) + 1), bytes of all texels of `variants`
+ * variants, and the float scratch the generator needs. */
+int sbfx_smoke_texture_levels(int size);
 size_t sbfx_smoke_texture_bytes(int size, int variants);
 size_t sbfx_smoke_scratch_floats(int size);
 /* Writes the texels into out (sbfx_smoke_texture_bytes) using scratch (sbfx_smoke_scratch_floats
- * floats); allocates nothing. Deterministic from seed. Returns 0, or -1 for a size outside
- * [SBFX_SMOKE_MIN_SIZE, SBFX_SMOKE_MAX_SIZE] or variants outside [1, SBFX_SMOKE_MAX_VARIANTS]. */
+ * floats); allocates nothing. Deterministic from seed. Returns 0, or -1 for a size that is not a
+ * power of two in [SBFX_SMOKE_MIN_SIZE, SBFX_SMOKE_MAX_SIZE] or variants outside
+ * [1, SBFX_SMOKE_MAX_VARIANTS]. */
 int sbfx_smoke_texture_generate(int size, int variants, uint32_t seed, uint8_t *out, float *scratch);
 /* The seed the module generates a medium's texture with (desc seed, medium index). */
 uint32_t sbfx_smoke_texture_seed(uint32_t seed, int medium);
 
 typedef struct sbfx_smoke_texture {
-    int size, layers;
-    const uint8_t *texels; /* layers x size x size RGBA8 */
+    int size, layers, levels; /* levels <= sbfx_smoke_texture_levels(size) */
+    const uint8_t *texels;    /* level by level, each layers x size' x size' RGBA8 */
 } sbfx_smoke_texture;
 
-/* Bilinear fetch as the GPU does it (LINEAR, CLAMP_TO_EDGE, texel centres at (i + 0.5)/size),
- * channels in [0,1]. */
-void sbfx_smoke_sample(const sbfx_smoke_texture *tex, int layer, double s, double t, double rgba[4]);
+/* Offset in bytes of a level's first texel. */
+size_t sbfx_smoke_level_offset(int size, int layers, int level);
+/* Trilinear fetch as the GPU does it (LINEAR_MIPMAP_LINEAR, CLAMP_TO_EDGE, texel centres at
+ * (i + 0.5)/size', lod clamped to [0, levels - 1]), channels in [0,1]. */
+void sbfx_smoke_sample(const sbfx_smoke_texture *tex, int layer, double s, double t, double lod, double rgba[4]);
+/* The level of detail a particle samples at, one per particle: log2 of texels per target pixel
+ * at the centre's depth, = log2(size * pixel_slope * depth / (2 radius)), where pixel_slope is
+ * one target pixel's width in x/(-z) units (2 / (target width * projection[0])); >= 0. */
+double sbfx_lit_lod(int size, double radius, double depth, double pixel_slope);
 
 /* The maps of one variant at st: normal renormalised after filtering ((0,0,1) if it vanished). */
 typedef struct sbfx_lit_maps {
     double normal[3];
     double height, brightness, translucency;
 } sbfx_lit_maps;
-void sbfx_lit_maps_at(const sbfx_smoke_texture *tex, int variant, double s, double t, sbfx_lit_maps *out);
+void sbfx_lit_maps_at(const sbfx_smoke_texture *tex, int variant, double s, double t, double lod,
+                      sbfx_lit_maps *out);
 /* The variant a particle uses: floor(detail_u * variants), clamped to [0, variants - 1]. */
 int sbfx_lit_variant(double detail_u, int variants);
 
@@ -71,8 +85,8 @@ int sbfx_lit_steps(double n_dot_v, int n_min, int n_max);
  *   exp(-tau * 2r * sum_k max(0, h(st_k) - 2|zt_k|) * dt),  dt in texture units.
  * tau = extinction at the densest point (per metre), as for the particle's opacity. steps = 0
  * gives 1 (no self-shadowing). */
-double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, const double st[2], double height,
-                       const double to_light[3], double radius, double tau, int steps);
+double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, double lod, const double st[2],
+                       double height, const double to_light[3], double radius, double tau, int steps);
 
 /* ---- one fragment ---------------------------------------------------------------------- */
 
@@ -92,12 +106,12 @@ typedef struct sbfx_lit_light {
 } sbfx_lit_light;
 
 /* The light a lit particle sends toward the eye through this pixel's ray (ray.z = -1), before
- * the particle's opacity multiplies it:
+ * the particle's opacity multiplies it (every fetch at the particle's lod):
  *   albedo * B * (ambient + (1 - dampening) * sum_i E_i falloff_i S_i (wrap_i + back_i))
  * over the first SBFX_LIT_MAX_LIGHTS lights, with N, B, translucency from the maps at the
  * pixel's st, V = -normalize(ray), S_i the march toward light i. A point light at the shaded
  * point itself lights it along N. Finite for any finite input. */
-void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, int variant,
+void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, int variant, double lod,
                        const double center[3], double radius, const double ray[3],
                        const sbfx_lit_light *lights, int light_count, const double ambient[3],
                        double rgb[3]);

@@ -142,10 +142,14 @@ static sbfx_result upload_smoke(sbfx *fx, sbfx_medium m)
             goto out;
         }
         /* CLAMP_TO_EDGE: the puff's height is 0 at the border, a lit particle's rim must not
-         * pick up the opposite side. */
+         * pick up the opposite side. Mipmapped: small particles would alias the normal map. */
+        int layers = SBFX_SMOKE_LAYERS_PER_VARIANT * variants, levels = sbfx_smoke_texture_levels(size);
         fx->gl.smoke_texture[m] = make_texture(fx, GL_TEXTURE_2D_ARRAY, GL_LINEAR, GL_CLAMP_TO_EDGE);
-        glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, size, size, SBFX_SMOKE_LAYERS_PER_VARIANT * variants, 0,
-                     GL_RGBA, GL_UNSIGNED_BYTE, texels);
+        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, levels - 1);
+        for (int level = 0; level < levels; level++)
+            glTexImage3D(GL_TEXTURE_2D_ARRAY, level, GL_RGBA8, size >> level, size >> level, layers, 0, GL_RGBA,
+                         GL_UNSIGNED_BYTE, texels + sbfx_smoke_level_offset(size, layers, level));
         fx->counters.gpu_bytes += bytes;
         r = sbfx_gl_check(fx, "uploading the smoke texture array") ? SBFX_OK : SBFX_ERR_GL;
     }

@@ -80,7 +80,7 @@ typedef struct sbfx_program {
     GLint depth, detail, detail_window, detail_strength, time;
     GLint phase_lut, phase_lut_size, g, albedo_color, light_count, light_vector, light_color, ambient;
     GLint blackbody, blackbody_size, max_kelvin, temperature, emission_scale, cmf_rgb, cmf_band;
-    GLint smoke, smoke_variants, wrap, translucency, dampening, steps; /* LIGHTING_LIT */
+    GLint smoke, smoke_size, smoke_variants, wrap, translucency, dampening, steps; /* LIGHTING_LIT */
 } sbfx_program;
 
 /* A framebuffer with up to SBFX_RT_MAX colour textures and an optional depth texture. */
@@ -114,6 +114,7 @@ typedef struct sbfx_post_gl {
     int width, height;
     double last_time;          /* simulation time of the previous render */
     bool have_previous;
+    bool particles_drawn;      /* this frame drew particles (their velocities are valid) */
     double previous_view_projection[16];
 } sbfx_post_gl;
 

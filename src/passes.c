@@ -135,6 +135,7 @@ static void set_lit_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m)
     const sbfx_medium_params *mp = &fx->media[m];
     bind_texture(UNIT_SMOKE, GL_TEXTURE_2D_ARRAY, fx->gl.smoke_texture[m]);
     glUniform1i(p->smoke, UNIT_SMOKE);
+    glUniform1f(p->smoke_size, (float)mp->texture_size);
     glUniform1f(p->smoke_variants, (float)mp->texture_variants);
     glUniform2f(p->wrap, 1.0f / (1.0f + mp->wrap), mp->wrap / (1.0f + mp->wrap));
     glUniform1f(p->translucency, mp->translucency);
@@ -318,6 +319,7 @@ sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, int count)
         pass_composite(fx, frame, &fp);
     }
     if (fx->plan.owns_scene) {
+        fx->gl.post.particles_drawn = count > 0;
         bool composited_to_out = sbfx_post_composite_target(fx, frame) == frame->out_framebuffer;
         GLuint source = count == 0 ? frame->scene_color_texture
                         : composited_to_out ? 0 : sbfx_post_composite_texture(fx);

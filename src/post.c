@@ -273,6 +273,7 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
     begin(prog, p->velocity.framebuffer, f->width, f->height);
     bind_unit(prog, "u_scene_depth", 0, f->scene_depth_texture);
     bind_unit(prog, "u_particle_velocity", 1, fx->gl.particles.texture[2]);
+    glUniform1i(glGetUniformLocation(prog, "u_particles_drawn"), p->particles_drawn);
     glUniformMatrix4fv(glGetUniformLocation(prog, "u_reproject"), 1, GL_FALSE, reproject_f);
     glUniform2f(glGetUniformLocation(prog, "u_size"), (float)f->width, (float)f->height);
     glUniform1f(glGetUniformLocation(prog, "u_shutter"), post->shutter);

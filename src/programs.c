@@ -64,6 +64,7 @@ static void locate_uniforms(sbfx_program *p)
     p->cmf_rgb = glGetUniformLocation(id, "u_cmf_rgb");
     p->cmf_band = glGetUniformLocation(id, "u_cmf_band");
     p->smoke = glGetUniformLocation(id, "u_smoke");
+    p->smoke_size = glGetUniformLocation(id, "u_smoke_size");
     p->smoke_variants = glGetUniformLocation(id, "u_smoke_variants");
     p->wrap = glGetUniformLocation(id, "u_wrap");
     p->translucency = glGetUniformLocation(id, "u_translucency");

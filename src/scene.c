@@ -292,10 +292,13 @@ static int parse_detail(parser *p, const config_setting_t *g, sbfx_medium_params
 static int parse_texture(parser *p, const config_setting_t *g, sbfx_medium_params *m)
 {
     static const char *const keys[] = {"size", "variants", NULL};
-    return check_keys(p, g, "texture", keys) ||
-                   get_int(p, g, "size", SBFX_SMOKE_MIN_SIZE, SBFX_SMOKE_MAX_SIZE, &m->texture_size) ||
-                   get_int(p, g, "variants", 1, SBFX_SMOKE_MAX_VARIANTS, &m->texture_variants)
-               ? -1 : 0;
+    if (check_keys(p, g, "texture", keys) ||
+        get_int(p, g, "size", SBFX_SMOKE_MIN_SIZE, SBFX_SMOKE_MAX_SIZE, &m->texture_size) ||
+        get_int(p, g, "variants", 1, SBFX_SMOKE_MAX_VARIANTS, &m->texture_variants))
+        return -1;
+    if (m->texture_size & (m->texture_size - 1)) /* its mip chain halves down to 1 x 1 */
+        return fail_at(p, config_setting_get_member(g, "size"), "'size' = %d: use a power of two", m->texture_size);
+    return 0;
 }
 
 /* The lit-smoke keys; they are kept (and harmless) on a medium that stays "phase". */

@@ -8,15 +8,34 @@
  *   translucency = (1 - height)(0.6 + 0.4 f3)   thin smoke lets light through: the rim glows
  *   normal = normalize(-dH/ds, -dH/dt, 1) with H = height / 2 (slab half-thickness in units of
  *            the particle's diameter), central differences.
- * The height is 0 outside the outline, so CLAMP_TO_EDGE sampling sees no seam. */
+ * The height is 0 outside the outline, so CLAMP_TO_EDGE sampling sees no seam. The mip chain is
+ * the rounded 2x2 box average of the level above, layer by layer. */
 #include <math.h>
 #include <string.h>
 #include "lit_ref.h"
 #include "reference.h"
 
+int sbfx_smoke_texture_levels(int size)
+{
+    int levels = 1;
+    while (size > 1) size >>= 1, levels++;
+    return levels;
+}
+
+size_t sbfx_smoke_level_offset(int size, int layers, int level)
+{
+    size_t offset = 0;
+    for (int l = 0; l < level; l++) {
+        size_t side = (size_t)(size >> l > 0 ? size >> l : 1);
+        offset += side * side * 4u * (size_t)layers;
+    }
+    return offset;
+}
+
 size_t sbfx_smoke_texture_bytes(int size, int variants)
 {
-    return (size_t)size * (size_t)size * 4u * SBFX_SMOKE_LAYERS_PER_VARIANT * (size_t)variants;
+    int layers = SBFX_SMOKE_LAYERS_PER_VARIANT * variants;
+    return sbfx_smoke_level_offset(size, layers, sbfx_smoke_texture_levels(size));
 }
 
 size_t sbfx_smoke_scratch_floats(int size) { return 3u * (size_t)size * (size_t)size; }
@@ -73,9 +92,25 @@ static void write_variant(int size, const float *f1, const float *f2, const floa
         }
 }
 
+/* Level `level` (side `side`) of every layer from the level above. */
+static void downsample(uint8_t *texels, int size, int layers, int level)
+{
+    int side = size >> level, above = side * 2;
+    const uint8_t *src = texels + sbfx_smoke_level_offset(size, layers, level - 1);
+    uint8_t *dst = texels + sbfx_smoke_level_offset(size, layers, level);
+    for (int l = 0; l < layers; l++)
+        for (int y = 0; y < side; y++)
+            for (int x = 0; x < side; x++)
+                for (int c = 0; c < 4; c++) {
+                    const uint8_t *a = src + (((size_t)l * above + 2 * y) * above + 2 * x) * 4 + c;
+                    size_t row = (size_t)above * 4;
+                    dst[(((size_t)l * side + y) * side + x) * 4 + c] = (uint8_t)((a[0] + a[4] + a[row] + a[row + 4] + 2) / 4);
+                }
+}
+
 int sbfx_smoke_texture_generate(int size, int variants, uint32_t seed, uint8_t *out, float *scratch)
 {
-    if (size < SBFX_SMOKE_MIN_SIZE || size > SBFX_SMOKE_MAX_SIZE || variants < 1 ||
+    if (size < SBFX_SMOKE_MIN_SIZE || size > SBFX_SMOKE_MAX_SIZE || (size & (size - 1)) || variants < 1 ||
         variants > SBFX_SMOKE_MAX_VARIANTS || !out || !scratch)
         return -1;
     size_t texels = (size_t)size * size, layer_bytes = texels * 4;
@@ -89,5 +124,7 @@ int sbfx_smoke_texture_generate(int size, int variants, uint32_t seed, uint8_t *
         uint8_t *surface = out + (size_t)(SBFX_SMOKE_LAYERS_PER_VARIANT * v) * layer_bytes;
         write_variant(size, f1, f2, f3, f1, surface, surface + layer_bytes);
     }
+    for (int level = 1; level < sbfx_smoke_texture_levels(size); level++)
+        downsample(out, size, SBFX_SMOKE_LAYERS_PER_VARIANT * variants, level);
     return 0;
 }
