@@ -32,8 +32,8 @@ SRC_CFLAGS := $(BASE_CFLAGS) $(shell $(PKG_CONFIG) --cflags $(SRC_PKGS)) -Isrc $
 SRC_LIBS := $(shell $(PKG_CONFIG) --libs $(SRC_PKGS)) -lm
 PLATFORM_CFLAGS := $(BASE_CFLAGS) $(shell $(PKG_CONFIG) --cflags $(PLATFORM_PKGS)) -Isrc -Iplatform $(CFLAGS)
 PLATFORM_LIBS := $(shell $(PKG_CONFIG) --libs $(PLATFORM_PKGS)) $(SRC_LIBS)
-LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined)
 comma := ,
+LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined)
 
 SRC := $(wildcard src/*.c)
 SHADERS := $(sort $(wildcard shaders_es/*.vert shaders_es/*.frag))
@@ -147,3 +147,30 @@ fuzz: $(BUILD)/fuzz/fuzz_scene
 		-artifact_prefix=$(BUILD)/fuzz/ -print_final_stats=1 $(BUILD)/fuzz/corpus > $(BUILD)/fuzz/log 2>&1 \
 		|| { tail -n 40 $(BUILD)/fuzz/log; exit 1; }
 	@grep -E "stat::number_of_executed_units|Done" $(BUILD)/fuzz/log | tail -n 2
+
+# ---- bench (issue #4: what accuracy costs) ------------------------------------------------
+# tests/bench/*.c link into one program. --wrap lets the bench time the module's particle pass
+# on its own (tests/bench/bench_gl.h says how); nothing else is wrapped.
+BENCH_SRC := $(wildcard tests/bench/*.c)
+BENCH_OBJ := $(BENCH_SRC:tests/bench/%.c=$(BUILD)/obj/bench/%.o)
+BENCH_WRAP := -Wl,--wrap=glClear -Wl,--wrap=glBindFramebuffer
+
+$(BUILD)/obj/bench/%.o: tests/bench/%.c
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests/bench -c -o $@ $<
+
+$(BUILD)/bench/bench_accuracy: $(BENCH_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	@mkdir -p $(@D)
+	$(CC) $(LDSAN) $(BENCH_WRAP) -o $@ $^ $(PLATFORM_LIBS)
+
+bench: $(BUILD)/bench/bench_accuracy
+
+# ---- lighting bench (issue #7: lit smoke) -------------------------------------------------
+# A program of its own (tests/bench/lighting/, outside the accuracy bench's tests/bench/*.c):
+# step count vs time and error of the lit-smoke ray march, lit vs phase cost. Writes
+# $(BUILD)/bench/lighting.csv when run (tests/bench/run.sh).
+$(BUILD)/bench/bench_lighting: tests/bench/lighting/bench_lighting.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+
+bench: $(BUILD)/bench/bench_lighting

@@ -1,0 +1,37 @@
+/* Headless OpenGL ES 3.0 context through EGL, for machines without a display.
+ *
+ * Contract: egl_headless_open() leaves a GLES 3.0+ context current on the calling thread with
+ * no window surface (render into FBOs). It prefers Mesa's surfaceless platform
+ * (EGL_PLATFORM_SURFACELESS_MESA) and falls back to EGL_DEFAULT_DISPLAY, to a config-less
+ * context or to a 1x1 pbuffer, whichever the driver offers. Mesa's environment variables
+ * (GALLIUM_DRIVER, LIBGL_ALWAYS_SOFTWARE, MESA_EXTENSION_OVERRIDE, EGL_PLATFORM...) act as
+ * they always do: nothing here overrides them.
+ *
+ * Errors: 0 on success, or a negative errno-like code with a message in err that says which
+ * EGL call failed and what to do about it:
+ *   -ENODEV   no EGL display could be opened or initialised
+ *   -ENOTSUP  the display offers no OpenGL ES 3.0 context
+ *   -EIO      a context or surface could not be created or made current */
+#ifndef SBFX_EGL_HEADLESS_H
+#define SBFX_EGL_HEADLESS_H
+
+#include <EGL/egl.h>
+#include <stddef.h>
+
+struct egl_headless {
+    EGLDisplay display;
+    EGLContext context;
+    EGLSurface surface;   /* EGL_NO_SURFACE unless the pbuffer fallback was needed */
+    EGLConfig config;     /* EGL_NO_CONFIG_KHR (NULL) with a config-less context */
+    const char *platform; /* "surfaceless" or "default": how the display was found */
+    int egl_major, egl_minor;
+};
+
+int egl_headless_open(struct egl_headless *out, char *err, size_t n);
+/* Releases the context and the display; safe on a zeroed or already-closed struct. */
+void egl_headless_close(struct egl_headless *egl);
+
+/* Human-readable name of an EGL error code ("EGL_BAD_ALLOC"...). */
+const char *egl_headless_error_string(EGLint code);
+
+#endif

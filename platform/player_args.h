@@ -1,0 +1,54 @@
+/* Command line of sbfx-play. The flag names are a contract relied on from outside (scripts,
+ * CI, docs): change them only together with README.md and tests/cli.sh. */
+#ifndef SBFX_PLAYER_ARGS_H
+#define SBFX_PLAYER_ARGS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "sbfx.h"
+
+#define PLAYER_MAX_TRIGGERS 64
+#define PLAYER_EFFECT_NAME_MAX 64
+#define PLAYER_MIN_SIZE 16    /* a 1/8 particle target stays at least 2 pixels wide */
+#define PLAYER_MAX_SIZE 16384 /* the run also checks the GL limits */
+#define PLAYER_MAX_FRAMES 1000000
+
+/* --trigger EFFECT@SECONDS[:X,Y,Z] */
+struct player_trigger {
+    char effect[PLAYER_EFFECT_NAME_MAX];
+    double seconds;
+    float position[3];
+};
+
+struct player_options {
+    int width, height;
+    int frames;
+    double fps;
+    const char *out_dir;
+    bool contact_sheet;
+    const char *stats_path;   /* NULL: no stats file */
+    struct player_trigger triggers[PLAYER_MAX_TRIGGERS];
+    int trigger_count;        /* from --trigger, in command-line order */
+    bool no_timeline;
+    int scale;                /* desc.target_divisor; 0 = the library's default (4) */
+    sbfx_opacity_mode opacity;
+    sbfx_target_format format;
+    sbfx_upsample upsample;
+    uint32_t seed;            /* 0 = the library's default */
+    const char *scene_path;   /* NULL: the built-in timeline */
+    bool quiet;
+    bool help;
+};
+
+void player_options_defaults(struct player_options *opt);
+/* Fills opt from argv (opt must hold the defaults). 0, or -EINVAL with a message in err that
+ * names the flag and the values it accepts. Stops at --help (opt->help set). */
+int player_parse_args(struct player_options *opt, int argc, char **argv, char *err, size_t n);
+/* Parses one EFFECT@SECONDS[:X,Y,Z]; the position defaults to the origin. */
+int player_parse_trigger(const char *text, struct player_trigger *out, char *err, size_t n);
+void player_usage(FILE *f);
+
+#endif

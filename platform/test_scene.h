@@ -1,0 +1,47 @@
+/* The opaque host scene the demo, the GL tests and the benchmark render explosions into.
+ *
+ * A large checkered ground plane (y = 0; the checker makes depth edges and halos visible) and
+ * three boxes placed where the built-in explosion (centred at the origin, 3-4 m across, rising
+ * to about 5 m) intersects them: a 1.2 m box straddling the cloud, a thin tall pillar it wraps
+ * around and a wall behind it. Lambert lighting from a directional sun plus a sky/ground
+ * hemisphere ambient, distance fog towards the sky colour.
+ *
+ * Rendered with GLES 3.0 into the scene's own framebuffer: an RGBA8 colour texture holding
+ * display-ready (sRGB-encoded) colour with alpha 1, and a DEPTH_COMPONENT24 depth texture with
+ * NEAREST filters, both of the size given at creation — what sbfx_frame wants as
+ * scene_color_texture and scene_depth_texture. Needs a current GLES 3.0 context. */
+#ifndef SBFX_TEST_SCENE_H
+#define SBFX_TEST_SCENE_H
+
+#include <GLES3/gl3.h>
+#include <stddef.h>
+
+struct test_scene {
+    GLuint framebuffer;
+    GLuint color_texture;   /* RGBA8, LINEAR, clamp to edge */
+    GLuint depth_texture;   /* DEPTH_COMPONENT24, NEAREST, compare mode NONE */
+    int width, height;
+    GLuint program, vao, vbo;
+    GLint u_model, u_normal_matrix, u_view_proj, u_eye, u_albedo, u_checker;
+};
+
+/* 0, or -EINVAL (bad size), -ENOMEM (GL out of memory), -EIO (shader, framebuffer or another
+ * GL failure) with a message in err. */
+int test_scene_create(struct test_scene *scene, int width, int height, char *err, size_t n);
+/* Draws the scene into scene->framebuffer (whole viewport), then binds framebuffer 0 and
+ * leaves depth test, culling, program and vertex array unbound/disabled.
+ * Returns 0, or -EIO if GL reported an error (glGetError, which is drained). */
+int test_scene_draw(struct test_scene *scene, const float view[16], const float projection[16]);
+void test_scene_destroy(struct test_scene *scene);
+
+/* The demo camera: a slow orbit (about 3.4 degrees per second) around the origin, 11 m away,
+ * 3 m high, looking at (0, 1.5, 0); 50 degree vertical fov, near 0.1, far 200. */
+#define TEST_SCENE_NEAR 0.1f
+#define TEST_SCENE_FAR 200.0f
+void test_scene_orbit_camera(double seconds, float aspect, float view[16], float projection[16]);
+
+/* The scene's light, for hosts that light particles to match: the direction sunlight
+ * travels in (world space, unit), the sun's colour and the sky ambient (linear RGB). */
+void test_scene_light(float direction[3], float color[3], float ambient[3]);
+
+#endif

@@ -1,0 +1,185 @@
+#!/usr/bin/env bash
+# The command-line contract of sbfx-play (flags in platform/player_args.c, README.md):
+# --help, clear errors with exit status 1 for bad arguments, and short headless runs that
+# write PNG frames, a contact sheet and a --stats JSON object.
+# Usage: tests/cli.sh [PLAYER] (default build/sbfx-play). Prints "ok - cli/x" lines for
+# tests/run.sh; exits 1 if a test failed.
+set -u
+PLAYER=${1:-build/sbfx-play}
+SUITE=cli
+RUN_TIMEOUT=${CLI_RUN_TIMEOUT:-120}
+STATS_KEYS="programs textures framebuffers gpu_bytes passes draw_calls particles_simulated heap_allocs_after_load"
+failures=0
+
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+ok() { echo "ok - $SUITE/$1"; }
+fail() {
+    echo "not ok - $SUITE/$1: $2"
+    failures=$((failures + 1))
+}
+
+# play ARGS...: runs the player; sets rc, output in $tmp/out and $tmp/err.
+play() {
+    timeout -k 5 "$RUN_TIMEOUT" "$PLAYER" "$@" >"$tmp/out" 2>"$tmp/err" </dev/null
+    rc=$?
+}
+
+first_error_line() { head -n 1 "$tmp/err" | cut -c 1-200; }
+
+# usage_error NAME NEEDLE ARGS...: the player must exit 1 with NEEDLE in its message.
+usage_error() {
+    local name=$1 needle=$2
+    shift 2
+    play "$@"
+    if [ "$rc" -ne 1 ]; then
+        fail "$name" "'$*' exited with $rc, expected 1 ($(first_error_line))"
+    elif ! grep -qF -- "$needle" "$tmp/err"; then
+        fail "$name" "'$*': the message does not name '$needle': $(first_error_line)"
+    else
+        ok "$name"
+    fi
+}
+
+# json_number FILE KEY: the value of "KEY": N in the one-object stats file.
+json_number() {
+    sed -n "s/.*\"$2\"[[:space:]]*:[[:space:]]*\([0-9][0-9]*\).*/\1/p" "$1"
+}
+
+is_png() {
+    [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]
+}
+
+test_help() {
+    play --help
+    local missing="" flag
+    for flag in --headless --size --frames --fps --out --contact-sheet --stats --trigger \
+        --no-timeline --scale --opacity --format --upsample --seed --scene --quiet --help; do
+        grep -qF -- "$flag" "$tmp/out" || missing="$missing $flag"
+    done
+    if [ "$rc" -ne 0 ]; then
+        fail help "--help exited with $rc"
+    elif [ -n "$missing" ]; then
+        fail help "--help does not document:$missing"
+    else
+        ok help
+    fi
+}
+
+test_bad_arguments() {
+    usage_error bad-size-format --size --size 960
+    usage_error bad-size-zero --size --size 0x540
+    usage_error bad-size-junk --size --size 960x540px
+    usage_error unknown-flag --no-such-flag --no-such-flag
+    usage_error stray-argument stray stray
+    usage_error frames-negative --frames --frames -1
+    usage_error frames-zero --frames --frames 0
+    usage_error missing-value --out --out
+    usage_error fps-zero --fps --fps 0
+    usage_error trigger-no-at --trigger --trigger explosion
+    usage_error trigger-bad-time --trigger --trigger explosion@soon
+    usage_error trigger-negative-time --trigger --trigger explosion@-1
+    usage_error trigger-short-position --trigger --trigger explosion@1:1,2
+    usage_error trigger-no-name --trigger --trigger @1
+    usage_error bad-scale --scale --scale 3
+    usage_error bad-opacity --opacity --opacity fuzzy
+    usage_error bad-format --format --format rgb565
+    usage_error bad-upsample --upsample --upsample cubic
+    usage_error bad-seed --seed --seed -1
+    usage_error scene-not-supported "scene files are not supported yet" --scene none.scene
+}
+
+# check_stats NAME FILE: one JSON object holding every key with a number.
+check_stats() {
+    local name=$1 file=$2 missing="" key
+    if [ ! -s "$file" ]; then
+        fail "$name" "no stats file $file"
+        return
+    fi
+    for key in $STATS_KEYS; do
+        [ -n "$(json_number "$file" "$key")" ] || missing="$missing $key"
+    done
+    local flat
+    flat=$(tr -d ' \n\t' <"$file")
+    if [ -n "$missing" ]; then
+        fail "$name" "stats lack:$missing ($(head -c 200 "$file"))"
+    elif [ "${flat:0:1}" != "{" ] || [ "${flat: -1}" != "}" ] || [ "$(tr -cd '{' <"$file" | wc -c)" -ne 1 ]; then
+        fail "$name" "stats are not one JSON object: $(head -c 200 "$file")"
+    else
+        ok "$name"
+    fi
+}
+
+test_headless_run() {
+    local dir="$tmp/run"
+    play --headless --size 160x90 --frames 4 --out "$dir" --contact-sheet --stats "$tmp/run.json" --quiet
+    if [ "$rc" -ne 0 ]; then
+        fail run "a 4-frame headless run exited with $rc: $(first_error_line)"
+        return
+    fi
+    ok run
+    local frames bad=""
+    frames=$(find "$dir" -maxdepth 1 -name 'frame-*.png' | wc -l)
+    for f in frame-0000 frame-0001 frame-0002 frame-0003; do
+        [ -f "$dir/$f.png" ] && is_png "$dir/$f.png" || bad="$bad $f.png"
+    done
+    if [ "$frames" -ne 4 ] || [ -n "$bad" ]; then
+        fail run-frames "expected frame-0000..0003.png, found $frames frames, bad or missing:$bad"
+    else
+        ok run-frames
+    fi
+    if [ -f "$dir/contact-sheet.png" ] && is_png "$dir/contact-sheet.png"; then
+        ok run-contact-sheet
+    else
+        fail run-contact-sheet "no valid $dir/contact-sheet.png"
+    fi
+    check_stats run-stats "$tmp/run.json"
+}
+
+test_idle_run() {
+    play --no-timeline --size 160x90 --frames 3 --out "$tmp/idle" --stats "$tmp/idle.json" --quiet
+    if [ "$rc" -ne 0 ]; then
+        fail idle "a --no-timeline run exited with $rc: $(first_error_line)"
+        return
+    fi
+    check_stats idle-stats "$tmp/idle.json"
+    local passes simulated
+    passes=$(json_number "$tmp/idle.json" passes)
+    simulated=$(json_number "$tmp/idle.json" particles_simulated)
+    if [ "$passes" = 0 ] && [ "$simulated" = 0 ]; then
+        ok idle-no-passes
+    else
+        fail idle-no-passes "--no-timeline: passes=$passes particles_simulated=$simulated, expected 0 and 0"
+    fi
+}
+
+test_trigger_run() {
+    play --no-timeline --trigger explosion@0.1:0.5,0,-0.5 --size 160x90 --frames 4 \
+        --out "$tmp/trig" --stats "$tmp/trig.json" --quiet
+    if [ "$rc" -ne 0 ]; then
+        fail trigger-run "exited with $rc: $(first_error_line)"
+        return
+    fi
+    local passes simulated
+    passes=$(json_number "$tmp/trig.json" passes)
+    simulated=$(json_number "$tmp/trig.json" particles_simulated)
+    if [ "${passes:-0}" -gt 0 ] && [ "${simulated:-0}" -gt 0 ]; then
+        ok trigger-run
+    else
+        fail trigger-run "a --trigger after --no-timeline left passes=$passes particles_simulated=$simulated"
+    fi
+    usage_error trigger-unknown-effect nosuch --no-timeline --trigger nosuch@0 --size 160x90 \
+        --frames 1 --out "$tmp/unknown" --quiet
+}
+
+if [ ! -x "$PLAYER" ]; then
+    fail player "$PLAYER is not built"
+    exit 1
+fi
+test_help
+test_bad_arguments
+test_headless_run
+test_idle_run
+test_trigger_run
+[ "$failures" -eq 0 ]
