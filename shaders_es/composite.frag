@@ -56,11 +56,11 @@ void main()
 #ifdef UPSAMPLE_NEAREST_DEPTH
     float window = texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r;
     float z = window >= 1.0 ? u_far : u_depth_params.y / (window * 2.0 - 1.0 + u_depth_params.x);
-    ivec2 hi = u_low_size - 1;
-    vec4 dz = abs(vec4(texelFetch(u_low_depth, clamp(base, ivec2(0), hi), 0).r,
-                       texelFetch(u_low_depth, clamp(base + ivec2(1, 0), ivec2(0), hi), 0).r,
-                       texelFetch(u_low_depth, clamp(base + ivec2(0, 1), ivec2(0), hi), 0).r,
-                       texelFetch(u_low_depth, clamp(base + ivec2(1, 1), ivec2(0), hi), 0).r)
+    ivec2 top = u_low_size - 1;
+    vec4 dz = abs(vec4(texelFetch(u_low_depth, clamp(base, ivec2(0), top), 0).r,
+                       texelFetch(u_low_depth, clamp(base + ivec2(1, 0), ivec2(0), top), 0).r,
+                       texelFetch(u_low_depth, clamp(base + ivec2(0, 1), ivec2(0), top), 0).r,
+                       texelFetch(u_low_depth, clamp(base + ivec2(1, 1), ivec2(0), top), 0).r)
                   * u_far - z);
     if (max(max(dz.x, dz.y), max(dz.z, dz.w)) > u_depth_threshold * z) {
         result = p00;
@@ -73,7 +73,13 @@ void main()
 #ifdef OWN_SCENE
     vec2 uv = gl_FragCoord.xy / u_full_size;
 #ifdef HAS_SHIMMER
-    vec2 offset = texelFetch(u_distortion, clamp(ivec2(low + 0.5), ivec2(0), u_low_size - 1), 0).rg;
+    // bilinear, like the particles: nearest low-res offsets would tear the image into blocks
+    ivec2 hi = u_low_size - 1;
+    vec2 d00 = texelFetch(u_distortion, clamp(base, ivec2(0), hi), 0).rg;
+    vec2 d10 = texelFetch(u_distortion, clamp(base + ivec2(1, 0), ivec2(0), hi), 0).rg;
+    vec2 d01 = texelFetch(u_distortion, clamp(base + ivec2(0, 1), ivec2(0), hi), 0).rg;
+    vec2 d11 = texelFetch(u_distortion, clamp(base + ivec2(1, 1), ivec2(0), hi), 0).rg;
+    vec2 offset = mix(mix(d00, d10, f.x), mix(d01, d11, f.x), f.y);
     if (!(abs(offset.x) < 1.0 && abs(offset.y) < 1.0)) offset = vec2(0.0);   // NaN, Inf, absurd
     uv = clamp(uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);
 #endif

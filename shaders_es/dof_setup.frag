@@ -16,6 +16,12 @@ uniform vec2 u_depth_params;
 uniform float u_far_plane;
 uniform vec2 u_near;               // [full blur, sharp] distances
 uniform vec2 u_far;                // [sharp, full blur] distances
+// Particles are not in the depth buffer: where they cover the scene, their own (coverage-
+// weighted) distance sets the CoC, or a sharp explosion over a far sky would be blurred.
+uniform bool u_particles_drawn;
+uniform sampler2D u_particle_motion; // low-res: premultiplied velocity, distance; transmittance
+uniform float u_divisor;
+uniform ivec2 u_particle_size;
 
 layout(location = 0) out vec4 o_far;   // rgb, far CoC in [0,1]
 layout(location = 1) out vec4 o_near;  // rgb * coverage, coverage (= near CoC in [0,1])
@@ -46,6 +52,12 @@ void main()
             ivec2 q = min(base + ivec2(i, j), u_size - 1);
             vec3 c = texelFetch(u_color, q, 0).rgb;
             float coc = signed_coc(view_depth(q));
+            if (u_particles_drawn) {
+                ivec2 t = clamp(ivec2(vec2(q) / u_divisor), ivec2(0), u_particle_size - 1);
+                vec4 m = texelFetch(u_particle_motion, t, 0);
+                float coverage = clamp(1.0 - m.a, 0.0, 1.0);
+                if (coverage > 1e-3) coc = mix(coc, signed_coc(m.b / coverage), coverage);
+            }
             far_sum += c;
             far_coc += max(coc, 0.0);
             near_sum += c * max(-coc, 0.0);

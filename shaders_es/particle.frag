@@ -21,7 +21,7 @@ precision highp sampler3D;
 
 flat in vec4 v_center_radius;
 flat in vec4 v_detail;
-#ifdef HAS_VELOCITY_TARGET
+#ifdef HAS_MOTION_TARGET
 flat in vec2 v_velocity;
 #endif
 #ifdef MEDIUM_HEAT
@@ -83,12 +83,12 @@ const float RADIANCE_CEILING = 64.0;
 #endif
 
 // 0: premultiplied light, alpha; 1: shimmer offset (heat adds, others occlude by alpha);
-// 2: premultiplied screen velocity, alpha (velocity motion blur)
+// 2: premultiplied screen velocity and view distance, alpha (motion blur, depth of field)
 layout(location = 0) out vec4 o_color;
 #ifdef HAS_DISTORTION_TARGET
 layout(location = 1) out vec4 o_distortion;
 #endif
-#ifdef HAS_VELOCITY_TARGET
+#ifdef HAS_MOTION_TARGET
 layout(location = 2) out vec4 o_velocity;
 #endif
 
@@ -335,7 +335,7 @@ void main()
 #ifdef HAS_DISTORTION_TARGET
     o_distortion = vec4(0.0);
 #endif
-#ifdef HAS_VELOCITY_TARGET
+#ifdef HAS_MOTION_TARGET
     o_velocity = vec4(0.0);
 #endif
     return;
@@ -383,7 +383,7 @@ void main()
 #ifdef HAS_DISTORTION_TARGET
     o_distortion = vec4(2.0 * u_heat_strength * alpha * noise, 0.0, 0.0);
 #endif
-#ifdef HAS_VELOCITY_TARGET
+#ifdef HAS_MOTION_TARGET
     o_velocity = vec4(0.0);
 #endif
 #else
@@ -391,8 +391,8 @@ void main()
 #ifdef HAS_DISTORTION_TARGET
     o_distortion = vec4(0.0, 0.0, 0.0, alpha);   // shimmer behind this particle is covered
 #endif
-#ifdef HAS_VELOCITY_TARGET
-    o_velocity = vec4(v_velocity * alpha, 0.0, alpha);
+#ifdef HAS_MOTION_TARGET
+    o_velocity = vec4(v_velocity * alpha, -c.z * alpha, alpha);
 #endif
 #endif
 }

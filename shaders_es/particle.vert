@@ -7,10 +7,12 @@ precision highp float;
 
 layout(location = 0) in vec4 a_center_radius; // view-space centre, radius
 layout(location = 1) in vec4 a_detail;        // detail window u, v, time offset; intensity
-#ifdef HAS_VELOCITY_TARGET
+#ifdef HAS_MOTION_TARGET
+flat out vec2 v_velocity;                       // screen motion of the centre, full-res pixels
+#endif
+#ifdef HAS_PARTICLE_MOTION
 layout(location = 2) in vec4 a_previous_center; // view-space centre one frame ago
 uniform vec2 u_full_size;
-flat out vec2 v_velocity;                       // screen motion of the centre, full-res pixels
 #endif
 
 uniform vec4 u_projection;  // projection[0], projection[5], projection[8], projection[9]
@@ -37,7 +39,10 @@ void main()
 {
     v_center_radius = a_center_radius;
     v_detail = a_detail;
-#ifdef HAS_VELOCITY_TARGET
+#ifdef HAS_MOTION_TARGET
+    v_velocity = vec2(0.0);
+#endif
+#ifdef HAS_PARTICLE_MOTION
     vec3 p0 = a_previous_center.xyz, p1 = a_center_radius.xyz;
     bool visible = p0.z < 0.0 && p1.z < 0.0 && finite4(a_previous_center);
     vec2 ndc1 = p1.xy / -p1.z * u_projection.xy - u_projection.zw;

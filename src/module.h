@@ -122,6 +122,8 @@ typedef struct sbfx_post_gl {
 typedef struct sbfx_plan {
     bool distortion;           /* heat medium: shimmer offsets */
     bool particle_velocity;    /* velocity blur: particles write their screen motion */
+    bool motion_target;        /* velocity blur or depth of field: particles write premultiplied
+                                  velocity and depth into attachment 2 */
     bool owns_scene;           /* any post effect: sbfx reads the scene colour and writes out */
 } sbfx_plan;
 

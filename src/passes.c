@@ -222,8 +222,10 @@ static void pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     gather_lights(fx, f->view, &lights);
     glBindFramebuffer(GL_FRAMEBUFFER, gl->particles.framebuffer);
     glViewport(0, 0, gl->low_width, gl->low_height);
-    glClearColor(0.0f, 0.0f, 0.0f, 1.0f); /* no light added, everything transmitted */
-    glClear(GL_COLOR_BUFFER_BIT);
+    /* No light added, everything transmitted, no offset, no motion: every attachment. */
+    const GLfloat clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    for (GLint i = 0; i < SBFX_RT_MAX; i++)
+        if (gl->particles.texture[i]) glClearBufferfv(GL_COLOR, i, clear);
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     /* rgb = src + dst (1 - a); transmittance a = dst (1 - a) */

@@ -172,6 +172,10 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     set_depth_uniforms(prog, pf, "u_far_plane");
     glUniform2fv(glGetUniformLocation(prog, "u_near"), 1, post->dof_near);
     glUniform2fv(glGetUniformLocation(prog, "u_far"), 1, post->dof_far);
+    bind_unit(prog, "u_particle_motion", 2, fx->gl.particles.texture[2]);
+    glUniform1i(glGetUniformLocation(prog, "u_particles_drawn"), p->particles_drawn && fx->gl.particles.texture[2]);
+    glUniform1f(glGetUniformLocation(prog, "u_divisor"), (float)fx->desc.target_divisor);
+    glUniform2i(glGetUniformLocation(prog, "u_particle_size"), fx->gl.low_width, fx->gl.low_height);
     finish(fx);
     prog = p->dof_blur_program;
     for (int dir = 0; dir < 2; dir++) {
@@ -273,7 +277,7 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
     begin(prog, p->velocity.framebuffer, f->width, f->height);
     bind_unit(prog, "u_scene_depth", 0, f->scene_depth_texture);
     bind_unit(prog, "u_particle_velocity", 1, fx->gl.particles.texture[2]);
-    glUniform1i(glGetUniformLocation(prog, "u_particles_drawn"), p->particles_drawn);
+    glUniform1i(glGetUniformLocation(prog, "u_particles_drawn"), p->particles_drawn && fx->gl.particles.texture[2]);
     glUniformMatrix4fv(glGetUniformLocation(prog, "u_reproject"), 1, GL_FALSE, reproject_f);
     glUniform2f(glGetUniformLocation(prog, "u_size"), (float)f->width, (float)f->height);
     glUniform1f(glGetUniformLocation(prog, "u_shutter"), post->shutter);

@@ -19,9 +19,10 @@ static void particle_defines(const sbfx *fx, sbfx_medium m, char *out, size_t si
     bool heat = m == SBFX_HEAT;
     bool scatters = p->albedo > 0 && !heat, emits = m == SBFX_FIRE, lit = scatters && p->lit;
     bool float_targets = sbfx_half_float_renderable();
-    size_t used = (size_t)snprintf(out, size, "%s%s%s", heat ? "#define MEDIUM_HEAT\n" : "",
+    size_t used = (size_t)snprintf(out, size, "%s%s%s%s", heat ? "#define MEDIUM_HEAT\n" : "",
+                                   fx->plan.particle_velocity ? "#define HAS_PARTICLE_MOTION\n" : "",
                                    fx->plan.distortion && float_targets ? "#define HAS_DISTORTION_TARGET\n" : "",
-                                   fx->plan.particle_velocity ? "#define HAS_VELOCITY_TARGET\n" : "");
+                                   fx->plan.motion_target ? "#define HAS_MOTION_TARGET\n" : "");
     out += used, size -= used;
     snprintf(out, size, "%s%s%s%s%s%s%s%s", opacity_defines[fx->desc.opacity],
              scatters ? "#define MEDIUM_SCATTERS\n" : "", emits ? "#define MEDIUM_EMITS\n" : "",

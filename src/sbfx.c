@@ -148,6 +148,7 @@ static void adopt_scene(sbfx *fx, const sbfx_scene *scene)
             fx->uses_medium[fx->effects[e].emitters[i].medium] = true;
     fx->plan.distortion = fx->uses_medium[SBFX_HEAT];
     fx->plan.particle_velocity = fx->post.blur == SBFX_BLUR_VELOCITY;
+    fx->plan.motion_target = fx->plan.particle_velocity || fx->post.dof;
     fx->plan.owns_scene = fx->plan.distortion || fx->post.blur != SBFX_BLUR_NONE || fx->post.dof;
     fx->instance_floats = fx->plan.particle_velocity ? 12 : 8;
     if (!fx->desc.ignore_timeline)

@@ -1,7 +1,8 @@
 /* The reduced-resolution particle target and the downsampled opaque depth (DESIGN §2.5).
  * Made on the first render and again only when the output size changes.
  * The particle framebuffer's attachments: 0 light + transmittance; 1 heat-shimmer offsets
- * (scenes with heat); 2 premultiplied screen velocity (scenes with velocity motion blur). */
+ * (scenes with heat); 2 premultiplied screen velocity and view distance (scenes with velocity
+ * motion blur or depth of field). */
 #include "module.h"
 
 typedef struct target_format {
@@ -33,7 +34,7 @@ static bool try_format(sbfx *fx, const target_format *f)
      * (the shaders' extra outputs then go nowhere) and the loss is logged at load. */
     bool is_float = f->id != SBFX_FORMAT_RGBA8;
     const sbfx_rt_format *colors[SBFX_RT_MAX] = {
-        f->rt, is_float && fx->plan.distortion ? f->rt : NULL, is_float && fx->plan.particle_velocity ? f->rt : NULL};
+        f->rt, is_float && fx->plan.distortion ? f->rt : NULL, is_float && fx->plan.motion_target ? f->rt : NULL};
     if (!sbfx_rt_create(fx, &gl->particles, gl->low_width, gl->low_height, colors, NULL, GL_NEAREST)) return false;
     gl->target_type = f->rt->type;
     fx->counters.target_format = f->id;
