@@ -27,8 +27,6 @@ struct frame_times {
 
 struct player {
     const struct player_options *opt;
-    struct player_trigger triggers[PLAYER_MAX_TRIGGERS];
-    int trigger_count, next_trigger; /* sorted by time */
     struct egl_headless egl;
     struct test_scene scene;
     GLuint out_framebuffer, out_renderbuffer;
@@ -103,20 +101,22 @@ static int check_writable(const char *path, char *err, size_t n)
     return 0;
 }
 
-/* --trigger, stably sorted by time (ties keep command-line order). The default timeline (one
- * explosion at t=0 at the origin) is the library's built-in scene's own: --no-timeline turns
- * it off through desc.ignore_timeline, so it is not repeated here. */
-static void plan_triggers(struct player *p)
+/* --trigger entries go to the module's schedule: each fires at the first simulation step at
+ * or after its time, so a run does not depend on --fps. The default timeline (one explosion at
+ * t=0 at the origin) is the scene's own; --no-timeline turns it off (desc.ignore_timeline). */
+static int schedule_triggers(struct player *p, char *err, size_t n)
 {
     const struct player_options *opt = p->opt;
-    for (int i = 0; i < opt->trigger_count; i++) p->triggers[p->trigger_count++] = opt->triggers[i];
-    for (int i = 1; i < p->trigger_count; i++) {
-        struct player_trigger t = p->triggers[i];
-        int j = i;
-        for (; j > 0 && p->triggers[j - 1].seconds > t.seconds; j--)
-            p->triggers[j] = p->triggers[j - 1];
-        p->triggers[j] = t;
+    for (int i = 0; i < opt->trigger_count; i++) {
+        const struct player_trigger *t = &opt->triggers[i];
+        sbfx_result r = sbfx_schedule(p->fx, t->effect, t->seconds, t->position);
+        if (r != SBFX_OK) {
+            snprintf(err, n, "--trigger %s@%g: %s: %s", t->effect, t->seconds, sbfx_result_string(r),
+                     sbfx_last_error(p->fx));
+            return -EINVAL;
+        }
     }
+    return 0;
 }
 
 static int create_output(struct player *p, char *err, size_t n)
@@ -147,25 +147,42 @@ static int create_output(struct player *p, char *err, size_t n)
     return 0;
 }
 
+static int load_scene(const char *path, sbfx_scene **scene, char *err, size_t n)
+{
+    *scene = NULL;
+    if (!path) return 0; /* the library's built-in explosion */
+    char why[512];
+    if (sbfx_scene_load(path, scene, why, sizeof(why)) != SBFX_OK) {
+        snprintf(err, n, "--scene %s", why);
+        return -EINVAL;
+    }
+    return 0;
+}
+
 static int create_fx(struct player *p, char *err, size_t n)
 {
     const struct player_options *opt = p->opt;
+    sbfx_scene *scene = NULL;
+    int rc = load_scene(opt->scene_path, &scene, err, n);
+    if (rc) return rc;
     const sbfx_desc desc = {
         .target_divisor = opt->scale,
         .target_format = opt->format,
         .upsample = opt->upsample,
         .opacity = opt->opacity,
         .seed = opt->seed,
+        .scene = scene,
         .ignore_timeline = opt->no_timeline,
         .log = on_sbfx_log,
         .log_user = (void *)opt,
     };
     sbfx_result r = sbfx_create(&desc, &p->fx);
+    sbfx_scene_free(scene); /* the module keeps what it needs */
     if (r != SBFX_OK) { /* the reason went through the log callback */
         snprintf(err, n, "sbfx_create failed: %s", sbfx_result_string(r));
         return -EIO;
     }
-    return 0;
+    return schedule_triggers(p, err, n);
 }
 
 static int setup(struct player *p, char *err, size_t n)
@@ -191,7 +208,6 @@ static int setup(struct player *p, char *err, size_t n)
     if (opt->contact_sheet)
         rc = contact_sheet_init(&p->sheet, opt->frames, opt->width, opt->height,
                                 CONTACT_CELL_WIDTH, err, n);
-    plan_triggers(p);
     return rc;
 }
 
@@ -227,35 +243,9 @@ static int update(struct player *p, double dt, char *err, size_t n)
     return 0;
 }
 
-static int fire(struct player *p, const struct player_trigger *t, char *err, size_t n)
-{
-    sbfx_result r = sbfx_trigger(p->fx, t->effect, t->position);
-    if (r == SBFX_ERR_POOL_FULL) { /* a full pool drops one effect; the run goes on */
-        fprintf(stderr, "sbfx-play: warning: %s@%g: particle pool full, effect dropped\n",
-                t->effect, t->seconds);
-        return 0;
-    }
-    if (r != SBFX_OK) {
-        snprintf(err, n, "--trigger %s@%g: sbfx_trigger failed: %s: %s", t->effect, t->seconds,
-                 sbfx_result_string(r), sbfx_last_error(p->fx));
-        return -EINVAL;
-    }
-    return 0;
-}
-
-/* Advances to `target` seconds; the update is split at each due trigger so that an effect
- * starts at its own time, not at the next frame. */
 static int advance(struct player *p, double target, char *err, size_t n)
 {
     p->frame_simulated = 0;
-    while (p->next_trigger < p->trigger_count) {
-        const struct player_trigger *t = &p->triggers[p->next_trigger];
-        if (t->seconds > target + TRIGGER_EPSILON) break;
-        int rc = update(p, t->seconds - p->sim_time, err, n);
-        if (rc == 0) rc = fire(p, t, err, n);
-        if (rc) return rc;
-        p->next_trigger++;
-    }
     return update(p, target - p->sim_time, err, n);
 }
 
@@ -452,11 +442,6 @@ int main(int argc, char **argv)
     if (opt.help) {
         player_usage(stdout);
         return 0;
-    }
-    if (opt.scene_path) {
-        fprintf(stderr, "sbfx-play: --scene %s: scene files are not supported yet by this build\n",
-                opt.scene_path);
-        return 1;
     }
     return play(&opt) == 0 ? 0 : 1;
 }
