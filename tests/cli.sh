@@ -87,7 +87,13 @@ test_bad_arguments() {
     usage_error bad-format --format --format rgb565
     usage_error bad-upsample --upsample --upsample cubic
     usage_error bad-seed --seed --seed -1
-    usage_error scene-not-supported "scene files are not supported yet" --scene none.scene
+    usage_error scene-missing "none.cfg" --scene none.cfg
+    printf 'media = { smoke = {\n  densty = 0.4; }; };\n' >"$tmp/typo.cfg"
+    usage_error scene-typo "typo.cfg:2: unknown key 'densty' in media.smoke (did you mean 'density'?)" \
+        --scene "$tmp/typo.cfg"
+    printf 'media = { smoke = { density = -2.0; }; };\n' >"$tmp/range.cfg"
+    usage_error scene-range "range.cfg:1: 'density' = -2 is out of range" --scene "$tmp/range.cfg"
+    usage_error scene-trigger-unknown "no effect named" --scene scenes/smoke.cfg --trigger explosion@1
 }
 
 # check_stats NAME FILE: one JSON object holding every key with a number.
@@ -154,6 +160,23 @@ test_idle_run() {
     fi
 }
 
+# A smoke-only scene plans one particle program (+ depth downsample and composite).
+test_scene_run() {
+    play --scene scenes/smoke.cfg --size 160x90 --frames 6 --out "$tmp/smoke" --stats "$tmp/smoke.json" --quiet
+    if [ "$rc" -ne 0 ]; then
+        fail scene-run "--scene scenes/smoke.cfg exited with $rc: $(first_error_line)"
+        return
+    fi
+    local programs passes
+    programs=$(json_number "$tmp/smoke.json" programs)
+    passes=$(json_number "$tmp/smoke.json" passes)
+    if [ "$programs" = 3 ] && [ "${passes:-0}" -eq 3 ]; then
+        ok scene-run
+    else
+        fail scene-run "smoke scene: programs=$programs passes=$passes, expected 3 and 3"
+    fi
+}
+
 test_trigger_run() {
     play --no-timeline --trigger explosion@0.1:0.5,0,-0.5 --size 160x90 --frames 4 \
         --out "$tmp/trig" --stats "$tmp/trig.json" --quiet
@@ -181,5 +204,6 @@ test_help
 test_bad_arguments
 test_headless_run
 test_idle_run
+test_scene_run
 test_trigger_run
 [ "$failures" -eq 0 ]
