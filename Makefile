@@ -174,3 +174,10 @@ $(BUILD)/bench/bench_lighting: tests/bench/lighting/bench_lighting.c $(PLATFORM_
 	$(CC) $(PLATFORM_CFLAGS) $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
 
 bench: $(BUILD)/bench/bench_lighting
+
+# ---- scenes and post-effects bench (issues #3, #6) ------------------------------------------
+$(BUILD)/bench/bench_scenes: tests/bench/scenes/bench_scenes.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -o $@ $< $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+
+bench: $(BUILD)/bench/bench_scenes
