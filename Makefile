@@ -111,7 +111,7 @@ test:
 demo:
 	@tools/deps.sh build
 	@$(MAKE) --no-print-directory all
-	@$(BUILD)/sbfx-play --headless --size 960x540 --frames 36 --out $(BUILD)/demo --contact-sheet
+	@$(BUILD)/sbfx-play --headless --scene scenes/explosion.cfg --size 960x540 --frames 36 --out $(BUILD)/demo --contact-sheet
 
 bench: all
 	@tests/bench/run.sh $(BUILD)

@@ -405,7 +405,7 @@ void test_scene_destroy(struct test_scene *scene)
 void test_scene_orbit_camera(double seconds, float aspect, float view[16], float projection[16])
 {
     const double start = 0.35, speed = 0.06; /* radians, radians per second */
-    const float distance = 11.0f, height = 3.0f;
+    const float distance = 8.5f, height = 2.6f;
     double angle = start + speed * seconds;
     const float eye[3] = {distance * (float)sin(angle), height, distance * (float)cos(angle)};
     const float target[3] = {0.0f, 1.5f, 0.0f};

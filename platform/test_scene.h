@@ -34,8 +34,8 @@ int test_scene_create(struct test_scene *scene, int width, int height, char *err
 int test_scene_draw(struct test_scene *scene, const float view[16], const float projection[16]);
 void test_scene_destroy(struct test_scene *scene);
 
-/* The demo camera: a slow orbit (about 3.4 degrees per second) around the origin, 11 m away,
- * 3 m high, looking at (0, 1.5, 0); 50 degree vertical fov, near 0.1, far 200. */
+/* The demo camera: a slow orbit (about 3.4 degrees per second) around the origin, 8.5 m away,
+ * 2.6 m high, looking at (0, 1.5, 0); 50 degree vertical fov, near 0.1, far 200. */
 #define TEST_SCENE_NEAR 0.1f
 #define TEST_SCENE_FAR 200.0f
 void test_scene_orbit_camera(double seconds, float aspect, float view[16], float projection[16]);
