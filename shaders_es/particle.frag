@@ -226,7 +226,8 @@ lit_maps lit_fetch(vec2 st, float layer, float lod)
 #ifdef LIT_SHADOW
 // Transmittance toward the light: midpoint samples of the slab density max(0, h - 2|z|) from
 // the front surface to where the ray leaves the particle's box, n = nMin + (N.V)(nMax - nMin)
-// steps (the seed's eq. 5.2.5, rounded half up). tau_2r = extinction x diameter.
+// steps (the seed's eq. 5.2.5, rounded half up). tau_2r = extinction x diameter. Stops once the
+// optical depth passes 20 (transmittance < 2e-9: nothing left to see, the rest is cost).
 float lit_shadow(vec3 start, vec3 l, float layer, float lod, float n_dot_v, float tau_2r)
 {
     float n = floor(u_steps.x + clamp(n_dot_v, 0.0, 1.0) * (u_steps.y - u_steps.x) + 0.5);
@@ -240,6 +241,7 @@ float lit_shadow(vec3 start, vec3 l, float layer, float lod, float n_dot_v, floa
         if (float(k) >= n) break;
         vec3 p = start + (float(k) + 0.5) * dt * l;
         sum += max(textureLod(u_smoke, vec3(p.xy, layer), lod).w - 2.0 * abs(p.z), 0.0);
+        if (tau_2r * sum * dt > 20.0) break;
     }
     return exp(-tau_2r * sum * dt);
 }
@@ -278,7 +280,8 @@ mediump vec3 lit_scattered(vec3 ray, vec3 c, float r, float tau_scale)
         float back = u_translucency * m.translucency * max(-dot(v, l), 0.0);
         float shadow = 1.0;
 #ifdef LIT_SHADOW
-        shadow = lit_shadow(vec3(st, 0.5 * m.height), l, layer, lod, n_dot_v, u_tau * tau_scale * 2.0 * r);
+        if (diffuse + back > 0.0)   // a light that adds nothing needs no march
+            shadow = lit_shadow(vec3(st, 0.5 * m.height), l, layer, lod, n_dot_v, u_tau * tau_scale * 2.0 * r);
 #endif
         sum += u_light_color[i] * (falloff * shadow * (diffuse + back));
     }

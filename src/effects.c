@@ -57,3 +57,11 @@ void sbfx_builtin_explosion(sbfx_effect *out)
     out->flashes[0] = (sbfx_flash){.delay = 0.0f, .duration = 0.5f, .color = {6.0f, 4.0f, 2.0f},
                                    .offset = {0.0f, 0.8f, 0.0f}};
 }
+
+/* Post effects are off until a scene asks; these are the values a partial block keeps. */
+void sbfx_default_post(sbfx_post_params *post)
+{
+    *post = (sbfx_post_params){.blur = SBFX_BLUR_NONE, .persistence = 0.08f, .tile = 8, .samples = 15,
+                               .shutter = 0.5f, .dof = false, .dof_near = {0.5f, 2.0f},
+                               .dof_far = {20.0f, 60.0f}, .dof_max_radius = 8.0f, .dof_scale = 2};
+}

@@ -122,6 +122,7 @@ double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, double lod, c
         double p[3] = {start[0] + t * to_light[0], start[1] + t * to_light[1], start[2] + t * to_light[2]};
         sbfx_smoke_sample(tex, SBFX_SMOKE_LAYERS_PER_VARIANT * variant, p[0], p[1], lod, rgba);
         sum += fmax(rgba[3] - 2.0 * fabs(p[2]), 0.0);
+        if (tau * 2.0 * radius * sum * dt > 20.0) break; /* transmittance < 2e-9: the shader stops too */
     }
     return exp(-tau * 2.0 * radius * sum * dt);
 }

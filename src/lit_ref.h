@@ -84,7 +84,7 @@ int sbfx_lit_steps(double n_dot_v, int n_min, int n_max);
  * samples) to where the ray leaves the particle's box st in [0,1]^2, zt in [-1/2, 1/2]:
  *   exp(-tau * 2r * sum_k max(0, h(st_k) - 2|zt_k|) * dt),  dt in texture units.
  * tau = extinction at the densest point (per metre), as for the particle's opacity. steps = 0
- * gives 1 (no self-shadowing). */
+ * gives 1 (no self-shadowing). The march stops once the optical depth passes 20. */
 double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, double lod, const double st[2],
                        double height, const double to_light[3], double radius, double tau, int steps);
 

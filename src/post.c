@@ -6,13 +6,6 @@
 #include <string.h>
 #include "module.h"
 
-void sbfx_default_post(sbfx_post_params *post)
-{
-    *post = (sbfx_post_params){.blur = SBFX_BLUR_NONE, .persistence = 0.08f, .tile = 8, .samples = 15,
-                               .shutter = 0.5f, .dof = false, .dof_near = {0.5f, 2.0f},
-                               .dof_far = {20.0f, 60.0f}, .dof_max_radius = 8.0f, .dof_scale = 2};
-}
-
 bool sbfx_post_owns_scene(const sbfx *fx) { return fx->plan.owns_scene; }
 
 static bool has_steps(const sbfx *fx) { return fx->post.dof || fx->post.blur != SBFX_BLUR_NONE; }

@@ -171,6 +171,22 @@ else
     emit "not ok - asan: $ASAN_BUILD is missing (make test builds it)"
 fi
 
+# The scene parser under libFuzzer for a bounded time, the example scenes as corpus (issue #3).
+run_fuzz() {
+    local seconds=${FUZZ_SECONDS:-60} log="$BUILD/fuzz/make.log"
+    if ! command -v clang >/dev/null 2>&1; then
+        emit "skip - fuzz/scene_parse: clang is not installed (apt-get install clang libclang-rt-14-dev)"
+        return
+    fi
+    mkdir -p "$BUILD/fuzz"
+    if make --no-print-directory BUILD="$BUILD" FUZZ_SECONDS="$seconds" fuzz >"$log" 2>&1; then
+        emit "ok - fuzz/scene_parse ($(grep -o 'Done [0-9]* runs' "$BUILD/fuzz/log" | head -n 1) in ${seconds} s)"
+    else
+        emit "not ok - fuzz/scene_parse: $(tail -n 5 "$log" | tr '\n' ' ')"
+    fi
+}
+run_fuzz
+
 if [ "$skipped" -gt 0 ]; then
     echo "$passed passed, $failed failed, $skipped skipped"
 else

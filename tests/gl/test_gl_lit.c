@@ -7,13 +7,14 @@
 
 #define SIZE 48
 #define CONFIGS 120
-/* |GPU - CPU| of premultiplied radiance, relative to the pixel's scale (the lights' and the
- * ambient's sum). Mostly the texture filter: llvmpipe blends RGBA8 texels and mip levels with
- * 8-bit weights, so a fetch can be off by |texel difference| / 256 (the zero-light case shows
- * it alone); float vs double is far below. Measured mean and worst cases are printed. */
-#define RADIANCE_TOLERANCE 8e-3
-/* Where N.V puts n = nMin + N.V (nMax - nMin) at a .5 boundary, float and double may round to
- * different step counts: a few such pixels may differ by more. */
+/* |GPU - CPU| of premultiplied radiance relative to the pixel's own reference value (plus 1 %
+ * of the configuration's full-light scale, so that nearly black pixels do not divide by ~0).
+ * Nearly all of it is the texture fetch: llvmpipe returns filtered RGBA8 at 8-bit precision
+ * (measured: about 1/255 at worst, at any lod), so brightness, normal and height each carry up
+ * to ~0.5 % (brightness >= 0.6). Float vs double is far below. Mean and worst are printed. */
+#define RADIANCE_TOLERANCE 0.03
+/* A few pixels may differ by more: where N.V puts n = nMin + N.V (nMax - nMin) at a .5 boundary
+ * (float and double round to different step counts), or a steep map meets the 8-bit fetch. */
 #define ROUNDING_PIXELS 5e-4
 
 /* A scene whose only medium is lit smoke, detail off (so the CPU needs no detail volume). */
@@ -144,7 +145,7 @@ static comparison compare(gl_fixture *f, sbfx *fx, const lit_config *c, const sb
             double e = 0.0;
             for (int k = 0; k < 3; k++) {
                 if (!isfinite(g[k])) r.bad++;
-                e = fmax(e, fabs(g[k] - cpu[k]) / scale);
+                e = fmax(e, fabs(g[k] - cpu[k]) / (fabs(cpu[k]) + 0.01 * scale));
                 r.max_radiance = fmax(r.max_radiance, g[k]);
             }
             r.pixels++;
@@ -256,6 +257,8 @@ CHECK_TEST(hard_cases_match_cpu)
         {"nMax = nMin", {p, 0.8, 0.6, 1.5, 0, 0.8, {7, 7}, 2, {behind, front}, {0.1f, 0.1f, 0.1f}}},
         {"no march", {p, 0.8, 0.6, 1.5, 0, 0.8, {0, 0}, 1, {behind}, {0, 0, 0}}},
         {"light inside", {p, 0.8, 0.6, 1.5, 0, 0.8, {4, 16}, 2, {inside, at_centre}, {0, 0, 0}}},
+        /* tau = 1e4: exp(-tau 2r sum dt) turns one 8-bit step of height at the puff's thin edge
+         * into a large factor, so a few edge pixels differ relatively (not absolutely) */
         {"dense, dampened", {p, 1e4, 1.0, 3.0, 0.5, 1.0, {16, 64}, 4, {behind, front, inside, behind_point}, {0, 0, 0}}},
     };
     for (size_t i = 0; i < ARRAY_SIZE(cases); i++) {
@@ -394,17 +397,17 @@ CHECK_TEST(example_scene_mixes_models_and_orbits_its_light)
     sbfx_counters c;
     sbfx_stats(fx, &c);
     CHECK(c.programs == 4 && c.textures == 3, "programs %d textures %d", c.programs, c.textures);
-    /* orbit: centre (0, 1.8, 0), radius 2.6, period 4 s, counter-clockwise seen from above:
+    /* orbit: centre (0, 2, 0), radius 3.6, period 4 s, counter-clockwise seen from above:
      * +x at t = 0, -z a quarter turn later, -x at half a turn */
     const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     for (int q = 0; q < 3; q++) {
         sbfx_view_light lights[8];
         double a = 2.0 * M_PI * sbfx_time(fx) / 4.0;
-        const double want[3] = {2.6 * cos(a), 1.8, -2.6 * sin(a)};
+        const double want[3] = {3.6 * cos(a), 2.0, -3.6 * sin(a)};
         CHECK(sbfx_frame_lights(fx, identity, lights, 8) >= 2);
         CHECK(lights[0].vector[3] == 1.0f);
         for (int k = 0; k < 3; k++) CHECK_NEAR(lights[0].vector[k], want[k], 1e-4);
-        if (q == 1) CHECK(lights[0].vector[2] < -2.5f, "not a quarter turn toward -z at t = %g", sbfx_time(fx));
+        if (q == 1) CHECK(lights[0].vector[2] < -3.5f, "not a quarter turn toward -z at t = %g", sbfx_time(fx));
         for (int s = 0; s < 7; s++) sbfx_update(fx, 1.0 / 7); /* about 1 s in uneven frames */
     }
     float view[16];
