@@ -109,7 +109,7 @@ static void answer_opacity(probe *p, const char *args)
     if (sscanf(args, "%31s%n", mode_name, &used) != 1) return complain(p, "%s", "opacity needs MODE D R ZC ZS NEAR TAU");
     sbfx_opacity_mode mode = SBFX_OPACITY_DEFAULT;
     for (int m = 1; m < SBFX_OPACITY_COUNT; m++)
-        if (strcmp(mode_name, mode_names[m]) == 0) mode = (sbfx_opacity_mode)m;
+        if (mode_names[m] && strcmp(mode_name, mode_names[m]) == 0) mode = (sbfx_opacity_mode)m;
     if (!mode) return complain(p, "unknown opacity mode \"%s\" (planar, soft, spherical, exact)", mode_name);
     if (parse_doubles(args + used, v, 6) != 0)
         return complain(p, "%s", "opacity needs MODE D R ZC ZS NEAR TAU (numbers)");

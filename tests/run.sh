@@ -159,6 +159,7 @@ run_dir "" "$BUILD/tests/gl"
 validate_shaders
 check_version_lines
 run_cli "" "$BUILD/sbfx-play"
+run_suite "" probe tests/probe.sh "$BUILD/sbfx-probe"
 
 if [ -d "$ASAN_BUILD" ]; then
     check_built "asan:" unit "$ASAN_BUILD"

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# sbfx-probe's line protocol (issue #2): every query answered on its own line, CPU next to a real
+# GPU render, malformed lines reported on stderr with their line number while later lines are
+# still answered, exit status 1 when any line was malformed.
+# Usage: tests/probe.sh [PROBE]. Prints "ok - probe/x" / "not ok - probe/x: why" lines.
+set -u
+PROBE=${1:-build/sbfx-probe}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+ok() { echo "ok - probe/$1"; }
+fail() { echo "not ok - probe/$1: $2"; failures=$((failures + 1)); }
+
+# close A B TOL: |A - B| <= TOL (awk: the shell has no floats)
+close() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'; }
+
+cat >"$tmp/in" <<'QUERIES'
+opacity spherical 0 1 5 100 0.1 0.4
+opacity exact 0 1 5 100 0.1 0.4
+opacity planar 0.5 1 5 100 0.1 0.4
+opacity soft 0.5 1 5 5.5 0.1 0.4
+opacity spherical 0.5 1 0.3 100 0.1 0.4
+opacity exact 0.999999 1 5 100 0.1 0.4
+opacity spherical 0.3 1 5 100 0.1 1e6
+opacity spherical 0.01 0.05 10000 1e9 0.1 0.4
+this line is malformed
+blackbody 1500
+blackbody 3000
+blackbody 6500
+phase 1 0.5
+phase -1 0.5
+phase 0 0
+opacity spherical 1 2
+QUERIES
+timeout 120 "$PROBE" <"$tmp/in" >"$tmp/out" 2>"$tmp/err"
+rc=$?
+[ "$rc" -eq 1 ] && ok exit-status || fail exit-status "exit $rc, expected 1 (two malformed lines)"
+grep -q "line 9:" "$tmp/err" && grep -q "line 16:" "$tmp/err" && ok malformed-lines-named ||
+    fail malformed-lines-named "stderr does not name lines 9 and 16: $(head -c 300 "$tmp/err")"
+lines=$(wc -l <"$tmp/out")
+[ "$lines" -eq 14 ] && ok answers-per-line || fail answers-per-line "$lines answers to 14 good queries"
+
+n=0 bad=""
+while read -r cpu gpu rest; do
+    n=$((n + 1))
+    [ "$n" -gt 8 ] && break
+    [ -z "$rest" ] || { bad="$bad line$n(extra fields)"; continue; }
+    close "$cpu" "$gpu" 2e-4 || bad="$bad line$n($cpu vs $gpu)"
+done <"$tmp/out"
+[ "$n" -ge 8 ] || bad="$bad only $n opacity answers"
+[ -z "$bad" ] && ok opacity-cpu-matches-gpu || fail opacity-cpu-matches-gpu "$bad"
+
+# the model difference is shown, not hidden: spherical through the centre 1-e^-0.8, exact 1-e^-0.4
+read -r sph _ < <(sed -n 1p "$tmp/out")
+read -r ex _ < <(sed -n 2p "$tmp/out")
+close "$sph" 0.550671 1e-5 && close "$ex" 0.329680 1e-5 && ok centre-2tau-r-vs-tau-r ||
+    fail centre-2tau-r-vs-tau-r "spherical $sph exact $ex"
+
+bad=""
+for i in 9 10 11; do
+    set -- $(sed -n "${i}p" "$tmp/out")
+    [ $# -eq 6 ] || { bad="$bad line$i($# fields)"; continue; }
+    for k in 1 2 3; do
+        eval "c=\${$k}; g=\${$((k + 3))}"
+        # half-float table: relative 2e-3, plus an absolute floor
+        awk -v c="$c" -v g="$g" 'BEGIN { d = c - g; if (d < 0) d = -d; exit !(d <= 2e-3 * (c < 0 ? -c : c) + 1e-6) }' ||
+            bad="$bad line$i[$k]($c vs $g)"
+    done
+done
+[ -z "$bad" ] && ok blackbody-table-cpu-matches-gpu || fail blackbody-table-cpu-matches-gpu "$bad"
+
+read -r fwd _ < <(sed -n 12p "$tmp/out")
+read -r back _ < <(sed -n 13p "$tmp/out")
+read -r iso_cpu iso_gpu < <(sed -n 14p "$tmp/out")
+awk -v f="$fwd" -v b="$back" 'BEGIN { exit !(f > 10 * b) }' && ok phase-forward-peak ||
+    fail phase-forward-peak "P(1, 0.5) = $fwd is not well above P(-1, 0.5) = $back"
+close "$iso_cpu" 0.0596831 1e-6 && close "$iso_gpu" "$iso_cpu" 2e-4 && ok phase-isotropic ||
+    fail phase-isotropic "P(0, 0) cpu $iso_cpu gpu $iso_gpu, want 3/(16 pi)"
+[ "$failures" -eq 0 ]
