@@ -10,6 +10,7 @@
 //   OPACITY_PLANAR | OPACITY_SOFT | OPACITY_SPHERICAL | OPACITY_EXACT
 //   OPACITY_FLOOR    benchmark only: the same quads, a trivial shader (the fill-rate floor)
 //   BLACKBODY_ANALYTIC, PHASE_ANALYTIC   evaluate per fragment instead of fetching the tables
+//   LIGHT_PER_PARTICLE  (phase model) in-scattering computed once per particle on the CPU
 //   LIGHTING_LIT     (with MEDIUM_SCATTERS) the lit-smoke seed instead of the phase function:
 //                    per-pixel normals, wrap-around Lambert, back-lighting, up to 4 lights
 //   LIT_SHADOW       (with LIGHTING_LIT) ray-marched self-shadowing through the height field
@@ -21,6 +22,9 @@ precision highp sampler3D;
 
 flat in vec4 v_center_radius;
 flat in vec4 v_detail;
+#ifdef LIGHT_PER_PARTICLE
+flat in vec3 v_light;            // in-scattered light evaluated once at the particle's centre
+#endif
 #ifdef HAS_MOTION_TARGET
 flat in vec2 v_velocity;
 #endif
@@ -365,7 +369,9 @@ void main()
     alpha *= soft_fade((zs + c.z) / (u_soft_scale > 0.0 ? u_soft_scale : r));
 #endif
     mediump vec3 light = vec3(0.0);
-#if defined(MEDIUM_SCATTERS) && defined(LIGHTING_LIT)
+#if defined(MEDIUM_SCATTERS) && defined(LIGHT_PER_PARTICLE)
+    light += u_albedo_color * v_light;
+#elif defined(MEDIUM_SCATTERS) && defined(LIGHTING_LIT)
     light += u_albedo_color * lit_scattered(ray, c, r, tau_scale);
 #elif defined(MEDIUM_SCATTERS)
     light += u_albedo_color * in_scattered(ray, c);

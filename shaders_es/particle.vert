@@ -7,6 +7,10 @@ precision highp float;
 
 layout(location = 0) in vec4 a_center_radius; // view-space centre, radius
 layout(location = 1) in vec4 a_detail;        // detail window u, v, time offset; intensity
+#ifdef LIGHT_PER_PARTICLE
+layout(location = 3) in vec4 a_light;           // in-scattered light at the centre (CPU)
+flat out vec3 v_light;
+#endif
 #ifdef HAS_MOTION_TARGET
 flat out vec2 v_velocity;                       // screen motion of the centre, full-res pixels
 #endif
@@ -39,6 +43,9 @@ void main()
 {
     v_center_radius = a_center_radius;
     v_detail = a_detail;
+#ifdef LIGHT_PER_PARTICLE
+    v_light = a_light.rgb;
+#endif
 #ifdef HAS_MOTION_TARGET
     v_velocity = vec2(0.0);
 #endif

@@ -217,6 +217,15 @@ bool sbfx_wants_live_detail(const sbfx *fx)
     return false;
 }
 
+sbfx_result sbfx_detail_procedural(const sbfx *fx, float *out, size_t count)
+{
+    if (!fx || !out) return SBFX_ERR_INVALID_ARGUMENT;
+    int size = fx->desc.detail_size, frames = fx->desc.detail_frames;
+    if (count != (size_t)size * size * frames) return SBFX_ERR_INVALID_ARGUMENT;
+    sbfx_detail_generate(size, frames, fx->desc.seed, out); /* what upload_detail made */
+    return SBFX_OK;
+}
+
 /* One slice of the time ring: glTexSubImage3D of size x size half floats, no allocation. */
 sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int size)
 {

@@ -214,7 +214,9 @@ struct sbfx {
     float *sort_keys;
     uint32_t *order, *order_tmp;
     float *instances;            /* instance_floats per particle */
-    int instance_floats;         /* 8, or 12 with the previous centre (velocity blur) */
+    int instance_floats;         /* 8, + 4 previous centre (velocity blur), + 4 light */
+    int instance_previous;       /* float offset of the previous centre, 0 = none */
+    int instance_light;          /* float offset of the per-particle light, 0 = none */
 
     sbfx_gl gl;
     sbfx_counters counters;

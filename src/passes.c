@@ -1,5 +1,6 @@
 /* The three GPU passes of a frame with live particles, and the GL state they borrow from the
  * host (saved on entry, restored on exit). */
+#include <math.h>
 #include <string.h>
 #include "module.h"
 
@@ -183,7 +184,32 @@ static void set_frame_uniforms(sbfx *fx, const sbfx_program *p, const frame_para
 }
 
 /* Writes the sorted particles into the instance buffer; returns nothing, cannot fail. */
-static void upload_instances(sbfx *fx, int count)
+/* In-scattered light of the phase model at the particle's centre, in double: what the
+ * fragment shader's in_scattered() computes per pixel, once per particle instead. */
+static void particle_light(const sbfx *fx, const frame_lights *lights, const sbfx_view_particle *v, float out[3])
+{
+    const sbfx_medium_params *m = &fx->media[v->medium];
+    double c[3] = {v->center[0], v->center[1], v->center[2]};
+    double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    double to_eye[3] = {-c[0] / len, -c[1] / len, -c[2] / len};
+    double sum[3] = {fx->ambient[0], fx->ambient[1], fx->ambient[2]};
+    for (int i = 0; i < lights->count && len > 0; i++) {
+        const float *l = lights->vector[i];
+        double travel[3] = {l[0], l[1], l[2]}, falloff = 1.0;
+        if (l[3] > 0.5f) {
+            double d[3] = {c[0] - l[0], c[1] - l[1], c[2] - l[2]};
+            double d2 = fmax(d[0] * d[0] + d[1] * d[1] + d[2] * d[2], 0.25);
+            for (int k = 0; k < 3; k++) travel[k] = d[k] / sqrt(d2);
+            falloff = 1.0 / d2;
+        }
+        double cos_theta = travel[0] * to_eye[0] + travel[1] * to_eye[1] + travel[2] * to_eye[2];
+        double scattered = falloff * sbfx_phase(cos_theta, m->phase_g) * 4.0 * M_PI;
+        for (int k = 0; k < 3; k++) sum[k] += lights->color[i][k] * scattered;
+    }
+    for (int k = 0; k < 3; k++) out[k] = (float)sum[k];
+}
+
+static void upload_instances(sbfx *fx, const frame_lights *lights, int count)
 {
     const int stride = fx->instance_floats;
     for (int i = 0; i < count; i++) {
@@ -193,9 +219,13 @@ static void upload_instances(sbfx *fx, int count)
         dst[3] = v->radius;
         memcpy(dst + 4, v->detail, 3 * sizeof(float));
         dst[7] = v->intensity;
-        if (stride == 12) {
-            memcpy(dst + 8, v->previous_center, 3 * sizeof(float));
-            dst[11] = 0.0f;
+        if (fx->instance_previous) {
+            memcpy(dst + fx->instance_previous, v->previous_center, 3 * sizeof(float));
+            dst[fx->instance_previous + 3] = 0.0f;
+        }
+        if (fx->instance_light) {
+            particle_light(fx, lights, v, dst + fx->instance_light);
+            dst[fx->instance_light + 3] = 0.0f;
         }
     }
     glBindBuffer(GL_ARRAY_BUFFER, fx->gl.instance_buffer);
@@ -208,7 +238,10 @@ static void draw_run(sbfx *fx, int first, int count)
     const char *base = (const char *)(size_t)((size_t)first * (size_t)stride);
     glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, stride, base);
     glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, stride, base + 4 * sizeof(float));
-    if (fx->instance_floats == 12) glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride, base + 8 * sizeof(float));
+    if (fx->instance_previous)
+        glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride, base + fx->instance_previous * sizeof(float));
+    if (fx->instance_light)
+        glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, stride, base + fx->instance_light * sizeof(float));
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count);
     fx->counters.draw_calls++;
 }
@@ -234,7 +267,7 @@ static void pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture);
     bind_texture(UNIT_PHASE, GL_TEXTURE_2D, gl->phase_texture);
     bind_texture(UNIT_BLACKBODY, GL_TEXTURE_2D, gl->blackbody_texture);
-    upload_instances(fx, count);
+    upload_instances(fx, &lights, count);
     glBindVertexArray(gl->particle_vao);
     for (int first = 0; first < count;) {
         sbfx_medium m = fx->view[fx->order[first]].medium;

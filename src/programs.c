@@ -19,7 +19,8 @@ static void particle_defines(const sbfx *fx, sbfx_medium m, char *out, size_t si
     bool heat = m == SBFX_HEAT;
     bool scatters = p->albedo > 0 && !heat, emits = m == SBFX_FIRE, lit = scatters && p->lit;
     bool float_targets = sbfx_half_float_renderable();
-    size_t used = (size_t)snprintf(out, size, "%s%s%s%s", heat ? "#define MEDIUM_HEAT\n" : "",
+    size_t used = (size_t)snprintf(out, size, "%s%s%s%s%s", heat ? "#define MEDIUM_HEAT\n" : "",
+                                   scatters && !lit && fx->desc.light_per_particle ? "#define LIGHT_PER_PARTICLE\n" : "",
                                    fx->plan.particle_velocity ? "#define HAS_PARTICLE_MOTION\n" : "",
                                    fx->plan.distortion && float_targets ? "#define HAS_DISTORTION_TARGET\n" : "",
                                    fx->plan.motion_target ? "#define HAS_MOTION_TARGET\n" : "");
@@ -140,8 +141,10 @@ static sbfx_result create_buffers(sbfx *fx)
     glBindBuffer(GL_ARRAY_BUFFER, gl->instance_buffer);
     size_t bytes = (size_t)fx->pool.capacity * fx->instance_floats * sizeof(float);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_DRAW);
-    GLuint attributes = fx->plan.particle_velocity ? 3 : 2; /* + previous centre for velocity blur */
-    for (GLuint a = 0; a < attributes; a++) {
+    /* 0 centre + radius, 1 detail + intensity, 2 previous centre, 3 per-particle light */
+    bool used[4] = {true, true, fx->instance_previous > 0, fx->instance_light > 0};
+    for (GLuint a = 0; a < 4; a++) {
+        if (!used[a]) continue;
         glEnableVertexAttribArray(a);
         glVertexAttribDivisor(a, 1);
     }

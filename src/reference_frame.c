@@ -180,6 +180,9 @@ void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const doub
     rgb[0] = rgb[1] = rgb[2] = 0.0;
     *alpha = 0.0;
     if (!sbfx_rf_particle_valid(p) || f->opacity == SBFX_OPACITY_FLOOR) return;
+    /* Only dust, smoke and fire add light and opacity; other media (heat) displace the scene
+     * in the composite instead, which this reference does not model. */
+    if (p->medium != SBFX_DUST && p->medium != SBFX_SMOKE && p->medium != SBFX_FIRE) return;
     const sbfx_rf_medium *m = &f->media[p->medium];
     bool scatters = m->albedo > 0.0, emits = p->medium == SBFX_FIRE;
     double detail = m->has_detail ? detail_sample(f, p, m, ray) : 0.5;

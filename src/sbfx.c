@@ -150,7 +150,9 @@ static void adopt_scene(sbfx *fx, const sbfx_scene *scene)
     fx->plan.particle_velocity = fx->post.blur == SBFX_BLUR_VELOCITY;
     fx->plan.motion_target = fx->plan.particle_velocity || fx->post.dof;
     fx->plan.owns_scene = fx->plan.distortion || fx->post.blur != SBFX_BLUR_NONE || fx->post.dof;
-    fx->instance_floats = fx->plan.particle_velocity ? 12 : 8;
+    fx->instance_floats = 8;
+    fx->instance_previous = fx->plan.particle_velocity ? (fx->instance_floats += 4, 8) : 0;
+    fx->instance_light = fx->desc.light_per_particle ? (fx->instance_floats += 4) - 4 : 0;
     if (!fx->desc.ignore_timeline)
         for (int i = 0; i < scene->timeline_count; i++) {
             const sbfx_timeline_entry *t = &scene->timeline[i];
@@ -216,6 +218,11 @@ static int find_effect(const sbfx *fx, const char *name)
     for (int i = 0; i < fx->effect_count; i++)
         if (strcmp(fx->effects[i].name, name) == 0) return i;
     return -1;
+}
+
+bool sbfx_has_effect(const sbfx *fx, const char *effect)
+{
+    return fx && effect && find_effect(fx, effect) >= 0;
 }
 
 static bool position_valid(const float p[3])

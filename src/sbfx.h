@@ -112,6 +112,8 @@ typedef struct sbfx_desc {
     sbfx_detail_format detail_format;
     bool analytic_blackbody;         /* Planck x CIE evaluated per fragment, not the table */
     bool analytic_phase;             /* phase function evaluated per fragment, not the table */
+    bool light_per_particle;         /* phase-model in-scattering evaluated once per particle
+                                        (on the CPU, at its centre) instead of per fragment */
     float sim_step;                  /* fixed simulation step in seconds (1/120) */
     const sbfx_scene *scene;         /* NULL: the built-in explosion. Non-zero fields of this
                                         desc override the scene's render settings. The scene
@@ -163,6 +165,9 @@ sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float position[3]);
 /* Schedules a trigger at simulation time `seconds` (since sbfx_create); it fires at the first
  * simulation step at or after that time, so results do not depend on frame times. */
 sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds, const float position[3]);
+/* True when the module has an effect of that name (the scene's, or the built-in "explosion"):
+ * lets a host check at start the names it will trigger later (GPIO lines, remote commands). */
+bool sbfx_has_effect(const sbfx *fx, const char *effect);
 /* Simulation time in seconds since sbfx_create. */
 double sbfx_time(const sbfx *fx);
 /* Advances the simulation by dt seconds in fixed steps (an accumulator keeps the remainder). */
@@ -177,6 +182,11 @@ void sbfx_detail_dimensions(const sbfx *fx, int *size, int *frames);
 /* True when a medium of the loaded scene asks for detail source "v4l2". */
 bool sbfx_wants_live_detail(const sbfx *fx);
 sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int size);
+/* The procedural volume the module made at load (size * size * frames values in [0,1], x
+ * fastest, then y, then the time ring) written into the caller's `out` of `count` floats: a host
+ * whose live source went away pushes it back, slice by slice, to return to procedural detail.
+ * Allocates nothing. SBFX_ERR_INVALID_ARGUMENT when count is not size * size * frames. */
+sbfx_result sbfx_detail_procedural(const sbfx *fx, float *out, size_t count);
 
 /* Helpers for hosts: column-major perspective and look-at matrices. */
 void sbfx_perspective(float out[16], float fov_y_radians, float aspect, float near_z, float far_z);

@@ -1,0 +1,834 @@
+/* make bench: what accuracy costs (issue #4, DESIGN §4).
+ *
+ * Renders three frames of the built-in explosion (t = 0.45 s with the flash's point light still
+ * on, 1.2 s, 2.0 s) over the opaque test scene in every accuracy configuration that matters,
+ * times each (GPU timer query where available, else glFinish-bracketed wall time; several
+ * repetitions, median with min and max; the whole frame and, separately, the particle pass
+ * alone) and compares each image with the CPU reference: the `exact` model per full-resolution
+ * pixel in double precision (src/reference_frame.c) composited over the same scene.
+ *
+ *   bench_accuracy [--out DIR] [--size WxH] [--reps N] [--quick] [--match LABEL]
+ *
+ * --quick runs a subset; --match only the configurations whose plot label ("sph/4 nd",
+ * "exa/1 nd aBB", "flo/8 nd"...) contains LABEL (for profiling one of them).
+ *
+ * Writes DIR/accuracy.csv, DIR/points.dat and DIR/pareto.dat (for tests/bench/accuracy.gp),
+ * DIR/summary.txt (the verdicts of DESIGN §4) and a few PNGs (reference and GPU frames). */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "bench_gl.h"
+#include "bench_metrics.h"
+#include "egl_headless.h"
+#include "internal.h"
+#include "png_io.h"
+#include "reference_frame.h"
+#include "test_scene.h"
+
+#define FRAME_COUNT 3
+#define MAX_CONFIGS 96
+#define EDGE_RELATIVE 0.01 /* second difference of 1/z above 1 % of 1/z: a silhouette */
+#define EDGE_DILATE 3      /* pixels around it */
+
+static const double frame_times[FRAME_COUNT] = {0.45, 1.2, 2.0};
+
+typedef struct options {
+    const char *out;
+    const char *match; /* only configurations whose plot label contains this */
+    int width, height, reps;
+    bool quick;
+} options;
+
+typedef struct ref_frame {
+    double t;
+    struct test_scene scene;
+    sbfx_frame frame;
+    double *distance;   /* full-res opaque view distance (far where nothing was drawn) */
+    uint8_t *scene_rgba;
+    double *ref_rgb;    /* the reference image, 0..255 */
+    uint8_t *edge;      /* near a silhouette and inside some particle's footprint */
+    uint64_t state_hash;
+    int particles, edge_pixels;
+} ref_frame;
+
+typedef struct config {
+    sbfx_opacity_mode opacity;
+    int divisor;
+    sbfx_target_format format;
+    sbfx_upsample upsample;
+    bool analytic_blackbody, analytic_phase;
+    sbfx_detail_format detail;
+    bool light_per_particle; /* in-scattering once per particle (desc.light_per_particle) */
+    bool keep; /* keep the GPU images (LUT comparisons) */
+} config;
+
+typedef struct result {
+    config c;
+    bool ok;
+    sbfx_target_format used_format;
+    double ms, ms_min, ms_max, wall_ms;
+    double part_ms, part_min, part_max, part_wall_ms;
+    bool part_ok;
+    bench_error err;
+    bool pareto;
+    uint8_t *images[FRAME_COUNT];
+} result;
+
+typedef struct bench {
+    options opt;
+    struct egl_headless egl;
+    bench_timer timer;
+    bench_target target;
+    sbfx_cmf cmf;
+    float *detail;
+    int detail_size, detail_frames;
+    ref_frame frames[FRAME_COUNT];
+    result results[MAX_CONFIGS];
+    int result_count;
+    double reference_seconds;
+} bench;
+
+static const char *const mode_names[SBFX_OPACITY_COUNT] = {
+    [SBFX_OPACITY_PLANAR] = "planar", [SBFX_OPACITY_SOFT] = "soft", [SBFX_OPACITY_SPHERICAL] = "spherical",
+    [SBFX_OPACITY_EXACT] = "exact", [SBFX_OPACITY_FLOOR] = "floor"};
+static const char *const format_names[SBFX_FORMAT_COUNT] = {
+    [SBFX_FORMAT_RGBA8] = "RGBA8", [SBFX_FORMAT_RGBA16F] = "RGBA16F", [SBFX_FORMAT_RGBA32F] = "RGBA32F"};
+
+static double seconds_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec / 1e9;
+}
+
+static void *xcalloc(size_t n, size_t size)
+{
+    void *p = calloc(n, size);
+    if (!p) {
+        fprintf(stderr, "bench: out of memory\n");
+        exit(1);
+    }
+    return p;
+}
+
+static void die(const char *what, const char *why)
+{
+    fprintf(stderr, "bench: %s: %s\n", what, why);
+    exit(1);
+}
+
+/* ---- options ------------------------------------------------------------------------- */
+
+static options parse_options(int argc, char **argv)
+{
+    options o = {"build/bench", NULL, 960, 540, 7, false};
+    for (int i = 1; i < argc; i++) {
+        bool more = i + 1 < argc;
+        if (!strcmp(argv[i], "--out") && more) o.out = argv[++i];
+        else if (!strcmp(argv[i], "--size") && more && sscanf(argv[++i], "%dx%d", &o.width, &o.height) == 2) {}
+        else if (!strcmp(argv[i], "--reps") && more) o.reps = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--quick")) o.quick = true;
+        else if (!strcmp(argv[i], "--match") && more) o.match = argv[++i];
+        else die("usage", "bench_accuracy [--out DIR] [--size WxH] [--reps N] [--quick] [--match LABEL]");
+    }
+    if (o.width < 16 || o.height < 16 || o.width > 4096 || o.height > 4096 || o.reps < 1 || o.reps > 50)
+        die("options", "--size must be 16x16..4096x4096 and --reps 1..50");
+    return o;
+}
+
+/* ---- simulation ---------------------------------------------------------------------- */
+
+static void log_warning(sbfx_log_level level, const char *message, void *user)
+{
+    (void)user;
+    if (level != SBFX_LOG_INFO) fprintf(stderr, "bench: sbfx: %s\n", message);
+}
+
+static sbfx *create_module(const config *c)
+{
+    sbfx_desc d = {.target_divisor = c->divisor, .target_format = c->format, .upsample = c->upsample,
+                   .opacity = c->opacity, .analytic_blackbody = c->analytic_blackbody,
+                   .analytic_phase = c->analytic_phase, .detail_format = c->detail,
+                   .light_per_particle = c->light_per_particle, .log = log_warning};
+    sbfx *fx = NULL;
+    sbfx_result r = sbfx_create(&d, &fx);
+    if (r != SBFX_OK) die("sbfx_create", sbfx_result_string(r));
+    return fx;
+}
+
+/* Whole fixed steps of the default 1/120 s, one per update: every module of the bench then goes
+ * through bit-identical simulation states (checked with sbfx_state_hash). */
+static void advance_to(sbfx *fx, double t)
+{
+    const double step = (double)(1.0f / 120.0f);
+    while (sbfx_time(fx) < t - 1e-9) sbfx_update(fx, step);
+}
+
+/* ---- the reference ------------------------------------------------------------------- */
+
+static void read_distances(ref_frame *rf, int w, int h)
+{
+    float *window = xcalloc((size_t)w * h, sizeof(float));
+    char err[256];
+    if (bench_read_depth(rf->scene.depth_texture, w, h, window, err, sizeof(err)) != 0) die("depth", err);
+    const float *p = rf->frame.projection;
+    float far = p[14] / (p[10] + 1.0f); /* as passes.c computes them, in float */
+    for (size_t i = 0; i < (size_t)w * h; i++)
+        rf->distance[i] = window[i] >= 1.0f ? (double)far : p[14] / (2.0 * window[i] - 1.0 + p[10]);
+    free(window);
+}
+
+static void fill_media(sbfx *fx, sbfx_rf_frame *f)
+{
+    const sbfx_medium_params *m = sbfx_media(fx);
+    for (int i = 0; i < SBFX_MEDIUM_COUNT; i++)
+        f->media[i] = (sbfx_rf_medium){
+            .albedo = m[i].albedo, .tau = m[i].tau, .phase_g = m[i].phase_g,
+            .color = {m[i].color[0], m[i].color[1], m[i].color[2]},
+            .detail_strength = m[i].detail_strength, .detail_window = m[i].detail_window,
+            .t0 = m[i].t0, .t1 = m[i].t1, .cooling = m[i].cooling, .emission_scale = m[i].emission_scale,
+            .has_detail = m[i].detail_strength > 0};
+}
+
+static int fill_lights(sbfx *fx, const float view[16], sbfx_rf_light *out, double ambient[3])
+{
+    sbfx_view_light lights[SBFX_RF_MAX_LIGHTS];
+    int n = sbfx_frame_lights(fx, view, lights, SBFX_RF_MAX_LIGHTS);
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 4; k++) {
+            out[i].vector[k] = lights[i].vector[k];
+            if (k < 3) out[i].color[k] = lights[i].color[k];
+        }
+    float a[3];
+    sbfx_frame_ambient(fx, a);
+    for (int k = 0; k < 3; k++) ambient[k] = a[k];
+    return n;
+}
+
+static sbfx_rf_particle *fill_particles(sbfx *fx, const float view[16], int *count)
+{
+    const sbfx_view_particle *v;
+    int n = sbfx_frame_particles(fx, view, &v);
+    sbfx_rf_particle *p = xcalloc(n > 0 ? (size_t)n : 1, sizeof(*p));
+    for (int i = 0; i < n; i++) {
+        p[i] = (sbfx_rf_particle){.radius = v[i].radius, .intensity = v[i].intensity, .medium = v[i].medium};
+        for (int k = 0; k < 3; k++) p[i].center[k] = v[i].center[k], p[i].detail[k] = v[i].detail[k];
+    }
+    *count = n;
+    return p;
+}
+
+/* The exact model per full-resolution pixel, composited over the scene. */
+static void render_reference(bench *b, sbfx *fx, ref_frame *rf)
+{
+    int w = b->opt.width, h = b->opt.height;
+    const float *p = rf->frame.projection;
+    sbfx_rf_light lights[SBFX_RF_MAX_LIGHTS];
+    sbfx_rf_frame f = {.width = w, .height = h, .projection = {p[0], p[5], p[8], p[9]},
+                       .near = (double)(p[14] / (p[10] - 1.0f)), .opaque_distance = rf->distance,
+                       .opacity = SBFX_OPACITY_EXACT, .lights = lights, .detail = b->detail,
+                       .detail_size = b->detail_size, .detail_frames = b->detail_frames,
+                       .detail_time = sbfx_detail_time(fx), .cmf = &b->cmf,
+                       .max_kelvin = SBFX_DEFAULT_MAX_KELVIN,
+                       .blackbody_norm = sbfx_blackbody_norm(&b->cmf, SBFX_DEFAULT_MAX_KELVIN)};
+    fill_media(fx, &f);
+    f.light_count = fill_lights(fx, rf->frame.view, lights, f.ambient);
+    sbfx_rf_particle *particles = fill_particles(fx, rf->frame.view, &rf->particles);
+    double *layer = xcalloc((size_t)w * h * 4, sizeof(double));
+    uint8_t *footprint = xcalloc((size_t)w * h, 1);
+    if (sbfx_rf_render_layer(&f, particles, rf->particles, layer, footprint) < 0) die("reference", "out of memory");
+    sbfx_rf_composite(layer, rf->scene_rgba, w, h, rf->ref_rgb);
+    bench_edge_mask(rf->distance, w, h, EDGE_RELATIVE, EDGE_DILATE, rf->edge);
+    rf->edge_pixels = 0;
+    for (size_t i = 0; i < (size_t)w * h; i++) {
+        rf->edge[i] = rf->edge[i] && footprint[i];
+        rf->edge_pixels += rf->edge[i];
+    }
+    free(layer);
+    free(footprint);
+    free(particles);
+}
+
+static void write_png(const bench *b, const char *name, const uint8_t *rgba)
+{
+    char path[1024], err[256];
+    snprintf(path, sizeof(path), "%s/%s", b->opt.out, name);
+    if (png_write_rgba(path, rgba, b->opt.width, b->opt.height, true, err, sizeof(err)) != 0)
+        fprintf(stderr, "bench: %s\n", err);
+}
+
+static void write_reference_png(const bench *b, const ref_frame *rf, int index)
+{
+    size_t n = (size_t)b->opt.width * b->opt.height;
+    uint8_t *rgba = xcalloc(n, 4);
+    for (size_t i = 0; i < n; i++) {
+        for (int k = 0; k < 3; k++) rgba[4 * i + k] = (uint8_t)lround(rf->ref_rgb[3 * i + k]);
+        rgba[4 * i + 3] = 255;
+    }
+    char name[64];
+    snprintf(name, sizeof(name), "reference-%d.png", index);
+    write_png(b, name, rgba);
+    free(rgba);
+}
+
+static void prepare_frame(bench *b, ref_frame *rf, double t)
+{
+    int w = b->opt.width, h = b->opt.height;
+    char err[256];
+    rf->t = t;
+    if (test_scene_create(&rf->scene, w, h, err, sizeof(err)) != 0) die("test scene", err);
+    test_scene_orbit_camera(t, (float)w / (float)h, rf->frame.view, rf->frame.projection);
+    if (test_scene_draw(&rf->scene, rf->frame.view, rf->frame.projection) != 0) die("test scene", "GL error");
+    rf->frame.scene_color_texture = rf->scene.color_texture;
+    rf->frame.scene_depth_texture = rf->scene.depth_texture;
+    rf->frame.out_framebuffer = b->target.fbo;
+    rf->frame.width = w;
+    rf->frame.height = h;
+    rf->distance = xcalloc((size_t)w * h, sizeof(double));
+    rf->scene_rgba = xcalloc((size_t)w * h, 4);
+    rf->ref_rgb = xcalloc((size_t)w * h * 3, sizeof(double));
+    rf->edge = xcalloc((size_t)w * h, 1);
+    bench_read_rgba8(rf->scene.framebuffer, w, h, rf->scene_rgba);
+    read_distances(rf, w, h);
+}
+
+static void prepare_references(bench *b)
+{
+    config c = {.opacity = SBFX_OPACITY_EXACT, .divisor = 4};
+    sbfx *fx = create_module(&c);
+    sbfx_detail_dimensions(fx, &b->detail_size, &b->detail_frames);
+    b->detail = xcalloc((size_t)b->detail_size * b->detail_size * b->detail_frames, sizeof(float));
+    sbfx_detail_generate(b->detail_size, b->detail_frames, 1, b->detail); /* desc.seed default 1 */
+    double start = seconds_now();
+    for (int i = 0; i < FRAME_COUNT; i++) {
+        ref_frame *rf = &b->frames[i];
+        prepare_frame(b, rf, frame_times[i]);
+        advance_to(fx, frame_times[i]);
+        rf->state_hash = sbfx_state_hash(fx);
+        render_reference(b, fx, rf);
+        write_reference_png(b, rf, i);
+        printf("bench: reference frame t=%.2f s: %d particles, %d edge pixels\n", rf->t, rf->particles,
+               rf->edge_pixels);
+        fflush(stdout);
+    }
+    b->reference_seconds = seconds_now() - start;
+    sbfx_destroy(fx);
+}
+
+/* ---- GPU runs ------------------------------------------------------------------------ */
+
+typedef struct render_call {
+    sbfx *fx;
+    const sbfx_frame *frame;
+    bool failed;
+} render_call;
+
+static void render_once(void *user)
+{
+    render_call *rc = user;
+    if (sbfx_render(rc->fx, rc->frame) != SBFX_OK) rc->failed = true;
+}
+
+typedef struct samples {
+    double total_gpu[50], total_wall[50], part_gpu[50], part_wall[50];
+    bool part_ok;
+} samples;
+
+/* One frame, reps times: the particle pass alone, then the whole frame over a fresh copy of
+ * the scene (whose image is the one compared). Times are summed over frames per repetition. */
+static void time_frame(bench *b, render_call *rc, const ref_frame *rf, samples *s)
+{
+    for (int r = 0; r < b->opt.reps; r++) {
+        bench_sample part, total;
+        if (!bench_time_particle_pass(&b->timer, render_once, rc, &part)) s->part_ok = false;
+        bench_target_fill_from(&b->target, rf->scene.framebuffer);
+        total = bench_time_call(&b->timer, render_once, rc);
+        s->total_gpu[r] += total.gpu_ms / FRAME_COUNT;
+        s->total_wall[r] += total.wall_ms / FRAME_COUNT;
+        s->part_gpu[r] += part.gpu_ms / FRAME_COUNT;
+        s->part_wall[r] += part.wall_ms / FRAME_COUNT;
+    }
+}
+
+static void summarise(bench *b, result *res, samples *s)
+{
+    int n = b->opt.reps;
+    double med, lo, hi;
+    bool gpu = b->timer.has_query;
+    bench_stats(s->total_wall, n, &med, &lo, &hi);
+    res->wall_ms = med;
+    if (!gpu) res->ms = med, res->ms_min = lo, res->ms_max = hi;
+    else bench_stats(s->total_gpu, n, &res->ms, &res->ms_min, &res->ms_max);
+    bench_stats(s->part_wall, n, &med, &lo, &hi);
+    res->part_wall_ms = med;
+    if (!gpu) res->part_ms = med, res->part_min = lo, res->part_max = hi;
+    else bench_stats(s->part_gpu, n, &res->part_ms, &res->part_min, &res->part_max);
+    res->part_ok = s->part_ok;
+}
+
+static void compare_frame(bench *b, result *res, int index, uint8_t *gpu)
+{
+    const ref_frame *rf = &b->frames[index];
+    size_t n = (size_t)b->opt.width * b->opt.height;
+    bench_read_rgba8(b->target.fbo, b->opt.width, b->opt.height, gpu);
+    bench_error_add(&res->err, gpu, rf->ref_rgb, rf->edge, n);
+    if (res->c.keep) {
+        res->images[index] = xcalloc(n, 4);
+        memcpy(res->images[index], gpu, n * 4);
+    }
+}
+
+static void run_config(bench *b, result *res)
+{
+    sbfx *fx = create_module(&res->c);
+    samples s = {.part_ok = true};
+    uint8_t *gpu = xcalloc((size_t)b->opt.width * b->opt.height, 4);
+    render_call rc = {fx, NULL, false};
+    for (int i = 0; i < FRAME_COUNT && !rc.failed; i++) {
+        const ref_frame *rf = &b->frames[i];
+        advance_to(fx, rf->t);
+        if (sbfx_state_hash(fx) != rf->state_hash) die("simulation", "state differs from the reference's");
+        rc.frame = &rf->frame;
+        if (i == 0) render_once(&rc); /* first draw compiles the shader variants: not timed */
+        time_frame(b, &rc, rf, &s);
+        compare_frame(b, res, i, gpu);
+    }
+    sbfx_counters counters;
+    sbfx_stats(fx, &counters);
+    res->used_format = counters.target_format;
+    res->ok = !rc.failed;
+    if (rc.failed) fprintf(stderr, "bench: render failed: %s\n", sbfx_last_error(fx));
+    summarise(b, res, &s);
+    free(gpu);
+    sbfx_destroy(fx);
+}
+
+/* ---- the configurations -------------------------------------------------------------- */
+
+static config make_config(sbfx_opacity_mode m, int divisor, sbfx_target_format f, sbfx_upsample u)
+{
+    return (config){.opacity = m, .divisor = divisor, .format = f, .upsample = u, .detail = SBFX_DETAIL_R16F};
+}
+
+static bool is_lut_base(sbfx_opacity_mode m, int divisor)
+{
+    return (m == SBFX_OPACITY_SPHERICAL && divisor == 4) || (m == SBFX_OPACITY_EXACT && divisor == 1);
+}
+
+/* Scales x (floor, modes x upsampling) (RGBA16F, tables): the main grid. Each scale's floor is
+ * measured right before its modes, so that a ratio to the floor compares runs made under the
+ * same load on a shared machine. */
+static int grid_configs(const options *o, config *out)
+{
+    static const sbfx_opacity_mode modes[] = {SBFX_OPACITY_PLANAR, SBFX_OPACITY_SOFT, SBFX_OPACITY_SPHERICAL,
+                                              SBFX_OPACITY_EXACT};
+    static const int scales[] = {1, 2, 4, 8};
+    static const sbfx_upsample ups[] = {SBFX_UPSAMPLE_NEAREST_DEPTH, SBFX_UPSAMPLE_BILINEAR};
+    int n = 0;
+    for (size_t s = 0; s < 4; s++) {
+        if (o->quick && (scales[s] == 2 || scales[s] == 8)) continue;
+        out[n++] = make_config(SBFX_OPACITY_FLOOR, scales[s], SBFX_FORMAT_RGBA16F, ups[0]);
+        for (size_t m = 0; m < 4; m++)
+            for (size_t u = 0; u < (o->quick ? 1u : 2u); u++) {
+                out[n] = make_config(modes[m], scales[s], SBFX_FORMAT_RGBA16F, ups[u]);
+                out[n].keep = u == 0 && (is_lut_base(modes[m], scales[s]) ||
+                                         (modes[m] == SBFX_OPACITY_PLANAR && scales[s] == 1));
+                n++;
+            }
+    }
+    return n;
+}
+
+/* Target formats (full and quarter resolution), the analytic alternatives to the tables and
+ * the R32F detail volume. */
+static int variant_configs(const options *o, config *out)
+{
+    static const sbfx_opacity_mode modes[] = {SBFX_OPACITY_PLANAR, SBFX_OPACITY_SOFT, SBFX_OPACITY_SPHERICAL,
+                                              SBFX_OPACITY_EXACT};
+    static const sbfx_target_format formats[] = {SBFX_FORMAT_RGBA8, SBFX_FORMAT_RGBA32F};
+    const sbfx_upsample nd = SBFX_UPSAMPLE_NEAREST_DEPTH;
+    int n = 0;
+    for (size_t m = 0; m < 4 && !o->quick; m++)
+        for (int s = 1; s <= 4; s *= 4)
+            for (size_t f = 0; f < 2; f++) out[n++] = make_config(modes[m], s, formats[f], nd);
+    const struct { sbfx_opacity_mode m; int s; } bases[] = {{SBFX_OPACITY_SPHERICAL, 4}, {SBFX_OPACITY_EXACT, 1}};
+    for (size_t i = 0; i < 2; i++) {
+        for (int lut = 1; lut <= 3; lut++) {
+            out[n] = make_config(bases[i].m, bases[i].s, SBFX_FORMAT_RGBA16F, nd);
+            out[n].analytic_blackbody = lut & 1;
+            out[n].analytic_phase = lut & 2;
+            out[n++].keep = true;
+        }
+        out[n] = make_config(bases[i].m, bases[i].s, SBFX_FORMAT_RGBA16F, nd);
+        out[n++].detail = SBFX_DETAIL_R32F;
+    }
+    /* lighting once per particle instead of per fragment, at every scale: the floor ratio's
+     * largest lever (the light loop is about half of the particle pass on llvmpipe) */
+    for (int s = 1; s <= 8; s *= 2) {
+        out[n] = make_config(SBFX_OPACITY_SPHERICAL, s, SBFX_FORMAT_RGBA16F, nd);
+        out[n++].light_per_particle = true;
+    }
+    return n;
+}
+
+/* ---- names --------------------------------------------------------------------------- */
+
+static const char *scale_fraction(int divisor)
+{
+    return divisor == 1 ? "1" : divisor == 2 ? "0.5" : divisor == 4 ? "0.25" : "0.125";
+}
+
+static const char *upsample_name(sbfx_upsample u)
+{
+    return u == SBFX_UPSAMPLE_BILINEAR ? "bilinear" : "nearest-depth";
+}
+
+static const char *lut_name(const config *c)
+{
+    if (c->light_per_particle) return "light-per-particle";
+    if (c->analytic_blackbody && c->analytic_phase) return "analytic";
+    if (c->analytic_blackbody) return "analytic-bb";
+    if (c->analytic_phase) return "analytic-phase";
+    return "table";
+}
+
+static const char *format_name(sbfx_target_format f)
+{
+    return (unsigned)f < SBFX_FORMAT_COUNT && format_names[f] ? format_names[f] : "?";
+}
+
+/* A short label for the plot: "sph/4 nd", "exa/1 nd aBB", "pla/1 nd 8"... */
+static void short_label(const result *r, char *out, size_t n)
+{
+    const config *c = &r->c;
+    const char *lut = c->analytic_blackbody && c->analytic_phase ? " aBP"
+                      : c->analytic_blackbody ? " aBB" : c->analytic_phase ? " aPh" : "";
+    const char *fmt = r->used_format == SBFX_FORMAT_RGBA8 ? " 8" : r->used_format == SBFX_FORMAT_RGBA32F ? " 32F" : "";
+    snprintf(out, n, "%.3s/%d %s%s%s%s%s", mode_names[c->opacity], c->divisor,
+             c->upsample == SBFX_UPSAMPLE_BILINEAR ? "bl" : "nd", fmt, lut,
+             c->detail == SBFX_DETAIL_R32F ? " d32" : "", c->light_per_particle ? " lpp" : "");
+}
+
+static bool is_grid_point(const result *r)
+{
+    const config *c = &r->c;
+    return c->format == SBFX_FORMAT_RGBA16F && !c->analytic_blackbody && !c->analytic_phase &&
+           c->detail == SBFX_DETAIL_R16F && c->opacity != SBFX_OPACITY_FLOOR && !c->light_per_particle;
+}
+
+/* ---- output -------------------------------------------------------------------------- */
+
+static FILE *open_out(const bench *b, const char *name)
+{
+    char path[1024];
+    snprintf(path, sizeof(path), "%s/%s", b->opt.out, name);
+    FILE *f = fopen(path, "w");
+    if (!f) die(path, strerror(errno));
+    return f;
+}
+
+static void write_csv(const bench *b)
+{
+    FILE *f = open_out(b, "accuracy.csv");
+    fprintf(f, "mode,scale,format,upsample,lut,detail,ms,ms_min,ms_max,wall_ms,particle_ms,particle_ms_min,"
+               "particle_ms_max,particle_wall_ms,mean_abs_err,max_abs_err,psnr,edge_mean_abs_err,"
+               "edge_max_abs_err,edge_psnr,pareto\n");
+    for (int i = 0; i < b->result_count; i++) {
+        const result *r = &b->results[i];
+        const config *c = &r->c;
+        fprintf(f, "%s,%s,%s,%s,%s,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.4f,%.2f,%.2f,%.4f,%.2f,%.2f,%d\n",
+                mode_names[c->opacity], scale_fraction(c->divisor), format_name(r->used_format),
+                upsample_name(c->upsample), lut_name(c), c->detail == SBFX_DETAIL_R32F ? "R32F" : "R16F", r->ms,
+                r->ms_min, r->ms_max, r->wall_ms, r->part_ms, r->part_min, r->part_max, r->part_wall_ms,
+                bench_error_mean(&r->err), r->err.max_abs, bench_psnr(r->err.sum_sq, r->err.count),
+                bench_error_edge_mean(&r->err), r->err.edge_max_abs,
+                bench_psnr(r->err.edge_sum_sq, r->err.edge_count), r->pareto);
+    }
+    fclose(f);
+}
+
+/* points.dat: every configuration but the floor; pareto.dat: the front, by time. Columns:
+ * ms, mean abs error, label, group (0 = main grid, 1 = variant), opacity mode (1 planar ..
+ * 4 exact), divisor, upsampling (0 nearest-depth, 1 bilinear). */
+static void write_plot_data(const bench *b)
+{
+    FILE *points = open_out(b, "points.dat"), *front = open_out(b, "pareto.dat");
+    int order[MAX_CONFIGS], n = 0;
+    for (int i = 0; i < b->result_count; i++) {
+        const result *r = &b->results[i];
+        if (r->c.opacity == SBFX_OPACITY_FLOOR) continue;
+        char label[64];
+        short_label(r, label, sizeof(label));
+        fprintf(points, "%.4f %.5f \"%s\" %d %d %d %d\n", r->ms, bench_error_mean(&r->err), label,
+                is_grid_point(r) ? 0 : 1, (int)r->c.opacity, r->c.divisor, r->c.upsample == SBFX_UPSAMPLE_BILINEAR);
+        if (r->pareto) order[n++] = i;
+    }
+    for (int i = 1; i < n; i++) /* insertion sort by time */
+        for (int j = i; j > 0 && b->results[order[j]].ms < b->results[order[j - 1]].ms; j--) {
+            int t = order[j];
+            order[j] = order[j - 1], order[j - 1] = t;
+        }
+    for (int i = 0; i < n; i++) {
+        const result *r = &b->results[order[i]];
+        char label[64];
+        short_label(r, label, sizeof(label));
+        fprintf(front, "%.4f %.5f \"%s\"\n", r->ms, bench_error_mean(&r->err), label);
+    }
+    fclose(points);
+    fclose(front);
+}
+
+static void mark_pareto(bench *b)
+{
+    double ms[MAX_CONFIGS], err[MAX_CONFIGS];
+    bool include[MAX_CONFIGS], front[MAX_CONFIGS];
+    for (int i = 0; i < b->result_count; i++) {
+        ms[i] = b->results[i].ms;
+        err[i] = bench_error_mean(&b->results[i].err);
+        include[i] = b->results[i].ok && b->results[i].c.opacity != SBFX_OPACITY_FLOOR;
+    }
+    bench_pareto(ms, err, include, b->result_count, front);
+    for (int i = 0; i < b->result_count; i++) b->results[i].pareto = front[i];
+}
+
+/* ---- the verdicts of DESIGN §4 ------------------------------------------------------- */
+
+static const result *find(const bench *b, sbfx_opacity_mode m, int divisor, sbfx_upsample u, int lut,
+                          sbfx_detail_format detail)
+{
+    for (int i = 0; i < b->result_count; i++) {
+        const config *c = &b->results[i].c;
+        if (c->opacity == m && c->divisor == divisor && c->upsample == u && c->format == SBFX_FORMAT_RGBA16F &&
+            c->analytic_blackbody == (bool)(lut & 1) && c->analytic_phase == (bool)(lut & 2) && c->detail == detail &&
+            c->light_per_particle == (bool)(lut & 4))
+            return &b->results[i];
+    }
+    return NULL;
+}
+
+static const result *find_main(const bench *b, sbfx_opacity_mode m, int divisor)
+{
+    return find(b, m, divisor, SBFX_UPSAMPLE_NEAREST_DEPTH, 0, SBFX_DETAIL_R16F);
+}
+
+static void cpu_model(char *out, size_t n)
+{
+    snprintf(out, n, "unknown CPU");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (!f) return;
+    char line[512];
+    while (fgets(line, sizeof(line), f)) {
+        char *colon = strchr(line, ':');
+        if (strncmp(line, "model name", 10) == 0 && colon) {
+            snprintf(out, n, "%s", colon + 2);
+            out[strcspn(out, "\n")] = '\0';
+            break;
+        }
+    }
+    fclose(f);
+}
+
+static const char *verdict(bool met) { return met ? "MET" : "MISSED"; }
+
+static void summary_machine(const bench *b, FILE *f)
+{
+    char cpu[256];
+    cpu_model(cpu, sizeof(cpu));
+    fprintf(f, "machine   : %s, %ld cores; %s; %s\n", cpu, sysconf(_SC_NPROCESSORS_ONLN), bench_gl_renderer(),
+            bench_gl_version());
+    fprintf(f, "workload  : built-in explosion over the test scene, %dx%d output, frames at t = %.2f, %.2f, %.2f s,"
+               " %d repetitions (median [min..max])\n", b->opt.width, b->opt.height, frame_times[0], frame_times[1],
+            frame_times[2], b->opt.reps);
+    fprintf(f, "clock     : %s\n", b->timer.has_query ? "GPU timer query (GL_EXT_disjoint_timer_query, TIME_ELAPSED)"
+                                                       : "glFinish-bracketed wall time (no timer query)");
+    fprintf(f, "reference : exact model per full-res pixel in double, %.1f s of CPU for %d frames\n",
+            b->reference_seconds, FRAME_COUNT);
+}
+
+/* Ratios by medians, and by minima (the least disturbed repetitions on a shared machine). */
+static void summary_floor(const bench *b, FILE *f)
+{
+    fprintf(f, "\nparticle pass vs fill-rate floor (same quads, trivial shader), RGBA16F, target <= 1.5x\n"
+               "(median ms [min]; ratio by medians, by minima):\n");
+    for (int s = 1; s <= 8; s *= 2) {
+        const result *fl = find_main(b, SBFX_OPACITY_FLOOR, s), *sp = find_main(b, SBFX_OPACITY_SPHERICAL, s);
+        if (!fl || !sp) continue;
+        double ratio = sp->part_ms / fl->part_ms, ratio_min = sp->part_min / fl->part_min;
+        fprintf(f, "  scale 1/%d: spherical %.2f [%.2f] / floor %.2f [%.2f] = %.2fx, %.2fx  %s", s, sp->part_ms,
+                sp->part_min, fl->part_ms, fl->part_min, ratio, ratio_min, verdict(ratio <= 1.5));
+        for (int m = SBFX_OPACITY_PLANAR; m <= SBFX_OPACITY_EXACT; m++) {
+            const result *o = find_main(b, (sbfx_opacity_mode)m, s);
+            if (o && m != SBFX_OPACITY_SPHERICAL) fprintf(f, "; %s %.2fx", mode_names[m], o->part_ms / fl->part_ms);
+        }
+        const result *lpp = find(b, SBFX_OPACITY_SPHERICAL, s, SBFX_UPSAMPLE_NEAREST_DEPTH, 4, SBFX_DETAIL_R16F);
+        if (lpp) fprintf(f, "; spherical, light per particle %.2fx %s", lpp->part_ms / fl->part_ms,
+                         verdict(lpp->part_ms / fl->part_ms <= 1.5));
+        fprintf(f, "%s\n", sp->part_ok && fl->part_ok ? "" : "  (particle pass not isolated: whole frame)");
+    }
+}
+
+static void summary_speedup(const bench *b, FILE *f)
+{
+    const result *planar = find_main(b, SBFX_OPACITY_PLANAR, 1), *sph = find_main(b, SBFX_OPACITY_SPHERICAL, 4);
+    if (!planar || !sph) return;
+    double speedup = planar->ms / sph->ms, by_min = planar->ms_min / sph->ms_min;
+    double wall = planar->wall_ms / sph->wall_ms;
+    fprintf(f, "\nwhole frame, planar at full resolution / spherical at 1/4 with nearest-depth, target >= 3x:\n");
+    fprintf(f, "  %.2f ms [%.2f] / %.2f ms [%.2f] = %.2fx by medians, %.2fx by minima  %s   (wall clock: %.2fx)\n",
+            planar->ms, planar->ms_min, sph->ms, sph->ms_min, speedup, by_min, verdict(speedup >= 3.0), wall);
+}
+
+static void distance_line(FILE *f, const char *name, const result *r)
+{
+    fprintf(f, "  %-26s mean %.3f, max %.0f, PSNR %.2f dB; near silhouettes mean %.3f, PSNR %.2f dB\n", name,
+            bench_error_mean(&r->err), r->err.max_abs, bench_psnr(r->err.sum_sq, r->err.count),
+            bench_error_edge_mean(&r->err), bench_psnr(r->err.edge_sum_sq, r->err.edge_count));
+}
+
+static void summary_distance(const bench *b, FILE *f)
+{
+    const result *planar = find_main(b, SBFX_OPACITY_PLANAR, 1), *sph = find_main(b, SBFX_OPACITY_SPHERICAL, 4);
+    const result *sph1 = find_main(b, SBFX_OPACITY_SPHERICAL, 1), *exact1 = find_main(b, SBFX_OPACITY_EXACT, 1);
+    fprintf(f, "\ndistance to the exact CPU reference (8-bit levels of the RGBA8 output):\n");
+    if (planar) distance_line(f, "planar, full res", planar);
+    if (sph) distance_line(f, "spherical, 1/4 nearest-depth", sph);
+    if (sph1) distance_line(f, "spherical, full res", sph1);
+    if (exact1) distance_line(f, "exact, full res (GPU)", exact1);
+    if (planar && sph) {
+        bool closer = bench_error_mean(&sph->err) < bench_error_mean(&planar->err);
+        fprintf(f, "  spherical@1/4 is closer to the exact reference than planar@1: %s (mean %.3f vs %.3f)\n",
+                closer ? "YES" : "NO", bench_error_mean(&sph->err), bench_error_mean(&planar->err));
+    }
+}
+
+/* Mean and max |a - b| over the RGB bytes of the kept frames. */
+static void image_difference(const bench *b, const result *x, const result *y, double *mean, double *max)
+{
+    size_t n = (size_t)b->opt.width * b->opt.height, count = 0;
+    double sum = 0.0;
+    *max = 0.0;
+    for (int i = 0; i < FRAME_COUNT; i++)
+        for (size_t p = 0; p < n && x->images[i] && y->images[i]; p++)
+            for (int k = 0; k < 3; k++) {
+                double d = fabs((double)x->images[i][4 * p + k] - y->images[i][4 * p + k]);
+                sum += d, count++;
+                *max = fmax(*max, d);
+            }
+    *mean = count ? sum / count : NAN;
+}
+
+static void summary_luts(const bench *b, FILE *f)
+{
+    static const char *const names[] = {"", "black body", "phase", "both"};
+    fprintf(f, "\nerror of the lookup tables (GPU table image vs GPU analytic image, 8-bit levels):\n");
+    for (int base = 0; base < 2; base++) {
+        sbfx_opacity_mode m = base ? SBFX_OPACITY_EXACT : SBFX_OPACITY_SPHERICAL;
+        int s = base ? 1 : 4;
+        const result *table = find_main(b, m, s);
+        for (int lut = 1; lut <= 3 && table; lut++) {
+            const result *a = find(b, m, s, SBFX_UPSAMPLE_NEAREST_DEPTH, lut, SBFX_DETAIL_R16F);
+            if (!a) continue;
+            double mean, max;
+            image_difference(b, table, a, &mean, &max);
+            fprintf(f, "  %s@1/%d, analytic %-10s mean %.4f, max %.0f; time %.2f -> %.2f ms\n", mode_names[m], s,
+                    names[lut], mean, max, table->ms, a->ms);
+        }
+    }
+}
+
+static void write_summary(const bench *b)
+{
+    FILE *f = open_out(b, "summary.txt");
+    fprintf(f, "== What accuracy costs: verdicts (DESIGN §4) ==\n");
+    summary_machine(b, f);
+    summary_floor(b, f);
+    summary_speedup(b, f);
+    summary_distance(b, f);
+    summary_luts(b, f);
+    fclose(f);
+}
+
+static void write_kept_pngs(const bench *b)
+{
+    for (int i = 0; i < b->result_count; i++) {
+        const result *r = &b->results[i];
+        if (!r->images[1] || !is_grid_point(r)) continue;
+        char name[64];
+        snprintf(name, sizeof(name), "gpu-%s-%d.png", mode_names[r->c.opacity], r->c.divisor);
+        write_png(b, name, r->images[1]);
+    }
+}
+
+/* ---- main ---------------------------------------------------------------------------- */
+
+static void open_gl(bench *b)
+{
+    char err[512];
+    if (egl_headless_open(&b->egl, err, sizeof(err)) != 0) die("EGL", err);
+    bench_timer_init(&b->timer);
+    if (bench_target_create(&b->target, b->opt.width, b->opt.height) != 0) die("GL", "RGBA8 target incomplete");
+    if (sbfx_cmf_load(SBFX_CMF_DEFAULT_PATH, &b->cmf, err, sizeof(err)) != SBFX_OK) die("CIE tables", err);
+    printf("bench: %s, %s; timer query: %s\n", bench_gl_renderer(), bench_gl_version(),
+           b->timer.has_query ? "yes" : "no (wall clock)");
+}
+
+static void run_all(bench *b)
+{
+    config configs[MAX_CONFIGS];
+    int n = grid_configs(&b->opt, configs);
+    n += variant_configs(&b->opt, configs + n);
+    for (int i = 0; i < n; i++) {
+        result *r = &b->results[b->result_count];
+        r->c = configs[i];
+        char label[64];
+        short_label(r, label, sizeof(label));
+        if (b->opt.match && !strstr(label, b->opt.match)) continue;
+        b->result_count++;
+        double start = seconds_now();
+        run_config(b, r);
+        short_label(r, label, sizeof(label)); /* now with the format actually used */
+        printf("bench: [%2d/%d] %-18s %7.2f ms [%.2f..%.2f]  particles %7.2f ms [%.2f..%.2f]  mean err %.3f  (%.1f s)\n",
+               i + 1, n, label, r->ms, r->ms_min, r->ms_max, r->part_ms, r->part_min, r->part_max,
+               bench_error_mean(&r->err), seconds_now() - start);
+        fflush(stdout);
+    }
+}
+
+static void close_all(bench *b)
+{
+    for (int i = 0; i < b->result_count; i++)
+        for (int k = 0; k < FRAME_COUNT; k++) free(b->results[i].images[k]);
+    for (int i = 0; i < FRAME_COUNT; i++) {
+        ref_frame *rf = &b->frames[i];
+        test_scene_destroy(&rf->scene);
+        free(rf->distance), free(rf->scene_rgba), free(rf->ref_rgb), free(rf->edge);
+    }
+    free(b->detail);
+    bench_target_destroy(&b->target);
+    bench_timer_destroy(&b->timer);
+    egl_headless_close(&b->egl);
+}
+
+int main(int argc, char **argv)
+{
+    bench *b = xcalloc(1, sizeof(*b));
+    b->opt = parse_options(argc, argv);
+    if (mkdir(b->opt.out, 0777) != 0 && errno != EEXIST) die(b->opt.out, strerror(errno));
+    open_gl(b);
+    prepare_references(b);
+    run_all(b);
+    mark_pareto(b);
+    write_csv(b);
+    write_plot_data(b);
+    write_summary(b);
+    write_kept_pngs(b);
+    close_all(b);
+    free(b);
+    return 0;
+}

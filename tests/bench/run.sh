@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# make bench: what accuracy costs (issue #4, DESIGN §4).
+#   tests/bench/run.sh [BUILD]      (make bench builds $BUILD/bench/bench_accuracy first)
+# Writes $BUILD/bench/accuracy.csv, accuracy.md (the same as a markdown table), accuracy.png
+# (gnuplot), summary.txt, reference and GPU frames as PNG, then runs the other bench programs
+# that exist (lighting, scenes); prints the summary.
+# BENCH_ARGS passes options to the accuracy program, e.g.
+#   BENCH_ARGS="--size 640x360 --reps 3" make bench
+#   BENCH_ARGS="--match 'sph/4'" make bench        (one family of configurations)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+
+BUILD=${1:-build}
+OUT=$BUILD/bench
+BIN=$BUILD/bench/bench_accuracy
+mkdir -p "$OUT"
+if [ ! -x "$BIN" ]; then
+    echo "bench: $BIN is missing: run 'make bench'" >&2
+    exit 1
+fi
+
+start=$(date +%s)
+# shellcheck disable=SC2086 # BENCH_ARGS is a list of options
+eval "\"$BIN\" --out \"$OUT\" ${BENCH_ARGS:-}"
+
+# The table as markdown (for README "What accuracy costs").
+awk -F, 'NR == 1 {
+    for (i = 1; i <= NF; i++) col[$i] = i
+    print "| mode | scale | target | upsample | LUT | detail | ms (min–max) | particle pass ms | mean err | max err | PSNR dB | edge mean | edge PSNR dB | Pareto |"
+    print "| --- | ---: | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |"
+    next
+}
+{
+    printf "| %s | %s | %s | %s | %s | %s | %.1f (%.1f–%.1f) | %.1f | %.3f | %.0f | %.1f | %.2f | %.1f | %s |\n",
+        $col["mode"], $col["scale"], $col["format"], $col["upsample"], $col["lut"], $col["detail"],
+        $col["ms"], $col["ms_min"], $col["ms_max"], $col["particle_ms"], $col["mean_abs_err"],
+        $col["max_abs_err"], $col["psnr"], $col["edge_mean_abs_err"], $col["edge_psnr"],
+        $col["pareto"] == 1 ? "★" : ""
+}' "$OUT/accuracy.csv" >"$OUT/accuracy.md"
+
+if command -v gnuplot >/dev/null 2>&1; then
+    gnuplot -e "dir='$OUT'" tests/bench/accuracy.gp
+else
+    echo "bench: gnuplot is not installed (apt-get install gnuplot-nox): no $OUT/accuracy.png" >&2
+fi
+
+# Other benches built by the Makefile's bench targets run after the accuracy bench
+# (issue #7's lighting bench writes $OUT/lighting.csv).
+if [ -x "$BUILD/bench/bench_lighting" ]; then
+    "$BUILD/bench/bench_lighting" --out "$OUT"
+fi
+# issues #3 and #6: simulation throughput, load time and GPU bytes per scene, post effects
+if [ -x "$BUILD/bench/bench_scenes" ]; then
+    "$BUILD/bench/bench_scenes" --out "$OUT" | tee "$OUT/scenes.txt"
+fi
+
+echo "time      : make bench took $(($(date +%s) - start)) s" >>"$OUT/summary.txt"
+echo
+cat "$OUT/summary.txt"
+echo
+echo "bench: $OUT/accuracy.csv (.md), $OUT/accuracy.png, $OUT/summary.txt"

@@ -1,0 +1,800 @@
+/* Every hard case of DESIGN §2.2 through the CPU reference (src/reference_frame.c) and the GPU
+ * (sbfx_render_view_particles, particle target read back at full resolution), in every opacity
+ * mode: both must be finite, agree within the tolerances below, and show what the case is about
+ * (alpha 0 where nothing may be seen, alpha -> 1 where everything is, ...). Then a scan of
+ * rendered explosion frames (all modes and formats, tables and analytic) for NaN/Inf.
+ *
+ * The CPU side is given what the GPU has: the float particles, the window depth as the host
+ * depth texture stores it (float), the detail volume rounded to half (R16F), and — for the
+ * table paths — the tables rounded to half, looked up the way the GPU does; for the analytic
+ * paths (desc.analytic_blackbody / analytic_phase) the analytic functions.
+ *
+ * Tolerances (GPU float32 against double, RGBA32F target unless said):
+ *   alpha: 1e-4 absolute (the opacity tests' 5e-5 per particle, a few particles deep);
+ *   light: 2e-3 relative + 1e-5 absolute (half-float tables and detail fetched with float
+ *          filtering weights; float exp/log in the shader);
+ *   RGBA16F target: every blend rounds C and T to 11 bits (at most 2^-12 relative each):
+ *          light 1e-2 relative + 2e-3 absolute; alpha 1e-2 absolute, which is four times the
+ *          random-walk estimate of 200 roundings of T in [0.5, 1) (sqrt(200) 2^-12 / sqrt(3),
+ *          about 2e-3, also what is measured); the linear worst case would be 0.05. */
+#include "gl_fixture.h"
+#include "reference_frame.h"
+
+#define SIZE 32
+#define MAX_P 256
+#define ALPHA_TOL 1e-4
+#define RGB_REL 2e-3
+#define RGB_ABS 1e-5
+#define HALF_RGB_REL 1e-2
+#define HALF_RGB_ABS 2e-3
+#define HALF_ALPHA_TOL 1e-2
+
+static const sbfx_opacity_mode modes[] = {SBFX_OPACITY_PLANAR, SBFX_OPACITY_SOFT, SBFX_OPACITY_SPHERICAL,
+                                          SBFX_OPACITY_EXACT};
+static const char *const mode_names[] = {"", "planar", "soft", "spherical", "exact", "floor"};
+
+/* ---- one case: set-up, GPU, CPU, comparison --------------------------------------------- */
+
+typedef struct hc_setup {
+    sbfx_view_particle p[MAX_P];
+    int count;
+    float fov, near, far;
+    double wall;                 /* opaque distance everywhere; INFINITY: the clear value */
+    double wall_left;            /* if > 0: opaque only on the left half, at this distance */
+    void (*media)(sbfx_medium_params *m);
+    float light_dir[3], light_color[3], ambient[3];
+    sbfx_target_format format;
+    bool analytic_bb, analytic_phase;
+} hc_setup;
+
+typedef struct hc_result {
+    int w, h;
+    float *gpu;
+    double *cpu;
+    int gpu_skipped, cpu_skipped, passes;
+    double alpha_err, rgb_err;   /* worst |GPU - CPU|, rgb relative to the tolerance */
+    int nonfinite_gpu, nonfinite_cpu, over;
+} hc_result;
+
+static hc_setup base_setup(void)
+{
+    hc_setup s;
+    memset(&s, 0, sizeof(s));
+    s.fov = 1.0f, s.near = 0.1f, s.far = 100.0f;
+    s.wall = INFINITY;
+    s.light_dir[2] = -1.0f, s.light_dir[1] = -0.3f;
+    s.light_color[0] = 1.6f, s.light_color[1] = 1.5f, s.light_color[2] = 1.35f;
+    s.ambient[0] = 0.28f, s.ambient[1] = 0.32f, s.ambient[2] = 0.4f;
+    s.format = SBFX_FORMAT_RGBA32F;
+    return s;
+}
+
+static sbfx_view_particle particle(float x, float y, float z, float r, sbfx_medium m)
+{
+    return (sbfx_view_particle){.center = {x, y, z}, .radius = r, .detail = {0.3f, 0.6f, 0.1f},
+                                .intensity = 1.0f, .medium = m};
+}
+
+static double setup_depth(int x, int y, void *user)
+{
+    const hc_setup *s = user;
+    (void)y;
+    if (s->wall_left > 0) return x < SIZE / 2 ? s->wall_left : INFINITY;
+    return s->wall;
+}
+
+/* The distance the GPU reads back for a requested one: the host's float window depth,
+ * linearised (the host depth buffer's precision, not the shader's). */
+static double stored_distance(const sbfx_frame *frame, double z)
+{
+    const float *p = frame->projection;
+    double far = fixture_far(frame);
+    if (!(z < far)) return far;
+    float window = (float)fmin(1.0, fmax(0.0, 0.5 * (p[14] / z - p[10]) + 0.5));
+    return window >= 1.0f ? far : p[14] / (2.0 * window - 1.0 + p[10]);
+}
+
+static sbfx *hc_module(gl_fixture *f, const hc_setup *s, sbfx_opacity_mode mode, bool has_detail[])
+{
+    sbfx *fx = fixture_module(f, (sbfx_desc){.target_divisor = 1, .target_format = s->format, .opacity = mode,
+                                             .max_particles = MAX_P, .analytic_blackbody = s->analytic_bb,
+                                             .analytic_phase = s->analytic_phase});
+    /* the programs were specialised at load: detail sampled if the strength was > 0 then */
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) has_detail[m] = sbfx_media(fx)[m].detail_strength > 0;
+    if (s->media) s->media(sbfx_media(fx));
+    sbfx_set_light(fx, s->light_dir, s->light_color, s->ambient);
+    return fx;
+}
+
+static void gpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, hc_result *r)
+{
+    fixture_depth(f, setup_depth, (void *)s);
+    CHECK(sbfx_render_view_particles(fx, &f->frame, s->p, s->count) == SBFX_OK, "%s", sbfx_last_error(fx));
+    sbfx_counters c;
+    sbfx_stats(fx, &c);
+    r->gpu_skipped = c.particles_skipped;
+    r->passes = c.passes;
+    r->w = r->h = SIZE;
+    if (c.passes == 0) { /* nothing drawn: the target holds an earlier frame; nothing was added */
+        r->gpu = calloc(SIZE * SIZE * 4, sizeof(float));
+        for (int i = 0; i < SIZE * SIZE; i++) r->gpu[4 * i + 3] = 1.0f;
+        return;
+    }
+    r->gpu = fixture_read_target(fx, &r->w, &r->h);
+}
+
+/* ---- the reference, given what the GPU has ---------------------------------------------- */
+
+static sbfx_cmf cmf;
+static float *half_detail;
+static double *half_phase, *half_blackbody;
+
+static double to_half(double v) { return (double)(_Float16)v; }
+
+static void load_tables(void)
+{
+    if (half_detail) return;
+    char err[256];
+    if (sbfx_cmf_load(SBFX_CMF_DEFAULT_PATH, &cmf, err, sizeof(err)) != SBFX_OK) CHECK_SKIP("%s", err);
+    size_t n = 64 * 64 * 32;
+    half_detail = malloc(n * sizeof(float));
+    sbfx_detail_generate(64, 32, 1, half_detail);
+    for (size_t i = 0; i < n; i++) half_detail[i] = (float)to_half(half_detail[i]);
+    half_phase = malloc(SBFX_PHASE_COS_SIZE * SBFX_PHASE_G_SIZE * sizeof(double));
+    sbfx_phase_table(SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE, half_phase);
+    for (int i = 0; i < SBFX_PHASE_COS_SIZE * SBFX_PHASE_G_SIZE; i++) half_phase[i] = to_half(half_phase[i]);
+    half_blackbody = malloc(SBFX_BLACKBODY_SIZE * 3 * sizeof(double));
+    sbfx_blackbody_table(&cmf, SBFX_DEFAULT_MAX_KELVIN, SBFX_BLACKBODY_SIZE, half_blackbody);
+    for (int i = 0; i < SBFX_BLACKBODY_SIZE * 3; i++) half_blackbody[i] = to_half(half_blackbody[i]);
+}
+
+static void rf_media(sbfx *fx, const bool has_detail[], sbfx_rf_frame *f)
+{
+    const sbfx_medium_params *m = sbfx_media(fx);
+    for (int i = 0; i < SBFX_MEDIUM_COUNT; i++)
+        f->media[i] = (sbfx_rf_medium){
+            .albedo = m[i].albedo, .tau = m[i].tau, .phase_g = m[i].phase_g,
+            .color = {m[i].color[0], m[i].color[1], m[i].color[2]}, .detail_strength = m[i].detail_strength,
+            .detail_window = m[i].detail_window, .t0 = m[i].t0, .t1 = m[i].t1, .cooling = m[i].cooling,
+            .emission_scale = m[i].emission_scale, .has_detail = has_detail[i]};
+}
+
+static int rf_lights(sbfx *fx, const float view[16], sbfx_rf_light *out, double ambient[3])
+{
+    sbfx_view_light l[SBFX_RF_MAX_LIGHTS];
+    int n = sbfx_frame_lights(fx, view, l, SBFX_RF_MAX_LIGHTS);
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 4; k++) {
+            out[i].vector[k] = l[i].vector[k];
+            if (k < 3) out[i].color[k] = l[i].color[k];
+        }
+    float a[3];
+    sbfx_frame_ambient(fx, a);
+    for (int k = 0; k < 3; k++) ambient[k] = a[k];
+    return n;
+}
+
+static void cpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, sbfx_opacity_mode mode,
+                       const bool has_detail[], hc_result *r)
+{
+    const float *p = f->frame.projection;
+    static double distance[SIZE * SIZE];
+    for (int y = 0; y < SIZE; y++)
+        for (int x = 0; x < SIZE; x++)
+            distance[y * SIZE + x] = stored_distance(&f->frame, setup_depth(x, y, (void *)s));
+    sbfx_rf_light lights[SBFX_RF_MAX_LIGHTS];
+    sbfx_rf_frame rf = {.width = SIZE, .height = SIZE, .projection = {p[0], p[5], p[8], p[9]},
+                        .near = (double)(p[14] / (p[10] - 1.0f)), .opaque_distance = distance, .opacity = mode,
+                        .lights = lights, .detail = half_detail, .detail_size = 64, .detail_frames = 32,
+                        .detail_time = sbfx_detail_time(fx), .cmf = &cmf, .max_kelvin = SBFX_DEFAULT_MAX_KELVIN,
+                        .blackbody_norm = sbfx_blackbody_norm(&cmf, SBFX_DEFAULT_MAX_KELVIN)};
+    if (!s->analytic_bb) rf.blackbody_table = half_blackbody, rf.blackbody_table_size = SBFX_BLACKBODY_SIZE;
+    if (!s->analytic_phase)
+        rf.phase_table = half_phase, rf.phase_table_cos = SBFX_PHASE_COS_SIZE, rf.phase_table_g = SBFX_PHASE_G_SIZE;
+    rf_media(fx, has_detail, &rf);
+    rf.light_count = rf_lights(fx, f->frame.view, lights, rf.ambient);
+    sbfx_rf_particle *v = calloc(MAX_P, sizeof(*v));
+    for (int i = 0; i < s->count; i++) {
+        const sbfx_view_particle *q = &s->p[i];
+        v[i] = (sbfx_rf_particle){.radius = q->radius, .intensity = q->intensity, .medium = q->medium};
+        for (int k = 0; k < 3; k++) v[i].center[k] = q->center[k], v[i].detail[k] = q->detail[k];
+    }
+    r->cpu = calloc(SIZE * SIZE * 4, sizeof(double));
+    r->cpu_skipped = sbfx_rf_render_layer(&rf, v, s->count, r->cpu, NULL);
+    free(v);
+}
+
+static void compare(const hc_setup *s, hc_result *r)
+{
+    bool half = s->format == SBFX_FORMAT_RGBA16F;
+    double rel = half ? HALF_RGB_REL : RGB_REL, abs_tol = half ? HALF_RGB_ABS : RGB_ABS;
+    double alpha_tol = half ? HALF_ALPHA_TOL : ALPHA_TOL;
+    for (int i = 0; i < SIZE * SIZE; i++)
+        for (int k = 0; k < 4; k++) {
+            double g = r->gpu[4 * i + k], c = r->cpu[4 * i + k];
+            if (!isfinite(g)) r->nonfinite_gpu++;
+            if (!isfinite(c)) r->nonfinite_cpu++;
+            double err = fabs(g - c);
+            if (k == 3) {
+                r->alpha_err = fmax(r->alpha_err, err);
+                if (!(err <= alpha_tol)) r->over++;
+            } else {
+                double tol = rel * fabs(c) + abs_tol;
+                r->rgb_err = fmax(r->rgb_err, err / tol);
+                if (!(err <= tol)) r->over++;
+            }
+        }
+}
+
+static void hc_free(hc_result *r)
+{
+    free(r->gpu);
+    free(r->cpu);
+    memset(r, 0, sizeof(*r));
+}
+
+/* Runs the case in one mode: GPU and CPU agree, both finite. */
+static void hc_run(gl_fixture *f, const hc_setup *s, sbfx_opacity_mode mode, hc_result *r)
+{
+    load_tables();
+    memset(r, 0, sizeof(*r));
+    fixture_projection(f, s->fov, s->near, s->far);
+    bool has_detail[SBFX_MEDIUM_COUNT];
+    sbfx *fx = hc_module(f, s, mode, has_detail);
+    gpu_render(f, fx, s, r);
+    cpu_render(f, fx, s, mode, has_detail, r);
+    sbfx_destroy(fx);
+    compare(s, r);
+    printf("#   %-9s max |alpha diff| %.2e, max light diff %.2f of tolerance\n", mode_names[mode], r->alpha_err,
+           r->rgb_err);
+    CHECK(r->nonfinite_gpu == 0, "%s: %d non-finite GPU values", mode_names[mode], r->nonfinite_gpu);
+    CHECK(r->nonfinite_cpu == 0, "%s: %d non-finite CPU values", mode_names[mode], r->nonfinite_cpu);
+    CHECK(r->over == 0, "%s: %d values differ beyond tolerance (alpha %.3g, light %.3g x tol)",
+          mode_names[mode], r->over, r->alpha_err, r->rgb_err);
+    CHECK(r->gpu_skipped == r->cpu_skipped, "%s: GPU skipped %d, CPU %d", mode_names[mode], r->gpu_skipped,
+          r->cpu_skipped);
+}
+
+static double alpha_at(const hc_result *r, int x, int y) { return 1.0 - r->gpu[4 * (y * r->w + x) + 3]; }
+
+static double max_alpha(const hc_result *r)
+{
+    double a = 0.0;
+    for (int i = 0; i < r->w * r->h; i++) a = fmax(a, 1.0 - r->gpu[4 * i + 3]);
+    return a;
+}
+
+static double max_light(const hc_result *r)
+{
+    double l = 0.0;
+    for (int i = 0; i < r->w * r->h; i++)
+        for (int k = 0; k < 3; k++) l = fmax(l, r->gpu[4 * i + k]);
+    return l;
+}
+
+/* Opens the context and runs the case in every mode, calling expect() on each result. */
+static void hc_all_modes(const char *what, hc_setup *s,
+                         void (*expect)(const hc_setup *, sbfx_opacity_mode, const hc_result *))
+{
+    gl_fixture f;
+    fixture_open(&f, SIZE, SIZE);
+    printf("# %s\n", what);
+    for (size_t i = 0; i < ARRAY_SIZE(modes); i++) {
+        hc_result r;
+        hc_run(&f, s, modes[i], &r);
+        if (expect) expect(s, modes[i], &r);
+        hc_free(&r);
+    }
+    fixture_close(&f);
+}
+
+/* The view ray (z = -1) through the centre of target pixel (x, y) under the setup's projection. */
+static void pixel_slope(const hc_setup *s, int x, int y, double out[2])
+{
+    double t = 1.0 / tan(s->fov * 0.5);
+    out[0] = ((x + 0.5) / SIZE * 2.0 - 1.0) / t;
+    out[1] = ((y + 0.5) / SIZE * 2.0 - 1.0) / t;
+}
+
+/* ---- media overrides ---------------------------------------------------------------------- */
+
+/* Opacity without the detail perturbation (the programs still sample it: strength was > 0 at
+ * load), so the geometry is what is compared. */
+static void no_detail(sbfx_medium_params *m)
+{
+    m[SBFX_DUST].detail_strength = m[SBFX_SMOKE].detail_strength = 0.0f;
+}
+
+static void tau_zero(sbfx_medium_params *m)
+{
+    for (int i = 0; i < SBFX_MEDIUM_COUNT; i++) m[i].tau = 0.0f;
+}
+
+static void tau_huge(sbfx_medium_params *m)
+{
+    for (int i = 0; i < SBFX_MEDIUM_COUNT; i++) m[i].tau = 1e6f;
+}
+
+/* ---- d -> r and d > r --------------------------------------------------------------------- */
+
+static void expect_d_near_r(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
+{
+    (void)s;
+    /* pixel (10, 16): the billboard point sits exactly at d = r of the first particle */
+    CHECK(alpha_at(r, 10, 16) < 1e-2, "%s: alpha %g at d = r", mode_names[mode], alpha_at(r, 10, 16));
+    CHECK(alpha_at(r, 7, 16) == 0.0, "%s: alpha %g at d = 1.5 r", mode_names[mode], alpha_at(r, 7, 16));
+    CHECK(max_alpha(r) > 0.05, "%s: the particles are not drawn at all", mode_names[mode]);
+}
+
+CHECK_TEST(d_near_r_and_beyond)
+{
+    hc_setup s = base_setup();
+    s.media = no_detail;
+    double q[2];
+    pixel_slope(&s, 10, 16, q);
+    s.p[s.count++] = particle((float)(q[0] * 5.0 + 1.0), (float)(q[1] * 5.0), -5.0f, 1.0f, SBFX_SMOKE);
+    pixel_slope(&s, 22, 8, q); /* d = r (1 - 1e-6): the last sliver inside */
+    s.p[s.count++] = particle((float)(q[0] * 6.0 - 0.5 * (1.0 - 1e-6)), (float)(q[1] * 6.0), -6.0f, 0.5f, SBFX_DUST);
+    pixel_slope(&s, 26, 26, q); /* d = r (1 + 1e-6): the first miss */
+    s.p[s.count++] = particle((float)(q[0] * 4.0), (float)(q[1] * 4.0 + 0.7 * (1.0 + 1e-6)), -4.0f, 0.7f, SBFX_FIRE);
+    hc_all_modes("rays at d = r, just inside and just outside", &s, expect_d_near_r);
+}
+
+/* ---- r -> 0 ------------------------------------------------------------------------------- */
+
+static void expect_tiny(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
+{
+    (void)s;
+    /* optical depth <= 2 tau r with r <= 1e-3 and tau = 0.4 (fire's emission is at most 64) */
+    CHECK(max_alpha(r) <= 2 * 0.4 * 1e-3 * 1.01 + ALPHA_TOL, "%s: alpha %g", mode_names[mode], max_alpha(r));
+}
+
+CHECK_TEST(radius_to_zero)
+{
+    hc_setup s = base_setup();
+    s.media = no_detail;
+    const float radii[] = {1e-3f, 1e-6f, 1e-12f, 1e-30f, 1.2e-38f, 1e-44f /* subnormal */};
+    for (size_t i = 0; i < ARRAY_SIZE(radii); i++) {
+        double q[2];
+        pixel_slope(&s, 4 + 5 * (int)i, 16, q);
+        s.p[s.count++] = particle((float)(q[0] * 2.0), (float)(q[1] * 2.0), -2.0f, radii[i], (sbfx_medium)(i % 3));
+    }
+    hc_all_modes("radii 1e-3 down to a subnormal", &s, expect_tiny);
+}
+
+/* ---- camera inside the sphere ------------------------------------------------------------- */
+
+static void expect_inside(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
+{
+    (void)s;
+    if (mode == SBFX_OPACITY_PLANAR || mode == SBFX_OPACITY_SOFT)
+        CHECK(max_alpha(r) == 0.0, "%s: the flat billboard behind the near plane drew alpha %g", mode_names[mode],
+              max_alpha(r));
+    else
+        CHECK(alpha_at(r, 16, 16) > 0.2, "%s: alpha %g looking through the sphere from inside", mode_names[mode],
+              alpha_at(r, 16, 16));
+}
+
+CHECK_TEST(camera_inside_sphere)
+{
+    hc_setup s = base_setup();
+    s.media = no_detail;
+    s.p[s.count++] = particle(0.1f, -0.05f, -0.05f, 1.5f, SBFX_SMOKE); /* F < n: centre before the near plane */
+    hc_all_modes("camera inside the sphere, centre closer than the near plane", &s, expect_inside);
+}
+
+/* ---- opaque surface inside or in front of the sphere ------------------------------------- */
+
+static void expect_wall_inside(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
+{
+    (void)s;
+    double left = alpha_at(r, 15, 16), right = alpha_at(r, 16, 16); /* mirror pixels */
+    if (mode == SBFX_OPACITY_PLANAR)
+        CHECK(fabs(left - right) < 1e-4, "planar: a wall behind the centre must not clip (%g vs %g)", left, right);
+    else
+        CHECK(left < right - 0.01, "%s: wall inside the sphere clips nothing (%g vs %g)", mode_names[mode], left, right);
+}
+
+CHECK_TEST(opaque_surface_inside_sphere)
+{
+    hc_setup s = base_setup();
+    s.media = no_detail;
+    s.wall_left = 5.3; /* between the centre (5) and the back (6), left half only */
+    s.p[s.count++] = particle(0.0f, 0.0f, -5.0f, 1.0f, SBFX_SMOKE);
+    hc_all_modes("opaque surface through the sphere, behind its centre, on the left half", &s, expect_wall_inside);
+}
+
+static void expect_nothing(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
+{
+    (void)s;
+    CHECK(max_alpha(r) == 0.0 && max_light(r) == 0.0, "%s: alpha %g, light %g where nothing may show",
+          mode_names[mode], max_alpha(r), max_light(r));
+}
+
+CHECK_TEST(opaque_surface_in_front_of_sphere)
+{
+    hc_setup s = base_setup();
+    s.wall = 3.5; /* Zs < F = 4: delta s = 0 */
+    s.p[s.count++] = particle(0.0f, 0.0f, -5.0f, 1.0f, SBFX_SMOKE);
+    s.p[s.count++] = particle(0.3f, 0.2f, -5.5f, 1.2f, SBFX_FIRE);
+    s.p[s.count++] = particle(-0.4f, 0.1f, -6.0f, 1.5f, SBFX_DUST);
+    hc_all_modes("opaque surface in front of every sphere", &s, expect_nothing);
+}
+
+/* ---- sphere behind the camera -------------------------------------------------------------- */
+
+CHECK_TEST(sphere_behind_camera)
+{
+    hc_setup s = base_setup();
+    s.p[s.count++] = particle(0.0f, 0.0f, 5.0f, 1.0f, SBFX_SMOKE);
+    s.p[s.count++] = particle(0.5f, -0.2f, 3.0f, 2.5f, SBFX_FIRE);
+    s.p[s.count++] = particle(0.0f, 0.0f, 1.0f, 1.1f, SBFX_DUST); /* back reaches exactly 0.1 */
+    hc_all_modes("spheres wholly behind the camera", &s, expect_nothing);
+    s.count = 0;
+    s.media = no_detail;
+    s.p[s.count++] = particle(0.3f, 0.0f, 0.5f, 1.0f, SBFX_SMOKE); /* centre behind, camera inside */
+    hc_all_modes("centre behind the camera, the sphere reaching in front", &s, NULL);
+}
+
+/* ---- z_c = 1e4, r = 0.05 -------------------------------------------------------------------- */
+
+static void expect_far_small(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
+{
+    (void)s;
+    /* through the centre: optical depth 2 tau r (planar, soft, spherical) or tau r (exact) */
+    double od = (mode == SBFX_OPACITY_EXACT ? 1.0 : 2.0) * 0.4 * 0.05, peak = -expm1(-od);
+    CHECK(fabs(max_alpha(r) - peak) < 0.05 * peak, "%s: peak alpha %g, expected about %g", mode_names[mode],
+          max_alpha(r), peak);
+}
+
+/* The particle is 1e4 m away and 0.1 m across: a 1.6e-5 rad field of view makes it span a third
+ * of the 32-pixel target. Nothing opaque is near it: the host depth buffer (float window depth,
+ * near 0.1) resolves only about z^2 / near * 2^-24, i.e. tens of metres at 1e4 m, so a surface
+ * next to the particle would test the depth buffer, not the shader; the depth stays at its clear
+ * value and the far plane (1e5) clips nothing. */
+CHECK_TEST(small_particle_far_away)
+{
+    hc_setup s = base_setup();
+    s.media = no_detail;
+    s.fov = 1.6e-5f, s.near = 0.1f, s.far = 1e5f;
+    double q[2];
+    pixel_slope(&s, 16, 16, q); /* centred on a pixel's ray: the peak is sampled */
+    s.p[s.count++] = particle((float)(q[0] * 1e4), (float)(q[1] * 1e4), -1e4f, 0.05f, SBFX_SMOKE);
+    hc_all_modes("z_c = 1e4, r = 0.05, opaque depth at the clear value", &s, expect_far_small);
+}
+
+/* ---- tau = 0 and tau = 1e6 ------------------------------------------------------------------ */
+
+static void add_mixed_particles(hc_setup *s)
+{
+    s->p[s->count++] = particle(0.0f, 0.0f, -5.0f, 1.2f, SBFX_SMOKE);
+    s->p[s->count++] = particle(0.6f, 0.3f, -4.0f, 0.8f, SBFX_FIRE);
+    s->p[s->count++] = particle(-0.7f, -0.2f, -6.0f, 1.5f, SBFX_DUST);
+}
+
+static void expect_saturated(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
+{
+    (void)s;
+    CHECK(max_alpha(r) >= 1.0 - 1e-6, "%s: tau = 1e6 leaves alpha at %g", mode_names[mode], max_alpha(r));
+}
+
+CHECK_TEST(tau_zero_and_huge)
+{
+    hc_setup s = base_setup();
+    add_mixed_particles(&s);
+    s.media = tau_zero;
+    hc_all_modes("tau = 0: nothing", &s, expect_nothing);
+    s.media = tau_huge;
+    hc_all_modes("tau = 1e6: alpha -> 1", &s, expect_saturated);
+}
+
+/* ---- depth at its far clear value ------------------------------------------------------------ */
+
+CHECK_TEST(depth_at_far_clear_value)
+{
+    hc_setup s = base_setup();
+    s.media = no_detail;
+    s.far = 20.0f; /* nothing opaque: depth 1.0 everywhere, read as the far distance */
+    s.p[s.count++] = particle(0.0f, 0.0f, -19.5f, 1.0f, SBFX_SMOKE); /* straddles the far plane */
+    s.p[s.count++] = particle(1.0f, 0.5f, -10.0f, 2.0f, SBFX_DUST);
+    hc_all_modes("depth texture at its clear value, a sphere across the far plane", &s, NULL);
+}
+
+/* ---- half-float target near 65504 with fire ------------------------------------------------- */
+
+static void hot_fire(sbfx_medium_params *m)
+{
+    m[SBFX_FIRE].emission_scale = 1e6f; /* the table's ~1 x 1e6: every fragment hits the ceiling */
+    m[SBFX_FIRE].t0 = 5000.0f;
+    m[SBFX_FIRE].tau = 3.0f;
+}
+
+static void expect_ceiling(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
+{
+    (void)s;
+    /* each fragment adds at most 64 alpha and keeps (1 - alpha) of what is behind: C <= 64 */
+    double most = max_light(r);
+    CHECK(most <= SBFX_RF_RADIANCE_CEILING * (1.0 + 1.0 / 1024.0), "%s: light %g above the ceiling",
+          mode_names[mode], most);
+    CHECK(most > 1.0, "%s: the fire is not drawn (light %g)", mode_names[mode], most);
+}
+
+static void fire_stack(hc_setup *s)
+{
+    sbfx_rng rng;
+    sbfx_rng_seed(&rng, 65504);
+    for (s->count = 0; s->count < 200; s->count++) {
+        sbfx_view_particle *p = &s->p[s->count];
+        *p = particle((float)sbfx_rng_range(&rng, -0.3, 0.3), (float)sbfx_rng_range(&rng, -0.3, 0.3),
+                      (float)sbfx_rng_range(&rng, -5.5, -4.5), 1.5f, SBFX_FIRE);
+        for (int k = 0; k < 3; k++) p->detail[k] = (float)sbfx_rng_uniform(&rng);
+    }
+}
+
+CHECK_TEST(half_float_target_with_hot_fire)
+{
+    hc_setup s = base_setup();
+    fire_stack(&s);
+    s.media = hot_fire;
+    s.format = SBFX_FORMAT_RGBA16F;
+    hc_all_modes("200 overlapping fire particles, emission x 1e6, RGBA16F target", &s, expect_ceiling);
+    s.analytic_bb = true;
+    hc_all_modes("the same with the analytic black body", &s, expect_ceiling);
+    s.format = SBFX_FORMAT_RGBA32F;
+    hc_all_modes("the same into RGBA32F", &s, expect_ceiling);
+}
+
+/* ---- black body at T -> 0 and T = 1e5 ------------------------------------------------------ */
+
+static float fire_t0, fire_t1;
+
+static void fixed_temperature(sbfx_medium_params *m)
+{
+    m[SBFX_FIRE].t0 = fire_t0;
+    m[SBFX_FIRE].t1 = fire_t1;
+    m[SBFX_FIRE].cooling = 0.0f;
+}
+
+static void expect_dark(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
+{
+    (void)s;
+    CHECK(max_light(r) == 0.0, "%s: T = %g K glows with %g", mode_names[mode], fire_t0, max_light(r));
+    CHECK(max_alpha(r) > 0.05, "%s: the cold fire still absorbs", mode_names[mode]);
+}
+
+static void expect_glow(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
+{
+    (void)s;
+    CHECK(max_light(r) > 0.1, "%s: T = %g K (clamped to the table's top) does not glow", mode_names[mode], fire_t0);
+}
+
+static void blackbody_case(bool analytic)
+{
+    hc_setup s = base_setup();
+    s.analytic_bb = analytic;
+    s.media = fixed_temperature;
+    s.p[s.count++] = particle(0.0f, 0.0f, -5.0f, 1.5f, SBFX_FIRE);
+    s.p[s.count++] = particle(0.5f, 0.4f, -4.0f, 0.8f, SBFX_FIRE);
+    const float cold[] = {0.0f, 1e-3f, 1.0f};
+    for (size_t i = 0; i < ARRAY_SIZE(cold); i++) {
+        fire_t0 = cold[i], fire_t1 = 0.0f;
+        hc_all_modes(analytic ? "analytic black body, T -> 0" : "black-body table, T -> 0", &s, expect_dark);
+    }
+    fire_t0 = 1e5f, fire_t1 = 0.0f;
+    hc_all_modes(analytic ? "analytic black body, T = 1e5 K" : "black-body table, T = 1e5 K", &s, expect_glow);
+}
+
+CHECK_TEST(blackbody_extremes_table) { blackbody_case(false); }
+CHECK_TEST(blackbody_extremes_analytic) { blackbody_case(true); }
+
+/* ---- phase function at g = +-0.99 and 0 ---------------------------------------------------- */
+
+static float phase_g;
+static double centre_light[3]; /* green channel at the centre pixel for g = -0.99, 0, 0.99 */
+
+static void set_phase_g(sbfx_medium_params *m)
+{
+    no_detail(m);
+    m[SBFX_SMOKE].phase_g = phase_g;
+    m[SBFX_SMOKE].albedo = 0.9f;
+}
+
+static void record_centre(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
+{
+    (void)s;
+    if (mode != SBFX_OPACITY_EXACT) return;
+    int i = phase_g < -0.5f ? 0 : phase_g > 0.5f ? 2 : 1;
+    centre_light[i] = r->gpu[4 * (16 * r->w + 16) + 1];
+}
+
+/* The light travels toward the camera (+z, the fixture's view is the identity): straight
+ * through the particle into the eye, the forward peak for g > 0. */
+static void phase_case(bool analytic)
+{
+    hc_setup s = base_setup();
+    s.analytic_phase = analytic;
+    s.media = set_phase_g;
+    s.light_dir[0] = 0.0f, s.light_dir[1] = 0.0f, s.light_dir[2] = 1.0f;
+    s.p[s.count++] = particle(0.0f, 0.0f, -5.0f, 1.0f, SBFX_SMOKE);
+    const float gs[] = {-0.99f, 0.0f, 0.99f};
+    for (size_t i = 0; i < ARRAY_SIZE(gs); i++) {
+        phase_g = gs[i];
+        char what[96];
+        snprintf(what, sizeof(what), "%s phase, g = %.2f, back-lit", analytic ? "analytic" : "table", gs[i]);
+        hc_all_modes(what, &s, record_centre);
+    }
+    printf("# centre light (green) for g = -0.99, 0, 0.99: %.5g %.5g %.5g\n", centre_light[0], centre_light[1],
+           centre_light[2]);
+    CHECK(centre_light[2] > 10.0 * centre_light[1] && centre_light[1] > centre_light[0],
+          "g > 0 must peak forward: %g %g %g", centre_light[0], centre_light[1], centre_light[2]);
+}
+
+CHECK_TEST(phase_extremes_table) { phase_case(false); }
+CHECK_TEST(phase_extremes_analytic) { phase_case(true); }
+
+/* ---- NaN / Inf in every per-particle input ------------------------------------------------- */
+
+#define BAD_FIELDS 8 /* centre x, y, z, radius, detail u, v, t, intensity */
+
+static float *bad_field(sbfx_view_particle *p, int field)
+{
+    if (field < 3) return &p->center[field];
+    if (field == 3) return &p->radius;
+    if (field < 7) return &p->detail[field - 4];
+    return &p->intensity;
+}
+
+/* Every field x {NaN, +Inf, -Inf}, then a zero and a negative radius and an unknown medium. */
+static int bad_particles(const sbfx_view_particle *good, int goods, sbfx_view_particle *out)
+{
+    const float values[] = {NAN, INFINITY, -INFINITY};
+    int n = 0;
+    for (int field = 0; field < BAD_FIELDS; field++)
+        for (size_t v = 0; v < ARRAY_SIZE(values); v++) {
+            out[n] = good[n % goods];
+            *bad_field(&out[n], field) = values[v];
+            n++;
+        }
+    out[n] = good[0], out[n++].radius = 0.0f;
+    out[n] = good[1], out[n++].radius = -1.0f;
+    out[n] = good[2], out[n++].medium = (sbfx_medium)77;
+    return n;
+}
+
+static double *cpu_layer(const sbfx_view_particle *p, int count, int *skipped)
+{
+    sbfx_rf_particle v[64];
+    for (int i = 0; i < count; i++) {
+        v[i] = (sbfx_rf_particle){.radius = p[i].radius, .intensity = p[i].intensity, .medium = p[i].medium};
+        for (int k = 0; k < 3; k++) v[i].center[k] = p[i].center[k], v[i].detail[k] = p[i].detail[k];
+    }
+    sbfx_rf_frame f = {.width = SIZE, .height = SIZE, .projection = {1.8, 1.8, 0, 0}, .near = 0.1,
+                       .opacity = SBFX_OPACITY_EXACT, .ambient = {0.3, 0.3, 0.3}};
+    static double far[SIZE * SIZE];
+    for (int i = 0; i < SIZE * SIZE; i++) far[i] = INFINITY;
+    f.opaque_distance = far;
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) f.media[m] = (sbfx_rf_medium){.albedo = 0.5, .tau = 0.4, .color = {1, 1, 1}};
+    double *layer = calloc(SIZE * SIZE * 4, sizeof(double));
+    *skipped = sbfx_rf_render_layer(&f, v, count, layer, NULL);
+    return layer;
+}
+
+static void bad_inputs_in_mode(gl_fixture *f, sbfx_opacity_mode mode, const sbfx_view_particle *good, int goods,
+                               const sbfx_view_particle *all, int count)
+{
+    sbfx *fx = fixture_module(f, (sbfx_desc){.target_divisor = 1, .target_format = SBFX_FORMAT_RGBA32F,
+                                             .opacity = mode, .max_particles = 64});
+    int w, h;
+    CHECK(sbfx_render_view_particles(fx, &f->frame, good, goods) == SBFX_OK, "%s", sbfx_last_error(fx));
+    float *before = fixture_read_target(fx, &w, &h);
+    for (int i = goods; i <= count; i++) { /* each bad particle alone, then all of them */
+        const sbfx_view_particle *batch = all;
+        int n = i < count ? goods + 1 : count;
+        sbfx_view_particle one[4];
+        if (i < count) {
+            memcpy(one, good, sizeof(*good) * (size_t)goods);
+            one[goods] = all[i];
+            batch = one;
+        }
+        CHECK(sbfx_render_view_particles(fx, &f->frame, batch, n) == SBFX_OK, "%s", sbfx_last_error(fx));
+        sbfx_counters c;
+        sbfx_stats(fx, &c);
+        float *after = fixture_read_target(fx, &w, &h);
+        CHECK(c.particles_skipped == n - goods, "%s: bad particle %d: skipped %d of %d", mode_names[mode], i,
+              c.particles_skipped, n - goods);
+        CHECK(memcmp(before, after, sizeof(float) * 4 * (size_t)(w * h)) == 0, "%s: bad particle %d changed pixels",
+              mode_names[mode], i);
+        free(after);
+    }
+    free(before);
+    sbfx_destroy(fx);
+}
+
+CHECK_TEST(bad_inputs_skipped_every_field)
+{
+    gl_fixture f;
+    fixture_open(&f, SIZE, SIZE);
+    fixture_projection(&f, 1.0f, 0.1f, 100.0f);
+    fixture_depth(&f, depth_far_everywhere, NULL);
+    const sbfx_view_particle good[3] = {particle(0.0f, 0.0f, -6.0f, 1.5f, SBFX_SMOKE),
+                                        particle(1.0f, 0.5f, -7.0f, 1.0f, SBFX_FIRE),
+                                        particle(-1.0f, -0.5f, -5.0f, 1.2f, SBFX_DUST)};
+    sbfx_view_particle all[64];
+    memcpy(all, good, sizeof(good));
+    int count = 3 + bad_particles(good, 3, all + 3);
+    for (size_t m = 0; m < ARRAY_SIZE(modes); m++) bad_inputs_in_mode(&f, modes[m], good, 3, all, count);
+    /* the CPU reference skips the same particles and changes nothing either */
+    int skipped_good, skipped_all;
+    double *a = cpu_layer(good, 3, &skipped_good), *b = cpu_layer(all, count, &skipped_all);
+    CHECK(skipped_good == 0 && skipped_all == count - 3, "CPU skipped %d of %d", skipped_all, count - 3);
+    CHECK(memcmp(a, b, sizeof(double) * SIZE * SIZE * 4) == 0, "CPU: bad particles changed pixels");
+    free(a);
+    free(b);
+    fixture_close(&f);
+}
+
+/* ---- rendered explosion frames: no NaN or Inf in any float target ------------------------- */
+
+#include "test_scene.h"
+
+#define SCAN_W 160
+#define SCAN_H 90
+
+static int scan_module(struct test_scene *scene, sbfx_frame *frame, sbfx_desc desc)
+{
+    sbfx *fx = NULL;
+    CHECK(sbfx_create(&desc, &fx) == SBFX_OK, "sbfx_create");
+    if (!fx) return 1;
+    const double times[] = {0.02, 0.2, 0.45, 1.0, 2.0, 2.9};
+    int bad = 0;
+    float *rgba = malloc(sizeof(float) * 4 * SCAN_W * SCAN_H);
+    for (size_t t = 0; t < ARRAY_SIZE(times); t++) {
+        while (sbfx_time(fx) < times[t] - 1e-9) sbfx_update(fx, 1.0 / 120.0);
+        test_scene_orbit_camera(times[t], (float)SCAN_W / SCAN_H, frame->view, frame->projection);
+        test_scene_draw(scene, frame->view, frame->projection);
+        CHECK(sbfx_render(fx, frame) == SBFX_OK, "%s", sbfx_last_error(fx));
+        int w, h;
+        if (sbfx_read_particle_target(fx, rgba, 4 * SCAN_W * SCAN_H, &w, &h) != SBFX_OK) continue;
+        if (!all_finite(rgba, 4u * (size_t)(w * h))) bad++;
+    }
+    sbfx_counters c;
+    sbfx_stats(fx, &c);
+    CHECK(c.target_format == desc.target_format, "asked for format %d, got %d", desc.target_format, c.target_format);
+    free(rgba);
+    sbfx_destroy(fx);
+    return bad;
+}
+
+CHECK_TEST(explosion_frames_have_no_nan_or_inf)
+{
+    gl_fixture f;
+    fixture_open(&f, SCAN_W, SCAN_H);
+    struct test_scene scene;
+    char err[256];
+    CHECK(test_scene_create(&scene, SCAN_W, SCAN_H, err, sizeof(err)) == 0, "%s", err);
+    sbfx_frame frame = f.frame;
+    frame.scene_color_texture = scene.color_texture;
+    frame.scene_depth_texture = scene.depth_texture;
+    /* RGBA8 cannot hold a NaN, but its read-back is scanned all the same: "all formats" */
+    const sbfx_target_format formats[] = {SBFX_FORMAT_RGBA8, SBFX_FORMAT_RGBA16F, SBFX_FORMAT_RGBA32F};
+    int frames = 0, bad = 0;
+    for (int m = SBFX_OPACITY_PLANAR; m <= SBFX_OPACITY_FLOOR; m++)
+        for (size_t fm = 0; fm < ARRAY_SIZE(formats); fm++)
+            for (int div = 1; div <= 4; div *= 4)
+                for (int analytic = 0; analytic < 2; analytic++) {
+                    sbfx_desc d = {.target_divisor = div, .target_format = formats[fm],
+                                   .opacity = (sbfx_opacity_mode)m, .analytic_blackbody = analytic,
+                                   .analytic_phase = analytic};
+                    int b = scan_module(&scene, &frame, d);
+                    CHECK(b == 0, "%s, format %d, 1/%d, analytic %d: %d frames with NaN/Inf", mode_names[m],
+                          formats[fm], div, analytic, b);
+                    bad += b;
+                    frames += 6;
+                }
+    printf("# %d explosion frames scanned (5 modes incl. floor x RGBA8/16F/32F x 1, 1/4 x tables/analytic), "
+           "%d bad\n", frames, bad);
+    test_scene_destroy(&scene);
+    fixture_close(&f);
+}
+
+int main(int argc, char **argv) { return check_main_args(argc, argv); }
