@@ -70,6 +70,7 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
         if (!d.max_particles) d.max_particles = s->max_particles;
         if (!(d.sim_step > 0)) d.sim_step = s->sim_step;
         if (!(d.blackbody_max_kelvin > 0)) d.blackbody_max_kelvin = s->blackbody_max_kelvin;
+        d.light_per_particle = d.light_per_particle || s->light_per_particle;
     }
     if (!d.target_divisor) d.target_divisor = 4;
     if (!d.upsample) d.upsample = SBFX_UPSAMPLE_NEAREST_DEPTH;

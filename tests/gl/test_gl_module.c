@@ -323,4 +323,28 @@ CHECK_TEST(analytic_blackbody_and_phase_agree_with_tables)
     free(r32);
     fixture_close(&f);
 }
+/* In-scattering once per particle (on the CPU, at the centre) against per fragment: close for
+ * particles of ordinary size, and only scattering media change. */
+CHECK_TEST(light_per_particle_close_to_per_pixel)
+{
+    gl_fixture f;
+    fixture_open(&f, 48, 48);
+    fixture_projection(&f, 1.0f, 0.1f, 100.0f);
+    fixture_depth(&f, depth_far_everywhere, NULL);
+    int w, h;
+    float *pixel = render_pair(&f, (sbfx_desc){0}, &w, &h);
+    float *particle = render_pair(&f, (sbfx_desc){.light_per_particle = true}, &w, &h);
+    double worst = 0, peak = 0;
+    for (int i = 0; i < 4 * w * h; i++) {
+        worst = fmax(worst, fabs(pixel[i] - particle[i]));
+        peak = fmax(peak, fabs(pixel[i]));
+    }
+    printf("# light per particle vs per pixel: max abs diff %.4f of peak %.3f\n", worst, peak);
+    CHECK(worst > 0, "the per-particle variant changed nothing");
+    CHECK(worst < 0.02 * peak, "per-particle light differs by %g", worst);
+    free(pixel);
+    free(particle);
+    fixture_close(&f);
+}
+
 int main(int argc, char **argv) { return check_main_args(argc, argv); }
