@@ -71,6 +71,9 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
         if (!(d.sim_step > 0)) d.sim_step = s->sim_step;
         if (!(d.blackbody_max_kelvin > 0)) d.blackbody_max_kelvin = s->blackbody_max_kelvin;
         d.light_per_particle = d.light_per_particle || s->light_per_particle;
+        d.analytic_blackbody = d.analytic_blackbody || s->analytic_blackbody;
+        d.analytic_phase = d.analytic_phase || s->analytic_phase;
+        if (!d.detail_format) d.detail_format = s->detail_format;
     }
     if (!d.target_divisor) d.target_divisor = 4;
     if (!d.upsample) d.upsample = SBFX_UPSAMPLE_NEAREST_DEPTH;

@@ -202,13 +202,16 @@ static int parse_render(parser *p, const config_setting_t *g)
 {
     static const char *const keys[] = {"target_scale", "target_format", "upsample", "opacity",
                                        "seed", "max_particles", "sim_rate", "blackbody_max_kelvin",
-                                       "light_rate", NULL};
+                                       "light_rate", "blackbody", "phase", "detail_format", NULL};
     static const char *const rates[] = {"per-pixel", "per-particle", NULL};
+    static const char *const evaluations[] = {"table", "analytic", NULL};
+    static const char *const detail_formats[] = {"r16f", "r32f", NULL};
     static const char *const formats[] = {"auto", "rgba8", "rgba16f", "rgba32f", NULL};
     static const char *const upsamples[] = {"bilinear", "nearest-depth", NULL};
     static const char *const opacities[] = {"planar", "soft", "spherical", "exact", NULL};
     sbfx_desc *d = &p->scene->render;
-    int format = 0, upsample = 0, opacity = 0, seed = 0, rate_choice = 0;
+    int format = 0, upsample = 0, opacity = 0, seed = 0, rate_choice = 0, blackbody = 0, phase = 0;
+    int detail_format = 0;
     float rate = 0, kelvin = 0;
     if (check_keys(p, g, "render", keys) || get_int(p, g, "target_scale", 1, 8, &d->target_divisor) ||
         get_choice(p, g, "target_format", formats, 0, &format) ||
@@ -218,9 +221,14 @@ static int parse_render(parser *p, const config_setting_t *g)
         get_int(p, g, "max_particles", 1, 1 << 20, &d->max_particles) ||
         get_float(p, g, "sim_rate", 10, 1000, &rate) ||
         get_float(p, g, "blackbody_max_kelvin", 1000, 100000, &kelvin) ||
-        get_choice(p, g, "light_rate", rates, 0, &rate_choice))
+        get_choice(p, g, "light_rate", rates, 0, &rate_choice) ||
+        get_choice(p, g, "blackbody", evaluations, 0, &blackbody) || get_choice(p, g, "phase", evaluations, 0, &phase) ||
+        get_choice(p, g, "detail_format", detail_formats, SBFX_DETAIL_R16F, &detail_format))
         return -1;
     d->light_per_particle = rate_choice == 1;
+    d->analytic_blackbody = blackbody == 1;
+    d->analytic_phase = phase == 1;
+    d->detail_format = (sbfx_detail_format)detail_format;
     int scale = d->target_divisor;
     if (scale && scale != 1 && scale != 2 && scale != 4 && scale != 8)
         return fail_at(p, config_setting_get_member(g, "target_scale"), "'target_scale' = %d: use 1, 2, 4 or 8", scale);
