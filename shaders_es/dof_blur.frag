@@ -18,11 +18,10 @@ layout(location = 1) out vec4 o_near;
 void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    int radius = int(ceil(u_max_radius));
+    int radius = min(int(ceil(u_max_radius)), 16);
     vec4 far_sum = vec4(0.0), near_sum = vec4(0.0);
     float far_weight = 0.0, near_weight = 0.0;
-    for (int k = -16; k <= 16; k++) {
-        if (abs(k) > radius) continue;
+    for (int k = -radius; k <= radius; k++) {   // uniform bounds: only the taps needed
         ivec2 q = clamp(p + u_direction * k, ivec2(0), u_low_size - 1);
         vec4 f = texelFetch(u_far_field, q, 0);
         float reach = f.a * u_max_radius;            // this sample's blur radius
