@@ -1,52 +1,17 @@
-/* sbfx-play: renders sbfx effects over the test scene, headless, into PNG frames.
+/* sbfx-play: renders sbfx effects over the test scene, headless into PNG frames or on a DRM/KMS
+ * display as a kiosk, with GPIO lines and a V4L2 camera as inputs.
  *
- * One frame: test scene -> its colour is copied into the output framebuffer (so an idle sbfx,
- * which issues no pass, still leaves the scene there) -> sbfx_update -> sbfx_render into the
- * output framebuffer -> glReadPixels -> PNG. The command line is in player_args.c. */
+ * One frame: test scene -> its colour is copied into the display's framebuffer (so an idle
+ * sbfx, which issues no pass, still leaves the scene there) -> sbfx_update -> sbfx_render into
+ * that framebuffer -> the display presents it (headless: glReadPixels -> PNG; drm: page flip).
+ * The command line is in player_args.c, the loop in player_loop.c, inputs in player_inputs.c. */
 #include <errno.h>
-#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 
-#include "egl_headless.h"
-#include "player_args.h"
-#include "png_io.h"
-#include "sbfx.h"
-#include "test_scene.h"
-
-#define CONTACT_CELL_WIDTH 240 /* a 960-wide frame shrinks by 4 */
-#define TRIGGER_EPSILON 1e-9   /* frame times are i/fps: tolerate rounding at equality */
-
-struct frame_times {
-    double sbfx_sum, sbfx_max;   /* sbfx_update + sbfx_render + glFinish */
-    double total_sum, total_max; /* the whole frame, readback and PNG included */
-};
-
-struct player {
-    const struct player_options *opt;
-    struct egl_headless egl;
-    struct test_scene scene;
-    GLuint out_framebuffer, out_renderbuffer;
-    sbfx *fx;
-    uint8_t *pixels;
-    struct contact_sheet sheet;
-    char out_dir[PATH_MAX];
-    double sim_time;
-    int frame_simulated;      /* particles advanced by this frame's updates, summed */
-    sbfx_counters last;       /* sbfx_stats() after the last frame */
-    struct frame_times times;
-    int frames_done;
-};
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
+#include "player.h"
 
 static void on_sbfx_log(sbfx_log_level level, const char *message, void *user)
 {
@@ -55,6 +20,12 @@ static void on_sbfx_log(sbfx_log_level level, const char *message, void *user)
     if (level == SBFX_LOG_INFO && opt->quiet) return;
     const char *name = (unsigned)level <= SBFX_LOG_INFO ? prefix[level] : "?";
     fprintf(stderr, "sbfx: %s: %s\n", name, message);
+}
+
+void player_log(const char *message, void *user)
+{
+    (void)user;
+    fprintf(stderr, "sbfx-play: %s\n", message);
 }
 
 /* ---- setup -------------------------------------------------------------------------------- */
@@ -119,34 +90,6 @@ static int schedule_triggers(struct player *p, char *err, size_t n)
     return 0;
 }
 
-static int create_output(struct player *p, char *err, size_t n)
-{
-    int w = p->opt->width, h = p->opt->height;
-    GLint max_size = 0;
-    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
-    if (w > max_size || h > max_size) {
-        snprintf(err, n, "--size: %dx%d is larger than this GL allows (%d)", w, h, max_size);
-        return -EINVAL;
-    }
-    glGenRenderbuffers(1, &p->out_renderbuffer);
-    glBindRenderbuffer(GL_RENDERBUFFER, p->out_renderbuffer);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
-    glBindRenderbuffer(GL_RENDERBUFFER, 0);
-    glGenFramebuffers(1, &p->out_framebuffer);
-    glBindFramebuffer(GL_FRAMEBUFFER, p->out_framebuffer);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
-                              p->out_renderbuffer);
-    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    GLenum gl_err = glGetError();
-    if (status != GL_FRAMEBUFFER_COMPLETE || gl_err != GL_NO_ERROR) {
-        snprintf(err, n, "output framebuffer %dx%d RGBA8: status 0x%x, GL error 0x%x", w, h,
-                 status, gl_err);
-        return gl_err == GL_OUT_OF_MEMORY ? -ENOMEM : -EIO;
-    }
-    return 0;
-}
-
 static int load_scene(const char *path, sbfx_scene **scene, char *err, size_t n)
 {
     *scene = NULL;
@@ -164,13 +107,18 @@ static int create_fx(struct player *p, char *err, size_t n)
     const struct player_options *opt = p->opt;
     sbfx_scene *scene = NULL;
     int rc = load_scene(opt->scene_path, &scene, err, n);
-    if (rc) return rc;
+    if (rc == 0) rc = player_collect_scene_gpio(p, scene, err, n);
+    if (rc) {
+        sbfx_scene_free(scene);
+        return rc;
+    }
     const sbfx_desc desc = {
-        .target_divisor = opt->scale,
+        .target_divisor = opt->scale ? opt->scale : p->board.target_scale,
         .target_format = opt->format,
         .upsample = opt->upsample,
         .opacity = opt->opacity,
         .seed = opt->seed,
+        .max_particles = p->board.max_particles,
         .scene = scene,
         .ignore_timeline = opt->no_timeline,
         .log = on_sbfx_log,
@@ -185,7 +133,7 @@ static int create_fx(struct player *p, char *err, size_t n)
     return schedule_triggers(p, err, n);
 }
 
-static int setup(struct player *p, char *err, size_t n)
+static int create_headless(struct player *p, char *err, size_t n)
 {
     const struct player_options *opt = p->opt;
     int rc = make_dirs(opt->out_dir, err, n);
@@ -196,153 +144,88 @@ static int setup(struct player *p, char *err, size_t n)
         return rc;
     }
     if (opt->stats_path && (rc = check_writable(opt->stats_path, err, n)) != 0) return rc;
-    if ((rc = egl_headless_open(&p->egl, err, n)) != 0) return rc;
-    if ((rc = test_scene_create(&p->scene, opt->width, opt->height, err, n)) != 0) return rc;
-    if ((rc = create_output(p, err, n)) != 0) return rc;
-    if ((rc = create_fx(p, err, n)) != 0) return rc;
-    p->pixels = malloc((size_t)opt->width * opt->height * 4);
-    if (!p->pixels) {
-        snprintf(err, n, "out of memory for a %dx%d frame", opt->width, opt->height);
-        return -ENOMEM;
-    }
-    if (opt->contact_sheet)
-        rc = contact_sheet_init(&p->sheet, opt->frames, opt->width, opt->height,
-                                CONTACT_CELL_WIDTH, err, n);
+    const struct display_headless_desc desc = {
+        .width = opt->width, .height = opt->height, .out_dir = p->out_dir,
+        .contact_sheet = opt->contact_sheet, .frames = opt->frames,
+    };
+    p->measure_gpu = true;
+    return display_headless_create(&desc, &p->display, err, n);
+}
+
+static const char *either(const char *flag, const char *board_value)
+{
+    return flag ? flag : (board_value[0] ? board_value : NULL);
+}
+
+static int create_drm(struct player *p, char *err, size_t n)
+{
+    const struct player_options *opt = p->opt;
+    int rc = 0;
+    if (opt->stats_path && (rc = check_writable(opt->stats_path, err, n)) != 0) return rc;
+    const struct board_profile *b = &p->board;
+    const struct display_drm_desc desc = {
+        .device = either(opt->device, b->drm_device),
+        .connector = either(opt->connector, b->connector),
+        .mode = either(opt->mode, b->mode),
+        .modeset = opt->modeset >= 0 ? opt->modeset : (int)b->modeset,
+        .screenshot = opt->screenshot,
+    };
+    p->realtime = !opt->fps_set;
+    char why[768];
+    rc = display_drm_create(&desc, &p->display, why, sizeof(why));
+    if (rc) snprintf(err, n, "--display drm: %s", why);
     return rc;
+}
+
+static int setup(struct player *p, char *err, size_t n)
+{
+    int rc = player_load_board(p, err, n);
+    if (rc) return rc;
+    rc = p->opt->display == PLAYER_DISPLAY_DRM ? create_drm(p, err, n) : create_headless(p, err, n);
+    if (rc) return rc;
+    struct display *d = p->display;
+    if ((rc = test_scene_create(&p->scene, d->width, d->height, err, n)) != 0) return rc;
+    p->scene_made = true;
+    if ((rc = create_fx(p, err, n)) != 0) return rc;
+    return player_open_inputs(p, err, n);
 }
 
 /* Undoes whatever part of setup() happened: every member starts zeroed. */
 static void teardown(struct player *p)
 {
-    contact_sheet_free(&p->sheet);
-    free(p->pixels);
+    player_close_inputs(p);
     if (p->fx) sbfx_destroy(p->fx);
-    if (p->egl.display != EGL_NO_DISPLAY) {
-        glDeleteFramebuffers(1, &p->out_framebuffer);
-        glDeleteRenderbuffers(1, &p->out_renderbuffer);
-        test_scene_destroy(&p->scene);
-    }
-    egl_headless_close(&p->egl);
-}
-
-/* ---- simulation ----------------------------------------------------------------------- */
-
-static int update(struct player *p, double dt, char *err, size_t n)
-{
-    if (dt <= 0.0) return 0;
-    sbfx_result r = sbfx_update(p->fx, dt);
-    if (r != SBFX_OK) {
-        snprintf(err, n, "sbfx_update(%g) at t=%.4f s: %s: %s", dt, p->sim_time,
-                 sbfx_result_string(r), sbfx_last_error(p->fx));
-        return -EIO;
-    }
-    sbfx_counters c;
-    sbfx_stats(p->fx, &c);
-    p->frame_simulated += c.particles_simulated;
-    p->sim_time += dt;
-    return 0;
-}
-
-static int advance(struct player *p, double target, char *err, size_t n)
-{
-    p->frame_simulated = 0;
-    return update(p, target - p->sim_time, err, n);
-}
-
-/* ---- one frame ------------------------------------------------------------------------ */
-
-static int gl_check(const char *what, char *err, size_t n)
-{
-    GLenum e = glGetError(), first = e;
-    while (e != GL_NO_ERROR) e = glGetError(); /* drain, so the next check starts clean */
-    if (first == GL_NO_ERROR) return 0;
-    snprintf(err, n, "%s: GL error 0x%x", what, first);
-    return first == GL_OUT_OF_MEMORY ? -ENOMEM : -EIO;
-}
-
-static int draw_scene(struct player *p, double t, sbfx_frame *frame, char *err, size_t n)
-{
-    int w = p->opt->width, h = p->opt->height;
-    test_scene_orbit_camera(t, (float)w / (float)h, frame->view, frame->projection);
-    if (test_scene_draw(&p->scene, frame->view, frame->projection) != 0) {
-        snprintf(err, n, "test scene: GL error while drawing");
-        return -EIO;
-    }
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, p->scene.framebuffer);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, p->out_framebuffer);
-    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    frame->scene_color_texture = p->scene.color_texture;
-    frame->scene_depth_texture = p->scene.depth_texture;
-    frame->out_framebuffer = p->out_framebuffer;
-    frame->width = w;
-    frame->height = h;
-    glFinish(); /* so the timed part below holds sbfx's GPU work only */
-    return gl_check("scene copy to the output framebuffer", err, n);
-}
-
-static int run_fx(struct player *p, double t, const sbfx_frame *frame, char *err, size_t n)
-{
-    int rc = advance(p, t, err, n);
-    if (rc) return rc;
-    sbfx_result r = sbfx_render(p->fx, frame);
-    if (r != SBFX_OK) {
-        snprintf(err, n, "sbfx_render at t=%.4f s: %s: %s", t, sbfx_result_string(r),
-                 sbfx_last_error(p->fx));
-        return -EIO;
-    }
-    glFinish();
-    return 0;
-}
-
-static int save_frame(struct player *p, int index, char *err, size_t n)
-{
-    int w = p->opt->width, h = p->opt->height;
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, p->out_framebuffer);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, p->pixels);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    int rc = gl_check("glReadPixels of the output framebuffer", err, n);
-    if (rc) return rc;
-    /* A display has no alpha; written as is, viewers would show whatever the composite left
-     * in alpha as transparency. */
-    for (size_t i = 3; i < (size_t)w * h * 4; i += 4) p->pixels[i] = 255;
-    char path[PATH_MAX + 32];
-    snprintf(path, sizeof(path), "%s/frame-%04d.png", p->out_dir, index);
-    rc = png_write_rgba(path, p->pixels, w, h, true, err, n);
-    if (rc == 0 && p->opt->contact_sheet) rc = contact_sheet_add(&p->sheet, p->pixels, true);
-    return rc;
-}
-
-static void record_times(struct frame_times *t, double sbfx_ms, double total_ms)
-{
-    t->sbfx_sum += sbfx_ms;
-    t->total_sum += total_ms;
-    if (sbfx_ms > t->sbfx_max) t->sbfx_max = sbfx_ms;
-    if (total_ms > t->total_max) t->total_max = total_ms;
-}
-
-static int play_frame(struct player *p, int index, char *err, size_t n)
-{
-    double t = index / p->opt->fps;
-    sbfx_frame frame;
-    memset(&frame, 0, sizeof(frame));
-    double start = now_ms();
-    int rc = draw_scene(p, t, &frame, err, n);
-    if (rc) return rc;
-    double fx_start = now_ms();
-    rc = run_fx(p, t, &frame, err, n);
-    if (rc) return rc;
-    double fx_end = now_ms();
-    sbfx_stats(p->fx, &p->last);
-    rc = save_frame(p, index, err, n);
-    if (rc) return rc;
-    record_times(&p->times, fx_end - fx_start, now_ms() - start);
-    return 0;
+    if (p->scene_made) test_scene_destroy(&p->scene);
+    if (p->display) p->display->ops->destroy(p->display);
+    p->fx = NULL;
+    p->display = NULL;
 }
 
 /* ---- results -------------------------------------------------------------------------- */
+
+/* Counters of the kiosk parts, only when they are in use (the headless JSON stays as it was). */
+static void write_platform_stats(const struct player *p, FILE *f)
+{
+    const sbfx_counters *c = &p->last;
+    const struct display_counts *d = &p->display->counts;
+    fprintf(f, ", \"frames\": %d, \"flips\": %llu, \"missed_vblanks\": %llu, \"triggers_fired\": %d, "
+            "\"triggers_refused\": %d", p->frames_done, (unsigned long long)d->flips,
+            (unsigned long long)d->missed, c->triggers_fired, c->triggers_refused);
+    if (p->gpio_on) {
+        const struct gpio_trigger_counts *g = &p->gpio.counts;
+        fprintf(f, ", \"gpio_edges\": %llu, \"gpio_fired\": %llu, \"gpio_filtered\": %llu, "
+                "\"gpio_refused\": %llu, \"gpio_overflows\": %llu", (unsigned long long)g->edges,
+                (unsigned long long)g->fired, (unsigned long long)g->filtered,
+                (unsigned long long)g->refused, (unsigned long long)g->overflows);
+    }
+    if (p->live_on) {
+        const struct live_detail_counts *v = &p->live.counts;
+        fprintf(f, ", \"video_frames\": %llu, \"video_distinct\": %llu, \"video_losses\": %llu, "
+                "\"video_reopens\": %llu, \"video_takeovers\": %llu", (unsigned long long)v->frames,
+                (unsigned long long)v->distinct, (unsigned long long)v->losses,
+                (unsigned long long)v->reopens, (unsigned long long)v->takeovers);
+    }
+}
 
 static int write_stats(const struct player *p, const char *path, char *err, size_t n)
 {
@@ -356,9 +239,11 @@ static int write_stats(const struct player *p, const char *path, char *err, size
     fprintf(f,
             "{\"programs\": %d, \"textures\": %d, \"framebuffers\": %d, \"gpu_bytes\": %zu, "
             "\"passes\": %d, \"draw_calls\": %d, \"particles_simulated\": %d, "
-            "\"heap_allocs_after_load\": %llu}\n",
+            "\"heap_allocs_after_load\": %llu",
             c->programs, c->textures, c->framebuffers, c->gpu_bytes, c->passes, c->draw_calls,
             p->frame_simulated, (unsigned long long)c->heap_allocs_after_load);
+    if (p->display->fd >= 0 || p->gpio_on || p->live_on) write_platform_stats(p, f);
+    fprintf(f, "}\n");
     bool failed = ferror(f) != 0;
     if (fclose(f) != 0 || failed) {
         snprintf(err, n, "--stats: writing %s failed: %s", path, strerror(errno));
@@ -373,59 +258,79 @@ static const char *format_name(sbfx_target_format format)
     return (unsigned)format < SBFX_FORMAT_COUNT ? names[format] : "?";
 }
 
-static int finish(struct player *p, char *err, size_t n)
+static void print_headless_summary(const struct player *p)
 {
-    int rc = 0;
-    char sheet_path[PATH_MAX + 32];
-    snprintf(sheet_path, sizeof(sheet_path), "%s/contact-sheet.png", p->out_dir);
-    if (p->opt->contact_sheet && (rc = contact_sheet_write(&p->sheet, sheet_path, err, n)) != 0)
-        return rc;
-    if (p->opt->stats_path && (rc = write_stats(p, p->opt->stats_path, err, n)) != 0) return rc;
-    if (p->opt->quiet) return 0;
     const struct frame_times *t = &p->times;
     int frames = p->frames_done;
     printf("sbfx-play: %d frames of %dx%d in %s (frame-0000.png .. frame-%04d.png)\n", frames,
            p->opt->width, p->opt->height, p->out_dir, frames - 1);
-    if (p->opt->contact_sheet) printf("sbfx-play: contact sheet: %s\n", sheet_path);
+    if (p->opt->contact_sheet) printf("sbfx-play: contact sheet: %s/contact-sheet.png\n", p->out_dir);
     printf("sbfx-play: sbfx update+render+glFinish: mean %.2f ms, max %.2f ms per frame "
            "(particle target %s)\n", t->sbfx_sum / frames, t->sbfx_max,
            format_name(p->last.target_format));
     printf("sbfx-play: whole frame (scene, sbfx, readback, PNG): mean %.2f ms, max %.2f ms\n",
            t->total_sum / frames, t->total_max);
+}
+
+static void print_drm_summary(const struct player *p)
+{
+    const struct display_counts *c = &p->display->counts;
+    double seconds = (double)(player_now_ns() - p->run_start_ns) / 1e9;
+    int frames = p->frames_done;
+    printf("sbfx-play: %d frames in %.1f s (%.1f fps) on %s; flips %llu, missed vblanks %llu; "
+           "sbfx update+render mean %.2f ms, max %.2f ms (particle target %s)\n", frames, seconds,
+           seconds > 0 ? frames / seconds : 0.0, p->display->description,
+           (unsigned long long)c->flips, (unsigned long long)c->missed,
+           frames ? p->times.sbfx_sum / frames : 0.0, p->times.sbfx_max, format_name(p->last.target_format));
+    if (p->opt->screenshot) printf("sbfx-play: screenshot: %s\n", p->opt->screenshot);
+}
+
+static int finish(struct player *p, char *err, size_t n)
+{
+    int rc = 0;
+    /* GPIO triggers may have fired after the last render: their counters are current now (the
+     * per-frame ones - passes, draw calls - are still the last render's). */
+    sbfx_stats(p->fx, &p->last);
+    if (p->opt->stats_path && (rc = write_stats(p, p->opt->stats_path, err, n)) != 0) return rc;
+    if (p->opt->quiet) return 0;
+    if (p->opt->display == PLAYER_DISPLAY_DRM) print_drm_summary(p);
+    else print_headless_summary(p);
     return 0;
 }
 
 static void print_banner(const struct player *p)
 {
-    printf("sbfx-play: %s, %s, EGL %s; %dx%d, %d frames at %g fps\n",
-           (const char *)glGetString(GL_RENDERER), (const char *)glGetString(GL_VERSION),
-           p->egl.platform, p->opt->width, p->opt->height, p->opt->frames, p->opt->fps);
+    const struct player_options *opt = p->opt;
+    const char *version = (const char *)glGetString(GL_VERSION);
+    if (!version) version = "?";
+    if (opt->display != PLAYER_DISPLAY_DRM) {
+        printf("sbfx-play: %s, %s, %s; %dx%d, %d frames at %g fps\n", display_gl_renderer(),
+               version, p->display->description, opt->width, opt->height, opt->frames, opt->fps);
+        return;
+    }
+    char frames[32] = "until stopped", pace[48] = "simulation follows the clock";
+    if (opt->frames_set) snprintf(frames, sizeof(frames), "%d frames", opt->frames);
+    if (!p->realtime) snprintf(pace, sizeof(pace), "%g simulated fps", opt->fps);
+    printf("sbfx-play: %s, %s, %s; %s, %s\n", display_gl_renderer(), version,
+           p->display->description, frames, pace);
+    fflush(stdout);
 }
 
 static int play(const struct player_options *opt)
 {
-    static struct player player; /* large (PATH_MAX, trigger table): off the stack */
+    static struct player player; /* large (PATH_MAX, trigger tables): off the stack */
     struct player *p = &player;
     memset(p, 0, sizeof(*p));
     p->opt = opt;
     char err[1024] = "";
     int rc = setup(p, err, sizeof(err));
-    if (rc) {
-        fprintf(stderr, "sbfx-play: %s\n", err);
-        goto out;
+    if (rc == 0) {
+        if (!opt->quiet) print_banner(p);
+        if (opt->display == PLAYER_DISPLAY_DRM) player_catch_signals();
+        rc = player_run_frames(p, err, sizeof(err));
     }
-    if (!opt->quiet) print_banner(p);
-    for (int i = 0; i < opt->frames; i++) {
-        rc = play_frame(p, i, err, sizeof(err));
-        if (rc) {
-            fprintf(stderr, "sbfx-play: frame %d: %s\n", i, err);
-            goto out;
-        }
-        p->frames_done++;
-    }
-    rc = finish(p, err, sizeof(err));
+    if (rc == 0) rc = finish(p, err, sizeof(err));
     if (rc) fprintf(stderr, "sbfx-play: %s\n", err);
-out:
     teardown(p);
     return rc;
 }

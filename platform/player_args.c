@@ -2,6 +2,8 @@
  * names the flag and what it accepts; nothing here exits or prints. */
 #include "player_args.h"
 
+#include "board.h" /* enum modeset_kind, mode_spec_parse */
+
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -9,72 +11,6 @@
 #include <string.h>
 
 #define ARRAY_SIZE(a) (sizeof(a) / sizeof((a)[0]))
-
-static const char usage_text[] =
-    "Usage: sbfx-play [options]\n"
-    "Renders sbfx effects (by default one explosion) over a test scene - a checkered ground\n"
-    "and three boxes seen from a slowly orbiting camera - and writes every frame as a PNG.\n"
-    "\n"
-    "Display:\n"
-    "  --headless             render offscreen through EGL surfaceless (Mesa); the default\n"
-    "                         and, in this build, the only display\n"
-    "Output:\n"
-    "  --size WxH             output size in pixels, 16..16384 each (default 960x540)\n"
-    "  --frames N             number of frames, 1..1000000 (default 36)\n"
-    "  --fps F                frames per simulated second: each frame advances the\n"
-    "                         simulation by 1/F seconds, 0 < F <= 1000 (default 12)\n"
-    "  --out DIR              folder for frame-0000.png, frame-0001.png, ...; created if\n"
-    "                         missing (default sbfx-frames)\n"
-    "  --contact-sheet        also write DIR/contact-sheet.png: all frames, shrunk, in a grid\n"
-    "  --stats FILE           after the run, write one JSON object with the counters of\n"
-    "                         sbfx_stats() after the last frame: programs, textures,\n"
-    "                         framebuffers, gpu_bytes, passes, draw_calls,\n"
-    "                         particles_simulated, heap_allocs_after_load (passes,\n"
-    "                         draw_calls and particles_simulated are the last frame's)\n"
-    "  --quiet                print only warnings and errors\n"
-    "Effects:\n"
-    "  --trigger EFFECT@SECONDS[:X,Y,Z]\n"
-    "                         start EFFECT (an effect of the scene; built in: explosion)\n"
-    "                         at simulated time SECONDS, at world position X,Y,Z (default\n"
-    "                         0,0,0);\n"
-    "                         repeatable, up to 64; e.g. --trigger explosion@1.5:2,0,-1\n"
-    "  --no-timeline          ignore the scene's timeline (without --scene: one explosion\n"
-    "                         at t=0 at the origin): the run stays idle unless --trigger\n"
-    "                         is given\n"
-    "  --scene FILE           a scene file (see scenes/ and README \"Scene files\"): its\n"
-    "                         render settings, lights, media, effects and timeline; the\n"
-    "                         quality flags below override its render settings\n"
-    "  --seed N               random seed of spawns and detail windows, 0..4294967295\n"
-    "                         (0 = the library's default, 1)\n"
-    "Quality:\n"
-    "  --scale 1|2|4|8        particle target = output size / scale per axis (default 4)\n"
-    "  --opacity planar|soft|spherical|exact\n"
-    "                         opacity model of a particle (default spherical)\n"
-    "  --format auto|rgba8|rgba16f|rgba32f\n"
-    "                         particle target format (auto: RGBA16F where it is\n"
-    "                         colour-renderable, else RGBA8)\n"
-    "  --upsample bilinear|nearest-depth\n"
-    "                         upsampling of the particle target (default nearest-depth)\n"
-    "  --help                 print this text and exit\n"
-    "\n"
-    "Values go after a space or an '=' (--size 640x360, --size=640x360).\n"
-    "Timeline: frame i shows simulated time i/F. Frame 0 is rendered before any update, so\n"
-    "it shows the scene alone (effects start at the first simulation step); before frame\n"
-    "i > 0 the simulation advances by 1/F in fixed steps, and triggers fire at the first\n"
-    "step at or after their time, so results do not depend on F. Per frame: test scene,\n"
-    "sbfx_update, sbfx_render into an RGBA8\n"
-    "framebuffer, glReadPixels, PNG (alpha written as 255: a display has none). At the end\n"
-    "the folder, the contact sheet and the time per frame (sbfx update+render+glFinish, and\n"
-    "the whole frame) are printed.\n"
-    "Mesa's variables work as usual, e.g. GALLIUM_DRIVER=softpipe, LIBGL_ALWAYS_SOFTWARE=1, and\n"
-    "MESA_EXTENSION_OVERRIDE='-GL_EXT_color_buffer_half_float -GL_EXT_color_buffer_float'\n"
-    "(hides half-float render targets: the particle target falls back to RGBA8).\n"
-    "Exit status: 0 on success; 1 on a bad argument or a failure, with a message on stderr.\n";
-
-void player_usage(FILE *f)
-{
-    fputs(usage_text, f);
-}
 
 void player_options_defaults(struct player_options *opt)
 {
@@ -84,6 +20,7 @@ void player_options_defaults(struct player_options *opt)
     opt->frames = 36;
     opt->fps = 12.0;
     opt->out_dir = "sbfx-frames";
+    opt->modeset = -1;
 }
 
 /* ---- value parsers: true when the whole string is a valid value in range ------------------ */
@@ -151,6 +88,7 @@ static int set_size(struct player_options *opt, const char *value, char *err, si
             parse_integer(h, PLAYER_MIN_SIZE, PLAYER_MAX_SIZE, &height)) {
             opt->width = (int)width;
             opt->height = (int)height;
+            opt->size_set = true;
             return 0;
         }
     }
@@ -168,6 +106,7 @@ static int set_frames(struct player_options *opt, const char *value, char *err, 
         return -EINVAL;
     }
     opt->frames = (int)v;
+    opt->frames_set = true;
     return 0;
 }
 
@@ -180,6 +119,7 @@ static int set_fps(struct player_options *opt, const char *value, char *err, siz
         return -EINVAL;
     }
     opt->fps = v;
+    opt->fps_set = true;
     return 0;
 }
 
@@ -195,6 +135,7 @@ static int set_path(const char *flag, const char **dst, const char *value, char 
 
 static int set_out(struct player_options *opt, const char *value, char *err, size_t n)
 {
+    opt->out_set = true;
     return set_path("--out", &opt->out_dir, value, err, n);
 }
 
@@ -274,7 +215,80 @@ static int set_seed(struct player_options *opt, const char *value, char *err, si
 
 static int set_headless(struct player_options *opt, const char *value, char *err, size_t n)
 {
-    return 0; /* the only display of this build, and the default */
+    opt->headless_flag = true; /* the default display */
+    return 0;
+}
+
+static int set_display(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    static const struct choice choices[] = {
+        {"drm", PLAYER_DISPLAY_DRM}, {"headless", PLAYER_DISPLAY_HEADLESS},
+    };
+    int v = 0;
+    int rc = parse_choice("--display", value, choices, ARRAY_SIZE(choices), &v, err, n);
+    opt->display = (enum player_display)v;
+    opt->display_set = true;
+    return rc;
+}
+
+static int set_device(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    return set_path("--device", &opt->device, value, err, n);
+}
+
+static int set_connector(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    if (*value && strlen(value) < 32 && !strpbrk(value, " \t/")) {
+        opt->connector = value;
+        return 0;
+    }
+    snprintf(err, n, "--connector: expected a connector name such as HDMI-A-1 or DSI-1, got '%s'", value);
+    return -EINVAL;
+}
+
+static int set_mode(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    int w, h, hz;
+    if (mode_spec_parse(value, &w, &h, &hz) == 0) {
+        opt->mode = value;
+        return 0;
+    }
+    snprintf(err, n, "--mode: expected WxH or WxH@HZ (e.g. 1920x1080 or 1280x720@60), got '%s'", value);
+    return -EINVAL;
+}
+
+static int set_modeset(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    static const struct choice choices[] = {
+        {"auto", MODESET_AUTO}, {"atomic", MODESET_ATOMIC}, {"legacy", MODESET_LEGACY},
+    };
+    return parse_choice("--modeset", value, choices, ARRAY_SIZE(choices), &opt->modeset, err, n);
+}
+
+static int set_screenshot(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    return set_path("--screenshot", &opt->screenshot, value, err, n);
+}
+
+static int set_board(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    return set_path("--board", &opt->board_path, value, err, n);
+}
+
+static int set_video(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    return set_path("--video", &opt->video, value, err, n);
+}
+
+static int set_gpio(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    if (opt->gpio_count >= PLAYER_MAX_GPIO) {
+        snprintf(err, n, "--gpio: at most %d lines, '%s' is one too many", PLAYER_MAX_GPIO, value);
+        return -EINVAL;
+    }
+    int rc = player_parse_gpio(value, &opt->gpio[opt->gpio_count], err, n);
+    if (rc == 0) opt->gpio_count++;
+    return rc;
 }
 
 static int set_contact_sheet(struct player_options *opt, const char *value, char *err, size_t n)
@@ -311,6 +325,15 @@ struct flag {
 
 static const struct flag flags[] = {
     {"--headless", NULL, set_headless},
+    {"--display", "drm|headless", set_display},
+    {"--device", "PATH (e.g. /dev/dri/card0)", set_device},
+    {"--connector", "NAME (e.g. HDMI-A-1)", set_connector},
+    {"--mode", "WxH[@HZ] (e.g. 1920x1080@60)", set_mode},
+    {"--modeset", "auto|atomic|legacy", set_modeset},
+    {"--screenshot", "FILE", set_screenshot},
+    {"--board", "FILE", set_board},
+    {"--video", "DEV (e.g. /dev/video0)", set_video},
+    {"--gpio", "CHIP:LINE=EFFECT[@X,Y,Z]", set_gpio},
     {"--size", "WxH (e.g. 960x540)", set_size},
     {"--frames", "N (1..1000000)", set_frames},
     {"--fps", "F (0 < F <= 1000)", set_fps},
@@ -359,7 +382,42 @@ static int flag_value(const struct flag *f, const char *eq, int argc, char **arg
     return 0;
 }
 
+static int parse_flags(struct player_options *opt, int argc, char **argv, char *err, size_t n);
+
+/* Flags that only mean something on one display. */
+static int check_display(const struct player_options *opt, char *err, size_t n)
+{
+    bool drm = opt->display == PLAYER_DISPLAY_DRM;
+    const char *wrong = NULL;
+    if (drm && opt->headless_flag) wrong = "--headless";
+    else if (drm && opt->size_set) wrong = "--size";
+    else if (drm && opt->out_set) wrong = "--out";
+    else if (drm && opt->contact_sheet) wrong = "--contact-sheet";
+    if (wrong) {
+        snprintf(err, n, "%s applies to --display headless, not drm (drm: the mode sets the size; "
+                 "--screenshot saves a frame)", wrong);
+        return -EINVAL;
+    }
+    if (!drm && opt->device) wrong = "--device";
+    else if (!drm && opt->connector) wrong = "--connector";
+    else if (!drm && opt->mode) wrong = "--mode";
+    else if (!drm && opt->modeset >= 0) wrong = "--modeset";
+    else if (!drm && opt->screenshot) wrong = "--screenshot";
+    if (wrong) {
+        snprintf(err, n, "%s applies to --display drm (the display is headless)", wrong);
+        return -EINVAL;
+    }
+    return 0;
+}
+
 int player_parse_args(struct player_options *opt, int argc, char **argv, char *err, size_t n)
+{
+    int rc = parse_flags(opt, argc, argv, err, n);
+    if (rc || opt->help) return rc;
+    return check_display(opt, err, n);
+}
+
+static int parse_flags(struct player_options *opt, int argc, char **argv, char *err, size_t n)
 {
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
@@ -428,5 +486,47 @@ int player_parse_trigger(const char *text, struct player_trigger *out, char *err
     if (*rest == ':' && !parse_position(rest + 1, t.position))
         return trigger_error(text, "the position must be three finite numbers X,Y,Z", err, n);
     *out = t;
+    return 0;
+}
+
+/* ---- --gpio CHIP:LINE=EFFECT[@X,Y,Z] ------------------------------------------------------ */
+
+static int gpio_error(const char *text, const char *why, char *err, size_t n)
+{
+    snprintf(err, n, "--gpio: expected CHIP:LINE=EFFECT[@X,Y,Z] (e.g. gpiochip0:17=explosion or "
+             "gpiochip0:17=explosion@0,0,-1), got '%s': %s", text, why);
+    return -EINVAL;
+}
+
+int player_parse_gpio(const char *text, struct player_gpio *out, char *err, size_t n)
+{
+    const char *eq = strchr(text, '=');
+    if (!eq) return gpio_error(text, "no '='", err, n);
+    const char *colon = NULL;
+    for (const char *p = text; p < eq; p++)
+        if (*p == ':') colon = p; /* the last one: chip labels may hold ':' */
+    if (!colon || colon == text) return gpio_error(text, "no CHIP: before the line number", err, n);
+    struct player_gpio g = {.position = {0, 0, 0}};
+    size_t chip_len = (size_t)(colon - text);
+    if (chip_len >= sizeof(g.chip)) return gpio_error(text, "the chip name is too long", err, n);
+    memcpy(g.chip, text, chip_len);
+    char line[16];
+    size_t line_len = (size_t)(eq - colon - 1);
+    long long v = -1;
+    if (line_len < sizeof(line)) {
+        memcpy(line, colon + 1, line_len);
+        line[line_len] = '\0';
+    }
+    if (line_len >= sizeof(line) || !parse_integer(line, 0, 65535, &v))
+        return gpio_error(text, "LINE must be a whole number in 0..65535", err, n);
+    g.line = (int)v;
+    const char *at = strchr(eq + 1, '@');
+    size_t name_len = at ? (size_t)(at - eq - 1) : strlen(eq + 1);
+    if (!valid_effect_name(eq + 1, name_len))
+        return gpio_error(text, "the effect name must be 1..63 of A-Z a-z 0-9 _ - .", err, n);
+    memcpy(g.effect, eq + 1, name_len);
+    if (at && !parse_position(at + 1, g.position))
+        return gpio_error(text, "the position must be three finite numbers X,Y,Z", err, n);
+    *out = g;
     return 0;
 }

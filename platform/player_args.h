@@ -15,6 +15,7 @@
 #define PLAYER_MIN_SIZE 16    /* a 1/8 particle target stays at least 2 pixels wide */
 #define PLAYER_MAX_SIZE 16384 /* the run also checks the GL limits */
 #define PLAYER_MAX_FRAMES 1000000
+#define PLAYER_MAX_GPIO 32
 
 /* --trigger EFFECT@SECONDS[:X,Y,Z] */
 struct player_trigger {
@@ -22,6 +23,16 @@ struct player_trigger {
     double seconds;
     float position[3];
 };
+
+/* --gpio CHIP:LINE=EFFECT[@X,Y,Z] (rising edges; the board or scene may say otherwise) */
+struct player_gpio {
+    char chip[64];
+    int line;
+    char effect[PLAYER_EFFECT_NAME_MAX];
+    float position[3];
+};
+
+enum player_display { PLAYER_DISPLAY_HEADLESS, PLAYER_DISPLAY_DRM };
 
 struct player_options {
     int width, height;
@@ -41,6 +52,20 @@ struct player_options {
     const char *scene_path;   /* NULL: the built-in timeline */
     bool quiet;
     bool help;
+    /* display and devices (README "Kiosk displays, cameras and GPIO") */
+    enum player_display display;
+    bool headless_flag;       /* --headless was given */
+    bool display_set;         /* --display was given */
+    bool size_set, frames_set, fps_set, out_set;
+    const char *device;       /* --device: DRM card */
+    const char *connector;
+    const char *mode;         /* WxH or WxH@HZ */
+    int modeset;              /* enum modeset_kind; -1: not given */
+    const char *screenshot;
+    const char *board_path;
+    const char *video;        /* --video: V4L2 node */
+    struct player_gpio gpio[PLAYER_MAX_GPIO];
+    int gpio_count;
 };
 
 void player_options_defaults(struct player_options *opt);
@@ -49,6 +74,8 @@ void player_options_defaults(struct player_options *opt);
 int player_parse_args(struct player_options *opt, int argc, char **argv, char *err, size_t n);
 /* Parses one EFFECT@SECONDS[:X,Y,Z]; the position defaults to the origin. */
 int player_parse_trigger(const char *text, struct player_trigger *out, char *err, size_t n);
+/* Parses one CHIP:LINE=EFFECT[@X,Y,Z]. */
+int player_parse_gpio(const char *text, struct player_gpio *out, char *err, size_t n);
 void player_usage(FILE *f);
 
 #endif

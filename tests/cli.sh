@@ -55,7 +55,8 @@ test_help() {
     play --help
     local missing="" flag
     for flag in --headless --size --frames --fps --out --contact-sheet --stats --trigger \
-        --no-timeline --scale --opacity --format --upsample --seed --scene --quiet --help; do
+        --no-timeline --scale --opacity --format --upsample --seed --scene --quiet --help \
+        --display --device --connector --mode --modeset --screenshot --board --video --gpio; do
         grep -qF -- "$flag" "$tmp/out" || missing="$missing $flag"
     done
     if [ "$rc" -ne 0 ]; then
@@ -196,6 +197,45 @@ test_trigger_run() {
         --frames 1 --out "$tmp/unknown" --quiet
 }
 
+# The platform flags (README "Kiosk displays, cameras and GPIO"): bad values, missing devices
+# and files exit 1 naming them; a missing camera is not fatal. Never opens a real display: the
+# DRM device named here does not exist.
+test_platform_arguments() {
+    usage_error display-bad --display --display kms
+    usage_error drm-missing-device /nonexistent/dri/card9 --display drm --device /nonexistent/dri/card9
+    usage_error drm-size-conflict --size --display drm --size 640x480 --device /nonexistent/dri/card9
+    usage_error headless-device-conflict --device --device /dev/dri/card0
+    usage_error drm-bad-mode --mode --display drm --mode 640x480p
+    usage_error drm-bad-modeset --modeset --display drm --modeset fast
+    usage_error drm-bad-connector --connector --display drm --connector "HDMI A"
+    usage_error gpio-no-equals --gpio --gpio gpiochip0:17
+    usage_error gpio-no-chip --gpio --gpio :17=explosion
+    usage_error gpio-bad-line --gpio --gpio gpiochip0:seventeen=explosion
+    usage_error gpio-bad-position --gpio --gpio gpiochip0:17=explosion@1,2
+    usage_error gpio-missing-chip "sbfx-no-such-chip" --gpio sbfx-no-such-chip:3=explosion \
+        --size 160x90 --frames 1 --out "$tmp/gpio"
+    usage_error board-missing "none-board.cfg" --board "$tmp/none-board.cfg"
+    printf 'board = "t";\ndisplay = {\n  conector = "HDMI-A-1"; };\n' >"$tmp/typo-board.cfg"
+    usage_error board-typo "typo-board.cfg:3: unknown key 'conector' in display" --board "$tmp/typo-board.cfg"
+    sed 's/strength = 0.7;/strength = 0.0;/' scenes/smoke.cfg >"$tmp/no-detail.cfg"
+    usage_error video-no-detail-volume "/nonexistent/video9: cannot feed the detail volume" \
+        --scene "$tmp/no-detail.cfg" --video /nonexistent/video9 --size 160x90 --frames 1 --out "$tmp/video"
+    play --video /nonexistent/video9 --size 160x90 --frames 2 --out "$tmp/video" --quiet
+    if [ "$rc" -ne 0 ]; then
+        fail video-missing-not-fatal "a run with a missing camera exited with $rc: $(first_error_line)"
+    elif ! grep -qF "/nonexistent/video9" "$tmp/err" || ! grep -qF "procedural detail" "$tmp/err"; then
+        fail video-missing-not-fatal "the message does not name the device and the fallback: $(first_error_line)"
+    else
+        ok video-missing-not-fatal
+    fi
+    play --board boards/rk3588.cfg --size 160x90 --frames 1 --out "$tmp/board" --quiet
+    if [ "$rc" -eq 0 ] || grep -qF "gpiochip3" "$tmp/err"; then
+        ok board-run # on a machine without the board's GPIO chip, the run fails naming it
+    else
+        fail board-run "--board boards/rk3588.cfg exited with $rc: $(first_error_line)"
+    fi
+}
+
 if [ ! -x "$PLAYER" ]; then
     fail player "$PLAYER is not built"
     exit 1
@@ -206,4 +246,5 @@ test_headless_run
 test_idle_run
 test_scene_run
 test_trigger_run
+test_platform_arguments
 [ "$failures" -eq 0 ]

@@ -2,7 +2,7 @@
 # The test runner of `make test` (which builds everything first, normal and ASan+UBSan).
 #
 # Runs, in order, and prints every line they print:
-#   1. every test binary in $BUILD/tests/unit/ and $BUILD/tests/gl/
+#   1. every test binary in $BUILD/tests/unit/, $BUILD/tests/gl/ and $BUILD/tests/platform/
 #   2. glslangValidator on every shaders_es/*.vert and *.frag, plainly and once per line of
 #      tests/shader_variants.txt ("FILE -DNAME ..." : the defines of one variant)
 #   3. a check that every file in shaders_es/ begins with "#version 300 es"
@@ -156,6 +156,8 @@ check_built "" unit "$BUILD"
 run_dir "" "$BUILD/tests/unit"
 check_built "" gl "$BUILD"
 run_dir "" "$BUILD/tests/gl"
+check_built "" platform "$BUILD"
+run_dir "" "$BUILD/tests/platform"
 validate_shaders
 check_version_lines
 run_cli "" "$BUILD/sbfx-play"
@@ -165,6 +167,8 @@ if [ -d "$ASAN_BUILD" ]; then
     check_built "asan:" unit "$ASAN_BUILD"
     run_dir "asan:" "$ASAN_BUILD/tests/unit"
     # Mesa's drivers keep allocations until exit that LeakSanitizer would report as ours.
+    check_built "asan:" platform "$ASAN_BUILD"
+    run_dir "asan:" "$ASAN_BUILD/tests/platform"
     check_built "asan:" gl "$ASAN_BUILD"
     ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 run_dir "asan:" "$ASAN_BUILD/tests/gl"
     ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 run_cli "asan:" "$ASAN_BUILD/sbfx-play"

@@ -1,0 +1,4 @@
+# A generic x86-64 PC with Mesa (i915/iris, amdgpu/radeonsi, or llvmpipe): the host toolchain,
+# built into build/x86-mesa/. Runtime profile: x86-mesa.cfg.
+CC := gcc
+CFLAGS += -march=x86-64-v2

@@ -1,0 +1,79 @@
+/* sbfx-play's state, shared by its files (private to the player):
+ *   player.c         main, setup and teardown, results
+ *   player_inputs.c  board profile, GPIO trigger lines, the V4L2 detail source
+ *   player_loop.c    the frame loop: poll, inputs, simulate, render, present, stats line */
+#ifndef SBFX_PLAYER_H
+#define SBFX_PLAYER_H
+
+#include <limits.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "board.h"
+#include "display.h"
+#include "gpio_triggers.h"
+#include "live_detail.h"
+#include "player_args.h"
+#include "sbfx.h"
+#include "test_scene.h"
+
+struct frame_times {
+    double sbfx_sum, sbfx_max;   /* sbfx_update + sbfx_render (+ glFinish when headless) */
+    double total_sum, total_max; /* the whole frame, readback and PNG included */
+};
+
+/* What the once-a-second line reports: counters at the start of the second. */
+struct second_stats {
+    int64_t start_ns;
+    uint64_t frames, flips, missed, fired, video;
+    double frame_ms_sum, frame_ms_max;
+};
+
+struct player {
+    const struct player_options *opt;
+    struct board_profile board;
+    bool have_board;
+    struct display *display;
+    struct test_scene scene;
+    bool scene_made;
+    sbfx *fx;
+    char out_dir[PATH_MAX];
+    double sim_time;
+    int frame_simulated;      /* particles advanced by this frame's updates, summed */
+    sbfx_counters last;       /* sbfx_stats() after the last frame */
+    struct frame_times times;
+    int frames_done;
+    bool realtime;            /* drm without --fps: the simulation follows the clock */
+    bool measure_gpu;         /* glFinish around sbfx (headless timings) */
+    int64_t run_start_ns, last_frame_ns;
+    /* inputs */
+    struct gpio_trigger_spec gpio_specs[GPIO_TRIGGERS_MAX];
+    int gpio_spec_count;
+    struct gpio_triggers gpio;
+    bool gpio_on;
+    struct live_detail live;
+    bool live_on;
+    struct second_stats second;
+};
+
+int64_t player_now_ns(void);
+void player_log(const char *message, void *user); /* "sbfx-play: message" on stderr */
+
+/* player_inputs.c */
+int player_load_board(struct player *p, char *err, size_t n);
+/* Collects the scene's GPIO triggers (before the scene is freed). */
+int player_collect_scene_gpio(struct player *p, const sbfx_scene *scene, char *err, size_t n);
+int player_open_inputs(struct player *p, char *err, size_t n);
+void player_close_inputs(struct player *p);
+/* Reads the GPIO events that wait and fires what passes; never blocks. */
+void player_service_gpio(struct player *p);
+/* Takes the newest camera frame if one arrived (once per frame: a camera faster than the
+ * display does not cost more uploads), notices losses, retries; never blocks. */
+void player_service_video(struct player *p);
+
+/* player_loop.c */
+void player_catch_signals(void);
+bool player_stop_requested(void);
+int player_run_frames(struct player *p, char *err, size_t n);
+
+#endif

@@ -1,0 +1,71 @@
+/* sbfx-play's platform flags (platform/player_args.c): --gpio syntax, display conflicts. */
+#include <errno.h>
+#include <string.h>
+
+#include "check.h"
+#include "player_args.h"
+
+static int parse(struct player_options *opt, char *err, size_t n, const char *a, const char *b,
+                 const char *c, const char *d)
+{
+    char *argv[] = {"sbfx-play", (char *)a, (char *)b, (char *)c, (char *)d, NULL};
+    int argc = 1;
+    while (argc < 5 && argv[argc]) argc++;
+    player_options_defaults(opt);
+    return player_parse_args(opt, argc, argv, err, n);
+}
+
+CHECK_TEST(gpio_good)
+{
+    struct player_gpio g;
+    char err[512];
+    CHECK(player_parse_gpio("gpiochip0:17=explosion", &g, err, sizeof(err)) == 0, "%s", err);
+    CHECK(strcmp(g.chip, "gpiochip0") == 0 && g.line == 17 && strcmp(g.effect, "explosion") == 0);
+    CHECK(g.position[0] == 0 && g.position[1] == 0 && g.position[2] == 0);
+    CHECK(player_parse_gpio("/dev/gpiochip2:3=boom@1.5,-2,3e1", &g, err, sizeof(err)) == 0, "%s", err);
+    CHECK(strcmp(g.chip, "/dev/gpiochip2") == 0 && g.line == 3 && g.position[2] == 30.0f);
+    CHECK(player_parse_gpio("my:label:4=x", &g, err, sizeof(err)) == 0, "the last ':' splits");
+    CHECK(strcmp(g.chip, "my:label") == 0 && g.line == 4);
+}
+
+CHECK_TEST(gpio_bad)
+{
+    const char *bad[] = {"gpiochip0", "gpiochip0:17", ":17=explosion", "gpiochip0=explosion",
+                         "gpiochip0:x=explosion", "gpiochip0:-1=explosion", "gpiochip0:65536=e",
+                         "gpiochip0:17=", "gpiochip0:17=a b", "gpiochip0:17=e@1,2",
+                         "gpiochip0:17=e@1,2,z", "gpiochip0:17=e@nan,0,0", "gpiochip0: 1=e", NULL};
+    for (int i = 0; bad[i]; i++) {
+        struct player_gpio g;
+        char err[512] = "";
+        CHECK(player_parse_gpio(bad[i], &g, err, sizeof(err)) == -EINVAL, "'%s' accepted", bad[i]);
+        CHECK(strstr(err, "--gpio: expected CHIP:LINE=EFFECT") != NULL, "'%s': %s", bad[i], err);
+    }
+}
+
+CHECK_TEST(display_flags)
+{
+    static struct player_options opt;
+    char err[512];
+    CHECK(parse(&opt, err, sizeof(err), "--display", "drm", NULL, NULL) == 0, "%s", err);
+    CHECK(opt.display == PLAYER_DISPLAY_DRM && !opt.frames_set);
+    CHECK(parse(&opt, err, sizeof(err), "--display=drm", "--mode", "640x480@60", NULL) == 0, "%s", err);
+    CHECK(parse(&opt, err, sizeof(err), "--display", "drm", "--size", "64x64") == -EINVAL);
+    CHECK(strstr(err, "--size applies to --display headless") != NULL, "%s", err);
+    CHECK(parse(&opt, err, sizeof(err), "--headless", "--display", "drm", NULL) == -EINVAL);
+    CHECK(parse(&opt, err, sizeof(err), "--device", "/dev/dri/card0", NULL, NULL) == -EINVAL);
+    CHECK(strstr(err, "--device applies to --display drm") != NULL, "%s", err);
+    CHECK(parse(&opt, err, sizeof(err), "--display", "kms", NULL, NULL) == -EINVAL);
+    CHECK(strstr(err, "--display: expected one of drm|headless") != NULL, "%s", err);
+    CHECK(parse(&opt, err, sizeof(err), "--display", "drm", "--mode", "big") == -EINVAL);
+    CHECK(strstr(err, "--mode: expected WxH") != NULL, "%s", err);
+    CHECK(parse(&opt, err, sizeof(err), "--display", "drm", "--modeset", "fast") == -EINVAL);
+    CHECK(parse(&opt, err, sizeof(err), "--video", "/dev/video0", "--board", "b.cfg") == 0, "%s", err);
+    CHECK(strcmp(opt.video, "/dev/video0") == 0 && strcmp(opt.board_path, "b.cfg") == 0);
+    CHECK(parse(&opt, err, sizeof(err), "--gpio", "a:1=x", "--gpio", "a:2=y") == 0, "%s", err);
+    CHECK(opt.gpio_count == 2 && opt.gpio[1].line == 2);
+}
+
+int main(int argc, char **argv)
+{
+    return check_main_args(argc, argv);
+}
