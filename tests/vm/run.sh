@@ -212,6 +212,12 @@ summarize() {
         echo "not ok - vm/boot: the guest did not finish (exit $VM_STATUS); kernel log tail:"
         tail -n 15 "$VM_DIR/kernel.log" | sed 's/^/#   /'
         failed=$((failed + 1))
+    elif [ "$(cat "$VM_DIR/out/exit-status")" != 0 ] || [ $((passed + failed + skipped)) -eq 0 ]; then
+        # the guest script could not run (not found, crashed early): never a silent pass
+        echo "not ok - vm/guest: the guest script exited $(cat "$VM_DIR/out/exit-status") after" \
+             "$((passed + failed + skipped)) results; its output: $VM_DIR/guest.log"
+        tail -n 5 "$VM_DIR/guest.log" | sed 's/^/#   /'
+        failed=$((failed + 1))
     fi
     say "$((SECONDS - start)) s in all"
     if [ "$skipped" -gt 0 ]; then
