@@ -100,6 +100,8 @@ typedef struct sbfx_rt {
 } sbfx_rt;
 
 /* Post-effect state: programs at load, targets with the output size. */
+#define SBFX_POST_PROGRAMS 9
+#define SBFX_POST_UNIFORMS 32
 typedef struct sbfx_post_gl {
     GLuint velocity_program, tile_program, neighbor_program, blur_program;
     GLuint history_program, copy_program, dof_setup_program, dof_blur_program, dof_composite_program;
@@ -116,6 +118,7 @@ typedef struct sbfx_post_gl {
     bool have_previous;
     bool particles_drawn;      /* this frame drew particles (their velocities are valid) */
     double previous_view_projection[16];
+    GLint locations[SBFX_POST_PROGRAMS][SBFX_POST_UNIFORMS]; /* post.c's uniform table */
 } sbfx_post_gl;
 
 /* What the scene's plan needs beyond the particle passes. */

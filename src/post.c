@@ -6,6 +6,97 @@
 #include <string.h>
 #include "module.h"
 
+enum post_uniform {
+    PU_COLOR,
+    PU_CURRENT,
+    PU_DEPTH_PARAMS,
+    PU_DIRECTION,
+    PU_DIVISOR,
+    PU_FAR,
+    PU_FAR_FIELD,
+    PU_FAR_PLANE,
+    PU_HISTORY,
+    PU_KEEP,
+    PU_LOW_SIZE,
+    PU_MAX_RADIUS,
+    PU_NEAR,
+    PU_NEAR_FIELD,
+    PU_NEIGHBOR_MAX,
+    PU_PARTICLE_MOTION,
+    PU_PARTICLE_SIZE,
+    PU_PARTICLE_VELOCITY,
+    PU_PARTICLES_DRAWN,
+    PU_REPROJECT,
+    PU_SAMPLES,
+    PU_SCALE,
+    PU_SCENE_DEPTH,
+    PU_SHUTTER,
+    PU_SIZE,
+    PU_SOURCE,
+    PU_TILE,
+    PU_TILES,
+    PU_TILES_SIZE,
+    PU_VELOCITY,
+    PU_COUNT
+};
+_Static_assert(PU_COUNT <= SBFX_POST_UNIFORMS, "SBFX_POST_UNIFORMS is too small for post.c");
+static const char *const post_uniform_names[PU_COUNT] = {
+    [PU_COLOR] = "u_color",
+    [PU_CURRENT] = "u_current",
+    [PU_DEPTH_PARAMS] = "u_depth_params",
+    [PU_DIRECTION] = "u_direction",
+    [PU_DIVISOR] = "u_divisor",
+    [PU_FAR] = "u_far",
+    [PU_FAR_FIELD] = "u_far_field",
+    [PU_FAR_PLANE] = "u_far_plane",
+    [PU_HISTORY] = "u_history",
+    [PU_KEEP] = "u_keep",
+    [PU_LOW_SIZE] = "u_low_size",
+    [PU_MAX_RADIUS] = "u_max_radius",
+    [PU_NEAR] = "u_near",
+    [PU_NEAR_FIELD] = "u_near_field",
+    [PU_NEIGHBOR_MAX] = "u_neighbor_max",
+    [PU_PARTICLE_MOTION] = "u_particle_motion",
+    [PU_PARTICLE_SIZE] = "u_particle_size",
+    [PU_PARTICLE_VELOCITY] = "u_particle_velocity",
+    [PU_PARTICLES_DRAWN] = "u_particles_drawn",
+    [PU_REPROJECT] = "u_reproject",
+    [PU_SAMPLES] = "u_samples",
+    [PU_SCALE] = "u_scale",
+    [PU_SCENE_DEPTH] = "u_scene_depth",
+    [PU_SHUTTER] = "u_shutter",
+    [PU_SIZE] = "u_size",
+    [PU_SOURCE] = "u_source",
+    [PU_TILE] = "u_tile",
+    [PU_TILES] = "u_tiles",
+    [PU_TILES_SIZE] = "u_tiles_size",
+    [PU_VELOCITY] = "u_velocity",
+};
+
+/* Uniform locations of the post programs, looked up once at load (-1 where a program has no
+ * such uniform). Per frame a pass finds its program's row by id: no string lookups. */
+static GLuint *post_programs(sbfx_post_gl *p, int i)
+{
+    GLuint *all[SBFX_POST_PROGRAMS] = {&p->copy_program, &p->history_program, &p->velocity_program, &p->tile_program,
+                                      &p->neighbor_program, &p->blur_program, &p->dof_setup_program,
+                                      &p->dof_blur_program, &p->dof_composite_program};
+    return all[i];
+}
+
+static void locate_post_uniforms(sbfx_post_gl *p)
+{
+    for (int i = 0; i < SBFX_POST_PROGRAMS; i++)
+        for (int u = 0; u < PU_COUNT; u++)
+            p->locations[i][u] = *post_programs(p, i) ? glGetUniformLocation(*post_programs(p, i), post_uniform_names[u]) : -1;
+}
+
+static GLint post_loc(const sbfx_post_gl *p, GLuint program, int uniform)
+{
+    for (int i = 0; i < SBFX_POST_PROGRAMS; i++)
+        if (*post_programs((sbfx_post_gl *)p, i) == program) return p->locations[i][uniform];
+    return -1;
+}
+
 bool sbfx_post_owns_scene(const sbfx *fx) { return fx->plan.owns_scene; }
 
 static bool has_steps(const sbfx *fx) { return fx->post.dof || fx->post.blur != SBFX_BLUR_NONE; }
@@ -47,6 +138,7 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
                      dof ? p->dof_setup_program : 1, dof ? p->dof_blur_program : 1};
     for (size_t i = 0; i < ARRAY_SIZE(need); i++)
         if (!need[i]) return SBFX_ERR_SHADER;
+    locate_post_uniforms(p);
     return SBFX_OK;
 }
 
@@ -112,11 +204,11 @@ typedef struct post_frame {
     float depth_params[2], far;
 } post_frame;
 
-static void bind_unit(GLuint program, const char *name, int unit, GLuint texture)
+static void bind_unit(const sbfx_post_gl *p, GLuint program, int uniform, int unit, GLuint texture)
 {
     glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
     glBindTexture(GL_TEXTURE_2D, texture);
-    glUniform1i(glGetUniformLocation(program, name), unit);
+    glUniform1i(post_loc(p, program, uniform), unit);
 }
 
 /* Starts a full-screen pass of `program` into `fbo` of w x h; finish() draws it. */
@@ -137,16 +229,17 @@ static void finish(sbfx *fx)
 
 static void pass_copy(sbfx *fx, GLuint source, GLuint fbo, int w, int h)
 {
-    GLuint prog = fx->gl.post.copy_program;
+    const sbfx_post_gl *p = &fx->gl.post;
+    GLuint prog = p->copy_program;
     begin(prog, fbo, w, h);
-    bind_unit(prog, "u_source", 0, source);
+    bind_unit(p, prog, PU_SOURCE, 0, source);
     finish(fx);
 }
 
-static void set_depth_uniforms(GLuint prog, const post_frame *pf, const char *far_name)
+static void set_depth_uniforms(const sbfx_post_gl *p, GLuint prog, const post_frame *pf, int far_uniform)
 {
-    glUniform2fv(glGetUniformLocation(prog, "u_depth_params"), 1, pf->depth_params);
-    glUniform1f(glGetUniformLocation(prog, far_name), pf->far);
+    glUniform2fv(post_loc(p, prog, PU_DEPTH_PARAMS), 1, pf->depth_params);
+    glUniform1f(post_loc(p, prog, far_uniform), pf->far);
 }
 
 /* Depth of field: split by CoC at the blur resolution, blur both fields separably (two
@@ -158,39 +251,39 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     const sbfx_frame *f = pf->f;
     GLuint prog = p->dof_setup_program;
     begin(prog, p->dof[0].framebuffer, p->dof[0].width, p->dof[0].height);
-    bind_unit(prog, "u_color", 0, source);
-    bind_unit(prog, "u_scene_depth", 1, f->scene_depth_texture);
-    glUniform1i(glGetUniformLocation(prog, "u_scale"), post->dof_scale);
-    glUniform2i(glGetUniformLocation(prog, "u_size"), f->width, f->height);
-    set_depth_uniforms(prog, pf, "u_far_plane");
-    glUniform2fv(glGetUniformLocation(prog, "u_near"), 1, post->dof_near);
-    glUniform2fv(glGetUniformLocation(prog, "u_far"), 1, post->dof_far);
-    bind_unit(prog, "u_particle_motion", 2, fx->gl.particles.texture[2]);
-    glUniform1i(glGetUniformLocation(prog, "u_particles_drawn"), p->particles_drawn && fx->gl.particles.texture[2]);
-    glUniform1f(glGetUniformLocation(prog, "u_divisor"), (float)fx->desc.target_divisor);
-    glUniform2i(glGetUniformLocation(prog, "u_particle_size"), fx->gl.low_width, fx->gl.low_height);
+    bind_unit(p, prog, PU_COLOR, 0, source);
+    bind_unit(p, prog, PU_SCENE_DEPTH, 1, f->scene_depth_texture);
+    glUniform1i(post_loc(p, prog, PU_SCALE), post->dof_scale);
+    glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
+    set_depth_uniforms(p, prog, pf, PU_FAR_PLANE);
+    glUniform2fv(post_loc(p, prog, PU_NEAR), 1, post->dof_near);
+    glUniform2fv(post_loc(p, prog, PU_FAR), 1, post->dof_far);
+    bind_unit(p, prog, PU_PARTICLE_MOTION, 2, fx->gl.particles.texture[2]);
+    glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl.particles.texture[2]);
+    glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->desc.target_divisor);
+    glUniform2i(post_loc(p, prog, PU_PARTICLE_SIZE), fx->gl.low_width, fx->gl.low_height);
     finish(fx);
     prog = p->dof_blur_program;
     for (int dir = 0; dir < 2; dir++) {
         const sbfx_rt *in = &p->dof[dir], *out = &p->dof[1 - dir];
         begin(prog, out->framebuffer, out->width, out->height);
-        bind_unit(prog, "u_far_field", 0, in->texture[0]);
-        bind_unit(prog, "u_near_field", 1, in->texture[1]);
-        glUniform2i(glGetUniformLocation(prog, "u_direction"), dir == 0, dir == 1);
-        glUniform2i(glGetUniformLocation(prog, "u_low_size"), in->width, in->height);
-        glUniform1f(glGetUniformLocation(prog, "u_max_radius"), post->dof_max_radius / post->dof_scale);
+        bind_unit(p, prog, PU_FAR_FIELD, 0, in->texture[0]);
+        bind_unit(p, prog, PU_NEAR_FIELD, 1, in->texture[1]);
+        glUniform2i(post_loc(p, prog, PU_DIRECTION), dir == 0, dir == 1);
+        glUniform2i(post_loc(p, prog, PU_LOW_SIZE), in->width, in->height);
+        glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), post->dof_max_radius / post->dof_scale);
         finish(fx);
     }
     prog = p->dof_composite_program;
     begin(prog, fbo, f->width, f->height);
-    bind_unit(prog, "u_color", 0, source);
-    bind_unit(prog, "u_far_field", 1, p->dof[0].texture[0]);
-    bind_unit(prog, "u_near_field", 2, p->dof[0].texture[1]);
-    bind_unit(prog, "u_scene_depth", 3, f->scene_depth_texture);
-    set_depth_uniforms(prog, pf, "u_far_plane");
-    glUniform2fv(glGetUniformLocation(prog, "u_far"), 1, post->dof_far);
-    glUniform1f(glGetUniformLocation(prog, "u_scale"), (float)post->dof_scale);
-    glUniform2i(glGetUniformLocation(prog, "u_low_size"), p->dof[0].width, p->dof[0].height);
+    bind_unit(p, prog, PU_COLOR, 0, source);
+    bind_unit(p, prog, PU_FAR_FIELD, 1, p->dof[0].texture[0]);
+    bind_unit(p, prog, PU_NEAR_FIELD, 2, p->dof[0].texture[1]);
+    bind_unit(p, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
+    set_depth_uniforms(p, prog, pf, PU_FAR_PLANE);
+    glUniform2fv(post_loc(p, prog, PU_FAR), 1, post->dof_far);
+    glUniform1f(post_loc(p, prog, PU_SCALE), (float)post->dof_scale);
+    glUniform2i(post_loc(p, prog, PU_LOW_SIZE), p->dof[0].width, p->dof[0].height);
     finish(fx);
 }
 
@@ -202,9 +295,9 @@ static void pass_history(sbfx *fx, GLuint source, GLuint fbo, int w, int h, doub
     const sbfx_rt *previous = &p->history[1 - p->history_next], *next = &p->history[p->history_next];
     float keep = p->history_valid ? (float)exp(-dt / fx->post.persistence) : 0.0f;
     begin(prog, next->framebuffer, w, h);
-    bind_unit(prog, "u_current", 0, source);
-    bind_unit(prog, "u_history", 1, previous->texture[0]);
-    glUniform1f(glGetUniformLocation(prog, "u_keep"), keep);
+    bind_unit(p, prog, PU_CURRENT, 0, source);
+    bind_unit(p, prog, PU_HISTORY, 1, previous->texture[0]);
+    glUniform1f(post_loc(p, prog, PU_KEEP), keep);
     finish(fx);
     pass_copy(fx, next->texture[0], fbo, w, h);
     p->history_valid = true;
@@ -268,40 +361,40 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
     for (int i = 0; i < 16; i++) reproject_f[i] = (float)reproject[i];
     GLuint prog = p->velocity_program;
     begin(prog, p->velocity.framebuffer, f->width, f->height);
-    bind_unit(prog, "u_scene_depth", 0, f->scene_depth_texture);
-    bind_unit(prog, "u_particle_velocity", 1, fx->gl.particles.texture[2]);
-    glUniform1i(glGetUniformLocation(prog, "u_particles_drawn"), p->particles_drawn && fx->gl.particles.texture[2]);
-    glUniformMatrix4fv(glGetUniformLocation(prog, "u_reproject"), 1, GL_FALSE, reproject_f);
-    glUniform2f(glGetUniformLocation(prog, "u_size"), (float)f->width, (float)f->height);
-    glUniform1f(glGetUniformLocation(prog, "u_shutter"), post->shutter);
-    glUniform1f(glGetUniformLocation(prog, "u_max_radius"), (float)post->tile);
-    glUniform1f(glGetUniformLocation(prog, "u_divisor"), (float)fx->desc.target_divisor);
-    glUniform2i(glGetUniformLocation(prog, "u_low_size"), fx->gl.low_width, fx->gl.low_height);
+    bind_unit(p, prog, PU_SCENE_DEPTH, 0, f->scene_depth_texture);
+    bind_unit(p, prog, PU_PARTICLE_VELOCITY, 1, fx->gl.particles.texture[2]);
+    glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl.particles.texture[2]);
+    glUniformMatrix4fv(post_loc(p, prog, PU_REPROJECT), 1, GL_FALSE, reproject_f);
+    glUniform2f(post_loc(p, prog, PU_SIZE), (float)f->width, (float)f->height);
+    glUniform1f(post_loc(p, prog, PU_SHUTTER), post->shutter);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
+    glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->desc.target_divisor);
+    glUniform2i(post_loc(p, prog, PU_LOW_SIZE), fx->gl.low_width, fx->gl.low_height);
     finish(fx);
     prog = p->tile_program;
     begin(prog, p->tiles.framebuffer, p->tiles.width, p->tiles.height);
-    bind_unit(prog, "u_velocity", 0, p->velocity.texture[0]);
-    glUniform1i(glGetUniformLocation(prog, "u_tile"), post->tile);
-    glUniform2i(glGetUniformLocation(prog, "u_size"), f->width, f->height);
-    glUniform1f(glGetUniformLocation(prog, "u_max_radius"), (float)post->tile);
+    bind_unit(p, prog, PU_VELOCITY, 0, p->velocity.texture[0]);
+    glUniform1i(post_loc(p, prog, PU_TILE), post->tile);
+    glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
     finish(fx);
     prog = p->neighbor_program;
     begin(prog, p->neighbors.framebuffer, p->neighbors.width, p->neighbors.height);
-    bind_unit(prog, "u_tiles", 0, p->tiles.texture[0]);
-    glUniform2i(glGetUniformLocation(prog, "u_tiles_size"), p->tiles.width, p->tiles.height);
-    glUniform1f(glGetUniformLocation(prog, "u_max_radius"), (float)post->tile);
+    bind_unit(p, prog, PU_TILES, 0, p->tiles.texture[0]);
+    glUniform2i(post_loc(p, prog, PU_TILES_SIZE), p->tiles.width, p->tiles.height);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
     finish(fx);
     prog = p->blur_program;
     begin(prog, fbo, f->width, f->height);
-    bind_unit(prog, "u_color", 0, source);
-    bind_unit(prog, "u_velocity", 1, p->velocity.texture[0]);
-    bind_unit(prog, "u_neighbor_max", 2, p->neighbors.texture[0]);
-    bind_unit(prog, "u_scene_depth", 3, f->scene_depth_texture);
-    glUniform2i(glGetUniformLocation(prog, "u_size"), f->width, f->height);
-    glUniform1i(glGetUniformLocation(prog, "u_tile"), post->tile);
-    glUniform1i(glGetUniformLocation(prog, "u_samples"), post->samples);
-    glUniform1f(glGetUniformLocation(prog, "u_max_radius"), (float)post->tile);
-    set_depth_uniforms(prog, pf, "u_far");
+    bind_unit(p, prog, PU_COLOR, 0, source);
+    bind_unit(p, prog, PU_VELOCITY, 1, p->velocity.texture[0]);
+    bind_unit(p, prog, PU_NEIGHBOR_MAX, 2, p->neighbors.texture[0]);
+    bind_unit(p, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
+    glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
+    glUniform1i(post_loc(p, prog, PU_TILE), post->tile);
+    glUniform1i(post_loc(p, prog, PU_SAMPLES), post->samples);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
+    set_depth_uniforms(p, prog, pf, PU_FAR);
     finish(fx);
 }
 
