@@ -92,7 +92,8 @@ $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 $(BUILD)/sbfx-probe: $(BUILD)/obj/platform/probe.o $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
-$(BUILD)/sbfx.pc: Makefile
+# rewritten on every run: it carries PREFIX, which may differ between "make" and "make install"
+$(BUILD)/sbfx.pc: Makefile FORCE
 	@mkdir -p $(@D)
 	@printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: sbfx\nDescription: volumetric particle effects (spherical billboards) on OpenGL ES 3.0\nVersion: %s\nRequires.private: %s\nLibs: -L$${libdir} -lsbfx\nLibs.private: -lm\nCflags: -I$${includedir}\n' \
 		'$(PREFIX)' '$(VERSION)' '$(SRC_PKGS)' > $@
@@ -231,3 +232,6 @@ cross-check:
 	@for f in build/$(CROSS_BOARD)/sbfx-play build/$(CROSS_BOARD)/sbfx-probe build/$(CROSS_BOARD)/libsbfx.so; do \
 		readelf -h $$f | grep -q 'Machine:.*AArch64' || { echo "cross-check: $$f is not AArch64" >&2; exit 1; }; \
 	done; echo "cross-check: build/$(CROSS_BOARD)/sbfx-play, sbfx-probe, libsbfx.so link for AArch64"
+
+.PHONY: FORCE
+FORCE:
