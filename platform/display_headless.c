@@ -1,6 +1,7 @@
 /* The headless display: EGL surfaceless (egl_headless.h), an RGBA8 framebuffer object, every
  * frame read back with glReadPixels and written as DIR/frame-NNNN.png, optionally shrunk into a
  * contact sheet. The pixel buffer is allocated once. */
+#include "gl_check.h"
 #include "display.h"
 
 #include <errno.h>
@@ -26,15 +27,6 @@ struct display_headless {
 static struct display_headless *to_headless(struct display *d)
 {
     return (struct display_headless *)d; /* base is the first member */
-}
-
-static int gl_check(const char *what, char *err, size_t n)
-{
-    GLenum e = glGetError(), first = e;
-    while (e != GL_NO_ERROR) e = glGetError(); /* drain, so the next check starts clean */
-    if (first == GL_NO_ERROR) return 0;
-    snprintf(err, n, "%s: GL error 0x%x", what, first);
-    return first == GL_OUT_OF_MEMORY ? -ENOMEM : -EIO;
 }
 
 static int create_output(struct display_headless *h, char *err, size_t n)
@@ -73,7 +65,7 @@ static int headless_present(struct display *d, int index, char *err, size_t n)
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glReadPixels(0, 0, w, hgt, GL_RGBA, GL_UNSIGNED_BYTE, h->pixels);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    int rc = gl_check("glReadPixels of the output framebuffer", err, n);
+    int rc = platform_gl_check("glReadPixels of the output framebuffer", err, n);
     if (rc) return rc;
     /* A display has no alpha; written as is, viewers would show whatever the composite left
      * in alpha as transparency. */

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "gl_check.h"
 #include "player.h"
 
 #define FLIP_TIMEOUT_NS INT64_C(1000000000)
@@ -94,15 +95,6 @@ static int wait_ready(struct player *p, char *err, size_t n)
 
 /* ---- one frame ------------------------------------------------------------------------ */
 
-static int gl_check(const char *what, char *err, size_t n)
-{
-    GLenum e = glGetError(), first = e;
-    while (e != GL_NO_ERROR) e = glGetError(); /* drain, so the next check starts clean */
-    if (first == GL_NO_ERROR) return 0;
-    snprintf(err, n, "%s: GL error 0x%x", what, first);
-    return first == GL_OUT_OF_MEMORY ? -ENOMEM : -EIO;
-}
-
 static int update(struct player *p, double dt, char *err, size_t n)
 {
     if (dt <= 0.0) return 0;
@@ -137,7 +129,7 @@ static int draw_scene(struct player *p, double t, sbfx_frame *frame, char *err, 
     frame->width = w;
     frame->height = h;
     if (p->measure_gpu) glFinish(); /* so the timed part below holds sbfx's GPU work only */
-    return gl_check("scene copy to the output framebuffer", err, n);
+    return platform_gl_check("scene copy to the output framebuffer", err, n);
 }
 
 static int run_fx(struct player *p, double t, const sbfx_frame *frame, char *err, size_t n)

@@ -108,6 +108,14 @@ static inline double depth_far_everywhere(int x, int y, void *user)
 }
 
 /* The pixel's ray (z = -1) in the CPU reference's terms, at the centre of target pixel (x, y). */
+/* The common set-up: a context, a 1 rad / 0.1 m / 100 m projection, nothing opaque. */
+static inline void fixture_open_far(gl_fixture *f, int width, int height)
+{
+    fixture_open(f, width, height);
+    fixture_projection(f, 1.0f, 0.1f, 100.0f);
+    fixture_depth(f, depth_far_everywhere, NULL);
+}
+
 static inline void fixture_ray(const gl_fixture *f, const sbfx_frame *frame, int tw, int th, int x, int y,
                         double ray[3])
 {

@@ -713,9 +713,7 @@ static void bad_inputs_in_mode(gl_fixture *f, sbfx_opacity_mode mode, const sbfx
 CHECK_TEST(bad_inputs_skipped_every_field)
 {
     gl_fixture f;
-    fixture_open(&f, SIZE, SIZE);
-    fixture_projection(&f, 1.0f, 0.1f, 100.0f);
-    fixture_depth(&f, depth_far_everywhere, NULL);
+    fixture_open_far(&f, SIZE, SIZE);
     const sbfx_view_particle good[3] = {particle(0.0f, 0.0f, -6.0f, 1.5f, SBFX_SMOKE),
                                         particle(1.0f, 0.5f, -7.0f, 1.0f, SBFX_FIRE),
                                         particle(-1.0f, -0.5f, -5.0f, 1.2f, SBFX_DUST)};

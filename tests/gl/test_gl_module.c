@@ -71,9 +71,7 @@ CHECK_TEST(bad_desc_is_rejected)
 CHECK_TEST(idle_frame_runs_no_pass)
 {
     gl_fixture f;
-    fixture_open(&f, 64, 48);
-    fixture_projection(&f, 1.0f, 0.1f, 100.0f);
-    fixture_depth(&f, depth_far_everywhere, NULL);
+    fixture_open_far(&f, 64, 48);
     sbfx *fx = fixture_module(&f, (sbfx_desc){.ignore_timeline = true});
     glBindFramebuffer(GL_FRAMEBUFFER, f.out_fbo);
     glClearColor(0.25f, 0.5f, 0.75f, 1.0f);
@@ -201,9 +199,7 @@ CHECK_TEST(rgba8_fallback_when_half_float_not_renderable)
 {
     setenv("MESA_EXTENSION_OVERRIDE", "-GL_EXT_color_buffer_half_float -GL_EXT_color_buffer_float", 1);
     gl_fixture f;
-    fixture_open(&f, 64, 64);
-    fixture_projection(&f, 1.0f, 0.1f, 100.0f);
-    fixture_depth(&f, depth_far_everywhere, NULL);
+    fixture_open_far(&f, 64, 64);
     sbfx *fx = fixture_module(&f, (sbfx_desc){.target_divisor = 1});
     sbfx_view_particle p = {.center = {0, 0, -6}, .radius = 2.0f, .intensity = 1, .medium = SBFX_SMOKE};
     CHECK(sbfx_render_view_particles(fx, &f.frame, &p, 1) == SBFX_OK, "%s", sbfx_last_error(fx));
@@ -299,9 +295,7 @@ static float *render_pair(gl_fixture *f, sbfx_desc desc, int *w, int *h)
 CHECK_TEST(analytic_blackbody_and_phase_agree_with_tables)
 {
     gl_fixture f;
-    fixture_open(&f, 48, 48);
-    fixture_projection(&f, 1.0f, 0.1f, 100.0f);
-    fixture_depth(&f, depth_far_everywhere, NULL);
+    fixture_open_far(&f, 48, 48);
     int w, h;
     float *lut = render_pair(&f, (sbfx_desc){0}, &w, &h);
     float *analytic = render_pair(&f, (sbfx_desc){.analytic_blackbody = true, .analytic_phase = true}, &w, &h);
@@ -328,9 +322,7 @@ CHECK_TEST(analytic_blackbody_and_phase_agree_with_tables)
 CHECK_TEST(light_per_particle_close_to_per_pixel)
 {
     gl_fixture f;
-    fixture_open(&f, 48, 48);
-    fixture_projection(&f, 1.0f, 0.1f, 100.0f);
-    fixture_depth(&f, depth_far_everywhere, NULL);
+    fixture_open_far(&f, 48, 48);
     int w, h;
     float *pixel = render_pair(&f, (sbfx_desc){0}, &w, &h);
     float *particle = render_pair(&f, (sbfx_desc){.light_per_particle = true}, &w, &h);

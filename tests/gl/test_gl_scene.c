@@ -63,9 +63,7 @@ CHECK_TEST(plan_holds_only_what_each_scene_uses)
 CHECK_TEST(idle_scene_simulates_and_draws_nothing)
 {
     gl_fixture f;
-    fixture_open(&f, 64, 64);
-    fixture_projection(&f, 1.0f, 0.1f, 100.0f);
-    fixture_depth(&f, depth_far_everywhere, NULL);
+    fixture_open_far(&f, 64, 64);
     sbfx_scene *scene = load_scene("barrage");
     sbfx *fx = fixture_module(&f, (sbfx_desc){.scene = scene, .ignore_timeline = true});
     sbfx_scene_free(scene);
