@@ -14,12 +14,12 @@ precision highp float;
 precision highp sampler2D;
 
 uniform sampler2D u_particles;    // low-res: premultiplied light, transmittance
-uniform sampler2D u_low_depth;    // low-res opaque distance / far
+uniform sampler2D u_low_depth;    // low-res opaque near / distance (0: no surface)
 uniform sampler2D u_scene_depth;  // full-res host depth, window depth
 uniform ivec2 u_low_size;
 uniform float u_divisor;
-uniform vec2 u_depth_params;      // projection[10], projection[14]
-uniform float u_far;
+uniform vec4 u_depth_model;       // window depth -> distance (view_distance)
+uniform float u_near;
 uniform float u_depth_threshold;  // relative depth difference that counts as an edge
 #ifdef OWN_SCENE
 uniform sampler2D u_scene_color;  // full res, LINEAR filtering for the shimmer offset
@@ -32,6 +32,21 @@ uniform sampler2D u_distortion;   // low-res: offset of the scene lookup in UV u
 out vec4 o_color;
 
 const float HALF_MAX = 65504.0;
+
+// Window depth -> view distance (src/projection.c): the matrix's own depth row, solved around
+// the far end so nothing cancels; the clear value means no surface.
+const float NO_SURFACE = 1e30;
+float view_distance(float d)
+{
+    if (d == u_depth_model.y) return NO_SURFACE;
+    return u_depth_model.w / (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z);
+}
+
+float low_distance(ivec2 q)
+{
+    float e = texelFetch(u_low_depth, clamp(q, ivec2(0), u_low_size - 1), 0).r;
+    return e > 0.0 ? u_near / e : NO_SURFACE;
+}
 
 vec4 sanitize(vec4 p)
 {
@@ -54,14 +69,9 @@ void main()
     vec4 p01 = fetch(base + ivec2(0, 1)), p11 = fetch(base + ivec2(1, 1));
     vec4 result = mix(mix(p00, p10, f.x), mix(p01, p11, f.x), f.y);
 #ifdef UPSAMPLE_NEAREST_DEPTH
-    float window = texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r;
-    float z = window >= 1.0 ? u_far : u_depth_params.y / (window * 2.0 - 1.0 + u_depth_params.x);
-    ivec2 top = u_low_size - 1;
-    vec4 dz = abs(vec4(texelFetch(u_low_depth, clamp(base, ivec2(0), top), 0).r,
-                       texelFetch(u_low_depth, clamp(base + ivec2(1, 0), ivec2(0), top), 0).r,
-                       texelFetch(u_low_depth, clamp(base + ivec2(0, 1), ivec2(0), top), 0).r,
-                       texelFetch(u_low_depth, clamp(base + ivec2(1, 1), ivec2(0), top), 0).r)
-                  * u_far - z);
+    float z = view_distance(texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r);
+    vec4 dz = abs(vec4(low_distance(base), low_distance(base + ivec2(1, 0)), low_distance(base + ivec2(0, 1)),
+                       low_distance(base + ivec2(1, 1))) - z);
     if (max(max(dz.x, dz.y), max(dz.z, dz.w)) > u_depth_threshold * z) {
         result = p00;
         float best = dz.x;

@@ -1,33 +1,33 @@
 #version 300 es
 // Opaque depth -> particle-target resolution. Each low-res texel keeps the closest opaque
-// surface of its block, stored linearly as distance / far so the particle pass can read view
-// distances at full float precision (a depth attachment is renderable in core ES 3.0,
-// a float colour target is not).
+// surface of its block as near / distance: 0 means no surface (the host's clear value), and the
+// encoding needs no far plane and keeps float's relative precision at every distance (a depth
+// attachment is renderable in core ES 3.0, a float colour target is not).
 precision highp float;
 precision highp sampler2D;
 
-uniform sampler2D u_scene_depth;   // host depth texture, window-space depth in [0,1]
+uniform sampler2D u_scene_depth;   // host depth texture, window depth in [0,1]
 uniform int u_divisor;
 uniform ivec2 u_full_size;
-uniform vec2 u_depth_params;       // projection[10], projection[14]
-uniform float u_far;
+uniform vec4 u_depth_model;        // distance = w / (x (d - y) + z); d = y: no surface (src/projection.c)
+uniform float u_near;
 
-float view_distance(float window_depth)
+// near / distance of one window depth; linear in d, so nothing cancels.
+float inverse_distance(float d)
 {
-    float ndc = window_depth * 2.0 - 1.0;
-    return u_depth_params.y / (ndc + u_depth_params.x);
+    if (d == u_depth_model.y) return 0.0;
+    return clamp(u_near * (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z) / u_depth_model.w, 0.0, 1.0);
 }
 
 void main()
 {
     ivec2 base = ivec2(gl_FragCoord.xy) * u_divisor;
-    float closest = 1.0;
+    float closest = 0.0;
     for (int j = 0; j < u_divisor; j++) {
         for (int i = 0; i < u_divisor; i++) {
             ivec2 q = min(base + ivec2(i, j), u_full_size - 1);
-            closest = min(closest, texelFetch(u_scene_depth, q, 0).r);
+            closest = max(closest, inverse_distance(texelFetch(u_scene_depth, q, 0).r));
         }
     }
-    float distance = closest >= 1.0 ? u_far : view_distance(closest);
-    gl_FragDepth = clamp(distance / u_far, 0.0, 1.0);
+    gl_FragDepth = closest;
 }

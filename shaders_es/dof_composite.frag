@@ -8,13 +8,20 @@ uniform sampler2D u_color;
 uniform sampler2D u_far_field;     // blurred
 uniform sampler2D u_near_field;    // blurred
 uniform sampler2D u_scene_depth;
-uniform vec2 u_depth_params;
-uniform float u_far_plane;
+uniform vec4 u_depth_model;       // window depth -> distance (view_distance)
 uniform vec2 u_far;
 uniform float u_scale;
 uniform ivec2 u_low_size;
 
 out vec4 o_color;
+
+// Window depth -> view distance (src/projection.c): the matrix's own depth row, solved around
+// the far end so nothing cancels; the clear value means no surface.
+float view_distance(float d)
+{
+    if (d == u_depth_model.y) return 1e30;
+    return u_depth_model.w / (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z);
+}
 
 vec4 bilinear(sampler2D t, vec2 low)
 {
@@ -31,8 +38,7 @@ void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec3 sharp = texelFetch(u_color, p, 0).rgb;
-    float w = texelFetch(u_scene_depth, p, 0).r;
-    float z = w >= 1.0 ? u_far_plane : u_depth_params.y / (w * 2.0 - 1.0 + u_depth_params.x);
+    float z = view_distance(texelFetch(u_scene_depth, p, 0).r);
     float far_coc = clamp((z - u_far.x) / max(u_far.y - u_far.x, 1e-4), 0.0, 1.0);
     vec2 low = gl_FragCoord.xy / u_scale;
     vec4 far_blur = bilinear(u_far_field, low);

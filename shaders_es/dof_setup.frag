@@ -12,8 +12,7 @@ uniform sampler2D u_color;         // full resolution
 uniform sampler2D u_scene_depth;   // full resolution window depth
 uniform int u_scale;               // blur resolution divisor
 uniform ivec2 u_size;              // full resolution
-uniform vec2 u_depth_params;
-uniform float u_far_plane;
+uniform vec4 u_depth_model;       // window depth -> distance (view_distance)
 uniform vec2 u_near;               // [full blur, sharp] distances
 uniform vec2 u_far;                // [sharp, full blur] distances
 // Particles are not in the depth buffer: where they cover the scene, their own (coverage-
@@ -26,11 +25,15 @@ uniform ivec2 u_particle_size;
 layout(location = 0) out vec4 o_far;   // rgb, far CoC in [0,1]
 layout(location = 1) out vec4 o_near;  // rgb * coverage, coverage (= near CoC in [0,1])
 
-float view_depth(ivec2 q)
+// Window depth -> view distance (src/projection.c): the matrix's own depth row, solved around
+// the far end so nothing cancels; the clear value means no surface.
+float view_distance(float d)
 {
-    float w = texelFetch(u_scene_depth, q, 0).r;
-    return w >= 1.0 ? u_far_plane : u_depth_params.y / (w * 2.0 - 1.0 + u_depth_params.x);
+    if (d == u_depth_model.y) return 1e30;
+    return u_depth_model.w / (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z);
 }
+
+float view_depth(ivec2 q) { return view_distance(texelFetch(u_scene_depth, q, 0).r); }
 
 // Signed CoC in [-1, 1]: negative in the near field, positive in the far field.
 float signed_coc(float z)

@@ -15,8 +15,7 @@ uniform ivec2 u_size;
 uniform int u_tile;
 uniform int u_samples;
 uniform float u_max_radius;
-uniform vec2 u_depth_params;       // projection[10], projection[14]
-uniform float u_far;
+uniform vec4 u_depth_model;       // window depth -> distance (view_distance)
 #ifdef ENCODE_UNORM
 const bool encode = true;
 #else
@@ -29,11 +28,15 @@ const float SOFT_Z = 0.1;          // metres over which depth ordering fades
 
 vec2 decode(vec4 t) { return encode ? (t.xy - 0.5) * 2.0 * u_max_radius : t.xy; }
 
-float view_depth(ivec2 q)
+// Window depth -> view distance (src/projection.c): the matrix's own depth row, solved around
+// the far end so nothing cancels; the clear value means no surface.
+float view_distance(float d)
 {
-    float w = texelFetch(u_scene_depth, q, 0).r;
-    return w >= 1.0 ? u_far : u_depth_params.y / (w * 2.0 - 1.0 + u_depth_params.x);
+    if (d == u_depth_model.y) return 1e30;
+    return u_depth_model.w / (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z);
 }
+
+float view_depth(ivec2 q) { return view_distance(texelFetch(u_scene_depth, q, 0).r); }
 
 float cone(float distance, float speed) { return clamp(1.0 - distance / max(speed, 1e-4), 0.0, 1.0); }
 

@@ -32,8 +32,7 @@ flat in vec2 v_velocity;
 uniform float u_heat_strength;   // largest shimmer offset, UV units
 #endif
 
-uniform sampler2D u_depth;       // low-res opaque distance / far (depth texture)
-uniform float u_far;
+uniform sampler2D u_depth;       // low-res opaque near / distance (depth texture; 0: no surface)
 uniform float u_near;
 uniform vec4 u_projection;       // projection[0], [5], [8], [9]
 uniform vec2 u_target_size;
@@ -351,7 +350,8 @@ void main()
     float r = v_center_radius.w;
     vec2 ndc = gl_FragCoord.xy / u_target_size * 2.0 - 1.0;
     vec3 ray = vec3((ndc + u_projection.zw) / u_projection.xy, -1.0);
-    float zs = texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r * u_far;
+    float e = texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r;
+    float zs = e > 0.0 ? u_near / e : 1e30;   // no surface: nothing clips the ray
     float intensity = v_detail.w;
 
     float tau_scale = 1.0;

@@ -10,6 +10,7 @@ precision highp sampler2D;
 
 uniform sampler2D u_scene_depth;       // full-res window depth
 uniform mat4 u_reproject;              // current NDC -> previous clip
+uniform vec2 u_ndc_depth;              // window depth -> ndc z: x d + y (the clip depth mode)
 uniform vec2 u_size;                   // full-resolution size
 uniform float u_shutter;               // fraction of the frame the shutter is open
 uniform float u_max_radius;            // = tile size in pixels
@@ -32,7 +33,7 @@ void main()
     ivec2 p = ivec2(gl_FragCoord.xy);
     float depth = texelFetch(u_scene_depth, p, 0).r;
     vec2 ndc = gl_FragCoord.xy / u_size * 2.0 - 1.0;
-    vec4 previous = u_reproject * vec4(ndc, depth * 2.0 - 1.0, 1.0);
+    vec4 previous = u_reproject * vec4(ndc, depth * u_ndc_depth.x + u_ndc_depth.y, 1.0);
     vec2 motion = previous.w > 1e-6 ? (ndc - previous.xy / previous.w) * 0.5 * u_size : vec2(0.0);
 #ifdef HAS_PARTICLE_VELOCITY
     if (u_particles_drawn) {

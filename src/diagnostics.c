@@ -1,5 +1,6 @@
 /* Read-backs for the probe and the GL tests: the particle target and the GPU's view of the
- * lookup tables. Not used by the frame loop. */
+ * lookup tables. Not used by the frame loop; like every entry point they leave the host's GL
+ * state as they found it. */
 #include <string.h>
 #include "module.h"
 
@@ -13,6 +14,8 @@ sbfx_result sbfx_read_particle_target(sbfx *fx, float *rgba, size_t capacity, in
                          capacity, n * 4);
     *w = gl->low_width;
     *h = gl->low_height;
+    sbfx_gl_state saved;
+    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PACK, NULL);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, gl->particles.framebuffer);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     if (gl->target_type == GL_UNSIGNED_BYTE) {
@@ -23,7 +26,7 @@ sbfx_result sbfx_read_particle_target(sbfx *fx, float *rgba, size_t capacity, in
     } else {
         glReadPixels(0, 0, *w, *h, GL_RGBA, GL_FLOAT, rgba);
     }
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    sbfx_gl_state_restore(&saved);
     return sbfx_gl_check(fx, "reading back the particle target") ? SBFX_OK : SBFX_ERR_GL;
 }
 
@@ -49,23 +52,17 @@ static sbfx_result ensure_probe_target(sbfx *fx)
     return sbfx_gl_check(fx, "creating the table read-back target") ? SBFX_OK : SBFX_ERR_GL;
 }
 
-sbfx_result sbfx_fetch_luts(sbfx *fx, float kelvin, float cos_theta, float g, float rgb[3], float *phase)
+static void draw_lut_fetch(sbfx *fx, float kelvin, float cos_theta, float g, float rgb[3], float *phase)
 {
     sbfx_gl *gl = &fx->gl;
-    if (!gl->blackbody_texture || !gl->phase_texture)
-        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "the loaded effects use no black-body or phase table");
-    sbfx_result r = ensure_probe_target(fx);
-    if (r != SBFX_OK) return r;
     GLuint prog = gl->lut_program;
     glBindFramebuffer(GL_FRAMEBUFFER, gl->probe_fbo);
     glViewport(0, 0, 1, 1);
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_TEST);
     glUseProgram(prog);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, gl->blackbody_texture);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, gl->phase_texture);
+    sbfx_bind_texture(0, GL_TEXTURE_2D, gl->blackbody_texture, 0);
+    sbfx_bind_texture(1, GL_TEXTURE_2D, gl->phase_texture, 0);
     glUniform1i(glGetUniformLocation(prog, "u_blackbody"), 0);
     glUniform1i(glGetUniformLocation(prog, "u_phase_lut"), 1);
     glUniform1f(glGetUniformLocation(prog, "u_blackbody_size"), SBFX_BLACKBODY_SIZE);
@@ -78,8 +75,21 @@ sbfx_result sbfx_fetch_luts(sbfx *fx, float kelvin, float cos_theta, float g, fl
     glDrawArrays(GL_TRIANGLES, 0, 3);
     float out[4];
     glReadPixels(0, 0, 1, 1, GL_RGBA, GL_FLOAT, out);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     memcpy(rgb, out, 3 * sizeof(float));
     *phase = out[3];
+}
+
+sbfx_result sbfx_fetch_luts(sbfx *fx, float kelvin, float cos_theta, float g, float rgb[3], float *phase)
+{
+    sbfx_gl *gl = &fx->gl;
+    if (!gl->blackbody_texture || !gl->phase_texture)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "the loaded effects use no black-body or phase table");
+    const sbfx_gl_units units = {.tex_2d = 3u};
+    sbfx_gl_state saved;
+    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | SBFX_GL_SAVE_PACK, &units);
+    sbfx_result r = ensure_probe_target(fx);
+    if (r == SBFX_OK) draw_lut_fetch(fx, kelvin, cos_theta, g, rgb, phase);
+    sbfx_gl_state_restore(&saved);
+    if (r != SBFX_OK) return r;
     return sbfx_gl_check(fx, "fetching the tables") ? SBFX_OK : SBFX_ERR_GL;
 }

@@ -96,6 +96,13 @@ void sbfx_frame_ambient(const sbfx *fx, float ambient[3]);
 /* The detail time coordinate the shader samples at (in detail-volume loops). */
 double sbfx_detail_time(const sbfx *fx);
 
+/* The window depth a host's depth buffer holds for a view distance under the frame's projection
+ * and clip depth mode (the clear value for INFINITY or beyond a finite far plane), and the view
+ * distance sbfx reads from a window depth (INFINITY for the clear value): what the shaders
+ * compute, in double (src/projection.c). A malformed projection gives the clear value / INFINITY. */
+float sbfx_window_depth(const sbfx_frame *frame, double distance);
+double sbfx_window_distance(const sbfx_frame *frame, float window);
+
 /* Hash of the live particles' simulation state (determinism tests). */
 uint64_t sbfx_state_hash(const sbfx *fx);
 

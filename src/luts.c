@@ -235,6 +235,10 @@ sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int si
     if (size != fx->desc.detail_size)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "detail slice is %dx%d, the volume is %dx%d", size,
                          size, fx->desc.detail_size, fx->desc.detail_size);
+    /* the unpack state and unit 0's 3D binding are the host's: saved, set, put back */
+    const sbfx_gl_units unit0_3d = {.tex_3d = 1u};
+    sbfx_gl_state saved;
+    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_UNPACK, &unit0_3d);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
     glBindTexture(GL_TEXTURE_3D, fx->gl.detail_texture);
     if (fx->desc.detail_format == SBFX_DETAIL_R32F) {
@@ -250,6 +254,7 @@ sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int si
         glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, fx->detail_ring_next, size, size, 1, GL_RED, GL_HALF_FLOAT,
                         half_texels);
     }
+    sbfx_gl_state_restore(&saved);
     fx->detail_ring_next = (fx->detail_ring_next + 1) % fx->desc.detail_frames;
     return sbfx_gl_check(fx, "writing a detail slice") ? SBFX_OK : SBFX_ERR_GL;
 }

@@ -76,7 +76,7 @@ typedef struct sbfx_pool {
 typedef struct sbfx_program {
     GLuint id;
     /* uniform locations used every frame */
-    GLint near, far, projection, target_size, pixel, tau, soft_scale, full_size, heat_strength;
+    GLint near, projection, target_size, pixel, tau, soft_scale, full_size, heat_strength;
     GLint depth, detail, detail_window, detail_strength, time;
     GLint phase_lut, phase_lut_size, g, albedo_color, light_count, light_vector, light_color, ambient;
     GLint blackbody, blackbody_size, max_kelvin, temperature, emission_scale, cmf_rgb, cmf_band;
@@ -117,6 +117,7 @@ typedef struct sbfx_post_gl {
     double last_time;          /* simulation time of the previous render */
     bool have_previous;
     bool particles_drawn;      /* this frame drew particles (their velocities are valid) */
+    GLuint host_depth, host_color; /* this frame's host textures: read through sbfx's samplers */
     double previous_view_projection[16];
     GLint locations[SBFX_POST_PROGRAMS][SBFX_POST_UNIFORMS]; /* post.c's uniform table */
 } sbfx_post_gl;
@@ -132,7 +133,7 @@ typedef struct sbfx_plan {
 
 /* Uniform locations of the full-screen passes, looked up once at load. */
 typedef struct sbfx_pass_uniforms {
-    GLint scene_depth, divisor, full_size, depth_params, far;         /* depth downsample */
+    GLint scene_depth, divisor, full_size, depth_model, near;         /* depth downsample */
     GLint particles, low_depth, low_size, depth_threshold;            /* composite */
     GLint scene_color, distortion;                                    /* composite, own scene */
 } sbfx_pass_uniforms;
@@ -144,6 +145,7 @@ typedef struct sbfx_gl {
     sbfx_program particle[SBFX_MEDIUM_COUNT];
     GLuint blackbody_texture, phase_texture, detail_texture;
     GLuint smoke_texture[SBFX_MEDIUM_COUNT]; /* 2D arrays, lit media only (lit_ref.h layout) */
+    GLuint depth_sampler, color_sampler;     /* how the host's depth and colour are read */
     /* targets, (re)made when the output size changes */
     sbfx_rt particles, low_depth;
     GLuint probe_texture, probe_fbo;
@@ -234,6 +236,58 @@ struct sbfx {
     float *detail_scratch;       /* one R32F slice, only with SBFX_DETAIL_R32F */
 };
 
+/* projection.c: what a frame's projection says (DESIGN §5). View distance from window depth d:
+ * p14 / (scale (d - window_far) + offset); d = window_far (the clear value) is no surface. */
+typedef struct sbfx_depth_model {
+    float projection[4];     /* p0, p5, p8, p9 */
+    double near, far;        /* view distances of the planes; far = INFINITY without one */
+    double scale, window_far, offset, p14;
+    float ndc[2];            /* ndc_z = ndc[0] * d + ndc[1] (velocity reprojection) */
+    bool reversed;           /* near -> larger depth */
+} sbfx_depth_model;
+bool sbfx_depth_model_from(sbfx *fx, const sbfx_frame *f, sbfx_depth_model *out);
+/* The shaders' vec4 u_depth_model: scale, window_far, offset, p14. */
+void sbfx_depth_model_uniform(const sbfx_depth_model *m, float out[4]);
+
+/* gl_state.c: the host's GL state around every entry point (DESIGN §5) */
+#define SBFX_GL_MAX_UNITS 8
+#define SBFX_GL_PIXEL_STORE 6
+enum {
+    SBFX_GL_SAVE_PASS = 1 << 0,    /* draw framebuffer, viewport, blend enable/functions/equations,
+                                      depth test/function/mask, stencil, cull and scissor tests,
+                                      colour mask, rasterizer discard; and the objects below */
+    SBFX_GL_SAVE_OBJECTS = 1 << 1, /* program, vertex array, ARRAY_BUFFER */
+    SBFX_GL_SAVE_UNPACK = 1 << 2,  /* PIXEL_UNPACK_BUFFER and the unpack pixel store */
+    SBFX_GL_SAVE_PACK = 1 << 3,    /* read framebuffer, PIXEL_PACK_BUFFER and the pack pixel store */
+};
+/* Bit u: sbfx binds that target on texture unit u (the active texture and each such unit's
+ * sampler binding are saved with them). Textures are created on unit 0. */
+typedef struct sbfx_gl_units {
+    uint32_t tex_2d, tex_3d, tex_array;
+} sbfx_gl_units;
+typedef struct sbfx_gl_state {
+    unsigned parts;
+    sbfx_gl_units units;
+    int queries;                       /* glGet* / glIs* calls made for this block */
+    GLint program, vertex_array, array_buffer;
+    GLint draw_framebuffer, read_framebuffer, viewport[4];
+    GLint blend_func[4], blend_equation[2], depth_func;
+    GLboolean blend, depth_test, depth_mask, stencil_test, cull_face, scissor_test, rasterizer_discard;
+    GLboolean color_mask[4];
+    GLint unpack_buffer, unpack[SBFX_GL_PIXEL_STORE], pack_buffer, pack[SBFX_GL_PIXEL_STORE];
+    GLint active_texture;
+    GLint texture_2d[SBFX_GL_MAX_UNITS], texture_3d[SBFX_GL_MAX_UNITS], texture_array[SBFX_GL_MAX_UNITS];
+    GLint sampler[SBFX_GL_MAX_UNITS];
+} sbfx_gl_state;
+/* Saves the parts (and units) and sets what every sbfx pass or transfer assumes. */
+void sbfx_gl_state_save(sbfx_gl_state *s, unsigned parts, const sbfx_gl_units *units);
+/* Puts everything saved back; returns the number of queries the block made. */
+int sbfx_gl_state_restore(sbfx_gl_state *s);
+/* Binds texture and sampler (0: the texture's own parameters) on a unit. */
+void sbfx_bind_texture(GLuint unit, GLenum target, GLuint texture, GLuint sampler);
+sbfx_result sbfx_samplers_create(sbfx *fx);
+void sbfx_samplers_destroy(sbfx *fx);
+
 /* sim.c */
 sbfx_result sbfx_pool_create(sbfx *fx, int capacity);
 void sbfx_pool_destroy(sbfx *fx);
@@ -242,11 +296,13 @@ void sbfx_simulate_step(sbfx *fx, float step);
 
 /* post.c */
 void sbfx_default_post(sbfx_post_params *post);
+/* The texture units the post chain binds (gl_state.c saves them). */
+sbfx_gl_units sbfx_post_units(const sbfx *fx);
 bool sbfx_post_owns_scene(const sbfx *fx);
 sbfx_result sbfx_post_programs_create(sbfx *fx);
 void sbfx_post_destroy(sbfx *fx);
 sbfx_result sbfx_post_targets_ensure(sbfx *fx, int width, int height);
-sbfx_result sbfx_post_run(sbfx *fx, const sbfx_frame *frame, GLuint source);
+sbfx_result sbfx_post_run(sbfx *fx, const sbfx_frame *frame, const sbfx_depth_model *depth, GLuint source);
 GLuint sbfx_post_composite_target(const sbfx *fx, const sbfx_frame *f);
 GLuint sbfx_post_composite_texture(const sbfx *fx);
 
@@ -289,8 +345,10 @@ void sbfx_targets_destroy(sbfx *fx);
 /* sort.c: back-to-front order of fx->view[0..count) by view distance into fx->order */
 void sbfx_sort_back_to_front(sbfx *fx, int count);
 
+/* passes.c: the frame's passes between one save and restore of the host's state */
+sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_depth_model *depth, int count);
+
 /* render.c */
-sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, int count);
 int sbfx_collect_view_particles(sbfx *fx, const float view[16]);
 
 #endif

@@ -1,5 +1,5 @@
-/* The three GPU passes of a frame with live particles, and the GL state they borrow from the
- * host (saved on entry, restored on exit). */
+/* The three GPU passes of a frame with live particles, between one save and one restore of
+ * the host's GL state (gl_state.c). */
 #include <math.h>
 #include <string.h>
 #include "module.h"
@@ -10,86 +10,41 @@
 #define UNIT_BLACKBODY 3
 #define UNIT_SMOKE 4 /* a lit medium's smoke texture array */
 
+/* Heat shimmer in the composite: heat particles and a float target to hold their offsets. */
+static bool shimmer(const sbfx *fx) { return fx->plan.distortion && fx->gl.particles.texture[1]; }
+
+/* The frame's projection as the passes' uniforms. */
 typedef struct frame_params {
-    float projection[4]; /* P[0], P[5], P[8], P[9] */
-    float depth_params[2]; /* P[10], P[14] */
-    float near, far;
+    float projection[4];   /* P[0], P[5], P[8], P[9] */
+    float depth_model[4];  /* window depth -> distance (projection.c) */
+    float near;
 } frame_params;
 
-typedef struct saved_state {
-    GLint viewport[4], framebuffer, program, vao, array_buffer, active_texture;
-    GLboolean blend, depth_test, cull, scissor, depth_mask;
-} saved_state;
-
-static void save_state(saved_state *s)
+static frame_params frame_params_from(const sbfx_depth_model *m)
 {
-    glGetIntegerv(GL_VIEWPORT, s->viewport);
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->framebuffer);
-    glGetIntegerv(GL_CURRENT_PROGRAM, &s->program);
-    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vao);
-    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &s->array_buffer);
-    glGetIntegerv(GL_ACTIVE_TEXTURE, &s->active_texture);
-    glGetBooleanv(GL_DEPTH_WRITEMASK, &s->depth_mask);
-    s->blend = glIsEnabled(GL_BLEND);
-    s->depth_test = glIsEnabled(GL_DEPTH_TEST);
-    s->cull = glIsEnabled(GL_CULL_FACE);
-    s->scissor = glIsEnabled(GL_SCISSOR_TEST);
-}
-
-static void set_enabled(GLenum cap, GLboolean on)
-{
-    if (on) glEnable(cap);
-    else glDisable(cap);
-}
-
-static void restore_state(const saved_state *s)
-{
-    glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->framebuffer);
-    glUseProgram((GLuint)s->program);
-    glBindVertexArray((GLuint)s->vao);
-    glBindBuffer(GL_ARRAY_BUFFER, (GLuint)s->array_buffer);
-    glActiveTexture((GLenum)s->active_texture);
-    glDepthMask(s->depth_mask);
-    set_enabled(GL_BLEND, s->blend);
-    set_enabled(GL_DEPTH_TEST, s->depth_test);
-    set_enabled(GL_CULL_FACE, s->cull);
-    set_enabled(GL_SCISSOR_TEST, s->scissor);
-}
-
-static void bind_texture(GLenum unit, GLenum target, GLuint tex)
-{
-    glActiveTexture(GL_TEXTURE0 + unit);
-    glBindTexture(target, tex);
-}
-
-static frame_params frame_params_from(const sbfx_frame *f)
-{
-    const float *p = f->projection;
-    frame_params fp = {{p[0], p[5], p[8], p[9]}, {p[10], p[14]}, 0, 0};
-    fp.near = p[14] / (p[10] - 1.0f);
-    fp.far = p[14] / (p[10] + 1.0f);
+    frame_params fp = {{m->projection[0], m->projection[1], m->projection[2], m->projection[3]}, {0}, (float)m->near};
+    sbfx_depth_model_uniform(m, fp.depth_model);
     return fp;
 }
 
-/* Pass 1: the closest opaque distance of each low-res texel, as distance / far. */
+/* Pass 1: the closest opaque distance of each low-res texel, as near / distance (0: none). */
 static void pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
 {
     sbfx_gl *gl = &fx->gl;
     GLuint prog = gl->depth_program;
-    glBindFramebuffer(GL_FRAMEBUFFER, gl->low_depth.framebuffer);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl->low_depth.framebuffer);
     glViewport(0, 0, gl->low_width, gl->low_height);
     glEnable(GL_DEPTH_TEST); /* depth writes need the test on; ALWAYS keeps every fragment */
     glDepthFunc(GL_ALWAYS);
     glDepthMask(GL_TRUE);
     glUseProgram(prog);
-    bind_texture(0, GL_TEXTURE_2D, f->scene_depth_texture);
+    sbfx_bind_texture(0, GL_TEXTURE_2D, f->scene_depth_texture, gl->depth_sampler);
     const sbfx_pass_uniforms *u = &gl->depth_u;
     glUniform1i(u->scene_depth, 0);
     glUniform1i(u->divisor, fx->desc.target_divisor);
     glUniform2i(u->full_size, f->width, f->height);
-    glUniform2fv(u->depth_params, 1, fp->depth_params);
-    glUniform1f(u->far, fp->far);
+    glUniform4fv(u->depth_model, 1, fp->depth_model);
+    glUniform1f(u->near, fp->near);
     glBindVertexArray(gl->fullscreen_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_DEPTH_TEST);
@@ -134,7 +89,7 @@ static void gather_lights(const sbfx *fx, const float view[16], frame_lights *ou
 static void set_lit_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m)
 {
     const sbfx_medium_params *mp = &fx->media[m];
-    bind_texture(UNIT_SMOKE, GL_TEXTURE_2D_ARRAY, fx->gl.smoke_texture[m]);
+    sbfx_bind_texture(UNIT_SMOKE, GL_TEXTURE_2D_ARRAY, fx->gl.smoke_texture[m], 0);
     glUniform1i(p->smoke, UNIT_SMOKE);
     glUniform1f(p->smoke_size, (float)mp->texture_size);
     glUniform1f(p->smoke_variants, (float)mp->texture_variants);
@@ -175,7 +130,6 @@ static void set_frame_uniforms(sbfx *fx, const sbfx_program *p, const frame_para
 {
     const sbfx_gl *gl = &fx->gl;
     glUniform1f(p->near, fp->near);
-    glUniform1f(p->far, fp->far);
     glUniform4fv(p->projection, 1, fp->projection);
     glUniform2f(p->target_size, (float)gl->low_width, (float)gl->low_height);
     glUniform2f(p->pixel, 2.0f / gl->low_width, 2.0f / gl->low_height);
@@ -253,7 +207,7 @@ static void pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     sbfx_gl *gl = &fx->gl;
     frame_lights lights;
     gather_lights(fx, f->view, &lights);
-    glBindFramebuffer(GL_FRAMEBUFFER, gl->particles.framebuffer);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl->particles.framebuffer);
     glViewport(0, 0, gl->low_width, gl->low_height);
     /* No light added, everything transmitted, no offset, no motion: every attachment. */
     const GLfloat clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
@@ -263,10 +217,10 @@ static void pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     glBlendEquation(GL_FUNC_ADD);
     /* rgb = src + dst (1 - a); transmittance a = dst (1 - a) */
     glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
-    bind_texture(UNIT_DEPTH, GL_TEXTURE_2D, gl->low_depth.depth);
-    bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture);
-    bind_texture(UNIT_PHASE, GL_TEXTURE_2D, gl->phase_texture);
-    bind_texture(UNIT_BLACKBODY, GL_TEXTURE_2D, gl->blackbody_texture);
+    sbfx_bind_texture(UNIT_DEPTH, GL_TEXTURE_2D, gl->low_depth.depth, 0);
+    if (gl->detail_texture) sbfx_bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture, 0);
+    if (gl->phase_texture) sbfx_bind_texture(UNIT_PHASE, GL_TEXTURE_2D, gl->phase_texture, 0);
+    if (gl->blackbody_texture) sbfx_bind_texture(UNIT_BLACKBODY, GL_TEXTURE_2D, gl->blackbody_texture, 0);
     upload_instances(fx, &lights, count);
     glBindVertexArray(gl->particle_vao);
     for (int first = 0; first < count;) {
@@ -289,7 +243,7 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     sbfx_gl *gl = &fx->gl;
     GLuint prog = gl->composite_program;
     bool owns = fx->plan.owns_scene;
-    glBindFramebuffer(GL_FRAMEBUFFER, owns ? sbfx_post_composite_target(fx, f) : f->out_framebuffer);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, owns ? sbfx_post_composite_target(fx, f) : f->out_framebuffer);
     glViewport(0, 0, f->width, f->height);
     if (owns) {
         glDisable(GL_BLEND); /* writes the whole image: scene * T + C */
@@ -299,23 +253,25 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     }
     glUseProgram(prog);
     if (owns) {
-        bind_texture(3, GL_TEXTURE_2D, f->scene_color_texture);
-        bind_texture(4, GL_TEXTURE_2D, gl->particles.texture[1]);
+        sbfx_bind_texture(3, GL_TEXTURE_2D, f->scene_color_texture, gl->color_sampler);
         glUniform1i(gl->composite_u.scene_color, 3);
-        glUniform1i(gl->composite_u.distortion, 4);
         glUniform2f(gl->composite_u.full_size, (float)f->width, (float)f->height);
     }
-    bind_texture(0, GL_TEXTURE_2D, gl->particles.texture[0]);
-    bind_texture(1, GL_TEXTURE_2D, gl->low_depth.depth);
-    bind_texture(2, GL_TEXTURE_2D, f->scene_depth_texture);
+    if (shimmer(fx)) {
+        sbfx_bind_texture(4, GL_TEXTURE_2D, gl->particles.texture[1], 0);
+        glUniform1i(gl->composite_u.distortion, 4);
+    }
+    sbfx_bind_texture(0, GL_TEXTURE_2D, gl->particles.texture[0], 0);
+    sbfx_bind_texture(1, GL_TEXTURE_2D, gl->low_depth.depth, 0);
+    sbfx_bind_texture(2, GL_TEXTURE_2D, f->scene_depth_texture, gl->depth_sampler);
     const sbfx_pass_uniforms *u = &gl->composite_u;
     glUniform1i(u->particles, 0);
     glUniform1i(u->low_depth, 1);
     glUniform1i(u->scene_depth, 2);
     glUniform2i(u->low_size, gl->low_width, gl->low_height);
     glUniform1f(u->divisor, (float)fx->desc.target_divisor);
-    glUniform2fv(u->depth_params, 1, fp->depth_params);
-    glUniform1f(u->far, fp->far);
+    glUniform4fv(u->depth_model, 1, fp->depth_model);
+    glUniform1f(u->near, fp->near);
     glUniform1f(u->depth_threshold, 0.05f);
     glBindVertexArray(gl->fullscreen_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -324,29 +280,25 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     fx->counters.draw_calls++;
 }
 
-/* The host's depth texture is read with texelFetch: NEAREST, no comparison. */
-static void prepare_scene_depth(GLuint tex)
+/* Which units the particle passes bind which targets on (depth, particle, composite). */
+static sbfx_gl_units pass_units(const sbfx *fx)
 {
-    glBindTexture(GL_TEXTURE_2D, tex);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    const sbfx_gl *gl = &fx->gl;
+    sbfx_gl_units u = {.tex_2d = 1u << 0 | 1u << 1 | 1u << 2};
+    if (gl->blackbody_texture || fx->plan.owns_scene) u.tex_2d |= 1u << UNIT_BLACKBODY;
+    if (fx->plan.distortion) u.tex_2d |= 1u << 4; /* the shimmer offsets, when the target holds them */
+    if (gl->detail_texture) u.tex_3d |= 1u << UNIT_DETAIL;
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
+        if (gl->smoke_texture[m]) u.tex_array |= 1u << UNIT_SMOKE;
+    return u;
 }
 
-/* The frame: particle passes when particles live, then the post chain when the scene has one.
- * Where the post chain reads from: the composite's image, nothing (the composite already
- * wrote the host's framebuffer), or on a frame without particles the bare scene. */
-sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, int count)
+static sbfx_result draw_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_depth_model *depth, int count)
 {
     sbfx_result r = count > 0 ? sbfx_targets_ensure(fx, frame->width, frame->height) : SBFX_OK;
     if (r == SBFX_OK) r = sbfx_post_targets_ensure(fx, frame->width, frame->height);
     if (r != SBFX_OK) return r;
-    saved_state saved;
-    save_state(&saved);
-    frame_params fp = frame_params_from(frame);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_SCISSOR_TEST);
-    prepare_scene_depth(frame->scene_depth_texture);
+    frame_params fp = frame_params_from(depth);
     if (count > 0) {
         sbfx_sort_back_to_front(fx, count);
         pass_depth(fx, frame, &fp);
@@ -358,9 +310,24 @@ sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, int count)
         bool composited_to_out = sbfx_post_composite_target(fx, frame) == frame->out_framebuffer;
         GLuint source = count == 0 ? frame->scene_color_texture
                         : composited_to_out ? 0 : sbfx_post_composite_texture(fx);
-        sbfx_post_run(fx, frame, source);
+        sbfx_post_run(fx, frame, depth, source);
     }
-    restore_state(&saved);
+    return SBFX_OK;
+}
+
+/* The frame: particle passes when particles live, then the post chain when the scene has one,
+ * all inside one save and restore of the host's state (only the units this frame binds).
+ * Where the post chain reads from: the composite's image, nothing (the composite already
+ * wrote the host's framebuffer), or on a frame without particles the bare scene. */
+sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_depth_model *depth, int count)
+{
+    sbfx_gl_units units = count > 0 ? pass_units(fx) : (sbfx_gl_units){0};
+    if (fx->plan.owns_scene) units.tex_2d |= sbfx_post_units(fx).tex_2d;
+    sbfx_gl_state saved;
+    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS, &units);
+    sbfx_result r = draw_frame(fx, frame, depth, count);
+    fx->counters.gl_state_queries = sbfx_gl_state_restore(&saved);
+    if (r != SBFX_OK) return r;
     return sbfx_gl_check(fx, "rendering the frame's passes") ? SBFX_OK : SBFX_ERR_GL;
 }
 

@@ -9,17 +9,17 @@
 enum post_uniform {
     PU_COLOR,
     PU_CURRENT,
-    PU_DEPTH_PARAMS,
+    PU_DEPTH_MODEL,
     PU_DIRECTION,
     PU_DIVISOR,
     PU_FAR,
     PU_FAR_FIELD,
-    PU_FAR_PLANE,
     PU_HISTORY,
     PU_KEEP,
     PU_LOW_SIZE,
     PU_MAX_RADIUS,
     PU_NEAR,
+    PU_NDC_DEPTH,
     PU_NEAR_FIELD,
     PU_NEIGHBOR_MAX,
     PU_PARTICLE_MOTION,
@@ -43,17 +43,17 @@ _Static_assert(PU_COUNT <= SBFX_POST_UNIFORMS, "SBFX_POST_UNIFORMS is too small 
 static const char *const post_uniform_names[PU_COUNT] = {
     [PU_COLOR] = "u_color",
     [PU_CURRENT] = "u_current",
-    [PU_DEPTH_PARAMS] = "u_depth_params",
+    [PU_DEPTH_MODEL] = "u_depth_model",
     [PU_DIRECTION] = "u_direction",
     [PU_DIVISOR] = "u_divisor",
     [PU_FAR] = "u_far",
     [PU_FAR_FIELD] = "u_far_field",
-    [PU_FAR_PLANE] = "u_far_plane",
     [PU_HISTORY] = "u_history",
     [PU_KEEP] = "u_keep",
     [PU_LOW_SIZE] = "u_low_size",
     [PU_MAX_RADIUS] = "u_max_radius",
     [PU_NEAR] = "u_near",
+    [PU_NDC_DEPTH] = "u_ndc_depth",
     [PU_NEAR_FIELD] = "u_near_field",
     [PU_NEIGHBOR_MAX] = "u_neighbor_max",
     [PU_PARTICLE_MOTION] = "u_particle_motion",
@@ -201,20 +201,33 @@ sbfx_result sbfx_post_targets_ensure(sbfx *fx, int w, int h)
 /* ---- passes ---- */
 typedef struct post_frame {
     const sbfx_frame *f;
-    float depth_params[2], far;
+    float depth_model[4];  /* window depth -> distance (projection.c) */
+    float ndc_depth[2];    /* window depth -> ndc z */
 } post_frame;
 
-static void bind_unit(const sbfx_post_gl *p, GLuint program, int uniform, int unit, GLuint texture)
+/* The host's textures are read through sbfx's samplers, sbfx's own through their parameters. */
+static void bind_unit(const sbfx *fx, GLuint program, int uniform, int unit, GLuint texture)
 {
-    glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
-    glBindTexture(GL_TEXTURE_2D, texture);
+    const sbfx_post_gl *p = &fx->gl.post;
+    GLuint sampler = texture == p->host_depth ? fx->gl.depth_sampler
+                     : texture == p->host_color ? fx->gl.color_sampler : 0;
+    sbfx_bind_texture((GLuint)unit, GL_TEXTURE_2D, texture, sampler);
     glUniform1i(post_loc(p, program, uniform), unit);
+}
+
+sbfx_gl_units sbfx_post_units(const sbfx *fx)
+{
+    /* copy: unit 0; history: 0-1; depth of field and velocity blur: 0-3 */
+    uint32_t units = 1u;
+    if (fx->post.blur == SBFX_BLUR_HISTORY) units = 3u;
+    if (fx->post.dof || fx->post.blur == SBFX_BLUR_VELOCITY) units = 15u;
+    return (sbfx_gl_units){.tex_2d = units};
 }
 
 /* Starts a full-screen pass of `program` into `fbo` of w x h; finish() draws it. */
 static void begin(GLuint program, GLuint fbo, int w, int h)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
     glViewport(0, 0, w, h);
     glUseProgram(program);
 }
@@ -232,14 +245,13 @@ static void pass_copy(sbfx *fx, GLuint source, GLuint fbo, int w, int h)
     const sbfx_post_gl *p = &fx->gl.post;
     GLuint prog = p->copy_program;
     begin(prog, fbo, w, h);
-    bind_unit(p, prog, PU_SOURCE, 0, source);
+    bind_unit(fx, prog, PU_SOURCE, 0, source);
     finish(fx);
 }
 
-static void set_depth_uniforms(const sbfx_post_gl *p, GLuint prog, const post_frame *pf, int far_uniform)
+static void set_depth_uniforms(const sbfx_post_gl *p, GLuint prog, const post_frame *pf)
 {
-    glUniform2fv(post_loc(p, prog, PU_DEPTH_PARAMS), 1, pf->depth_params);
-    glUniform1f(post_loc(p, prog, far_uniform), pf->far);
+    glUniform4fv(post_loc(p, prog, PU_DEPTH_MODEL), 1, pf->depth_model);
 }
 
 /* Depth of field: split by CoC at the blur resolution, blur both fields separably (two
@@ -251,14 +263,14 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     const sbfx_frame *f = pf->f;
     GLuint prog = p->dof_setup_program;
     begin(prog, p->dof[0].framebuffer, p->dof[0].width, p->dof[0].height);
-    bind_unit(p, prog, PU_COLOR, 0, source);
-    bind_unit(p, prog, PU_SCENE_DEPTH, 1, f->scene_depth_texture);
+    bind_unit(fx, prog, PU_COLOR, 0, source);
+    bind_unit(fx, prog, PU_SCENE_DEPTH, 1, f->scene_depth_texture);
     glUniform1i(post_loc(p, prog, PU_SCALE), post->dof_scale);
     glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
-    set_depth_uniforms(p, prog, pf, PU_FAR_PLANE);
+    set_depth_uniforms(p, prog, pf);
     glUniform2fv(post_loc(p, prog, PU_NEAR), 1, post->dof_near);
     glUniform2fv(post_loc(p, prog, PU_FAR), 1, post->dof_far);
-    bind_unit(p, prog, PU_PARTICLE_MOTION, 2, fx->gl.particles.texture[2]);
+    bind_unit(fx, prog, PU_PARTICLE_MOTION, 2, fx->gl.particles.texture[2]);
     glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl.particles.texture[2]);
     glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->desc.target_divisor);
     glUniform2i(post_loc(p, prog, PU_PARTICLE_SIZE), fx->gl.low_width, fx->gl.low_height);
@@ -267,8 +279,8 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     for (int dir = 0; dir < 2; dir++) {
         const sbfx_rt *in = &p->dof[dir], *out = &p->dof[1 - dir];
         begin(prog, out->framebuffer, out->width, out->height);
-        bind_unit(p, prog, PU_FAR_FIELD, 0, in->texture[0]);
-        bind_unit(p, prog, PU_NEAR_FIELD, 1, in->texture[1]);
+        bind_unit(fx, prog, PU_FAR_FIELD, 0, in->texture[0]);
+        bind_unit(fx, prog, PU_NEAR_FIELD, 1, in->texture[1]);
         glUniform2i(post_loc(p, prog, PU_DIRECTION), dir == 0, dir == 1);
         glUniform2i(post_loc(p, prog, PU_LOW_SIZE), in->width, in->height);
         glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), post->dof_max_radius / post->dof_scale);
@@ -276,11 +288,11 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     }
     prog = p->dof_composite_program;
     begin(prog, fbo, f->width, f->height);
-    bind_unit(p, prog, PU_COLOR, 0, source);
-    bind_unit(p, prog, PU_FAR_FIELD, 1, p->dof[0].texture[0]);
-    bind_unit(p, prog, PU_NEAR_FIELD, 2, p->dof[0].texture[1]);
-    bind_unit(p, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
-    set_depth_uniforms(p, prog, pf, PU_FAR_PLANE);
+    bind_unit(fx, prog, PU_COLOR, 0, source);
+    bind_unit(fx, prog, PU_FAR_FIELD, 1, p->dof[0].texture[0]);
+    bind_unit(fx, prog, PU_NEAR_FIELD, 2, p->dof[0].texture[1]);
+    bind_unit(fx, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
+    set_depth_uniforms(p, prog, pf);
     glUniform2fv(post_loc(p, prog, PU_FAR), 1, post->dof_far);
     glUniform1f(post_loc(p, prog, PU_SCALE), (float)post->dof_scale);
     glUniform2i(post_loc(p, prog, PU_LOW_SIZE), p->dof[0].width, p->dof[0].height);
@@ -295,8 +307,8 @@ static void pass_history(sbfx *fx, GLuint source, GLuint fbo, int w, int h, doub
     const sbfx_rt *previous = &p->history[1 - p->history_next], *next = &p->history[p->history_next];
     float keep = p->history_valid ? (float)exp(-dt / fx->post.persistence) : 0.0f;
     begin(prog, next->framebuffer, w, h);
-    bind_unit(p, prog, PU_CURRENT, 0, source);
-    bind_unit(p, prog, PU_HISTORY, 1, previous->texture[0]);
+    bind_unit(fx, prog, PU_CURRENT, 0, source);
+    bind_unit(fx, prog, PU_HISTORY, 1, previous->texture[0]);
     glUniform1f(post_loc(p, prog, PU_KEEP), keep);
     finish(fx);
     pass_copy(fx, next->texture[0], fbo, w, h);
@@ -361,10 +373,11 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
     for (int i = 0; i < 16; i++) reproject_f[i] = (float)reproject[i];
     GLuint prog = p->velocity_program;
     begin(prog, p->velocity.framebuffer, f->width, f->height);
-    bind_unit(p, prog, PU_SCENE_DEPTH, 0, f->scene_depth_texture);
-    bind_unit(p, prog, PU_PARTICLE_VELOCITY, 1, fx->gl.particles.texture[2]);
+    bind_unit(fx, prog, PU_SCENE_DEPTH, 0, f->scene_depth_texture);
+    bind_unit(fx, prog, PU_PARTICLE_VELOCITY, 1, fx->gl.particles.texture[2]);
     glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl.particles.texture[2]);
     glUniformMatrix4fv(post_loc(p, prog, PU_REPROJECT), 1, GL_FALSE, reproject_f);
+    glUniform2fv(post_loc(p, prog, PU_NDC_DEPTH), 1, pf->ndc_depth);
     glUniform2f(post_loc(p, prog, PU_SIZE), (float)f->width, (float)f->height);
     glUniform1f(post_loc(p, prog, PU_SHUTTER), post->shutter);
     glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
@@ -373,38 +386,40 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
     finish(fx);
     prog = p->tile_program;
     begin(prog, p->tiles.framebuffer, p->tiles.width, p->tiles.height);
-    bind_unit(p, prog, PU_VELOCITY, 0, p->velocity.texture[0]);
+    bind_unit(fx, prog, PU_VELOCITY, 0, p->velocity.texture[0]);
     glUniform1i(post_loc(p, prog, PU_TILE), post->tile);
     glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
     glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
     finish(fx);
     prog = p->neighbor_program;
     begin(prog, p->neighbors.framebuffer, p->neighbors.width, p->neighbors.height);
-    bind_unit(p, prog, PU_TILES, 0, p->tiles.texture[0]);
+    bind_unit(fx, prog, PU_TILES, 0, p->tiles.texture[0]);
     glUniform2i(post_loc(p, prog, PU_TILES_SIZE), p->tiles.width, p->tiles.height);
     glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
     finish(fx);
     prog = p->blur_program;
     begin(prog, fbo, f->width, f->height);
-    bind_unit(p, prog, PU_COLOR, 0, source);
-    bind_unit(p, prog, PU_VELOCITY, 1, p->velocity.texture[0]);
-    bind_unit(p, prog, PU_NEIGHBOR_MAX, 2, p->neighbors.texture[0]);
-    bind_unit(p, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
+    bind_unit(fx, prog, PU_COLOR, 0, source);
+    bind_unit(fx, prog, PU_VELOCITY, 1, p->velocity.texture[0]);
+    bind_unit(fx, prog, PU_NEIGHBOR_MAX, 2, p->neighbors.texture[0]);
+    bind_unit(fx, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
     glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
     glUniform1i(post_loc(p, prog, PU_TILE), post->tile);
     glUniform1i(post_loc(p, prog, PU_SAMPLES), post->samples);
     glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
-    set_depth_uniforms(p, prog, pf, PU_FAR);
+    set_depth_uniforms(p, prog, pf);
     finish(fx);
 }
 
 /* Runs the post chain on `source` (the composite's image, or the bare scene on an idle frame)
  * and leaves the final image in the host's framebuffer. */
-sbfx_result sbfx_post_run(sbfx *fx, const sbfx_frame *f, GLuint source)
+sbfx_result sbfx_post_run(sbfx *fx, const sbfx_frame *f, const sbfx_depth_model *depth, GLuint source)
 {
     sbfx_post_gl *p = &fx->gl.post;
-    const float *proj = f->projection;
-    post_frame pf = {f, {proj[10], proj[14]}, proj[14] / (proj[10] + 1.0f)};
+    post_frame pf = {f, {0}, {depth->ndc[0], depth->ndc[1]}};
+    sbfx_depth_model_uniform(depth, pf.depth_model);
+    p->host_depth = f->scene_depth_texture;
+    p->host_color = f->scene_color_texture;
     double dt = p->have_previous ? fx->time - p->last_time : 0.0;
     glDisable(GL_BLEND);
     if (!has_steps(fx)) {

@@ -37,7 +37,6 @@ static void locate_uniforms(sbfx_program *p)
 {
     GLuint id = p->id;
     p->near = glGetUniformLocation(id, "u_near");
-    p->far = glGetUniformLocation(id, "u_far");
     p->projection = glGetUniformLocation(id, "u_projection");
     p->target_size = glGetUniformLocation(id, "u_target_size");
     p->pixel = glGetUniformLocation(id, "u_pixel");
@@ -104,8 +103,8 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->scene_depth = glGetUniformLocation(id, "u_scene_depth");
     u->divisor = glGetUniformLocation(id, "u_divisor");
     u->full_size = glGetUniformLocation(id, "u_full_size");
-    u->depth_params = glGetUniformLocation(id, "u_depth_params");
-    u->far = glGetUniformLocation(id, "u_far");
+    u->depth_model = glGetUniformLocation(id, "u_depth_model");
+    u->near = glGetUniformLocation(id, "u_near");
     u->particles = glGetUniformLocation(id, "u_particles");
     u->low_depth = glGetUniformLocation(id, "u_low_depth");
     u->low_size = glGetUniformLocation(id, "u_low_size");

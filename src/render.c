@@ -64,7 +64,7 @@ int sbfx_collect_view_particles(sbfx *fx, const float view[16])
     return n;
 }
 
-static bool frame_valid(sbfx *fx, const sbfx_frame *f)
+static bool frame_valid(sbfx *fx, const sbfx_frame *f, sbfx_depth_model *depth)
 {
     if (f->width <= 0 || f->height <= 0 || f->width > 16384 || f->height > 16384) {
         sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "frame size %dx%d is out of range", f->width, f->height);
@@ -80,14 +80,7 @@ static bool frame_valid(sbfx *fx, const sbfx_frame *f)
                   "depth of field) need frame.scene_color_texture");
         return false;
     }
-    const float *p = f->projection;
-    if (p[11] != -1.0f || p[15] != 0.0f || !(p[0] != 0.0f) || !(p[5] != 0.0f) ||
-        !(p[14] < 0.0f) || !(p[10] < -1.0f)) {
-        sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "frame projection is not a finite-far OpenGL "
-                  "perspective matrix (see sbfx_perspective)");
-        return false;
-    }
-    return true;
+    return sbfx_depth_model_from(fx, f, depth);
 }
 
 sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame)
@@ -95,11 +88,13 @@ sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame)
     if (!fx || !frame) return SBFX_ERR_INVALID_ARGUMENT;
     fx->counters.passes = 0;
     fx->counters.draw_calls = 0;
-    if (!frame_valid(fx, frame)) return SBFX_ERR_INVALID_ARGUMENT;
+    fx->counters.gl_state_queries = 0;
+    sbfx_depth_model depth;
+    if (!frame_valid(fx, frame, &depth)) return SBFX_ERR_INVALID_ARGUMENT;
     int count = sbfx_collect_view_particles(fx, frame->view);
     sbfx_result r = SBFX_OK;
-    /* Idle without post effects: no pass at all, the host's framebuffer is untouched. */
-    if (count > 0 || fx->plan.owns_scene) r = sbfx_render_frame(fx, frame, count);
+    /* Idle without post effects: no pass at all, no GL call: the host's state is untouched. */
+    if (count > 0 || fx->plan.owns_scene) r = sbfx_render_frame(fx, frame, &depth, count);
     memcpy(fx->previous_view, frame->view, sizeof(fx->previous_view));
     fx->previous_render_time = fx->time;
     fx->have_previous_view = true;
@@ -113,7 +108,9 @@ sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
     fx->counters.passes = 0;
     fx->counters.draw_calls = 0;
     fx->counters.particles_skipped = 0;
-    if (!frame_valid(fx, frame)) return SBFX_ERR_INVALID_ARGUMENT;
+    fx->counters.gl_state_queries = 0;
+    sbfx_depth_model depth;
+    if (!frame_valid(fx, frame, &depth)) return SBFX_ERR_INVALID_ARGUMENT;
     if (count > fx->pool.capacity)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "%d particles exceed the pool of %d",
                          count, fx->pool.capacity);
@@ -127,7 +124,7 @@ sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
             fx->counters.particles_skipped++;
     }
     if (n == 0 && !fx->plan.owns_scene) return SBFX_OK;
-    return sbfx_render_frame(fx, frame, n);
+    return sbfx_render_frame(fx, frame, &depth, n);
 }
 
 int sbfx_frame_particles(sbfx *fx, const float view[16], const sbfx_view_particle **out)

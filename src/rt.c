@@ -1,5 +1,6 @@
 /* Render targets: a framebuffer with up to SBFX_RT_MAX colour textures and an optional depth
- * texture, all of one size, NEAREST filtered. Creation and deletion keep the counters of
+ * texture, all of one size, NEAREST filtered. Made inside a render's saved state: they bind
+ * the draw framebuffer and unit 0's 2D texture, which the render puts back. Creation and deletion keep the counters of
  * textures, framebuffers and GPU bytes true. */
 #include "module.h"
 
@@ -35,28 +36,27 @@ bool sbfx_rt_create(sbfx *fx, sbfx_rt *rt, int w, int h, const sbfx_rt_format *c
     GLenum buffers[SBFX_RT_MAX];
     int last = -1;
     glGenFramebuffers(1, &rt->framebuffer);
-    glBindFramebuffer(GL_FRAMEBUFFER, rt->framebuffer);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, rt->framebuffer);
     for (int i = 0; i < SBFX_RT_MAX; i++) {
         buffers[i] = GL_NONE;
         if (!colors || !colors[i]) continue;
         rt->texture[i] = new_texture(colors[i], w, h, filter);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, GL_TEXTURE_2D, rt->texture[i], 0);
+        glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, GL_TEXTURE_2D, rt->texture[i], 0);
         buffers[i] = GL_COLOR_ATTACHMENT0 + (GLenum)i;
         rt->bytes += (size_t)w * h * colors[i]->bytes;
         last = i;
     }
     if (depth) {
         rt->depth = new_texture(depth, w, h, GL_NEAREST);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, rt->depth, 0);
+        glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, rt->depth, 0);
         rt->bytes += (size_t)w * h * depth->bytes;
     }
     GLenum none = GL_NONE;
     if (last >= 0) glDrawBuffers(last + 1, buffers);
     else glDrawBuffers(1, &none);
-    bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    bool complete = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
     while (glGetError() != GL_NO_ERROR) {
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     count(fx, rt, +1);
     if (!complete) sbfx_rt_destroy(fx, rt);
     return complete;
@@ -75,7 +75,7 @@ void sbfx_rt_destroy(sbfx *fx, sbfx_rt *rt)
 
 void sbfx_rt_bind(const sbfx_rt *rt)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, rt->framebuffer);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, rt->framebuffer);
     glViewport(0, 0, rt->width, rt->height);
 }
 

@@ -164,6 +164,22 @@ static void adopt_scene(sbfx *fx, const sbfx_scene *scene)
         }
 }
 
+/* Everything made on the GPU at load, inside one save and restore of what it changes: the
+ * program, vertex array and buffer bindings, the unpack state, and unit 0 (active texture,
+ * 2D, 3D and 2D-array bindings, sampler). */
+static sbfx_result load_gl(sbfx *fx)
+{
+    const sbfx_gl_units unit0 = {1u, 1u, 1u};
+    sbfx_gl_state saved;
+    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_OBJECTS | SBFX_GL_SAVE_UNPACK, &unit0);
+    sbfx_result r = sbfx_samplers_create(fx);
+    if (r == SBFX_OK) r = sbfx_luts_create(fx);
+    if (r == SBFX_OK) r = sbfx_programs_create(fx);
+    if (r == SBFX_OK) r = sbfx_post_programs_create(fx);
+    sbfx_gl_state_restore(&saved);
+    return r;
+}
+
 static sbfx_result load(sbfx *fx)
 {
     sbfx_result r;
@@ -181,10 +197,7 @@ static sbfx_result load(sbfx *fx)
     fx->max_kelvin = fx->desc.blackbody_max_kelvin;
     if ((r = check_context(fx)) != SBFX_OK) return r;
     if ((r = sbfx_pool_create(fx, fx->desc.max_particles)) != SBFX_OK) return r;
-    if ((r = sbfx_luts_create(fx)) != SBFX_OK) return r;
-    if ((r = sbfx_programs_create(fx)) != SBFX_OK) return r;
-    if ((r = sbfx_post_programs_create(fx)) != SBFX_OK) return r;
-    return SBFX_OK;
+    return load_gl(fx);
 }
 
 sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out)
@@ -213,6 +226,7 @@ void sbfx_destroy(sbfx *fx)
     sbfx_post_destroy(fx);
     sbfx_programs_destroy(fx);
     sbfx_luts_destroy(fx);
+    sbfx_samplers_destroy(fx);
     sbfx_pool_destroy(fx);
     free(fx);
 }
@@ -353,18 +367,7 @@ void sbfx_set_light(sbfx *fx, const float direction[3], const float color[3], co
     memcpy(fx->ambient, ambient, 3 * sizeof(float));
 }
 
-/* ---- host helpers: column-major matrices ---- */
-void sbfx_perspective(float m[16], float fov_y, float aspect, float n, float f)
-{
-    float t = 1.0f / tanf(fov_y * 0.5f);
-    memset(m, 0, 16 * sizeof(float));
-    m[0] = t / aspect;
-    m[5] = t;
-    m[10] = -(f + n) / (f - n);
-    m[11] = -1.0f;
-    m[14] = -2.0f * f * n / (f - n);
-}
-
+/* ---- host helpers: the look-at matrix (projections: projection.c) ---- */
 static void normalize3(float v[3])
 {
     float len = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);

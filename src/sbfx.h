@@ -123,16 +123,36 @@ typedef struct sbfx_desc {
     void *log_user;
 } sbfx_desc;
 
+/* How the host's clip-space depth became the window depth its depth texture holds (with the
+ * default glDepthRangef(0, 1)). Zero is OpenGL's default; a host that calls
+ * glClipControlEXT(GL_LOWER_LEFT, GL_ZERO_TO_ONE) says so here. Together with the projection
+ * matrix this fixes how depth reads back as distance (README "Projections and depth"). */
+typedef enum sbfx_clip_depth_mode {
+    SBFX_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE = 0, /* window depth = (ndc_z + 1) / 2 */
+    SBFX_CLIP_DEPTH_ZERO_TO_ONE,             /* window depth = ndc_z (GL_EXT_clip_control) */
+    SBFX_CLIP_DEPTH_COUNT
+} sbfx_clip_depth_mode;
+
 /* One frame to render. The opaque scene has been drawn by the host into colour and depth
- * textures of width x height; sbfx composites into out_framebuffer (0 = default). sbfx sets the
- * depth texture's filters to NEAREST and its compare mode to NONE. */
+ * textures of width x height; sbfx composites into out_framebuffer (0 = default).
+ * The projection is any OpenGL perspective (column-major, clip w = -z_view): finite far,
+ * infinite far (projection[10] = -1, [14] = -2 near), off-axis ([8], [9] != 0) or reversed-Z
+ * (projection[14] > 0: near -> depth 1, far -> 0, usually with SBFX_CLIP_DEPTH_ZERO_TO_ONE and
+ * a 32-bit float depth buffer cleared to 0). The depth texture's clear value (1, or 0
+ * reversed) means "no surface": nothing is clipped there, not even by a finite far plane.
+ * Anything else (orthographic, skewed, oblique, NaN, far before near) is refused with
+ * SBFX_ERR_INVALID_ARGUMENT and a message naming what is wrong.
+ * sbfx reads both textures through its own sampler objects (depth: NEAREST, no comparison;
+ * colour: LINEAR, clamped): their own parameters are never changed, and they need no
+ * particular filter or compare mode. Clip origin: GL_LOWER_LEFT (the default). */
 typedef struct sbfx_frame {
     float view[16];          /* world -> view */
-    float projection[16];    /* a perspective projection, OpenGL clip conventions */
+    float projection[16];    /* a perspective projection (above) */
     uint32_t scene_color_texture;
     uint32_t scene_depth_texture;
     uint32_t out_framebuffer;
     int width, height;
+    sbfx_clip_depth_mode clip_depth_mode;
 } sbfx_frame;
 
 typedef struct sbfx_counters {
@@ -149,6 +169,9 @@ typedef struct sbfx_counters {
     int triggers_refused;     /* triggers refused because the pool was full */
     uint64_t heap_allocs_after_load; /* sbfx heap allocations since sbfx_create returned */
     sbfx_target_format target_format; /* the format actually in use */
+    int gl_state_queries;     /* glGet* / glIs* calls the last sbfx_render made to save and
+                                 restore the host's GL state (0 when it ran no pass); README
+                                 "What sbfx does to your GL state" */
 } sbfx_counters;
 
 typedef struct sbfx sbfx;
@@ -188,8 +211,17 @@ sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int si
  * Allocates nothing. SBFX_ERR_INVALID_ARGUMENT when count is not size * size * frames. */
 sbfx_result sbfx_detail_procedural(const sbfx *fx, float *out, size_t count);
 
-/* Helpers for hosts: column-major perspective and look-at matrices. */
+/* Helpers for hosts: column-major OpenGL matrices.
+ * sbfx_perspective: symmetric frustum; far_z = INFINITY gives the infinite-far matrix
+ * (projection[10] = -1, [14] = -2 near_z). sbfx_frustum: glFrustum's off-axis frustum (video
+ * walls, simulator channels), far_z = INFINITY allowed. sbfx_reverse_z: rewrites the depth row
+ * of either for reversed-Z with glClipControlEXT(GL_LOWER_LEFT, GL_ZERO_TO_ONE) — near -> 1,
+ * far -> 0, far_z = INFINITY: 0 at infinity (projection[10] = 0, [14] = near_z) — to be used
+ * with a float depth buffer cleared to 0, glDepthFunc(GL_GREATER) and
+ * frame.clip_depth_mode = SBFX_CLIP_DEPTH_ZERO_TO_ONE. */
 void sbfx_perspective(float out[16], float fov_y_radians, float aspect, float near_z, float far_z);
+void sbfx_frustum(float out[16], float left, float right, float bottom, float top, float near_z, float far_z);
+void sbfx_reverse_z(float projection[16], float near_z, float far_z);
 void sbfx_look_at(float out[16], const float eye[3], const float target[3], const float up[3]);
 
 #ifdef __cplusplus

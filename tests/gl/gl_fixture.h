@@ -83,18 +83,13 @@ static inline void fixture_projection(gl_fixture *f, float fov_y, float near, fl
 }
 
 /* Fills the host depth texture (DEPTH_COMPONENT32F) so that every pixel linearises to the
- * view distance given by distance_at(x, y); +inf or >= far stays at the clear value 1. */
+ * view distance given by distance_at(x, y) under the frame's projection and clip depth mode;
+ * +inf or beyond a finite far plane stays at the clear value (1, or 0 reversed). */
 static inline void fixture_depth(gl_fixture *f, double (*distance_at)(int x, int y, void *), void *user)
 {
-    const float *p = f->frame.projection;
-    double far = p[14] / (p[10] + 1.0);
     float *d = calloc((size_t)f->width * f->height, sizeof(float));
     for (int y = 0; y < f->height; y++)
-        for (int x = 0; x < f->width; x++) {
-            double z = distance_at(x, y, user);
-            double ndc = p[14] / z - p[10];
-            d[y * f->width + x] = z >= far ? 1.0f : (float)fmin(1.0, fmax(0.0, 0.5 * ndc + 0.5));
-        }
+        for (int x = 0; x < f->width; x++) d[y * f->width + x] = sbfx_window_depth(&f->frame, distance_at(x, y, user));
     glBindTexture(GL_TEXTURE_2D, f->depth_texture);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, f->width, f->height, 0,
                  GL_DEPTH_COMPONENT, GL_FLOAT, d);
@@ -132,9 +127,11 @@ static inline double fixture_near(const sbfx_frame *frame)
     return frame->projection[14] / (frame->projection[10] - 1.0);
 }
 
-static inline double fixture_far(const sbfx_frame *frame)
+/* The distance the GPU reads back for a requested one: the host's float window depth,
+ * linearised (the host depth buffer's precision, not the shader's); INFINITY where nothing is. */
+static inline double fixture_stored_distance(const sbfx_frame *frame, double z)
 {
-    return frame->projection[14] / (frame->projection[10] + 1.0);
+    return sbfx_window_distance(frame, sbfx_window_depth(frame, z));
 }
 
 /* Reads the particle target; returns a malloc'ed RGBA float array. */

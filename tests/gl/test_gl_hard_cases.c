@@ -83,17 +83,6 @@ static double setup_depth(int x, int y, void *user)
     return s->wall;
 }
 
-/* The distance the GPU reads back for a requested one: the host's float window depth,
- * linearised (the host depth buffer's precision, not the shader's). */
-static double stored_distance(const sbfx_frame *frame, double z)
-{
-    const float *p = frame->projection;
-    double far = fixture_far(frame);
-    if (!(z < far)) return far;
-    float window = (float)fmin(1.0, fmax(0.0, 0.5 * (p[14] / z - p[10]) + 0.5));
-    return window >= 1.0f ? far : p[14] / (2.0 * window - 1.0 + p[10]);
-}
-
 static sbfx *hc_module(gl_fixture *f, const hc_setup *s, sbfx_opacity_mode mode, bool has_detail[])
 {
     sbfx *fx = fixture_module(f, (sbfx_desc){.target_divisor = 1, .target_format = s->format, .opacity = mode,
@@ -181,7 +170,7 @@ static void cpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, sbfx_opacity_
     static double distance[SIZE * SIZE];
     for (int y = 0; y < SIZE; y++)
         for (int x = 0; x < SIZE; x++)
-            distance[y * SIZE + x] = stored_distance(&f->frame, setup_depth(x, y, (void *)s));
+            distance[y * SIZE + x] = fixture_stored_distance(&f->frame, setup_depth(x, y, (void *)s));
     sbfx_rf_light lights[SBFX_RF_MAX_LIGHTS];
     sbfx_rf_frame rf = {.width = SIZE, .height = SIZE, .projection = {p[0], p[5], p[8], p[9]},
                         .near = (double)(p[14] / (p[10] - 1.0f)), .opaque_distance = distance, .opacity = mode,

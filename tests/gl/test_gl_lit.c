@@ -102,7 +102,7 @@ static void cpu_pixel(const gl_fixture *f, const lit_config *c, const sbfx_smoke
     const sbfx_view_particle *p = &c->particle;
     double tau = c->tau * p->intensity, center[3] = {p->center[0], p->center[1], p->center[2]};
     sbfx_ref_particle rp = {{center[0], center[1], center[2]}, p->radius, tau};
-    sbfx_ref_pixel px = {{0}, fixture_far(&f->frame), fixture_near(&f->frame), 0.0};
+    sbfx_ref_pixel px = {{0}, INFINITY, fixture_near(&f->frame), 0.0};
     fixture_ray(f, &f->frame, w, h, x, y, px.ray);
     double alpha = sbfx_ref_opacity(SBFX_OPACITY_SPHERICAL, &rp, &px);
     sbfx_lit_medium m = {{c->albedo, c->albedo, c->albedo}, tau, c->wrap, c->translucency, c->dampening,

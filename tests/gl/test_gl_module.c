@@ -222,7 +222,7 @@ CHECK_TEST(rgba8_fallback_when_half_float_not_renderable)
     sbfx_ref_particle rp = {{0, 0, -6}, 2.0, sbfx_media(fx)[SBFX_SMOKE].tau};
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
-            sbfx_ref_pixel px = {{0}, fixture_far(&f.frame), fixture_near(&f.frame), 0};
+            sbfx_ref_pixel px = {{0}, INFINITY, fixture_near(&f.frame), 0};
             fixture_ray(&f, &f.frame, w, h, x, y, px.ray);
             double cpu = sbfx_ref_opacity(SBFX_OPACITY_SPHERICAL, &rp, &px);
             worst = fmax(worst, fabs(cpu - (1.0 - rgba[4 * (y * w + x) + 3])));

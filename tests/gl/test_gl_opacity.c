@@ -39,17 +39,6 @@ static config random_config(sbfx_rng *rng)
     return c;
 }
 
-/* What the GPU reads back as Zs: the float window depth, linearised (the quantisation is the
- * host depth buffer's, not the shader's). */
-static double stored_distance(const sbfx_frame *frame, double z)
-{
-    const float *p = frame->projection;
-    double far = fixture_far(frame);
-    if (!(z < far)) return far;
-    float window = (float)fmin(1.0, fmax(0.0, 0.5 * (p[14] / z - p[10]) + 0.5));
-    return window >= 1.0f ? far : p[14] / (2.0 * window - 1.0 + p[10]);
-}
-
 static double compare_config(gl_fixture *f, sbfx *fx, sbfx_opacity_mode mode, config *c, int *bad)
 {
     sbfx_media(fx)[SBFX_SMOKE].tau = (float)c->tau;
@@ -63,7 +52,7 @@ static double compare_config(gl_fixture *f, sbfx *fx, sbfx_opacity_mode mode, co
                             c->particle.radius, c->tau};
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
-            sbfx_ref_pixel px = {{0}, stored_distance(&f->frame, config_depth(x, y, c)),
+            sbfx_ref_pixel px = {{0}, fixture_stored_distance(&f->frame, config_depth(x, y, c)),
                                  fixture_near(&f->frame), 0.0};
             fixture_ray(f, &f->frame, w, h, x, y, px.ray);
             double cpu = sbfx_ref_opacity(mode, &rp, &px);
