@@ -15,7 +15,8 @@ static GLuint new_texture(const sbfx_rt_format *f, int w, int h, GLenum filter)
     glGenTextures(1, &tex);
     glBindTexture(GL_TEXTURE_2D, tex);
     sbfx_texture_params(GL_TEXTURE_2D, filter, GL_CLAMP_TO_EDGE);
-    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)f->internal, w, h, 0, f->format, f->type, NULL);
+    /* immutable storage: no pixel transfer, so the host's unpack buffer and store do not matter */
+    glTexStorage2D(GL_TEXTURE_2D, 1, f->internal, w, h);
     return tex;
 }
 
