@@ -2,12 +2,17 @@
  * FBO. Host code, so its two small shaders live here rather than in shaders_es/. */
 #include "test_scene.h"
 
+#include <EGL/egl.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "sbfx.h"
+
+#define GL_LOWER_LEFT_EXT 0x8CA1
+#define GL_NEGATIVE_ONE_TO_ONE_EXT 0x935E
+#define GL_ZERO_TO_ONE_EXT 0x935F
 
 #define ARRAY_SIZE(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -357,12 +362,15 @@ static void begin_pass(struct test_scene *scene)
     /* the clear colour is the fog colour, sRGB-encoded like the shader's output */
     glClearColor(powf(sky_color[0], 1 / 2.2f), powf(sky_color[1], 1 / 2.2f),
                  powf(sky_color[2], 1 / 2.2f), 1.0f);
-    glClearDepthf(1.0f);
+    glClearDepthf(scene->reversed_z ? 0.0f : 1.0f);
+    glDepthFunc(scene->reversed_z ? GL_GREATER : GL_LESS);
+    if (scene->reversed_z) scene->clip_control(GL_LOWER_LEFT_EXT, GL_ZERO_TO_ONE_EXT);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
-static void end_pass(void)
+static void end_pass(struct test_scene *scene)
 {
+    if (scene->reversed_z) scene->clip_control(GL_LOWER_LEFT_EXT, GL_NEGATIVE_ONE_TO_ONE_EXT);
     glBindVertexArray(0);
     glUseProgram(0);
     glDisable(GL_DEPTH_TEST);
@@ -382,7 +390,7 @@ int test_scene_draw(struct test_scene *scene, const float view[16], const float 
     glUniform3fv(scene->u_eye, 1, eye);
     draw_ground(scene);
     for (size_t i = 0; i < ARRAY_SIZE(boxes); i++) draw_box(scene, &boxes[i]);
-    end_pass();
+    end_pass(scene);
     int rc = 0;
     while (glGetError() != GL_NO_ERROR) rc = -EIO;
     return rc;
@@ -422,4 +430,34 @@ void test_scene_light(float direction[3], float color[3], float ambient[3])
         color[i] = sun_color[i];
         ambient[i] = sky_color[i];
     }
+}
+
+static bool has_extension(const char *name)
+{
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; i++)
+        if (strcmp((const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i), name) == 0) return true;
+    return false;
+}
+
+int test_scene_use_reversed_z(struct test_scene *scene, char *err, size_t n)
+{
+    if (!has_extension("GL_EXT_clip_control")) {
+        snprintf(err, n, "test scene: reversed-Z needs GL_EXT_clip_control, which this context does not offer");
+        return -ENOTSUP;
+    }
+    scene->clip_control = (void (*)(GLenum, GLenum))eglGetProcAddress("glClipControlEXT");
+    glDeleteTextures(1, &scene->depth_texture);
+    scene->depth_texture = create_texture(GL_DEPTH_COMPONENT32F, GL_NEAREST, scene->width, scene->height);
+    glBindFramebuffer(GL_FRAMEBUFFER, scene->framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, scene->depth_texture, 0);
+    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (!scene->clip_control || status != GL_FRAMEBUFFER_COMPLETE) {
+        snprintf(err, n, "test scene: RGBA8 + DEPTH_COMPONENT32F framebuffer incomplete (0x%x)", status);
+        return -EIO;
+    }
+    scene->reversed_z = true;
+    return 0;
 }

@@ -14,9 +14,12 @@
 #define SBFX_TEST_SCENE_H
 
 #include <GLES3/gl3.h>
+#include <stdbool.h>
 #include <stddef.h>
 
 struct test_scene {
+    bool reversed_z;        /* test_scene_use_reversed_z */
+    void (*clip_control)(GLenum origin, GLenum depth);
     GLuint framebuffer;
     GLuint color_texture;   /* RGBA8, LINEAR, clamp to edge */
     GLuint depth_texture;   /* DEPTH_COMPONENT24, NEAREST, compare mode NONE */
@@ -33,6 +36,14 @@ int test_scene_create(struct test_scene *scene, int width, int height, char *err
  * Returns 0, or -EIO if GL reported an error (glGetError, which is drained). */
 int test_scene_draw(struct test_scene *scene, const float view[16], const float projection[16]);
 void test_scene_destroy(struct test_scene *scene);
+
+/* Reversed-Z, as a host with GL_EXT_clip_control draws it: the depth texture becomes
+ * DEPTH_COMPONENT32F, cleared to 0 and tested GL_GREATER, and each draw runs under
+ * glClipControlEXT(GL_LOWER_LEFT, GL_ZERO_TO_ONE) (put back to the default afterwards). Give
+ * test_scene_draw a reversed-Z projection (sbfx_reverse_z) and sbfx_frame.clip_depth_mode =
+ * SBFX_CLIP_DEPTH_ZERO_TO_ONE. Returns 0, -ENOTSUP without the extension, -EIO if the new
+ * depth texture cannot be attached; err says which. */
+int test_scene_use_reversed_z(struct test_scene *scene, char *err, size_t n);
 
 /* The demo camera: a slow orbit (about 3.4 degrees per second) around the origin, 8.5 m away,
  * 2.6 m high, looking at (0, 1.5, 0); 50 degree vertical fov, near 0.1, far 200. */
