@@ -1,5 +1,8 @@
 /* sbfx-probe: answers one line per query line, CPU reference next to a real GPU render.
  *   opacity MODE D R ZC ZS NEAR TAU  ->  CPU GPU
+ *     the opaque surface at ZS reaches the GPU as a host depth buffer holds it: reversed-Z
+ *     float depth (infinite far, GL_EXT_clip_control's ZERO_TO_ONE) where the context offers
+ *     the extension, else standard float depth; stderr says which at start
  *   blackbody T                      ->  R G B (CPU table)  R G B (GPU fetch of the LUT)
  *   phase COS G                      ->  CPU GPU   (COS = 1: light goes straight on)
  * A malformed line gets a message on stderr naming its line number; later lines are still
@@ -19,6 +22,7 @@ typedef struct probe {
     double *blackbody_table;
     int line;
     bool failed;
+    bool reversed_z;   /* host depth in reversed-Z float (GL_EXT_clip_control is offered) */
 } probe;
 
 static const char *const mode_names[SBFX_OPACITY_COUNT] = {
@@ -63,28 +67,30 @@ static int parse_doubles(const char *text, double *out, int count)
     return *text ? -1 : 0;
 }
 
-/* A window depth that linearises back to `distance` under this projection. */
-static float window_depth(const float proj[16], double distance, double far)
+/* The host's projection: reversed-Z with no far plane, or (without clip control) a standard
+ * one far enough to hold the sphere (an opaque surface beyond it reads as the far clear value,
+ * which clips nothing either) and not further: standard float depth would lose the near/far
+ * ratio. */
+static void host_projection(const probe *p, const double v[6], sbfx_frame *frame)
 {
-    if (!(distance < far)) return 1.0f;
-    double ndc = proj[14] / distance - proj[10];
-    return (float)fmin(1.0, fmax(0.0, 0.5 * ndc + 0.5));
+    double d = v[0], r = v[1], zc = v[2], zs = v[3], near = v[4];
+    double far = 4.0 * fmax(fmax(fabs(zc) + fabs(r), near), fmin(zs, 1e30));
+    if (zs > 2.0 * (fabs(zc) + fabs(r))) far = 4.0 * fmax(fabs(zc) + fabs(r), near);
+    sbfx_perspective(frame->projection, 1.5707963f, 1.0f, (float)near, p->reversed_z ? INFINITY : (float)far);
+    if (p->reversed_z) sbfx_reverse_z(frame->projection, (float)near, INFINITY);
+    frame->clip_depth_mode = p->reversed_z ? SBFX_CLIP_DEPTH_ZERO_TO_ONE : SBFX_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE;
+    frame->projection[0] = frame->projection[5] = 1.0f;
+    frame->projection[8] = (float)(d / zc); /* the single pixel's ray passes at D in the centre plane */
 }
 
 static double gpu_opacity(probe *p, sbfx *fx, const double v[6])
 {
-    double d = v[0], r = v[1], zc = v[2], zs = v[3], near = v[4], tau = v[5];
-    /* Far enough to hold the sphere; an opaque surface beyond it reads as the far clear value,
-     * which clips nothing either. Not further: float depth would lose the near/far ratio. */
-    double far = 4.0 * fmax(fmax(fabs(zc) + fabs(r), near), fmin(zs, 1e30));
-    if (zs > 2.0 * (fabs(zc) + fabs(r))) far = 4.0 * fmax(fabs(zc) + fabs(r), near);
+    double r = v[1], zc = v[2], zs = v[3], tau = v[5];
     sbfx_frame frame = {.scene_depth_texture = p->depth_texture, .out_framebuffer = p->out_fbo,
                         .width = 1, .height = 1};
-    sbfx_perspective(frame.projection, 1.5707963f, 1.0f, (float)near, (float)far);
-    frame.projection[0] = frame.projection[5] = 1.0f;
-    frame.projection[8] = (float)(d / zc); /* the single pixel's ray passes at D in the centre plane */
+    host_projection(p, v, &frame);
     frame.view[0] = frame.view[5] = frame.view[10] = frame.view[15] = 1.0f;
-    float depth = window_depth(frame.projection, zs, far);
+    float depth = sbfx_window_depth(&frame, zs); /* what the host's depth buffer holds */
     glBindTexture(GL_TEXTURE_2D, p->depth_texture);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, 1, 1, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
     sbfx_media(fx)[SBFX_SMOKE].tau = (float)tau;
@@ -187,6 +193,15 @@ static int create_host_objects(probe *p)
     return ok ? 0 : -1;
 }
 
+static bool has_extension(const char *name)
+{
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; i++)
+        if (strcmp((const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i), name) == 0) return true;
+    return false;
+}
+
 static void usage(FILE *to)
 {
     fprintf(to, "usage: sbfx-probe < queries\n"
@@ -209,6 +224,10 @@ int main(int argc, char **argv)
         return 1;
     }
     probe p = {0};
+    p.reversed_z = has_extension("GL_EXT_clip_control");
+    fprintf(stderr, "sbfx-probe: host depth: %s\n",
+            p.reversed_z ? "reversed-Z float (GL_EXT_clip_control ZERO_TO_ONE, infinite far)"
+                         : "standard float (GL_EXT_clip_control missing)");
     if (create_host_objects(&p) != 0) {
         fprintf(stderr, "sbfx-probe: cannot create a 1x1 RGBA8 framebuffer\n");
         egl_headless_close(&egl);

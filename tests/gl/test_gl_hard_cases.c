@@ -45,6 +45,13 @@ typedef struct hc_setup {
     float light_dir[3], light_color[3], ambient[3];
     sbfx_target_format format;
     bool analytic_bb, analytic_phase;
+    /* host depth drawn by GL as a plane at `wall` (not written texel by texel): reversed-Z
+     * (infinite far, clip control ZERO_TO_ONE, GREATER) or standard, into `depth_format` */
+    bool reversed_z;
+    GLenum depth_format;
+    bool cpu_true_depth;         /* the CPU reference gets `wall` itself, not what the buffer holds */
+    double tolerance;            /* > 0: one absolute tolerance for every channel instead */
+    bool report_only;            /* print how far GPU and CPU are apart, do not require agreement */
 } hc_setup;
 
 typedef struct hc_result {
@@ -53,6 +60,7 @@ typedef struct hc_result {
     double *cpu;
     int gpu_skipped, cpu_skipped, passes;
     double alpha_err, rgb_err;   /* worst |GPU - CPU|, rgb relative to the tolerance */
+    double abs_err;              /* worst |GPU - CPU| of any channel */
     int nonfinite_gpu, nonfinite_cpu, over;
 } hc_result;
 
@@ -97,7 +105,10 @@ static sbfx *hc_module(gl_fixture *f, const hc_setup *s, sbfx_opacity_mode mode,
 
 static void gpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, hc_result *r)
 {
-    fixture_depth(f, setup_depth, (void *)s);
+    if (s->depth_format)
+        CHECK(fixture_draw_depth_plane(f, s->wall, s->depth_format), "drawing the host's depth plane failed");
+    else
+        fixture_depth(f, setup_depth, (void *)s);
     CHECK(sbfx_render_view_particles(fx, &f->frame, s->p, s->count) == SBFX_OK, "%s", sbfx_last_error(fx));
     sbfx_counters c;
     sbfx_stats(fx, &c);
@@ -170,10 +181,11 @@ static void cpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, sbfx_opacity_
     static double distance[SIZE * SIZE];
     for (int y = 0; y < SIZE; y++)
         for (int x = 0; x < SIZE; x++)
-            distance[y * SIZE + x] = fixture_stored_distance(&f->frame, setup_depth(x, y, (void *)s));
+            distance[y * SIZE + x] = s->cpu_true_depth ? setup_depth(x, y, (void *)s)
+                                                       : fixture_stored_distance(&f->frame, setup_depth(x, y, (void *)s));
     sbfx_rf_light lights[SBFX_RF_MAX_LIGHTS];
     sbfx_rf_frame rf = {.width = SIZE, .height = SIZE, .projection = {p[0], p[5], p[8], p[9]},
-                        .near = (double)(p[14] / (p[10] - 1.0f)), .opaque_distance = distance, .opacity = mode,
+                        .near = fixture_near(&f->frame), .opaque_distance = distance, .opacity = mode,
                         .lights = lights, .detail = half_detail, .detail_size = 64, .detail_frames = 32,
                         .detail_time = sbfx_detail_time(fx), .cmf = &cmf, .max_kelvin = SBFX_DEFAULT_MAX_KELVIN,
                         .blackbody_norm = sbfx_blackbody_norm(&cmf, SBFX_DEFAULT_MAX_KELVIN)};
@@ -198,12 +210,14 @@ static void compare(const hc_setup *s, hc_result *r)
     bool half = s->format == SBFX_FORMAT_RGBA16F;
     double rel = half ? HALF_RGB_REL : RGB_REL, abs_tol = half ? HALF_RGB_ABS : RGB_ABS;
     double alpha_tol = half ? HALF_ALPHA_TOL : ALPHA_TOL;
+    if (s->tolerance > 0) rel = 0.0, abs_tol = alpha_tol = s->tolerance;
     for (int i = 0; i < SIZE * SIZE; i++)
         for (int k = 0; k < 4; k++) {
             double g = r->gpu[4 * i + k], c = r->cpu[4 * i + k];
             if (!isfinite(g)) r->nonfinite_gpu++;
             if (!isfinite(c)) r->nonfinite_cpu++;
             double err = fabs(g - c);
+            r->abs_err = fmax(r->abs_err, err);
             if (k == 3) {
                 r->alpha_err = fmax(r->alpha_err, err);
                 if (!(err <= alpha_tol)) r->over++;
@@ -227,15 +241,18 @@ static void hc_run(gl_fixture *f, const hc_setup *s, sbfx_opacity_mode mode, hc_
 {
     load_tables();
     memset(r, 0, sizeof(*r));
-    fixture_projection(f, s->fov, s->near, s->far);
+    fixture_projection(f, s->fov, s->near, s->reversed_z ? INFINITY : s->far);
+    if (s->reversed_z) sbfx_reverse_z(f->frame.projection, s->near, INFINITY);
+    f->frame.clip_depth_mode = s->reversed_z ? SBFX_CLIP_DEPTH_ZERO_TO_ONE : SBFX_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE;
     bool has_detail[SBFX_MEDIUM_COUNT];
     sbfx *fx = hc_module(f, s, mode, has_detail);
     gpu_render(f, fx, s, r);
     cpu_render(f, fx, s, mode, has_detail, r);
     sbfx_destroy(fx);
     compare(s, r);
-    printf("#   %-9s max |alpha diff| %.2e, max light diff %.2f of tolerance\n", mode_names[mode], r->alpha_err,
-           r->rgb_err);
+    printf("#   %-9s max |alpha diff| %.2e, max light diff %.2f of tolerance, max |diff| %.2e\n", mode_names[mode],
+           r->alpha_err, r->rgb_err, r->abs_err);
+    if (s->report_only) return;
     CHECK(r->nonfinite_gpu == 0, "%s: %d non-finite GPU values", mode_names[mode], r->nonfinite_gpu);
     CHECK(r->nonfinite_cpu == 0, "%s: %d non-finite CPU values", mode_names[mode], r->nonfinite_cpu);
     CHECK(r->over == 0, "%s: %d values differ beyond tolerance (alpha %.3g, light %.3g x tol)",
@@ -437,10 +454,8 @@ static void expect_far_small(const hc_setup *s, sbfx_opacity_mode mode, const hc
 }
 
 /* The particle is 1e4 m away and 0.1 m across: a 1.6e-5 rad field of view makes it span a third
- * of the 32-pixel target. Nothing opaque is near it: the host depth buffer (float window depth,
- * near 0.1) resolves only about z^2 / near * 2^-24, i.e. tens of metres at 1e4 m, so a surface
- * next to the particle would test the depth buffer, not the shader; the depth stays at its clear
- * value and the far plane (1e5) clips nothing. */
+ * of the 32-pixel target. Nothing opaque is near it: the depth stays at its clear value (no
+ * surface). A surface next to a far particle: far_field_particle_in_front_of_surface. */
 CHECK_TEST(small_particle_far_away)
 {
     hc_setup s = base_setup();
@@ -450,6 +465,58 @@ CHECK_TEST(small_particle_far_away)
     pixel_slope(&s, 16, 16, q); /* centred on a pixel's ray: the peak is sampled */
     s.p[s.count++] = particle((float)(q[0] * 1e4), (float)(q[1] * 1e4), -1e4f, 0.05f, SBFX_SMOKE);
     hc_all_modes("z_c = 1e4, r = 0.05, opaque depth at the clear value", &s, expect_far_small);
+}
+
+/* ---- far field: a small particle just in front of a surface 3 km away ----------------------
+ * r = 5 cm at 3000 m, the surface 1 cm behind its centre, near 0.1: the opaque depth decides
+ * how much of the chord is seen. Reversed-Z float depth (GL_EXT_clip_control, DEPTH_COMPONENT32F)
+ * resolves about z 2^-24 = 0.2 mm there: sbfx must agree with the CPU reference given the true
+ * surface distance within 4e-3. A standard 24-bit buffer resolves z^2 / (n 2^24) = 5.4 m: the
+ * surface reads metres off and the result is wrong by the particle's whole alpha — reported. */
+static hc_setup far_field_setup(void)
+{
+    hc_setup s = base_setup();
+    s.media = no_detail;
+    s.fov = 5.3e-5f, s.near = 0.1f, s.far = 1e5f;
+    s.wall = 3000.01;
+    s.cpu_true_depth = true;
+    s.tolerance = 4e-3;
+    double q[2];
+    pixel_slope(&s, 16, 16, q);
+    s.p[s.count++] = particle((float)(q[0] * 3000.0), (float)(q[1] * 3000.0), -3000.0f, 0.05f, SBFX_SMOKE);
+    return s;
+}
+
+static void expect_clipped(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
+{
+    (void)s;
+    /* the surface cuts the chord: the centre pixel shows less than the unclipped peak */
+    double od = (mode == SBFX_OPACITY_EXACT ? 1.0 : 2.0) * 0.4 * 0.05, peak = -expm1(-od);
+    if (mode != SBFX_OPACITY_PLANAR && mode != SBFX_OPACITY_SOFT)
+        CHECK(max_alpha(r) < 0.8 * peak && max_alpha(r) > 0.2 * peak, "%s: peak alpha %g of an unclipped %g",
+              mode_names[mode], max_alpha(r), peak);
+}
+
+CHECK_TEST(far_field_particle_in_front_of_surface)
+{
+    gl_fixture probe;
+    fixture_open(&probe, 1, 1);
+    fixture_clip_control_fn clip_control;
+    bool reversed = fixture_clip_control(&clip_control);
+    fixture_close(&probe);
+    hc_setup s = far_field_setup();
+    if (reversed) {
+        s.reversed_z = true;
+        s.depth_format = GL_DEPTH_COMPONENT32F;
+        hc_all_modes("far field, host depth: reversed-Z DEPTH_COMPONENT32F (GL_EXT_clip_control), within 4e-3", &s,
+                     expect_clipped);
+    }
+    s = far_field_setup();
+    s.depth_format = GL_DEPTH_COMPONENT24;
+    s.report_only = true;
+    hc_all_modes("far field, host depth: standard DEPTH_COMPONENT24 (reported: the buffer cannot resolve it)", &s, NULL);
+    if (!reversed)
+        CHECK_SKIP("far field: GL_EXT_clip_control missing, no reversed-Z float depth to check (24-bit reported)");
 }
 
 /* ---- tau = 0 and tau = 1e6 ------------------------------------------------------------------ */
