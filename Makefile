@@ -40,7 +40,7 @@ LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined)
 SRC := $(wildcard src/*.c)
 SHADERS := $(sort $(wildcard shaders_es/*.vert shaders_es/*.frag))
 LIB_OBJ := $(SRC:src/%.c=$(BUILD)/obj/src/%.o) $(BUILD)/obj/gen/shaders_es.o
-PLATFORM_COMMON := egl_headless png_io test_scene gl_check
+PLATFORM_COMMON := egl_headless png_io test_scene gl_check host_depth
 PLATFORM_COMMON_OBJ := $(PLATFORM_COMMON:%=$(BUILD)/obj/platform/%.o)
 
 UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/unit/%,$(wildcard tests/unit/*.c))

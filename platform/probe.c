@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "egl_headless.h"
+#include "host_depth.h"
 #include "internal.h"
 
 typedef struct probe {
@@ -193,15 +194,6 @@ static int create_host_objects(probe *p)
     return ok ? 0 : -1;
 }
 
-static bool has_extension(const char *name)
-{
-    GLint count = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
-    for (GLint i = 0; i < count; i++)
-        if (strcmp((const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i), name) == 0) return true;
-    return false;
-}
-
 static void usage(FILE *to)
 {
     fprintf(to, "usage: sbfx-probe < queries\n"
@@ -224,7 +216,7 @@ int main(int argc, char **argv)
         return 1;
     }
     probe p = {0};
-    p.reversed_z = has_extension("GL_EXT_clip_control");
+    p.reversed_z = host_depth_has_clip_control();
     fprintf(stderr, "sbfx-probe: host depth: %s\n",
             p.reversed_z ? "reversed-Z float (GL_EXT_clip_control ZERO_TO_ONE, infinite far)"
                          : "standard float (GL_EXT_clip_control missing)");

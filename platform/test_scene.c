@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "host_depth.h"
 #include "sbfx.h"
 
 #define GL_LOWER_LEFT_EXT 0x8CA1
@@ -432,18 +433,9 @@ void test_scene_light(float direction[3], float color[3], float ambient[3])
     }
 }
 
-static bool has_extension(const char *name)
-{
-    GLint count = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
-    for (GLint i = 0; i < count; i++)
-        if (strcmp((const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i), name) == 0) return true;
-    return false;
-}
-
 int test_scene_use_reversed_z(struct test_scene *scene, char *err, size_t n)
 {
-    if (!has_extension("GL_EXT_clip_control")) {
+    if (!host_depth_has_clip_control()) {
         snprintf(err, n, "test scene: reversed-Z needs GL_EXT_clip_control, which this context does not offer");
         return -ENOTSUP;
     }

@@ -8,6 +8,7 @@
 #include <string.h>
 #include "check.h"
 #include "egl_headless.h"
+#include "host_depth.h"
 #include "internal.h"
 
 typedef struct gl_fixture {
@@ -128,77 +129,14 @@ static inline double fixture_near(const sbfx_frame *frame)
     return sbfx_window_distance(frame, frame->projection[14] > 0.0f ? 1.0f : 0.0f);
 }
 
-/* True when the context offers GL_EXT_clip_control; *fn is then glClipControlEXT. */
-typedef void (*fixture_clip_control_fn)(GLenum origin, GLenum depth);
-static inline bool fixture_clip_control(fixture_clip_control_fn *fn)
-{
-    GLint n = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
-    for (GLint i = 0; i < n; i++)
-        if (strcmp((const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i), "GL_EXT_clip_control") == 0) {
-            *fn = (fixture_clip_control_fn)eglGetProcAddress("glClipControlEXT");
-            return *fn != NULL;
-        }
-    return false;
-}
-
-/* Draws an opaque plane at view distance `distance` over the whole frame into the fixture's
- * depth texture (re-made as `format`: GL_DEPTH_COMPONENT24 or 32F), the way a host renders
- * it: its vertex shader evaluates the projection's depth row in float, the clip depth mode is
- * the frame's (glClipControlEXT for ZERO_TO_ONE), the buffer is cleared to the far value and
- * tested like the host's (GREATER when reversed). False when the format or clip control is
- * not available. */
+/* The host's depth drawn as a plane at `distance` under the frame's projection and clip depth
+ * mode (platform/host_depth.h), into a texture of `format`; the frame's depth texture. */
 static inline bool fixture_draw_depth_plane(gl_fixture *f, double distance, GLenum format)
 {
-    static const char *vs = "#version 300 es\nuniform vec2 u_row; uniform float u_distance;\n"
-                            "void main() { vec2 c = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 4.0 - 1.0;\n"
-                            "  gl_Position = vec4(c * u_distance, u_row.x * -u_distance + u_row.y, u_distance); }\n";
-    static const char *fs = "#version 300 es\nvoid main() {}\n";
-    bool zero_to_one = f->frame.clip_depth_mode == SBFX_CLIP_DEPTH_ZERO_TO_ONE, reversed = f->frame.projection[14] > 0;
-    fixture_clip_control_fn clip_control = NULL;
-    if (zero_to_one && !fixture_clip_control(&clip_control)) return false;
-    GLuint prog = glCreateProgram(), sh[2] = {glCreateShader(GL_VERTEX_SHADER), glCreateShader(GL_FRAGMENT_SHADER)};
-    const char *src[2] = {vs, fs};
-    for (int i = 0; i < 2; i++) {
-        glShaderSource(sh[i], 1, &src[i], NULL);
-        glCompileShader(sh[i]);
-        glAttachShader(prog, sh[i]);
-        glDeleteShader(sh[i]);
-    }
-    glLinkProgram(prog);
-    glDeleteTextures(1, &f->depth_texture);
-    glGenTextures(1, &f->depth_texture);
-    glBindTexture(GL_TEXTURE_2D, f->depth_texture);
-    glTexStorage2D(GL_TEXTURE_2D, 1, format, f->width, f->height);
+    bool zero_to_one = f->frame.clip_depth_mode == SBFX_CLIP_DEPTH_ZERO_TO_ONE;
+    int rc = host_depth_plane(&f->depth_texture, f->width, f->height, format, f->frame.projection, zero_to_one, distance);
     f->frame.scene_depth_texture = f->depth_texture;
-    GLuint fbo, vao;
-    glGenFramebuffers(1, &fbo);
-    glGenVertexArrays(1, &vao);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, f->depth_texture, 0);
-    bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    if (clip_control) clip_control(0x8CA1 /* LOWER_LEFT */, 0x935F /* ZERO_TO_ONE */);
-    glViewport(0, 0, f->width, f->height);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(reversed ? GL_GREATER : GL_LESS);
-    glClearDepthf(reversed ? 0.0f : 1.0f);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    glUseProgram(prog);
-    glUniform2f(glGetUniformLocation(prog, "u_row"), f->frame.projection[10], f->frame.projection[14]);
-    glUniform1f(glGetUniformLocation(prog, "u_distance"), (float)distance);
-    glBindVertexArray(vao);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    if (clip_control) clip_control(0x8CA1, 0x935E /* NEGATIVE_ONE_TO_ONE */);
-    glDisable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glClearDepthf(1.0f);
-    glUseProgram(0);
-    glBindVertexArray(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteVertexArrays(1, &vao);
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteProgram(prog);
-    return ok && glGetError() == GL_NO_ERROR;
+    return rc == 0;
 }
 
 /* The distance the GPU reads back for a requested one: the host's float window depth,

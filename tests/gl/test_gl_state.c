@@ -117,15 +117,6 @@ static void host_objects(host *h)
     make_output(h, 1);
 }
 
-static bool has_extension(const char *name)
-{
-    GLint n = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
-    for (GLint i = 0; i < n; i++)
-        if (strcmp((const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i), name) == 0) return true;
-    return false;
-}
-
 static void host_open(host *h)
 {
     memset(h, 0, sizeof(*h));
@@ -135,7 +126,7 @@ static void host_open(host *h)
     h->gl.frame.scene_color_texture = h->scene.color_texture;
     h->gl.frame.scene_depth_texture = h->scene.depth_texture;
     h->units = snap_units();
-    if (has_extension("GL_EXT_clip_control"))
+    if (host_depth_has_clip_control())
         h->clip_control = (clip_control_fn)eglGetProcAddress("glClipControlEXT");
     host_objects(h);
     printf("# %d texture units checked; clip control %s\n", h->units,
