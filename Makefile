@@ -190,6 +190,13 @@ $(BUILD)/bench/bench_scenes: tests/bench/scenes/bench_scenes.c $(PLATFORM_COMMON
 
 bench: $(BUILD)/bench/bench_scenes
 
+# ---- host contract bench (issue #10): GL state save/restore cost, far-field depth precision ----
+$(BUILD)/bench/bench_state: tests/bench/state/bench_state.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -o $@ $< $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+
+bench: $(BUILD)/bench/bench_state
+
 # ---- platform (issue #5: DRM/KMS kiosk, V4L2 detail, GPIO triggers, boards) ---------------
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,
 # the --gpio/--mode syntax), run by tests/run.sh like the unit tests.

@@ -103,6 +103,11 @@ double sbfx_detail_time(const sbfx *fx);
 float sbfx_window_depth(const sbfx_frame *frame, double distance);
 double sbfx_window_distance(const sbfx_frame *frame, float window);
 
+/* Saves and restores the host's GL state exactly as sbfx_render does for a frame with or
+ * without live particles, nothing in between (the bench's cost of the host contract). Returns
+ * the glGet / glIs calls it made. */
+int sbfx_host_state_roundtrip(sbfx *fx, bool particles);
+
 /* Hash of the live particles' simulation state (determinism tests). */
 uint64_t sbfx_state_hash(const sbfx *fx);
 

@@ -319,16 +319,31 @@ static sbfx_result draw_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
  * all inside one save and restore of the host's state (only the units this frame binds).
  * Where the post chain reads from: the composite's image, nothing (the composite already
  * wrote the host's framebuffer), or on a frame without particles the bare scene. */
-sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_depth_model *depth, int count)
+static sbfx_gl_units frame_units(const sbfx *fx, int count)
 {
     sbfx_gl_units units = count > 0 ? pass_units(fx) : (sbfx_gl_units){0};
     if (fx->plan.owns_scene) units.tex_2d |= sbfx_post_units(fx).tex_2d;
+    return units;
+}
+
+sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_depth_model *depth, int count)
+{
+    sbfx_gl_units units = frame_units(fx, count);
     sbfx_gl_state saved;
     sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS, &units);
     sbfx_result r = draw_frame(fx, frame, depth, count);
     fx->counters.gl_state_queries = sbfx_gl_state_restore(&saved);
     if (r != SBFX_OK) return r;
     return sbfx_gl_check(fx, "rendering the frame's passes") ? SBFX_OK : SBFX_ERR_GL;
+}
+
+int sbfx_host_state_roundtrip(sbfx *fx, bool particles)
+{
+    if (!particles && !fx->plan.owns_scene) return 0; /* such a frame runs no pass */
+    sbfx_gl_units units = frame_units(fx, particles ? 1 : 0);
+    sbfx_gl_state saved;
+    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS, &units);
+    return sbfx_gl_state_restore(&saved);
 }
 
 int sbfx_frame_lights(const sbfx *fx, const float view[16], sbfx_view_light *out, int capacity)

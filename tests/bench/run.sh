@@ -54,6 +54,13 @@ if [ -x "$BUILD/bench/bench_scenes" ]; then
     "$BUILD/bench/bench_scenes" --out "$OUT" | tee "$OUT/scenes.txt"
 fi
 
+# issue #10: what the host contract costs (glGet calls, save + restore time; with Mesa's
+# threaded dispatch too, where every glGet waits for the driver thread) and far-field depth
+if [ -x "$BUILD/bench/bench_state" ]; then
+    "$BUILD/bench/bench_state" --out "$OUT" | tee "$OUT/state.txt"
+    mesa_glthread=true "$BUILD/bench/bench_state" --out "$OUT" --label glthread --append | tee -a "$OUT/state.txt"
+fi
+
 echo "time      : make bench took $(($(date +%s) - start)) s" >>"$OUT/summary.txt"
 echo
 cat "$OUT/summary.txt"
