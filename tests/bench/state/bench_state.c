@@ -134,10 +134,10 @@ typedef struct depth_setup {
 } depth_setup;
 
 static const depth_setup setups[] = {
-    {"standard 24-bit, far 1e5", GL_DEPTH_COMPONENT24, false, false},
-    {"standard 24-bit, infinite far", GL_DEPTH_COMPONENT24, false, true},
-    {"standard float, infinite far", GL_DEPTH_COMPONENT32F, false, true},
-    {"reversed-Z float, infinite far", GL_DEPTH_COMPONENT32F, true, true},
+    {"standard 24-bit far=1e5", GL_DEPTH_COMPONENT24, false, false},
+    {"standard 24-bit far=inf", GL_DEPTH_COMPONENT24, false, true},
+    {"standard float far=inf", GL_DEPTH_COMPONENT32F, false, true},
+    {"reversed-Z float far=inf", GL_DEPTH_COMPONENT32F, true, true},
 };
 
 /* What the set-up resolves at distance z (one step of its depth value), DESIGN §5. */
