@@ -49,7 +49,7 @@ typedef struct ref_frame {
     double t;
     struct test_scene scene;
     sbfx_frame frame;
-    double *distance;   /* full-res opaque view distance (far where nothing was drawn) */
+    double *distance;   /* full-res opaque view distance (INFINITY where nothing was drawn) */
     uint8_t *scene_rgba;
     double *ref_rgb;    /* the reference image, 0..255 */
     uint8_t *edge;      /* near a silhouette and inside some particle's footprint */
@@ -177,10 +177,8 @@ static void read_distances(ref_frame *rf, int w, int h)
     float *window = xcalloc((size_t)w * h, sizeof(float));
     char err[256];
     if (bench_read_depth(rf->scene.depth_texture, w, h, window, err, sizeof(err)) != 0) die("depth", err);
-    const float *p = rf->frame.projection;
-    float far = p[14] / (p[10] + 1.0f); /* as passes.c computes them, in float */
-    for (size_t i = 0; i < (size_t)w * h; i++)
-        rf->distance[i] = window[i] >= 1.0f ? (double)far : p[14] / (2.0 * window[i] - 1.0 + p[10]);
+    /* as the shaders read it; the clear value is no surface (INFINITY) */
+    for (size_t i = 0; i < (size_t)w * h; i++) rf->distance[i] = sbfx_window_distance(&rf->frame, window[i]);
     free(window);
 }
 
@@ -231,7 +229,7 @@ static void render_reference(bench *b, sbfx *fx, ref_frame *rf)
     const float *p = rf->frame.projection;
     sbfx_rf_light lights[SBFX_RF_MAX_LIGHTS];
     sbfx_rf_frame f = {.width = w, .height = h, .projection = {p[0], p[5], p[8], p[9]},
-                       .near = (double)(p[14] / (p[10] - 1.0f)), .opaque_distance = rf->distance,
+                       .near = sbfx_window_distance(&rf->frame, 0.0f), .opaque_distance = rf->distance,
                        .opacity = SBFX_OPACITY_EXACT, .lights = lights, .detail = b->detail,
                        .detail_size = b->detail_size, .detail_frames = b->detail_frames,
                        .detail_time = sbfx_detail_time(fx), .cmf = &b->cmf,

@@ -186,7 +186,7 @@ static void cpu_render(const bench *b, const sbfx_medium_params *mp, const sbfx_
                        int nmax, int tw, int th, double *rgb_out)
 {
     const float *p = b->frame.projection;
-    double near = p[14] / (p[10] - 1.0), far = p[14] / (p[10] + 1.0), slope = 2.0 / (tw * p[0]);
+    double near = p[14] / (p[10] - 1.0), slope = 2.0 / (tw * p[0]);
     sbfx_lit_light lights[4];
     for (int i = 0; i < 4; i++) {
         double len = b->lights[i].vector[3] > 0.5f ? 1.0 : sqrt(pow(b->lights[i].vector[0], 2) +
@@ -202,7 +202,7 @@ static void cpu_render(const bench *b, const sbfx_medium_params *mp, const sbfx_
     for (int y = 0; y < th; y++)
         for (int x = 0; x < tw; x++) {
             sbfx_ref_pixel px = {{((x + 0.5) / tw * 2 - 1 + p[8]) / p[0], ((y + 0.5) / th * 2 - 1 + p[9]) / p[5], -1},
-                                 far, near, 0};
+                                 INFINITY, near, 0}; /* nothing opaque: no surface */
             double sum[3] = {0, 0, 0};
             for (int i = 0; i < PARTICLES; i++) {
                 const sbfx_view_particle *v = &b->particles[order[i]];
