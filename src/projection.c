@@ -71,6 +71,7 @@ static const char *planes_error(const sbfx_depth_model *m, char *buf, size_t siz
 static const char *depth_model(const sbfx_frame *f, sbfx_depth_model *m, char *buf, size_t size)
 {
     const float *p = f->projection;
+    *m = (sbfx_depth_model){.window_far = 1.0, .far = INFINITY};
     const char *err = shape_error(p, buf, size);
     if (err) return err;
     if ((unsigned)f->clip_depth_mode >= SBFX_CLIP_DEPTH_COUNT) {

@@ -44,12 +44,15 @@ static bool variant_open(variant_frame *vf, int v, int w, int h, const gl_fixtur
     return true;
 }
 
+static sbfx_opacity_mode module_opacity; /* 0: the default (spherical) */
+
 static sbfx *module_at(gl_fixture *f, const char *scene_path, double t, sbfx_upsample upsample)
 {
     sbfx_scene *scene = NULL;
     char err[512];
     if (scene_path) CHECK(sbfx_scene_load(scene_path, &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
-    sbfx *fx = fixture_module(f, (sbfx_desc){.scene = scene, .ignore_timeline = true, .upsample = upsample});
+    sbfx *fx = fixture_module(f, (sbfx_desc){.scene = scene, .ignore_timeline = true, .upsample = upsample,
+                                                 .opacity = module_opacity});
     sbfx_scene_free(scene);
     sbfx_trigger(fx, "explosion", (const float[3]){0, 0, 0});
     while (sbfx_time(fx) < t - 1e-9) sbfx_update(fx, 1.0 / 60.0);
@@ -156,29 +159,31 @@ CHECK_TEST(post_effects_agree_across_projections)
     projections_agree("scenes/post.cfg", times, 1, SBFX_UPSAMPLE_BILINEAR);
 }
 
-/* ---- off-axis: the right half of a symmetric frame twice as wide ---------------------------- */
+/* ---- off-axis: the top-right quarter of a symmetric frame twice as wide and high ------------- */
 
-CHECK_TEST(off_axis_frustum_matches_wide_frame)
+/* The spherical billboards and the exact perspective ray both rebuild the ray from [8], [9]. */
+static void off_axis(sbfx_opacity_mode opacity)
 {
+    module_opacity = opacity;
     gl_fixture f;
-    fixture_open(&f, 2 * W, H);
+    fixture_open(&f, 2 * W, 2 * H);
     variant_frame wide, half;
-    variant_open(&wide, FINITE, 2 * W, H, &f);
+    variant_open(&wide, FINITE, 2 * W, 2 * H, &f);
     variant_open(&half, FINITE, W, H, &f);
     float unused[16];
-    test_scene_orbit_camera(0.5, 2.0f * W / H, wide.frame.view, unused);
+    test_scene_orbit_camera(0.5, (float)W / H, wide.frame.view, unused);
     memcpy(half.frame.view, wide.frame.view, sizeof(wide.frame.view));
-    float top = NEAR * tanf(FOV * 0.5f), right = top * 2.0f * W / H;
+    float top = NEAR * tanf(FOV * 0.5f), right = top * (float)W / H;
     sbfx_frustum(wide.frame.projection, -right, right, -top, top, NEAR, 200.0f);
-    sbfx_frustum(half.frame.projection, 0.0f, right, -top, top, NEAR, 200.0f); /* p[8] = 1 */
-    half.frame.projection[9] = wide.frame.projection[9]; /* both 0: a horizontal split */
-    CHECK(half.frame.projection[8] == 1.0f && half.frame.projection[10] == wide.frame.projection[10]);
+    sbfx_frustum(half.frame.projection, 0.0f, right, 0.0f, top, NEAR, 200.0f); /* p[8] = p[9] = 1 */
+    CHECK(half.frame.projection[8] == 1.0f && half.frame.projection[9] == 1.0f &&
+          half.frame.projection[10] == wide.frame.projection[10]);
     CHECK(test_scene_draw(&wide.scene, wide.frame.view, wide.frame.projection) == 0);
-    /* the off-axis host's opaque scene is the wide one's right half (its own raster would round
+    /* the off-axis host's opaque scene is the wide one's quarter (its own raster would round
      * triangle edges differently; what is compared is sbfx) */
     glBindFramebuffer(GL_READ_FRAMEBUFFER, wide.scene.framebuffer);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, half.scene.framebuffer);
-    glBlitFramebuffer(W, 0, 2 * W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glBlitFramebuffer(W, H, 2 * W, 2 * H, 0, 0, W, H, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
     GLuint half_out_tex, half_out;
     glGenTextures(1, &half_out_tex);
     glBindTexture(GL_TEXTURE_2D, half_out_tex);
@@ -186,7 +191,7 @@ CHECK_TEST(off_axis_frustum_matches_wide_frame)
     glGenFramebuffers(1, &half_out);
     glBindFramebuffer(GL_FRAMEBUFFER, half_out);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, half_out_tex, 0);
-    static uint8_t wide_image[2 * W * H * 4], half_image[W * H * 4], wide_right[W * H * 4];
+    static uint8_t wide_image[4 * W * H * 4], half_image[W * H * 4], wide_right[W * H * 4];
     sbfx *fx = module_at(&f, NULL, 0.5, SBFX_UPSAMPLE_NEAREST_DEPTH);
     render_over(wide.scene.framebuffer, f.out_fbo, fx, &wide.frame, wide_image);
     sbfx_destroy(fx);
@@ -196,16 +201,23 @@ CHECK_TEST(off_axis_frustum_matches_wide_frame)
     sbfx_stats(fx, &c);
     CHECK(c.passes == 3, "the off-axis frame drew %d passes", c.passes);
     sbfx_destroy(fx);
-    /* the first columns' upsampling reads the texel left of the seam in the wide frame; the
-     * off-axis frame ends there (clamped): compared from the first column whose footprint is inside */
+    /* the first columns and rows upsample from texels beyond the seams in the wide frame; the
+     * off-axis frame ends there (clamped): compared where the footprint is inside */
     const int border = 2; /* divisor / 2 */
     for (int y = 0; y < H; y++) {
-        memcpy(&wide_right[4 * y * W], &wide_image[4 * (y * 2 * W + W)], 4 * W);
-        for (int x = 0; x < border; x++) memcpy(&half_image[4 * (y * W + x)], &wide_right[4 * (y * W + x)], 4);
+        memcpy(&wide_right[4 * y * W], &wide_image[4 * ((y + H) * 2 * W + W)], 4 * W);
+        for (int x = 0; x < W; x++)
+            if (x < border || y < border) memcpy(&half_image[4 * (y * W + x)], &wide_right[4 * (y * W + x)], 4);
     }
     int differing, worst = max_level_difference(wide_right, half_image, sizeof(half_image), &differing);
-    printf("# off-axis (projection[8] = 1) vs the right half of the symmetric frame: max %d levels, %d values differ\n",
-           worst, differing);
+    static uint8_t scene_only[W * H * 4];
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, half.scene.framebuffer);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, scene_only);
+    int covered, unused_worst = max_level_difference(scene_only, half_image, sizeof(half_image), &covered);
+    (void)unused_worst;
+    CHECK(covered > 1000, "the explosion hardly shows in the off-axis frame (%d values)", covered);
+    printf("# off-axis (projection[8] = [9] = 1), %s opacity, vs the quarter of the symmetric frame: max %d levels, "
+           "%d values differ\n", opacity == SBFX_OPACITY_EXACT ? "exact" : "spherical", worst, differing);
     CHECK(worst <= 1, "off-axis frame differs by %d levels", worst);
     glDeleteFramebuffers(1, &half_out);
     glDeleteTextures(1, &half_out_tex);
@@ -213,6 +225,9 @@ CHECK_TEST(off_axis_frustum_matches_wide_frame)
     test_scene_destroy(&half.scene);
     fixture_close(&f);
 }
+
+CHECK_TEST(off_axis_frustum_matches_wide_frame) { off_axis(SBFX_OPACITY_SPHERICAL); }
+CHECK_TEST(off_axis_exact_ray_matches_wide_frame) { off_axis(SBFX_OPACITY_EXACT); }
 
 /* ---- malformed projections ------------------------------------------------------------------ */
 
