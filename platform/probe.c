@@ -11,6 +11,7 @@
 #include <string.h>
 #include "egl_headless.h"
 #include "internal.h"
+#include "reference.h"
 
 typedef struct probe {
     sbfx *by_mode[SBFX_OPACITY_COUNT];
