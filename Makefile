@@ -79,8 +79,11 @@ all: lib $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(BUILD)/sbfx.pc
 lib: $(BUILD)/libsbfx.a $(SO_LINKS) $(BUILD)/libsbfx_ref.a
 
 # Every compile waits for this step (order-only: it never makes anything out of date).
+# DEPS=none skips it (a toolchain and sysroot that do not come from Debian packages).
 deps:
+ifneq ($(DEPS),none)
 	@tools/deps.sh $(DEPS)
+endif
 
 $(BUILD)/tools/embed_shaders: tools/embed_shaders.c | deps
 	@mkdir -p $(@D)
@@ -285,10 +288,10 @@ test-vm:
 	@BUILD=$(BUILD) tests/vm/run.sh
 
 # Cross build for a board (boards/rk3588.mk: Debian's aarch64 toolchain and arm64 multiarch
-# -dev packages) into build/rk3588/, and a check that what it linked is AArch64 code.
+# -dev packages, which its deps step installs or names) into build/rk3588/, and a check that
+# what it linked is AArch64 code.
 CROSS_BOARD ?= rk3588
 cross-check:
-	@tools/deps.sh cross-arm64
 	@$(MAKE) --no-print-directory BOARD=$(CROSS_BOARD) all
 	@for f in build/$(CROSS_BOARD)/sbfx-play build/$(CROSS_BOARD)/sbfx-probe build/$(CROSS_BOARD)/libsbfx.so; do \
 		readelf -h $$f | grep -q 'Machine:.*AArch64' || { echo "cross-check: $$f is not AArch64" >&2; exit 1; }; \

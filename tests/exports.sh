@@ -30,10 +30,13 @@ header_functions() {
         grep -oE '[A-Za-z_][A-Za-z0-9_]* \([^*]' | sed 's/ (.$//' | sort -u
 }
 
-# library_symbols: the defined dynamic symbols of the .so, less the three the linker defines in
-# every shared object.
+# library_symbols: the functions and data the .so defines for others. The symbols the linker
+# adds to every shared object (_edata, _end, __bss_start, and more on some targets) have no
+# type and are left out.
 library_symbols() {
-    nm -D --defined-only "$so" | awk '{print $3}' | grep -vxE '_edata|_end|__bss_start' | sort -u
+    readelf --dyn-syms -W "$so" |
+        awk '$7 != "UND" && $4 ~ /^(FUNC|OBJECT|TLS|IFUNC|COMMON)$/ { sub(/@.*/, "", $8); print $8 }' |
+        sort -u
 }
 
 if [ ! -f "$so" ]; then
@@ -50,8 +53,8 @@ else
     not_ok header "no function found in src/sbfx.h"
 fi
 
-missing=$(comm -23 "$tmp/header" "$tmp/library" | tr '\n' ' ')
-extra=$(comm -13 "$tmp/header" "$tmp/library" | tr '\n' ' ')
+missing=$(comm -23 "$tmp/header" "$tmp/library" | tr '\n' ' ' | sed 's/ $//')
+extra=$(comm -13 "$tmp/header" "$tmp/library" | tr '\n' ' ' | sed 's/ $//')
 if [ -z "$missing" ]; then
     ok "every-declared-function-exported"
 else
@@ -82,7 +85,7 @@ else
 fi
 
 # src/ knows only GLES 3.0 and libc (+ lcms2, libconfig): no EGL, DRM, GBM, libpng, libgpiod
-needed=$(readelf -d "$so" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | tr '\n' ' ')
+needed=$(readelf -d "$so" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | tr '\n' ' ' | sed 's/ $//')
 unexpected=$(printf '%s\n' $needed | grep -vE '^lib(GLESv2|lcms2|config|m|c)\.so\.[0-9]+$' | tr '\n' ' ')
 if [ -z "$unexpected" ]; then
     ok "needed-libraries ($needed)"
