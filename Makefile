@@ -3,16 +3,26 @@
 #   make demo         render the built-in explosion headless into build/demo/
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, then ASan+UBSan
 #   make bench        timings into build/bench/
-#   make install      PREFIX=/usr/local DESTDIR=
+#   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR); make uninstall
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
 #   make test-vm      real-kernel tests in a qemu VM (vkms, vivid, gpio-sim; tests/vm/)
+# Every build first checks the Debian packages it needs (tools/deps.sh $(DEPS): as root it
+# installs what is missing, otherwise it names the apt-get line and stops).
 PREFIX ?= /usr/local
 DESTDIR ?=
+LIBDIR ?= $(PREFIX)/lib
+INCLUDEDIR ?= $(PREFIX)/include
+BINDIR ?= $(PREFIX)/bin
 BUILD ?= build
 CC ?= cc
 PKG_CONFIG ?= pkg-config
+# The library's version: the minor grows when a function is added to src/sbfx.h, the major
+# (the soname's number) when a signature or a public struct's layout changes.
 VERSION := 0.1.0
+SOVERSION := $(firstword $(subst ., ,$(VERSION)))
+# tools/deps.sh's package set for this build (a board's .mk names its own)
+DEPS := build
 
 ifneq ($(BOARD),)
 include boards/$(BOARD).mk
@@ -22,6 +32,15 @@ endif
 SRC_PKGS := glesv2 lcms2 libconfig
 PLATFORM_PKGS := egl glesv2 libpng libdrm gbm libgpiod
 
+# pkg-config is asked when a recipe first needs the answer, not when make reads this file: on a
+# fresh machine the dependency step runs first and pkg-config never complains about packages
+# it is about to install. $(call pkg_config,VAR,ARGS) asks once and keeps the answer in VAR.
+pkg_config = $(eval $1 := $$(shell $(PKG_CONFIG) $2))$($1)
+SRC_PKG_CFLAGS = $(call pkg_config,SRC_PKG_CFLAGS,--cflags $(SRC_PKGS))
+SRC_PKG_LIBS = $(call pkg_config,SRC_PKG_LIBS,--libs $(SRC_PKGS))
+PLATFORM_PKG_CFLAGS = $(call pkg_config,PLATFORM_PKG_CFLAGS,--cflags $(PLATFORM_PKGS))
+PLATFORM_PKG_LIBS = $(call pkg_config,PLATFORM_PKG_LIBS,--libs $(PLATFORM_PKGS))
+
 WARN := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Wno-unused-parameter
 OPT ?= -O2 -g
 CFLAGS ?=
@@ -30,30 +49,43 @@ ifeq ($(SANITIZE),1)
 OPT := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined
 endif
 BASE_CFLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $(OPT) $(WARN) -fPIC -MMD -MP
-SRC_CFLAGS := $(BASE_CFLAGS) $(shell $(PKG_CONFIG) --cflags $(SRC_PKGS)) -Isrc $(CFLAGS)
-SRC_LIBS := $(shell $(PKG_CONFIG) --libs $(SRC_PKGS)) -lm
-PLATFORM_CFLAGS := $(BASE_CFLAGS) $(shell $(PKG_CONFIG) --cflags $(PLATFORM_PKGS)) -Isrc -Iplatform $(CFLAGS)
-PLATFORM_LIBS := $(shell $(PKG_CONFIG) --libs $(PLATFORM_PKGS)) $(SRC_LIBS)
+SRC_CFLAGS = $(BASE_CFLAGS) $(SRC_PKG_CFLAGS) -Isrc $(CFLAGS)
+SRC_LIBS = $(SRC_PKG_LIBS) -lm
+PLATFORM_CFLAGS = $(BASE_CFLAGS) $(PLATFORM_PKG_CFLAGS) -Isrc -Iplatform $(CFLAGS)
+PLATFORM_LIBS = $(PLATFORM_PKG_LIBS) $(SRC_LIBS)
 comma := ,
 LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined)
 
+# The runtime library: src/ and the embedded shaders. Only what src/sbfx.h declares (SBFX_API)
+# is exported from the .so; the rest is hidden, and what no public function reaches is dropped.
 SRC := $(wildcard src/*.c)
 SHADERS := $(sort $(wildcard shaders_es/*.vert shaders_es/*.frag))
 LIB_OBJ := $(SRC:src/%.c=$(BUILD)/obj/src/%.o) $(BUILD)/obj/gen/shaders_es.o
+LIB_CFLAGS := -fvisibility=hidden -ffunction-sections -fdata-sections
+SONAME := libsbfx.so.$(SOVERSION)
+SO_LINKS := $(BUILD)/$(SONAME) $(BUILD)/libsbfx.so
+# The CPU reference in double precision (ref/, libsbfx_ref.a): tests, the probe and the bench
+# link it before the runtime library, whose table math it calls.
+REF_OBJ := $(patsubst ref/%.c,$(BUILD)/obj/ref/%.o,$(wildcard ref/*.c))
+REF_LIBS := $(BUILD)/libsbfx_ref.a $(BUILD)/libsbfx.a
 PLATFORM_COMMON := egl_headless png_io test_scene gl_check host_depth
 PLATFORM_COMMON_OBJ := $(PLATFORM_COMMON:%=$(BUILD)/obj/platform/%.o)
 
 UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/unit/%,$(wildcard tests/unit/*.c))
 GL_TESTS := $(patsubst tests/gl/%.c,$(BUILD)/tests/gl/%,$(wildcard tests/gl/*.c))
 
-.PHONY: all deps lib test test-unit test-gl test-asan demo bench install clean
+.PHONY: all deps lib test test-unit test-gl test-asan demo bench install uninstall clean
 all: lib $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(BUILD)/sbfx.pc
-lib: $(BUILD)/libsbfx.a $(BUILD)/libsbfx.so
+lib: $(BUILD)/libsbfx.a $(SO_LINKS) $(BUILD)/libsbfx_ref.a
 
+# Every compile waits for this step (order-only: it never makes anything out of date).
+# DEPS=none skips it (a toolchain and sysroot that do not come from Debian packages).
 deps:
-	@tools/deps.sh build
+ifneq ($(DEPS),none)
+	@tools/deps.sh $(DEPS)
+endif
 
-$(BUILD)/tools/embed_shaders: tools/embed_shaders.c
+$(BUILD)/tools/embed_shaders: tools/embed_shaders.c | deps
 	@mkdir -p $(@D)
 	$(HOSTCC) -O1 -o $@ $<
 HOSTCC ?= cc
@@ -62,15 +94,19 @@ $(BUILD)/gen/shaders_es.c: $(SHADERS) $(BUILD)/tools/embed_shaders
 	@mkdir -p $(@D)
 	$(BUILD)/tools/embed_shaders $@ $(SHADERS)
 
-$(BUILD)/obj/gen/shaders_es.o: $(BUILD)/gen/shaders_es.c
+$(BUILD)/obj/gen/shaders_es.o: $(BUILD)/gen/shaders_es.c | deps
 	@mkdir -p $(@D)
-	$(CC) $(SRC_CFLAGS) -c -o $@ $<
+	$(CC) $(SRC_CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
 
-$(BUILD)/obj/src/%.o: src/%.c
+$(BUILD)/obj/src/%.o: src/%.c | deps
 	@mkdir -p $(@D)
-	$(CC) $(SRC_CFLAGS) -c -o $@ $<
+	$(CC) $(SRC_CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
 
-$(BUILD)/obj/platform/%.o: platform/%.c
+$(BUILD)/obj/ref/%.o: ref/%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(SRC_CFLAGS) -Iref -c -o $@ $<
+
+$(BUILD)/obj/platform/%.o: platform/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ $<
 
@@ -78,8 +114,20 @@ $(BUILD)/libsbfx.a: $(LIB_OBJ)
 	@rm -f $@
 	$(AR) rcs $@ $^
 
-$(BUILD)/libsbfx.so: $(LIB_OBJ)
-	$(CC) -shared -Wl,-soname,libsbfx.so.0 $(LDSAN) -o $@ $^ $(SRC_LIBS)
+$(BUILD)/libsbfx_ref.a: $(REF_OBJ)
+	@rm -f $@
+	$(AR) rcs $@ $^
+
+# -z defs: every symbol the library needs comes from a library it names (not under ASan, whose
+# runtime the executable brings).
+$(BUILD)/libsbfx.so.$(VERSION): $(LIB_OBJ)
+	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--gc-sections $(if $(LDSAN),,-Wl,-z,defs) $(LDSAN) \
+		-o $@ $^ $(SRC_LIBS)
+
+$(BUILD)/$(SONAME): $(BUILD)/libsbfx.so.$(VERSION)
+	ln -sf $(<F) $@
+$(BUILD)/libsbfx.so: $(BUILD)/$(SONAME)
+	ln -sf $(<F) $@
 
 # sbfx-play: the player, its displays (headless, DRM/KMS), camera and GPIO inputs (platform/)
 PLAYER_SRC := player player_args player_usage player_inputs player_loop board luma live_detail \
@@ -89,23 +137,28 @@ PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o)
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
-$(BUILD)/sbfx-probe: $(BUILD)/obj/platform/probe.o $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+$(BUILD)/obj/platform/probe.o: PLATFORM_CFLAGS += -Iref
+$(BUILD)/sbfx-probe: $(BUILD)/obj/platform/probe.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
-# rewritten on every run: it carries PREFIX, which may differ between "make" and "make install"
-$(BUILD)/sbfx.pc: Makefile FORCE
+# sbfx.pc: sbfx.pc.in with the install directories. build/sbfx.pc is rewritten on every run, as
+# they may differ between "make" and "make install", which writes its own.
+pc_from_template = sed -e 's|@PREFIX@|$(PREFIX)|' \
+	-e 's|@LIBDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(LIBDIR))|' \
+	-e 's|@INCLUDEDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(INCLUDEDIR))|' \
+	-e 's|@VERSION@|$(VERSION)|' -e 's|@REQUIRES_PRIVATE@|$(SRC_PKGS)|' sbfx.pc.in > $1
+$(BUILD)/sbfx.pc: sbfx.pc.in FORCE
 	@mkdir -p $(@D)
-	@printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: sbfx\nDescription: volumetric particle effects (spherical billboards) on OpenGL ES 3.0\nVersion: %s\nRequires.private: %s\nLibs: -L$${libdir} -lsbfx\nLibs.private: -lm\nCflags: -I$${includedir}\n' \
-		'$(PREFIX)' '$(VERSION)' '$(SRC_PKGS)' > $@
+	@$(call pc_from_template,$@)
 
 # ---- tests -------------------------------------------------------------------------------
-$(BUILD)/tests/unit/%: tests/unit/%.c $(BUILD)/libsbfx.a tests/check.h
+$(BUILD)/tests/unit/%: tests/unit/%.c $(REF_LIBS) tests/check.h
 	@mkdir -p $(@D)
-	$(CC) $(SRC_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/libsbfx.a $(SRC_LIBS)
+	$(CC) $(SRC_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(REF_LIBS) $(SRC_LIBS)
 
-$(BUILD)/tests/gl/%: tests/gl/%.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a tests/check.h
+$(BUILD)/tests/gl/%: tests/gl/%.c $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
 test-unit: $(UNIT_TESTS)
 test-gl: $(GL_TESTS) $(BUILD)/sbfx-play $(BUILD)/sbfx-probe
@@ -124,14 +177,25 @@ demo:
 bench: all
 	@tests/bench/run.sh $(BUILD)
 
+# The header, both libraries (the .so as libsbfx.so.VERSION with its soname and development
+# links), sbfx.pc and the two programs; ldconfig when it is the live system. Not the CPU
+# reference (libsbfx_ref.a): tests only.
 install: all
-	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig
-	install -m 644 $(BUILD)/libsbfx.a $(DESTDIR)$(PREFIX)/lib/
-	install -m 755 $(BUILD)/libsbfx.so $(DESTDIR)$(PREFIX)/lib/libsbfx.so.0
-	ln -sf libsbfx.so.0 $(DESTDIR)$(PREFIX)/lib/libsbfx.so
-	install -m 644 src/sbfx.h $(DESTDIR)$(PREFIX)/include/
-	install -m 644 $(BUILD)/sbfx.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
-	install -m 755 $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(DESTDIR)$(PREFIX)/bin/
+	install -d $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(INCLUDEDIR) $(DESTDIR)$(BINDIR)
+	install -m 644 src/sbfx.h $(DESTDIR)$(INCLUDEDIR)/
+	install -m 644 $(BUILD)/libsbfx.a $(DESTDIR)$(LIBDIR)/
+	install -m 755 $(BUILD)/libsbfx.so.$(VERSION) $(DESTDIR)$(LIBDIR)/
+	ln -sf libsbfx.so.$(VERSION) $(DESTDIR)$(LIBDIR)/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libsbfx.so
+	$(call pc_from_template,$(DESTDIR)$(LIBDIR)/pkgconfig/sbfx.pc)
+	install -m 755 $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(DESTDIR)$(BINDIR)/
+	@if [ -z "$(DESTDIR)" ] && [ "$$(id -u)" -eq 0 ]; then ldconfig; fi
+
+uninstall:
+	rm -f $(DESTDIR)$(INCLUDEDIR)/sbfx.h $(DESTDIR)$(LIBDIR)/libsbfx.a \
+		$(DESTDIR)$(LIBDIR)/libsbfx.so.$(VERSION) $(DESTDIR)$(LIBDIR)/$(SONAME) \
+		$(DESTDIR)$(LIBDIR)/libsbfx.so $(DESTDIR)$(LIBDIR)/pkgconfig/sbfx.pc \
+		$(DESTDIR)$(BINDIR)/sbfx-play $(DESTDIR)$(BINDIR)/sbfx-probe
 
 clean:
 	rm -rf build
@@ -163,11 +227,11 @@ BENCH_SRC := $(wildcard tests/bench/*.c)
 BENCH_OBJ := $(BENCH_SRC:tests/bench/%.c=$(BUILD)/obj/bench/%.o)
 BENCH_WRAP := -Wl,--wrap=glBindFramebuffer -Wl,--wrap=glDrawArraysInstanced
 
-$(BUILD)/obj/bench/%.o: tests/bench/%.c
+$(BUILD)/obj/bench/%.o: tests/bench/%.c | deps
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Itests/bench -c -o $@ $<
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests/bench -c -o $@ $<
 
-$(BUILD)/bench/bench_accuracy: $(BENCH_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+$(BUILD)/bench/bench_accuracy: $(BENCH_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	@mkdir -p $(@D)
 	$(CC) $(LDSAN) $(BENCH_WRAP) -o $@ $^ $(PLATFORM_LIBS)
 
@@ -177,9 +241,9 @@ bench: $(BUILD)/bench/bench_accuracy
 # A program of its own (tests/bench/lighting/, outside the accuracy bench's tests/bench/*.c):
 # step count vs time and error of the lit-smoke ray march, lit vs phase cost. Writes
 # $(BUILD)/bench/lighting.csv when run (tests/bench/run.sh).
-$(BUILD)/bench/bench_lighting: tests/bench/lighting/bench_lighting.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+$(BUILD)/bench/bench_lighting: tests/bench/lighting/bench_lighting.c $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+	$(CC) $(PLATFORM_CFLAGS) -Iref $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
 bench: $(BUILD)/bench/bench_lighting
 
@@ -191,9 +255,9 @@ $(BUILD)/bench/bench_scenes: tests/bench/scenes/bench_scenes.c $(PLATFORM_COMMON
 bench: $(BUILD)/bench/bench_scenes
 
 # ---- host contract bench (issue #10): GL state save/restore cost, far-field depth precision ----
-$(BUILD)/bench/bench_state: tests/bench/state/bench_state.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+$(BUILD)/bench/bench_state: tests/bench/state/bench_state.c $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -o $@ $< $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -o $@ $< $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
 bench: $(BUILD)/bench/bench_state
 
@@ -231,10 +295,10 @@ test-vm:
 	@BUILD=$(BUILD) tests/vm/run.sh
 
 # Cross build for a board (boards/rk3588.mk: Debian's aarch64 toolchain and arm64 multiarch
-# -dev packages) into build/rk3588/, and a check that what it linked is AArch64 code.
+# -dev packages, which its deps step installs or names) into build/rk3588/, and a check that
+# what it linked is AArch64 code.
 CROSS_BOARD ?= rk3588
 cross-check:
-	@tools/deps.sh cross-arm64
 	@$(MAKE) --no-print-directory BOARD=$(CROSS_BOARD) all
 	@for f in build/$(CROSS_BOARD)/sbfx-play build/$(CROSS_BOARD)/sbfx-probe build/$(CROSS_BOARD)/libsbfx.so; do \
 		readelf -h $$f | grep -q 'Machine:.*AArch64' || { echo "cross-check: $$f is not AArch64" >&2; exit 1; }; \

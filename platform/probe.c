@@ -15,6 +15,7 @@
 #include "egl_headless.h"
 #include "host_depth.h"
 #include "internal.h"
+#include "reference.h"
 
 typedef struct probe {
     sbfx *by_mode[SBFX_OPACITY_COUNT];

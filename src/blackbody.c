@@ -10,7 +10,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
-#include "reference.h"
+#include "tables.h"
 
 /* ---- loading the colour-matching functions ------------------------------------------------ */
 

@@ -11,7 +11,7 @@
  * (0, 1): mean 0.5, standard deviation about 0.19, no hard clipping (a clamp would leave flat
  * plateaus in the perturbation). Deterministic from the seed; no allocation but the output. */
 #include <math.h>
-#include "reference.h"
+#include "tables.h"
 
 #define MAX_OCTAVES 5
 #define BASE_CELLS_XY 4 /* coarsest octave: 4 features across the image */

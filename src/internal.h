@@ -5,7 +5,7 @@
 #include <GLES3/gl3.h>
 #include <stdarg.h>
 #include "sbfx.h"
-#include "reference.h"
+#include "tables.h"
 
 #define ARRAY_SIZE(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -28,7 +28,7 @@ typedef struct sbfx_medium_params {
     bool live_detail;      /* detail source "v4l2": slices come from sbfx_detail_push_slice */
     float heat_strength;   /* heat: largest screen offset of the shimmer, in UV units */
     float emission_scale;  /* fire: radiance multiplier on the normalised black-body table */
-    /* lit-smoke seed (lighting = "lit"; lit_ref.h): per-pixel lit instead of the phase model */
+    /* lit-smoke seed (lighting = "lit"; ref/lit_ref.h): per-pixel lit instead of the phase model */
     bool lit;
     float wrap;            /* wrap-around coefficient w (0.6 in the seed) */
     float translucency;    /* strength of the back-lighting term */

@@ -1,9 +1,8 @@
-/* Lookup tables and the detail volume: computed on the CPU in double (reference.h), stored as
+/* Lookup tables and the detail volume: computed on the CPU in double (tables.h), stored as
  * half floats (_Float16 rounds to nearest even), uploaded once at load — and only for media
  * the loaded effects use. */
 #include <stdlib.h>
 #include <string.h>
-#include "lit_ref.h"
 #include "module.h"
 
 static GLuint make_texture(sbfx *fx, GLenum target, GLenum filter, GLenum wrap)
@@ -124,7 +123,7 @@ static sbfx_result upload_detail(sbfx *fx)
     return r;
 }
 
-/* A lit medium's smoke textures (lit_ref.h): 2 RGBA8 layers per variant in one array, so a
+/* A lit medium's smoke textures (tables.h): 2 RGBA8 layers per variant in one array, so a
  * particle picks its variant by layer, all under one binding. Made at load from the seed. */
 static sbfx_result upload_smoke(sbfx *fx, sbfx_medium m)
 {

@@ -144,7 +144,7 @@ typedef struct sbfx_gl {
     GLuint depth_program, composite_program, lut_program;
     sbfx_program particle[SBFX_MEDIUM_COUNT];
     GLuint blackbody_texture, phase_texture, detail_texture;
-    GLuint smoke_texture[SBFX_MEDIUM_COUNT]; /* 2D arrays, lit media only (lit_ref.h layout) */
+    GLuint smoke_texture[SBFX_MEDIUM_COUNT]; /* 2D arrays, lit media only (tables.h layout) */
     GLuint depth_sampler, color_sampler;     /* how the host's depth and colour are read */
     /* targets, (re)made when the output size changes */
     sbfx_rt particles, low_depth;

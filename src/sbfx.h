@@ -14,6 +14,16 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* Marks what libsbfx.so exports: the library is built with -fvisibility=hidden, so a function
+ * of this header without SBFX_API would be missing from it (tests/exports.sh checks both ways). */
+#ifndef SBFX_API
+#if defined(__GNUC__) && __GNUC__ >= 4
+#define SBFX_API __attribute__((visibility("default")))
+#else
+#define SBFX_API
+#endif
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -30,7 +40,7 @@ typedef enum sbfx_result {
     SBFX_ERR_UNKNOWN_EFFECT = -8,
 } sbfx_result;
 
-const char *sbfx_result_string(sbfx_result result);
+SBFX_API const char *sbfx_result_string(sbfx_result result);
 
 typedef enum sbfx_log_level { SBFX_LOG_ERROR, SBFX_LOG_WARN, SBFX_LOG_INFO } sbfx_log_level;
 typedef void (*sbfx_log_fn)(sbfx_log_level level, const char *message, void *user);
@@ -77,11 +87,12 @@ typedef enum sbfx_medium { SBFX_DUST, SBFX_SMOKE, SBFX_FIRE, SBFX_HEAT, SBFX_MED
  * behind; errors name the file and line. */
 typedef struct sbfx_scene sbfx_scene;
 
-sbfx_result sbfx_scene_load(const char *path, sbfx_scene **out, char *err, size_t err_size);
+SBFX_API sbfx_result sbfx_scene_load(const char *path, sbfx_scene **out, char *err,
+                                     size_t err_size);
 /* The same from text in memory; `name` stands for the file name in messages. */
-sbfx_result sbfx_scene_parse(const char *text, const char *name, sbfx_scene **out, char *err,
-                             size_t err_size);
-void sbfx_scene_free(sbfx_scene *scene);
+SBFX_API sbfx_result sbfx_scene_parse(const char *text, const char *name, sbfx_scene **out,
+                                      char *err, size_t err_size);
+SBFX_API void sbfx_scene_free(sbfx_scene *scene);
 
 typedef enum sbfx_edge { SBFX_EDGE_RISING = 1, SBFX_EDGE_FALLING = 2, SBFX_EDGE_BOTH = 3 } sbfx_edge;
 
@@ -96,7 +107,7 @@ typedef struct sbfx_gpio_trigger {
 } sbfx_gpio_trigger;
 
 /* The scene's GPIO triggers; returns their count and sets *out to an array owned by the scene. */
-int sbfx_scene_gpio_triggers(const sbfx_scene *scene, const sbfx_gpio_trigger **out);
+SBFX_API int sbfx_scene_gpio_triggers(const sbfx_scene *scene, const sbfx_gpio_trigger **out);
 
 typedef struct sbfx_desc {
     int target_divisor;              /* particle target = output / divisor per axis: 1,2,4,8 (4) */
@@ -176,40 +187,41 @@ typedef struct sbfx_counters {
 
 typedef struct sbfx sbfx;
 
-sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out);
-void sbfx_destroy(sbfx *fx);
-const char *sbfx_last_error(const sbfx *fx);
+SBFX_API sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out);
+SBFX_API void sbfx_destroy(sbfx *fx);
+SBFX_API const char *sbfx_last_error(const sbfx *fx);
 
 /* Starts an instance of a named effect at a world position now (at the next simulation step).
  * Without a scene the one effect is "explosion". When the pool cannot hold the whole instance
  * the trigger is refused (SBFX_ERR_POOL_FULL, counted in triggers_refused); live instances
  * are never cut short. */
-sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float position[3]);
+SBFX_API sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float position[3]);
 /* Schedules a trigger at simulation time `seconds` (since sbfx_create); it fires at the first
  * simulation step at or after that time, so results do not depend on frame times. */
-sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds, const float position[3]);
+SBFX_API sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds,
+                                   const float position[3]);
 /* True when the module has an effect of that name (the scene's, or the built-in "explosion"):
  * lets a host check at start the names it will trigger later (GPIO lines, remote commands). */
-bool sbfx_has_effect(const sbfx *fx, const char *effect);
+SBFX_API bool sbfx_has_effect(const sbfx *fx, const char *effect);
 /* Simulation time in seconds since sbfx_create. */
-double sbfx_time(const sbfx *fx);
+SBFX_API double sbfx_time(const sbfx *fx);
 /* Advances the simulation by dt seconds in fixed steps (an accumulator keeps the remainder). */
-sbfx_result sbfx_update(sbfx *fx, double dt);
-sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);
-void sbfx_stats(const sbfx *fx, sbfx_counters *out);
+SBFX_API sbfx_result sbfx_update(sbfx *fx, double dt);
+SBFX_API sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);
+SBFX_API void sbfx_stats(const sbfx *fx, sbfx_counters *out);
 
 /* Live detail images (e.g. from a V4L2 camera). The detail volume is size x size x frames
  * half floats in [0,1] whose third axis is a time ring; each call writes the next slice
  * (size * size IEEE half-float bit patterns, row 0 first) and advances the ring. */
-void sbfx_detail_dimensions(const sbfx *fx, int *size, int *frames);
+SBFX_API void sbfx_detail_dimensions(const sbfx *fx, int *size, int *frames);
 /* True when a medium of the loaded scene asks for detail source "v4l2". */
-bool sbfx_wants_live_detail(const sbfx *fx);
-sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int size);
+SBFX_API bool sbfx_wants_live_detail(const sbfx *fx);
+SBFX_API sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int size);
 /* The procedural volume the module made at load (size * size * frames values in [0,1], x
  * fastest, then y, then the time ring) written into the caller's `out` of `count` floats: a host
  * whose live source went away pushes it back, slice by slice, to return to procedural detail.
  * Allocates nothing. SBFX_ERR_INVALID_ARGUMENT when count is not size * size * frames. */
-sbfx_result sbfx_detail_procedural(const sbfx *fx, float *out, size_t count);
+SBFX_API sbfx_result sbfx_detail_procedural(const sbfx *fx, float *out, size_t count);
 
 /* Helpers for hosts: column-major OpenGL matrices.
  * sbfx_perspective: symmetric frustum; far_z = INFINITY gives the infinite-far matrix
@@ -219,10 +231,13 @@ sbfx_result sbfx_detail_procedural(const sbfx *fx, float *out, size_t count);
  * far -> 0, far_z = INFINITY: 0 at infinity (projection[10] = 0, [14] = near_z) — to be used
  * with a float depth buffer cleared to 0, glDepthFunc(GL_GREATER) and
  * frame.clip_depth_mode = SBFX_CLIP_DEPTH_ZERO_TO_ONE. */
-void sbfx_perspective(float out[16], float fov_y_radians, float aspect, float near_z, float far_z);
-void sbfx_frustum(float out[16], float left, float right, float bottom, float top, float near_z, float far_z);
-void sbfx_reverse_z(float projection[16], float near_z, float far_z);
-void sbfx_look_at(float out[16], const float eye[3], const float target[3], const float up[3]);
+SBFX_API void sbfx_perspective(float out[16], float fov_y_radians, float aspect, float near_z,
+                               float far_z);
+SBFX_API void sbfx_frustum(float out[16], float left, float right, float bottom, float top,
+                           float near_z, float far_z);
+SBFX_API void sbfx_reverse_z(float projection[16], float near_z, float far_z);
+SBFX_API void sbfx_look_at(float out[16], const float eye[3], const float target[3],
+                           const float up[3]);
 
 #ifdef __cplusplus
 }

@@ -6,7 +6,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "lit_ref.h"
 #include "scene.h"
 
 typedef struct parser {

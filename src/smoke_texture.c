@@ -12,8 +12,7 @@
  * the rounded 2x2 box average of the level above, layer by layer. */
 #include <math.h>
 #include <string.h>
-#include "lit_ref.h"
-#include "reference.h"
+#include "tables.h"
 
 int sbfx_smoke_texture_levels(int size)
 {

@@ -5,7 +5,7 @@
  * times each (GPU timer query where available, else glFinish-bracketed wall time; several
  * repetitions, median with min and max; the whole frame and, separately, the particle pass
  * alone) and compares each image with the CPU reference: the `exact` model per full-resolution
- * pixel in double precision (src/reference_frame.c) composited over the same scene.
+ * pixel in double precision (ref/reference_frame.c) composited over the same scene.
  *
  *   bench_accuracy [--out DIR] [--size WxH] [--reps N] [--quick] [--match LABEL]
  *

@@ -1,9 +1,10 @@
-/* Lit smoke on the GPU against the CPU reference (src/lit_ref.c): random configurations and the
+/* Lit smoke on the GPU against the CPU reference (ref/lit_ref.c): random configurations and the
  * hard cases, the sign of the back-light, the plan (smoke textures only for lit media), mixed
  * scenes, orbiting lights and no allocation per frame. */
 #include "gl_fixture.h"
 #include "lit_ref.h"
 #include "module.h"
+#include "reference.h"
 
 #define SIZE 48
 #define CONFIGS 120

@@ -1,5 +1,6 @@
 /* The module as a host uses it: fallbacks, errors, idle frames, allocation counts, tables. */
 #include "gl_fixture.h"
+#include "reference.h"
 #include "test_scene.h"
 
 /* ---- process-wide heap-allocation counter (not under ASan, which owns malloc) ---- */

@@ -1,6 +1,7 @@
 /* GPU against the CPU reference: every opacity mode on a few hundred random configurations,
  * plus the scene-level promises (wall, moving camera, bad particles). */
 #include "gl_fixture.h"
+#include "reference.h"
 
 #define SIZE 48
 #define CONFIGS 300

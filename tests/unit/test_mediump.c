@@ -1,6 +1,6 @@
 /* The Mali case (DESIGN §2.2, issue #4): particle.frag declares its light and colour mediump —
  * phase(), in_scattered() (and its running sum), emitted() and the `light` accumulator — which a
- * Mali-class GPU runs at IEEE half precision. The CPU reference (src/reference_frame.c) emulates
+ * Mali-class GPU runs at IEEE half precision. The CPU reference (ref/reference_frame.c) emulates
  * that by rounding to _Float16 (nearest even) at exactly those points, and these tests bound how
  * far the emulated frame strays from the double reference. No GL.
  *

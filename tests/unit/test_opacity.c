@@ -1,4 +1,4 @@
-/* Unit tests of the CPU opacity reference (src/opacity_ref.c), DESIGN §2.1 and the opacity
+/* Unit tests of the CPU opacity reference (ref/opacity_ref.c), DESIGN §2.1 and the opacity
  * hard cases of §2.2. No GL. */
 #include <float.h>
 #include "check.h"

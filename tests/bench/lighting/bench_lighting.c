@@ -4,7 +4,7 @@
  * 1. A fixed arrangement of lit smoke particles (view space, four lights: points behind and in
  *    front, a sun, a backlight) is rendered for several step settings [nMin, nMax] and with the
  *    phase-function model. Each lit image (the particle target, RGBA32F) is compared with the
- *    CPU reference (src/lit_ref.c, double) composited back to front the module's way:
+ *    CPU reference (ref/lit_ref.c, double) composited back to front the module's way:
  *    - mean_abs_err, max_abs_err: against the reference with 512 steps (the march's error plus
  *      the GPU's own), premultiplied radiance over the pixels some particle covers;
  *    - gpu_cpu_err: mean against the reference at the row's own steps (the GPU's own error:
@@ -27,6 +27,7 @@
 #include "egl_headless.h"
 #include "internal.h"
 #include "lit_ref.h"
+#include "reference.h"
 #include "test_scene.h"
 
 #define WIDTH 960

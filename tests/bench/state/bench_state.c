@@ -17,6 +17,7 @@
 #include "egl_headless.h"
 #include "host_depth.h"
 #include "internal.h"
+#include "reference.h"
 #include "test_scene.h"
 
 #define W 640

@@ -1,43 +1,16 @@
-/* CPU reference of every per-fragment computation, in double precision, usable without GL.
- * Tests and the benchmark compare the GPU against these functions; the GL code builds its
- * lookup tables from them. Pure libc (+ lcms2 to read the CIE tables). */
-#ifndef SBFX_REFERENCE_H
-#define SBFX_REFERENCE_H
+/* What the module computes on the CPU, in double precision, at load: the black-body and phase
+ * tables, the detail volume, the procedural smoke textures, and the deterministic RNG of the
+ * simulation. Pure libc (+ lcms2 to read the CIE tables), no GL.
+ *
+ * The table lookups (sbfx_*_table_lookup) read a table the way the GPU does; they live beside
+ * the builders so that each table's grid is defined in one file. Only the tests and the CPU
+ * reference (ref/, which is not part of the runtime library) call them. */
+#ifndef SBFX_TABLES_H
+#define SBFX_TABLES_H
 
 #include <stddef.h>
 #include <stdint.h>
 #include "sbfx.h"
-
-/* ---- opacity (DESIGN §2.1) ------------------------------------------------------------ */
-
-/* One spherical particle in view space (camera at origin, looking down -z, so center[2] < 0
- * for a particle in front of the camera). tau is the extinction at the centre. */
-typedef struct sbfx_ref_particle {
-    double center[3];
-    double radius;
-    double tau;
-} sbfx_ref_particle;
-
-/* The pixel's situation: ray = direction through the pixel scaled so that ray[2] == -1
- * (i.e. x/(-z), y/(-z), -1); opaque_depth = distance along -z of the opaque surface (Zs);
- * near = near-plane distance; soft_scale = depth range of the soft-particle fade (soft mode). */
-typedef struct sbfx_ref_pixel {
-    double ray[3];
-    double opaque_depth;
-    double near;
-    double soft_scale;
-} sbfx_ref_pixel;
-
-/* Opacity alpha in [0,1] of one particle for one pixel, in the given mode (DEFAULT = SPHERICAL).
- * Always finite; a particle with a NaN/Inf input or radius <= 0 gives 0. */
-double sbfx_ref_opacity(sbfx_opacity_mode mode, const sbfx_ref_particle *p, const sbfx_ref_pixel *px);
-/* Optical depth (the exponent) instead of alpha; +inf never returned (clamped to 1e30). */
-double sbfx_ref_optical_depth(sbfx_opacity_mode mode, const sbfx_ref_particle *p,
-                              const sbfx_ref_pixel *px);
-/* ∫_a^b sqrt(h + u^2) du, stable as h -> 0 (h >= 0). */
-double sbfx_ref_chord_integral(double h, double a, double b);
-/* RTR soft-particle contrast curve: 0.5*(2x)^p for x<0.5 else 1-0.5*(2(1-x))^p, x clamped. */
-double sbfx_ref_soft_fade(double x, double power);
 
 /* ---- black body (DESIGN §2.3) --------------------------------------------------------- */
 
@@ -88,6 +61,39 @@ double sbfx_phase_table_lookup(const double *table, int n_cos, int n_g, double c
 /* Tileable (in x, y and t) animated fBm, size x size x frames floats in [0,1], x fastest.
  * Deterministic from seed. */
 void sbfx_detail_generate(int size, int frames, uint32_t seed, float *out);
+
+/* ---- procedural smoke textures of lit media (the lit-smoke seed's appendix) ------------ */
+
+/* Each variant is two RGBA8 layers of size x size texels, row 0 at t = 0:
+ *   layer 2v:     rgb = unit normal * 0.5 + 0.5 (tangent space), a = height
+ *   layer 2v + 1: r = brightness, g = translucency, b = 0, a = 1
+ * with a full mip chain (size a power of two, down to 1 x 1): each level is the rounded 2x2
+ * box average of the one above, made here so that the GPU and the reference (ref/lit_ref.h)
+ * sample the same texels (glGenerateMipmap's filter is the implementation's choice). Texels are
+ * stored level by level, each level layer by layer. */
+#define SBFX_SMOKE_LAYERS_PER_VARIANT 2
+#define SBFX_SMOKE_MIN_SIZE 16
+#define SBFX_SMOKE_MAX_SIZE 512
+#define SBFX_SMOKE_MAX_VARIANTS 16
+
+/* Mip levels of a size x size texture (log2(size) + 1), bytes of all texels of `variants`
+ * variants, and the float scratch the generator needs. */
+int sbfx_smoke_texture_levels(int size);
+size_t sbfx_smoke_texture_bytes(int size, int variants);
+size_t sbfx_smoke_scratch_floats(int size);
+/* Writes the texels into out (sbfx_smoke_texture_bytes) using scratch (sbfx_smoke_scratch_floats
+ * floats); allocates nothing. Deterministic from seed. Returns 0, or -1 for a size that is not a
+ * power of two in [SBFX_SMOKE_MIN_SIZE, SBFX_SMOKE_MAX_SIZE] or variants outside
+ * [1, SBFX_SMOKE_MAX_VARIANTS]. */
+int sbfx_smoke_texture_generate(int size, int variants, uint32_t seed, uint8_t *out, float *scratch);
+/* The seed the module generates a medium's texture with (desc seed, medium index). */
+uint32_t sbfx_smoke_texture_seed(uint32_t seed, int medium);
+/* Offset in bytes of a level's first texel. */
+size_t sbfx_smoke_level_offset(int size, int layers, int level);
+
+/* Limits of particle.frag's lit variant, which the scene parser enforces. */
+#define SBFX_LIT_MAX_LIGHTS 4 /* the seed's four; lit media use the frame's first four lights */
+#define SBFX_LIT_MAX_STEPS 64 /* MAX_STEPS in particle.frag */
 
 /* ---- small deterministic RNG shared by simulation, tests and tools -------------------- */
 typedef struct sbfx_rng { uint64_t state; } sbfx_rng;

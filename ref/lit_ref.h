@@ -1,7 +1,8 @@
-/* Per-pixel lit smoke (the lit-smoke seed): the procedural smoke textures made at load, and a
- * CPU reference in double precision of every lighting term and of the height-field ray march.
- * The particle shader's LIGHTING_LIT variant (shaders_es/particle.frag) computes the same
- * things in float; tests and the lighting bench compare the two. Pure libc, no GL.
+/* Per-pixel lit smoke (the lit-smoke seed): a CPU reference in double precision of sampling
+ * the procedural smoke textures (made at load, src/tables.h), of every lighting term and of the
+ * height-field ray march. The particle shader's LIGHTING_LIT variant (shaders_es/particle.frag)
+ * computes the same things in float; tests and the lighting bench compare the two. Part of
+ * libsbfx_ref.a, not of the runtime library. Pure libc, no GL.
  *
  * Texture space of a lit particle (centre c, radius r, view space; the view matrix is the
  * tangent basis, so tangent = view x, bitangent = view y, normal = view +z, toward the eye):
@@ -14,41 +15,15 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include "tables.h"
 
-/* ---- procedural smoke textures (the seed's appendix) ---------------------------------- */
-
-/* Each variant is two RGBA8 layers of size x size texels, row 0 at t = 0:
- *   layer 2v:     rgb = unit normal * 0.5 + 0.5 (tangent space), a = height
- *   layer 2v + 1: r = brightness, g = translucency, b = 0, a = 1
- * with a full mip chain (size a power of two, down to 1 x 1): each level is the rounded 2x2
- * box average of the one above, made here so that the GPU and this reference sample the same
- * texels (glGenerateMipmap's filter is the implementation's choice). Texels are stored level
- * by level, each level layer by layer. */
-#define SBFX_SMOKE_LAYERS_PER_VARIANT 2
-#define SBFX_SMOKE_MIN_SIZE 16
-#define SBFX_SMOKE_MAX_SIZE 512
-#define SBFX_SMOKE_MAX_VARIANTS 16
-
-/* Mip levels of a size x size texture (log2(size) + 1), bytes of all texels of `variants`
- * variants, and the float scratch the generator needs. */
-int sbfx_smoke_texture_levels(int size);
-size_t sbfx_smoke_texture_bytes(int size, int variants);
-size_t sbfx_smoke_scratch_floats(int size);
-/* Writes the texels into out (sbfx_smoke_texture_bytes) using scratch (sbfx_smoke_scratch_floats
- * floats); allocates nothing. Deterministic from seed. Returns 0, or -1 for a size that is not a
- * power of two in [SBFX_SMOKE_MIN_SIZE, SBFX_SMOKE_MAX_SIZE] or variants outside
- * [1, SBFX_SMOKE_MAX_VARIANTS]. */
-int sbfx_smoke_texture_generate(int size, int variants, uint32_t seed, uint8_t *out, float *scratch);
-/* The seed the module generates a medium's texture with (desc seed, medium index). */
-uint32_t sbfx_smoke_texture_seed(uint32_t seed, int medium);
+/* ---- sampling the procedural smoke textures (src/tables.h makes them) ---------------- */
 
 typedef struct sbfx_smoke_texture {
     int size, layers, levels; /* levels <= sbfx_smoke_texture_levels(size) */
     const uint8_t *texels;    /* level by level, each layers x size' x size' RGBA8 */
 } sbfx_smoke_texture;
 
-/* Offset in bytes of a level's first texel. */
-size_t sbfx_smoke_level_offset(int size, int layers, int level);
 /* Trilinear fetch as the GPU does it (LINEAR_MIPMAP_LINEAR, CLAMP_TO_EDGE, texel centres at
  * (i + 0.5)/size', lod clamped to [0, levels - 1]), channels in [0,1]. */
 void sbfx_smoke_sample(const sbfx_smoke_texture *tex, int layer, double s, double t, double lod, double rgba[4]);
@@ -89,9 +64,6 @@ double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, double lod, c
                        double height, const double to_light[3], double radius, double tau, int steps);
 
 /* ---- one fragment ---------------------------------------------------------------------- */
-
-#define SBFX_LIT_MAX_LIGHTS 4 /* the seed's four; lit media use the frame's first four lights */
-#define SBFX_LIT_MAX_STEPS 64 /* MAX_STEPS in particle.frag */
 
 typedef struct sbfx_lit_medium {
     double albedo_color[3]; /* albedo * tint */

@@ -11,7 +11,7 @@
  *     out = clamp(scene * T + C, 0, 1) * 255.
  *
  * Modelled: dust, smoke and fire with the phase-function lighting. Not modelled: heat (scene
- * displacement), lit media (lighting = "lit": src/lit_ref.h is their reference), post effects.
+ * displacement), lit media (lighting = "lit": ref/lit_ref.h is their reference), post effects.
  *
  * Precision can be switched to an emulation of the shader's mediump declarations (IEEE half,
  * _Float16, rounding to nearest even, at exactly the points the shader declares mediump), which

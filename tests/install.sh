@@ -1,0 +1,120 @@
+#!/usr/bin/env bash
+# make install as a packager does it (PREFIX=/usr into a temporary DESTDIR), then the host
+# example of README.md ("Embedding sbfx in your renderer", taken from the file so the docs
+# cannot rot) built as a user does it, with pkg-config against the installed copy: once against
+# the installed libsbfx.so, once against libsbfx.a with pkg-config --static. Both must run
+# headless and see the explosion over their own scene.
+# Usage: tests/install.sh [BUILD] (default build). Prints ok/not ok lines (tests/check.h style).
+set -u
+cd "$(dirname "$0")/.." || exit 1
+BUILD=${1:-build}
+VERSION=$(sed -n 's/^VERSION := //p' Makefile)
+SOVERSION=${VERSION%%.*}
+CC=${CC:-cc}
+
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+root=$tmp/root
+lib=$root/usr/lib
+
+failed=0
+ok() { echo "ok - install/$1"; }
+not_ok() { echo "not ok - install/$1: $2"; failed=1; }
+# the last lines of a log, on one line
+tail_of() { tail -n "${2:-5}" "$1" | tr '\n' ' ' | sed 's/ $//'; }
+
+# pkg-config for the staged copy: sbfx.pc says prefix=/usr, the sysroot puts it under $root
+pkg_sbfx() {
+    PKG_CONFIG_PATH=$lib/pkgconfig PKG_CONFIG_SYSROOT_DIR=$root pkg-config "$@" sbfx
+}
+
+# The first ```c block after the README heading.
+readme_example() {
+    awk '/^## Embedding sbfx in your renderer/ { section = 1; next }
+         section && /^## / { exit }
+         section && !inside && /^```c$/ { inside = 1; next }
+         inside && /^```$/ { exit }
+         inside { print }' README.md
+}
+
+# build_and_run NAME LINK-FLAGS...: compiles host.c, runs it; ok/not ok lines for both.
+build_and_run() {
+    local name=$1
+    shift
+    # shellcheck disable=SC2046 # word splitting of pkg-config output is intended
+    if ! $CC -std=c11 -Wall -Wextra -Werror -o "$tmp/$name" "$tmp/host.c" $(pkg_sbfx --cflags) \
+        $(pkg-config --cflags egl glesv2) "$@" $(pkg-config --libs egl glesv2) >"$tmp/$name.log" 2>&1; then
+        not_ok "$name/builds" "$(tail_of "$tmp/$name.log")"
+        return 1
+    fi
+    ok "$name/builds"
+    if LD_LIBRARY_PATH=$lib timeout 120 "$tmp/$name" >"$tmp/$name.run" 2>&1; then
+        ok "$name/runs ($(tail_of "$tmp/$name.run" 1))"
+    else
+        not_ok "$name/runs" "exit status $?: $(tail_of "$tmp/$name.run")"
+    fi
+}
+
+if make --no-print-directory BUILD="$BUILD" PREFIX=/usr DESTDIR="$root" install >"$tmp/make.log" 2>&1; then
+    ok "make-install (PREFIX=/usr DESTDIR=\$tmp)"
+else
+    not_ok make-install "$(tail_of "$tmp/make.log")"
+    exit 1
+fi
+
+# what is installed, and nothing of the reference or of the private headers
+want="usr/include/sbfx.h usr/lib/libsbfx.a usr/lib/libsbfx.so.$VERSION usr/lib/pkgconfig/sbfx.pc
+usr/bin/sbfx-play usr/bin/sbfx-probe"
+absent=""
+for f in $want; do [ -f "$root/$f" ] || absent="$absent $f"; done
+stray=$(cd "$root" && find . \( -name '*ref*' -o -name 'internal.h' -o -name 'tables.h' \) | tr '\n' ' ')
+if [ -z "$absent" ] && [ -z "$stray" ]; then
+    ok files
+else
+    not_ok files "missing:${absent:- none}; not for installing: ${stray:-none}"
+fi
+
+if [ "$(readlink "$lib/libsbfx.so")" = "libsbfx.so.$SOVERSION" ] &&
+    [ "$(readlink "$lib/libsbfx.so.$SOVERSION")" = "libsbfx.so.$VERSION" ] &&
+    readelf -d "$lib/libsbfx.so.$VERSION" | grep -q "(SONAME).*\[libsbfx.so.$SOVERSION\]"; then
+    ok "links (libsbfx.so -> libsbfx.so.$SOVERSION -> libsbfx.so.$VERSION, soname libsbfx.so.$SOVERSION)"
+else
+    not_ok links "$(ls -l "$lib"/libsbfx.so* | awk '{print $9, $10, $11}' | tr '\n' ';')"
+fi
+
+flags=$(pkg_sbfx --cflags --libs 2>&1 | sed 's/ *$//')
+if [ "$flags" = "-I$root/usr/include -L$lib -lsbfx" ] && [ "$(pkg_sbfx --modversion)" = "$VERSION" ]; then
+    ok "pkg-config (sbfx $VERSION: -I\$root/usr/include -L\$root/usr/lib -lsbfx)"
+else
+    not_ok pkg-config "pkg-config --cflags --libs sbfx gives '$flags'"
+fi
+
+readme_example >"$tmp/host.c"
+if [ "$(wc -l <"$tmp/host.c")" -lt 20 ]; then
+    not_ok readme-example "no \`\`\`c block under \"## Embedding sbfx in your renderer\" in README.md"
+    exit 1
+fi
+ok "readme-example ($(wc -l <"$tmp/host.c") lines)"
+
+# shellcheck disable=SC2046
+if build_and_run shared $(pkg_sbfx --libs); then
+    loaded=$(LD_LIBRARY_PATH=$lib ldd "$tmp/shared" | awk '/libsbfx/ {print $3}')
+    if [ "$loaded" = "$lib/libsbfx.so.$SOVERSION" ]; then
+        ok "shared/uses-installed-library"
+    else
+        not_ok shared/uses-installed-library "loads '$loaded', not $lib/libsbfx.so.$SOVERSION"
+    fi
+fi
+
+# Static: the archive instead of the .so, and whatever pkg-config --static adds for it
+# (Requires.private, Libs.private); the program must then need no libsbfx.so at all.
+static_libs=$(pkg_sbfx --static --libs | sed 's/-lsbfx/-l:libsbfx.a/')
+# shellcheck disable=SC2086
+if build_and_run static $static_libs; then
+    if readelf -d "$tmp/static" | grep -q 'NEEDED.*libsbfx'; then
+        not_ok static/no-libsbfx-so "links libsbfx.so although given the archive"
+    else
+        ok "static/no-libsbfx-so"
+    fi
+fi
+exit "$failed"
