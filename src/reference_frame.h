@@ -75,15 +75,15 @@ typedef struct sbfx_rf_frame {
     int detail_size, detail_frames;
     double detail_time;            /* sbfx_detail_time(): added to the time coordinate */
 
-    const sbfx_cmf *cmf;           /* black body: analytic Planck x CMF... */
-    double max_kelvin;             /* ...clamped to [0, max_kelvin] like the shader */
-    double blackbody_norm;         /* sbfx_blackbody_norm(cmf, max_kelvin) */
+    const sbfx_cmf *cmf;           /* black body: analytic Planck x CMF (0 for T <= 0, T capped */
+    double blackbody_norm;         /* at 1e7 K like the shader), sbfx_blackbody_norm's scale */
     /* Tables instead of the analytic functions (NULL: analytic). Only tests of the GPU's own
-     * tables set these; the benchmark's reference is analytic. */
-    const double *blackbody_table; /* blackbody_table_size RGB entries up to max_kelvin */
+     * tables set these (sbfx_get_tables()); the benchmark's reference is analytic. */
+    const float *blackbody_table;  /* see sbfx_blackbody_table */
     int blackbody_table_size;
-    const double *phase_table;     /* phase_table_cos x phase_table_g, see sbfx_phase_table */
-    int phase_table_cos, phase_table_g;
+    double blackbody_lo, blackbody_hi;
+    const float *phase_tables[SBFX_MEDIUM_COUNT]; /* per medium (NULL: analytic), its phase_g */
+    int phase_table_size;
 
     sbfx_rf_precision precision;
 } sbfx_rf_frame;

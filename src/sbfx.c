@@ -164,6 +164,33 @@ static void adopt_scene(sbfx *fx, const sbfx_scene *scene)
         }
 }
 
+/* The GL side of the plan: tables and detail, programs, post programs (targets follow the
+ * first frame's size). */
+static sbfx_result load_gl(sbfx *fx)
+{
+    sbfx_result r;
+    if ((r = sbfx_luts_create(fx)) != SBFX_OK) return r;
+    if ((r = sbfx_programs_create(fx)) != SBFX_OK) return r;
+    return sbfx_post_programs_create(fx);
+}
+
+static void destroy_gl(sbfx *fx)
+{
+    sbfx_targets_destroy(fx);
+    sbfx_post_destroy(fx);
+    sbfx_programs_destroy(fx);
+    sbfx_luts_destroy(fx);
+}
+
+sbfx_result sbfx_reload(sbfx *fx)
+{
+    destroy_gl(fx);
+    memset(&fx->gl, 0, sizeof(fx->gl));
+    fx->counters.programs = fx->counters.textures = fx->counters.framebuffers = 0;
+    fx->counters.gpu_bytes = 0;
+    return load_gl(fx);
+}
+
 static sbfx_result load(sbfx *fx)
 {
     sbfx_result r;
@@ -178,13 +205,9 @@ static sbfx_result load(sbfx *fx)
     adopt_scene(fx, scene);
     sbfx_free(fx, builtin);
     sbfx_orbit_lights(fx); /* where orbiting lights are at t = 0 */
-    fx->max_kelvin = fx->desc.blackbody_max_kelvin;
     if ((r = check_context(fx)) != SBFX_OK) return r;
     if ((r = sbfx_pool_create(fx, fx->desc.max_particles)) != SBFX_OK) return r;
-    if ((r = sbfx_luts_create(fx)) != SBFX_OK) return r;
-    if ((r = sbfx_programs_create(fx)) != SBFX_OK) return r;
-    if ((r = sbfx_post_programs_create(fx)) != SBFX_OK) return r;
-    return SBFX_OK;
+    return load_gl(fx);
 }
 
 sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out)
@@ -209,10 +232,7 @@ sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out)
 void sbfx_destroy(sbfx *fx)
 {
     if (!fx) return;
-    sbfx_targets_destroy(fx);
-    sbfx_post_destroy(fx);
-    sbfx_programs_destroy(fx);
-    sbfx_luts_destroy(fx);
+    destroy_gl(fx);
     sbfx_pool_destroy(fx);
     free(fx);
 }

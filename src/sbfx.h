@@ -106,7 +106,9 @@ typedef struct sbfx_desc {
     uint32_t seed;                   /* random seed of spawns and detail windows (1) */
     int max_particles;               /* particle pool size (2048) */
     const char *cmf_path;            /* CIE 1931 2° CMF (colord-data's file) */
-    float blackbody_max_kelvin;      /* upper end of the black-body table (6000 K) */
+    float blackbody_max_kelvin;      /* the black body's unit: luminance 1 at this temperature,
+                                        before the fire's emission scale (6000 K). The table's
+                                        range follows what the scene's fire can reach. */
     int detail_size;                 /* detail volume width = height (64) */
     int detail_frames;               /* detail volume depth = animation frames (32) */
     sbfx_detail_format detail_format;

@@ -235,7 +235,6 @@ static void render_reference(bench *b, sbfx *fx, ref_frame *rf)
                        .opacity = SBFX_OPACITY_EXACT, .lights = lights, .detail = b->detail,
                        .detail_size = b->detail_size, .detail_frames = b->detail_frames,
                        .detail_time = sbfx_detail_time(fx), .cmf = &b->cmf,
-                       .max_kelvin = SBFX_DEFAULT_MAX_KELVIN,
                        .blackbody_norm = sbfx_blackbody_norm(&b->cmf, SBFX_DEFAULT_MAX_KELVIN)};
     fill_media(fx, &f);
     f.light_count = fill_lights(fx, rf->frame.view, lights, f.ambient);

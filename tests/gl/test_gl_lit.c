@@ -335,7 +335,7 @@ CHECK_TEST(plan_makes_smoke_textures_only_for_lit_media)
 {
     gl_fixture f;
     fixture_open(&f, 16, 16);
-    const size_t smoke64 = sbfx_smoke_texture_bytes(64, 2), phase = SBFX_PHASE_COS_SIZE * SBFX_PHASE_G_SIZE * 2;
+    const size_t smoke64 = sbfx_smoke_texture_bytes(64, 2), phase = SBFX_PHASE_SIZE * SBFX_MEDIUM_COUNT * 4;
     struct {
         const char *name, *media, *steps;
         int textures;
