@@ -135,6 +135,7 @@ typedef struct sbfx_pass_uniforms {
     GLint scene_depth, divisor, full_size, depth_params, far;         /* depth downsample */
     GLint particles, low_depth, low_size, depth_threshold;            /* composite */
     GLint scene_color, distortion;                                    /* composite, own scene */
+    GLint exposure, tone_curve;                                       /* composite, tone map */
 } sbfx_pass_uniforms;
 
 typedef struct sbfx_gl {
@@ -204,6 +205,7 @@ struct sbfx {
     sbfx_live_flash flashes[SBFX_MAX_LIVE_FLASHES];
     int flash_count;
     sbfx_tables tables;
+    sbfx_tone_curve tone_curve;  /* the composite's (src/tonemap.c), made at load */
 
     sbfx_effect effects[SBFX_MAX_EFFECTS];
     int effect_count;

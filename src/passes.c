@@ -308,6 +308,9 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     glUniform2fv(u->depth_params, 1, fp->depth_params);
     glUniform1f(u->far, fp->far);
     glUniform1f(u->depth_threshold, 0.05f);
+    glUniform1f(u->exposure, fx->desc.exposure);
+    glUniform3f(u->tone_curve, (float)fx->tone_curve.knee, (float)fx->tone_curve.steepness,
+                (float)fx->tone_curve.inverse_log_white);
     glBindVertexArray(gl->fullscreen_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_BLEND);

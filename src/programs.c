@@ -114,16 +114,25 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->depth_threshold = glGetUniformLocation(id, "u_depth_threshold");
     u->scene_color = glGetUniformLocation(id, "u_scene_color");
     u->distortion = glGetUniformLocation(id, "u_distortion");
+    u->exposure = glGetUniformLocation(id, "u_exposure");
+    u->tone_curve = glGetUniformLocation(id, "u_tone_curve");
 }
+
+static const char *const tone_map_defines[SBFX_TONE_MAP_COUNT] = {
+    [SBFX_TONE_MAP_NONE] = "#define TONE_MAP_NONE\n",
+    [SBFX_TONE_MAP_HUE_PRESERVING] = "#define TONE_MAP_HUE_PRESERVING\n",
+    [SBFX_TONE_MAP_PER_CHANNEL] = "#define TONE_MAP_PER_CHANNEL\n",
+};
 
 static sbfx_result build_pass_programs(sbfx *fx)
 {
-    char upsample[160];
-    snprintf(upsample, sizeof(upsample), "%s%s%s",
+    char upsample[192];
+    snprintf(upsample, sizeof(upsample), "%s%s%s%s",
              fx->desc.upsample == SBFX_UPSAMPLE_NEAREST_DEPTH ? "#define UPSAMPLE_NEAREST_DEPTH\n"
                                                                : "#define UPSAMPLE_BILINEAR\n",
              fx->plan.owns_scene ? "#define OWN_SCENE\n" : "",
-             fx->plan.distortion && sbfx_half_float_renderable() ? "#define HAS_SHIMMER\n" : "");
+             fx->plan.distortion && sbfx_half_float_renderable() ? "#define HAS_SHIMMER\n" : "",
+             tone_map_defines[fx->desc.tone_map]);
     fx->gl.depth_program = sbfx_program_build(fx, "fullscreen.vert", "depth_downsample.frag", NULL);
     if (!fx->gl.depth_program) return SBFX_ERR_SHADER;
     fx->gl.composite_program = sbfx_program_build(fx, "fullscreen.vert", "composite.frag", upsample);

@@ -110,6 +110,17 @@ double sbfx_phase_table_lookup(const float *table, int size, double g, double co
  * times finer than the table, plus the peak and the back). */
 double sbfx_phase_table_error(const float *table, int size, double g);
 
+/* ---- tone curve of the particles' light (sbfx_tone_map; src/tonemap.c) ----------------- */
+
+#define SBFX_TONE_KNEE 0.6   /* light below this reaches the display unchanged */
+#define SBFX_TONE_WHITE 64.0 /* ...and this much (the radiance ceiling) reaches 1 */
+typedef struct sbfx_tone_curve {
+    double knee, white, steepness, inverse_log_white;
+} sbfx_tone_curve;
+sbfx_tone_curve sbfx_tone_curve_default(void);
+/* v for v <= knee, then the logarithmic shoulder, 1 at and above white; 0 for v <= 0, NaN. */
+double sbfx_tone_curve_apply(const sbfx_tone_curve *c, double v);
+
 /* ---- detail volume (DESIGN §2.4) ------------------------------------------------------ */
 
 /* Tileable (in x, y and t) animated fBm, size x size x frames floats in [0,1], x fastest.

@@ -74,6 +74,8 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
         d.analytic_blackbody = d.analytic_blackbody || s->analytic_blackbody;
         d.analytic_phase = d.analytic_phase || s->analytic_phase;
         if (!d.detail_format) d.detail_format = s->detail_format;
+        if (!d.tone_map) d.tone_map = s->tone_map;
+        if (!(d.exposure > 0)) d.exposure = s->exposure;
     }
     if (!d.target_divisor) d.target_divisor = 4;
     if (!d.upsample) d.upsample = SBFX_UPSAMPLE_NEAREST_DEPTH;
@@ -85,6 +87,8 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
     if (!d.detail_size) d.detail_size = 64;
     if (!d.detail_frames) d.detail_frames = 32;
     if (!d.detail_format) d.detail_format = SBFX_DETAIL_R16F;
+    if (!d.tone_map) d.tone_map = SBFX_TONE_MAP_HUE_PRESERVING;
+    if (!(d.exposure > 0)) d.exposure = 1.0f;
     if (!(d.sim_step > 0)) d.sim_step = 1.0f / 120.0f;
     return d;
 }
@@ -98,8 +102,13 @@ static sbfx_result validate_desc(sbfx *fx, const sbfx_desc *d)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT,
                          "target_divisor %d: use 1, 2, 4 or 8", d->target_divisor);
     if ((unsigned)d->target_format >= SBFX_FORMAT_COUNT || (unsigned)d->upsample >= SBFX_UPSAMPLE_COUNT ||
-        (unsigned)d->opacity >= SBFX_OPACITY_COUNT || (unsigned)d->detail_format >= SBFX_DETAIL_COUNT)
-        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "unknown target format, upsample or opacity mode");
+        (unsigned)d->opacity >= SBFX_OPACITY_COUNT || (unsigned)d->detail_format >= SBFX_DETAIL_COUNT ||
+        (unsigned)d->tone_map >= SBFX_TONE_MAP_COUNT)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "unknown target format, upsample, opacity mode, detail format "
+                         "or tone map");
+    if (!(d->exposure <= 1e4f))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "exposure %g: use a scale above 0 and at most 1e4",
+                         (double)d->exposure);
     if (d->max_particles < 1 || d->max_particles > (1 << 20))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "max_particles %d: use 1 .. 1048576",
                          d->max_particles);
@@ -205,6 +214,7 @@ static sbfx_result load(sbfx *fx)
     adopt_scene(fx, scene);
     sbfx_free(fx, builtin);
     sbfx_orbit_lights(fx); /* where orbiting lights are at t = 0 */
+    fx->tone_curve = sbfx_tone_curve_default();
     if ((r = check_context(fx)) != SBFX_OK) return r;
     if ((r = sbfx_pool_create(fx, fx->desc.max_particles)) != SBFX_OK) return r;
     return load_gl(fx);

@@ -242,7 +242,7 @@ static void render_reference(bench *b, sbfx *fx, ref_frame *rf)
     double *layer = xcalloc((size_t)w * h * 4, sizeof(double));
     uint8_t *footprint = xcalloc((size_t)w * h, 1);
     if (sbfx_rf_render_layer(&f, particles, rf->particles, layer, footprint) < 0) die("reference", "out of memory");
-    sbfx_rf_composite(layer, rf->scene_rgba, w, h, rf->ref_rgb);
+    sbfx_rf_composite(layer, rf->scene_rgba, w, h, SBFX_TONE_MAP_HUE_PRESERVING, 1.0, rf->ref_rgb);
     bench_edge_mask(rf->distance, w, h, EDGE_RELATIVE, EDGE_DILATE, rf->edge);
     rf->edge_pixels = 0;
     for (size_t i = 0; i < (size_t)w * h; i++) {
