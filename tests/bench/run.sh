@@ -49,6 +49,11 @@ fi
 if [ -x "$BUILD/bench/bench_lighting" ]; then
     "$BUILD/bench/bench_lighting" --out "$OUT"
 fi
+# issue 12: what each tone map does to the particles' light on an 8-bit display
+if [ -x "$BUILD/bench/bench_tonemap" ]; then
+    "$BUILD/bench/bench_tonemap" --out "$OUT" >/dev/null
+    cat "$OUT/tonemap.txt" >>"$OUT/summary.txt"
+fi
 # issues #3 and #6: simulation throughput, load time and GPU bytes per scene, post effects
 if [ -x "$BUILD/bench/bench_scenes" ]; then
     "$BUILD/bench/bench_scenes" --out "$OUT" | tee "$OUT/scenes.txt"
