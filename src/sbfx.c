@@ -79,7 +79,7 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
     }
     if (!d.target_divisor) d.target_divisor = 4;
     if (!d.upsample) d.upsample = SBFX_UPSAMPLE_NEAREST_DEPTH;
-    if (!d.opacity) d.opacity = SBFX_OPACITY_SPHERICAL;
+    if (!d.opacity) d.opacity = SBFX_OPACITY_EXACT;
     if (!d.seed) d.seed = 1;
     if (!d.max_particles) d.max_particles = 2048;
     if (!d.cmf_path) d.cmf_path = SBFX_CMF_DEFAULT_PATH;

@@ -37,10 +37,12 @@ typedef void (*sbfx_log_fn)(sbfx_log_level level, const char *message, void *use
 
 /* Accuracy knobs. Zero in a desc always means "the default" (marked). */
 typedef enum sbfx_opacity_mode {
-    SBFX_OPACITY_DEFAULT = 0, /* = SPHERICAL */
+    SBFX_OPACITY_DEFAULT = 0, /* = EXACT: as cheap as SPHERICAL and ten times closer to the
+                                 reference (README "What accuracy costs", the defaults) */
     SBFX_OPACITY_PLANAR,      /* classic billboard: radial profile, emulated depth test */
     SBFX_OPACITY_SOFT,        /* planar faded by an S-curve of the depth difference (RTR) */
-    SBFX_OPACITY_SPHERICAL,   /* the seed: parallel rays, (1 - d/r) * clipped chord */
+    SBFX_OPACITY_SPHERICAL,   /* the seed: parallel rays, (1 - d/r) * clipped chord; twice the
+                                 exact model's optical depth through the centre */
     SBFX_OPACITY_EXACT,       /* perspective ray, exact integral of the linear density */
     SBFX_OPACITY_FLOOR,       /* benchmark only: the same quads with a trivial shader */
     SBFX_OPACITY_COUNT

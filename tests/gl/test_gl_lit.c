@@ -35,7 +35,8 @@ static sbfx_scene *parse(const char *text)
 static sbfx *lit_module(gl_fixture *f, const char *text)
 {
     sbfx_scene *scene = parse(text);
-    sbfx *fx = fixture_module(f, (sbfx_desc){.scene = scene, .target_divisor = 1,
+    /* the CPU side takes alpha from the spherical model (lit media keep any opacity model) */
+    sbfx *fx = fixture_module(f, (sbfx_desc){.scene = scene, .target_divisor = 1, .opacity = SBFX_OPACITY_SPHERICAL,
                                              .target_format = SBFX_FORMAT_RGBA32F, .max_particles = 8});
     sbfx_scene_free(scene);
     return fx;
