@@ -1,20 +1,22 @@
 /* make bench, display block (issue 12): what each tone map (sbfx_tone_map) does to the particles'
  * light on an 8-bit display, on the explosion and barrage scenes seen from their cameras.
  *
- * Every frame is composited over the test scene into a half-float host framebuffer, so the value
- * an RGBA8 framebuffer would have clamped is still there:
+ * Every frame is composited into a half-float host framebuffer, so the value an RGBA8
+ * framebuffer would have clamped is still there, over the test scene (and over black, where the
+ * composite shows the particles' light alone):
  *   - particle pixels: those the composite changed by more than half an 8-bit level;
  *   - clipped: particle pixels with a channel above 1 (+ half a level): the display clamps it,
  *     one channel on its own;
- *   - fire pixels: particle pixels where the fire's own emission is at least half of the
- *     luminance (the same frame rendered once more with the fire's emission set to 0, under
- *     `none`, gives the rest: mostly dust and smoke lit by the blasts' flashes, the brightest
- *     light in these scenes) and the displayed luminance is above 0.05;
+ *   - fire pixels: where the fire's own emission is at least a third of the light on display
+ *     (over black, `none` with and without the fire's emission gives it; in these scenes the fire
+ *     rarely makes half of a pixel's light: the scene shows through it, and dust and smoke lit by
+ *     the blasts' flashes, the brightest light here, lie in front) and the displayed luminance
+ *     is above 0.05;
  *   - their chromaticity distance: the displayed colour (clamped, 8-bit) read as linear sRGB
  *     (the module's convention: README "Colour on the display"), to CIE 1976 u'v', the shortest
  *     distance to the Planckian locus (CIE 1931 2° CMFs, 500..25000 K); mean, median, 95th
  *     percentile. The row "unclamped" is the same for the light before any display, the best a
- *     display could do (the fire's own light mixed with what shows through it).
+ *     display could show (the fire's light mixed with what lies in front of it and behind).
  *
  *   bench_tonemap [--out DIR] [--size WxH]     writes DIR/tonemap.csv and DIR/tonemap.txt */
 #include <errno.h>
@@ -28,7 +30,7 @@
 #include "test_scene.h"
 
 #define LOCUS_POINTS 4096
-#define FIRE_SHARE 0.5
+#define FIRE_SHARE (1.0 / 3.0)
 #define MIN_LUMINANCE 0.05
 #define OPERATORS 3
 
@@ -43,7 +45,7 @@ typedef struct scene_plan {
 } scene_plan;
 
 static const scene_plan plans[] = {
-    {"explosion", {0.3, 0.6, 1.0}, 3},
+    {"explosion", {0.15, 0.3, 0.6, 1.0}, 4},
     {"barrage", {0.6, 1.2, 1.8, 2.4}, 4},
 };
 
@@ -57,7 +59,8 @@ typedef struct bench {
     double locus[LOCUS_POINTS][2];
     GLuint out_fbo, out_texture;
     struct test_scene scene;
-    float *pixels[OPERATORS + 2]; /* per operator, then none without fire emission, then the scene */
+    float *over_scene[OPERATORS + 1]; /* per operator, then the scene alone */
+    float *over_black[OPERATORS + 1]; /* per operator, then `none` without the fire's emission */
 } bench;
 
 static void die(const char *what, const char *why)
@@ -164,12 +167,18 @@ static void read_out(const bench *b, float *out)
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
 }
 
-/* The scene's picture into the host target, then sbfx over it (or nothing: the scene alone). */
-static void composite(bench *b, sbfx *fx, const sbfx_frame *frame, float *out)
+/* The scene's picture (or black) into the host target, then sbfx over it (or nothing). */
+static void composite(bench *b, sbfx *fx, const sbfx_frame *frame, bool over_scene, float *out)
 {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, b->scene.framebuffer);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, b->out_fbo);
-    glBlitFramebuffer(0, 0, b->width, b->height, 0, 0, b->width, b->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    if (over_scene) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, b->scene.framebuffer);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, b->out_fbo);
+        glBlitFramebuffer(0, 0, b->width, b->height, 0, 0, b->width, b->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    } else {
+        glBindFramebuffer(GL_FRAMEBUFFER, b->out_fbo);
+        glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (fx && sbfx_render(fx, frame) != SBFX_OK) die("sbfx_render", sbfx_last_error(fx));
     read_out(b, out);
@@ -179,28 +188,37 @@ static void composite(bench *b, sbfx *fx, const sbfx_frame *frame, float *out)
 
 static double displayed(float v) { return round(fmin(fmax(v, 0.0f), 1.0f) * 255.0) / 255.0; }
 
-static void measure(bench *b, stats st[OPERATORS + 1])
+/* Over the scene: which pixels the particles change, which of them clip. */
+static void measure_clipping(const bench *b, stats st[OPERATORS + 1])
 {
-    const float *none = b->pixels[0], *no_fire = b->pixels[OPERATORS], *scene = b->pixels[OPERATORS + 1];
+    const float *scene = b->over_scene[OPERATORS];
     for (size_t i = 0; i < (size_t)b->width * b->height; i++) {
-        double change = 0, light[3], fire[3];
-        for (int k = 0; k < 3; k++) {
-            change = fmax(change, fabs(none[4 * i + k] - scene[4 * i + k]));
-            light[k] = none[4 * i + k], fire[k] = none[4 * i + k] - no_fire[4 * i + k];
-        }
+        double change = 0;
+        for (int k = 0; k < 3; k++) change = fmax(change, fabs(b->over_scene[0][4 * i + k] - scene[4 * i + k]));
         if (change <= 0.5 / 255.0) continue;
-        bool is_fire = luminance(fire) >= FIRE_SHARE * luminance(light);
-        for (int o = 0; o <= OPERATORS; o++) {
-            const float *px = b->pixels[o < OPERATORS ? o : 0] + 4 * i;
-            double rgb[3], uv[2];
-            bool clipped = false;
-            for (int k = 0; k < 3; k++) {
-                clipped = clipped || px[k] > 1.0f + 0.5f / 255.0f;
-                rgb[k] = o < OPERATORS ? displayed(px[k]) : px[k]; /* the last row: unclamped */
-            }
+        for (int o = 0; o < OPERATORS; o++) {
+            const float *px = b->over_scene[o] + 4 * i;
             st[o].particle_pixels++;
-            st[o].clipped += clipped && o < OPERATORS;
-            if (!is_fire || luminance(rgb) <= MIN_LUMINANCE) continue;
+            st[o].clipped += px[0] > 1.0f + 0.5f / 255.0f || px[1] > 1.0f + 0.5f / 255.0f || px[2] > 1.0f + 0.5f / 255.0f;
+        }
+    }
+}
+
+/* The fire pixels: where the fire's own emission (over black the composite shows the particles'
+ * light alone: `none` with and without the fire's emission) is at least FIRE_SHARE of the light
+ * displayed over the scene; their displayed colour's distance from the locus. */
+static void measure_fire(const bench *b, stats st[OPERATORS + 1])
+{
+    const float *shown = b->over_scene[0], *with_fire = b->over_black[0], *no_fire = b->over_black[OPERATORS];
+    for (size_t i = 0; i < (size_t)b->width * b->height; i++) {
+        double light[3], fire[3];
+        for (int k = 0; k < 3; k++) light[k] = shown[4 * i + k], fire[k] = with_fire[4 * i + k] - no_fire[4 * i + k];
+        if (!(luminance(fire) >= FIRE_SHARE * luminance(light))) continue;
+        for (int o = 0; o <= OPERATORS; o++) {
+            const float *px = b->over_scene[o < OPERATORS ? o : 0] + 4 * i;
+            double rgb[3], uv[2];
+            for (int k = 0; k < 3; k++) rgb[k] = o < OPERATORS ? displayed(px[k]) : px[k]; /* the last: unclamped */
+            if (luminance(rgb) <= MIN_LUMINANCE) continue;
             srgb_to_uv(rgb, uv);
             st[o].duv[st[o].fire_pixels++] = locus_distance(b, uv);
         }
@@ -254,10 +272,12 @@ static void run_scene(bench *b, const scene_plan *plan, FILE *csv, FILE *txt)
         if (test_scene_draw(&b->scene, frame.view, frame.projection) != 0) die("test scene", "GL error");
         for (int o = 0; o <= OPERATORS; o++) {
             advance_to(fx[o], t);
-            composite(b, fx[o], &frame, b->pixels[o]);
+            if (o < OPERATORS) composite(b, fx[o], &frame, true, b->over_scene[o]);
+            composite(b, fx[o], &frame, false, b->over_black[o]);
         }
-        composite(b, NULL, &frame, b->pixels[OPERATORS + 1]);
-        measure(b, st);
+        composite(b, NULL, &frame, true, b->over_scene[OPERATORS]);
+        measure_clipping(b, st);
+        measure_fire(b, st);
     }
     for (int o = 0; o <= OPERATORS; o++) {
         report(plan->name, o < OPERATORS ? operator_names[o] : "unclamped", &st[o], csv, txt);
@@ -282,19 +302,23 @@ int main(int argc, char **argv)
     make_locus(b);
     open_target(b);
     if (test_scene_create(&b->scene, b->width, b->height, err, sizeof(err)) != 0) die("test scene", err);
-    for (int i = 0; i < OPERATORS + 2; i++) b->pixels[i] = xcalloc((size_t)b->width * b->height * 4, sizeof(float));
+    for (int i = 0; i <= OPERATORS; i++) {
+        b->over_scene[i] = xcalloc((size_t)b->width * b->height * 4, sizeof(float));
+        b->over_black[i] = xcalloc((size_t)b->width * b->height * 4, sizeof(float));
+    }
     snprintf(path, sizeof(path), "%s/tonemap.csv", out);
     FILE *csv = fopen(path, "w");
     snprintf(path, sizeof(path), "%s/tonemap.txt", out);
     FILE *txt = fopen(path, "w");
     if (!csv || !txt) die(out, strerror(errno));
     fprintf(csv, "scene,tone_map,particle_pixels,clipped,clipped_share,fire_pixels,duv_mean,duv_median,duv_p95\n");
-    fprintf(txt, "display: particle pixels with a clipped channel, and the displayed fire pixels' distance from the "
-                 "black-body locus (CIE 1976 u'v'), %dx%d, each scene from its camera\n", b->width, b->height);
+    fprintf(txt, "display: particle pixels with a clipped channel over the scene, and the displayed fire pixels' "
+                 "distance from the black-body locus (CIE 1976 u'v', over black), %dx%d, each scene from its camera\n",
+            b->width, b->height);
     for (size_t i = 0; i < sizeof(plans) / sizeof(plans[0]); i++) run_scene(b, &plans[i], csv, txt);
     fclose(csv);
     fclose(txt);
-    for (int i = 0; i < OPERATORS + 2; i++) free(b->pixels[i]);
+    for (int i = 0; i <= OPERATORS; i++) free(b->over_scene[i]), free(b->over_black[i]);
     test_scene_destroy(&b->scene);
     glDeleteFramebuffers(1, &b->out_fbo);
     glDeleteTextures(1, &b->out_texture);
