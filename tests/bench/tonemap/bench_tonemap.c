@@ -312,9 +312,8 @@ int main(int argc, char **argv)
     FILE *txt = fopen(path, "w");
     if (!csv || !txt) die(out, strerror(errno));
     fprintf(csv, "scene,tone_map,particle_pixels,clipped,clipped_share,fire_pixels,duv_mean,duv_median,duv_p95\n");
-    fprintf(txt, "display: particle pixels with a clipped channel over the scene, and the displayed fire pixels' "
-                 "distance from the black-body locus (CIE 1976 u'v', over black), %dx%d, each scene from its camera\n",
-            b->width, b->height);
+    fprintf(txt, "display: particle pixels with a clipped channel, and the displayed fire pixels' distance from the "
+                 "black-body locus (CIE 1976 u'v'), %dx%d, each scene from its camera\n", b->width, b->height);
     for (size_t i = 0; i < sizeof(plans) / sizeof(plans[0]); i++) run_scene(b, &plans[i], csv, txt);
     fclose(csv);
     fclose(txt);
