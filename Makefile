@@ -1,6 +1,7 @@
 # sbfx — build, test, demo, bench, install.
 #   make [all]        library (build/libsbfx.a, .so), build/sbfx-play, build/sbfx-probe
 #   make demo         render the built-in explosion headless into build/demo/
+#   make gallery      one contact sheet per example scene into docs/gallery/ (README "Gallery")
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, then ASan+UBSan
 #   make bench        timings into build/bench/
 #   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR); make uninstall
@@ -74,7 +75,7 @@ PLATFORM_COMMON_OBJ := $(PLATFORM_COMMON:%=$(BUILD)/obj/platform/%.o)
 UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/unit/%,$(wildcard tests/unit/*.c))
 GL_TESTS := $(patsubst tests/gl/%.c,$(BUILD)/tests/gl/%,$(wildcard tests/gl/*.c))
 
-.PHONY: all deps lib test test-unit test-gl test-asan demo bench install uninstall clean
+.PHONY: all deps lib test test-unit test-gl test-asan demo gallery bench install uninstall clean
 all: lib $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(BUILD)/sbfx.pc
 lib: $(BUILD)/libsbfx.a $(SO_LINKS) $(BUILD)/libsbfx_ref.a
 
@@ -174,6 +175,28 @@ demo:
 	@$(MAKE) --no-print-directory all
 	@$(BUILD)/sbfx-play --headless --scene scenes/explosion.cfg --size 960x540 --frames 36 --out $(BUILD)/demo --contact-sheet
 
+# Each example scene through sbfx-play from its own camera (its `camera` group, else the default
+# orbit): 12 frames, 0.4 s apart, as one contact sheet docs/gallery/<scene>.png. Then one frame
+# of the explosion (0.3 s) and of the barrage (1.2 s) per tone map: docs/gallery/tonemap-*.png.
+GALLERY_SCENES := $(basename $(notdir $(wildcard scenes/*.cfg)))
+GALLERY_TONE_SHOTS := explosion:3.3333 barrage:0.8333
+gallery:
+	@tools/deps.sh build
+	@$(MAKE) --no-print-directory all
+	@mkdir -p docs/gallery
+	@for s in $(GALLERY_SCENES); do \
+		$(BUILD)/sbfx-play --headless --quiet --scene scenes/$$s.cfg --size 960x540 --frames 12 --fps 2.5 \
+			--out $(BUILD)/gallery/$$s --contact-sheet || exit 1; \
+		cp $(BUILD)/gallery/$$s/contact-sheet.png docs/gallery/$$s.png && echo "gallery: docs/gallery/$$s.png"; \
+	done
+	@for shot in $(GALLERY_TONE_SHOTS); do s=$${shot%%:*}; fps=$${shot#*:}; \
+		for tm in none hue-preserving per-channel; do \
+			$(BUILD)/sbfx-play --headless --quiet --scene scenes/$$s.cfg --size 640x360 --frames 2 --fps $$fps \
+				--tone-map $$tm --out $(BUILD)/gallery/tone-$$s-$$tm || exit 1; \
+			cp $(BUILD)/gallery/tone-$$s-$$tm/frame-0001.png docs/gallery/tonemap-$$s-$$tm.png; \
+		done; echo "gallery: docs/gallery/tonemap-$$s-*.png"; \
+	done
+
 bench: all
 	@tests/bench/run.sh $(BUILD)
 
@@ -246,6 +269,15 @@ $(BUILD)/bench/bench_lighting: tests/bench/lighting/bench_lighting.c $(PLATFORM_
 	$(CC) $(PLATFORM_CFLAGS) -Iref $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
 bench: $(BUILD)/bench/bench_lighting
+
+# ---- display bench (issue 12: tone mapping) -------------------------------------------------
+# A program of its own: clipped particle pixels and the fire's chromaticity on the display per
+# tone map, explosion and barrage; writes $(BUILD)/bench/tonemap.csv when run (tests/bench/run.sh).
+$(BUILD)/bench/bench_tonemap: tests/bench/tonemap/bench_tonemap.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+
+bench: $(BUILD)/bench/bench_tonemap
 
 # ---- scenes and post-effects bench (issues #3, #6) ------------------------------------------
 $(BUILD)/bench/bench_scenes: tests/bench/scenes/bench_scenes.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a

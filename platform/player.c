@@ -108,6 +108,7 @@ static int create_fx(struct player *p, char *err, size_t n)
     sbfx_scene *scene = NULL;
     int rc = load_scene(opt->scene_path, &scene, err, n);
     if (rc == 0) rc = player_collect_scene_gpio(p, scene, err, n);
+    sbfx_scene_camera_get(scene, &p->camera); /* the default orbit without a camera group */
     if (rc) {
         sbfx_scene_free(scene);
         return rc;
@@ -117,6 +118,8 @@ static int create_fx(struct player *p, char *err, size_t n)
         .target_format = opt->format,
         .upsample = opt->upsample,
         .opacity = opt->opacity,
+        .tone_map = opt->tone_map,
+        .exposure = opt->exposure,
         .seed = opt->seed,
         .max_particles = p->board.max_particles,
         .scene = scene,

@@ -36,6 +36,7 @@ struct player {
     struct display *display;
     struct test_scene scene;
     bool scene_made;
+    sbfx_scene_camera camera; /* the scene file's camera group, or the default orbit */
     sbfx *fx;
     char out_dir[PATH_MAX];
     double sim_time;

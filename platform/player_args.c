@@ -202,6 +202,29 @@ static int set_upsample(struct player_options *opt, const char *value, char *err
     return rc;
 }
 
+static int set_tone_map(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    static const struct choice choices[] = {
+        {"none", SBFX_TONE_MAP_NONE}, {"hue-preserving", SBFX_TONE_MAP_HUE_PRESERVING},
+        {"per-channel", SBFX_TONE_MAP_PER_CHANNEL},
+    };
+    int v = 0;
+    int rc = parse_choice("--tone-map", value, choices, ARRAY_SIZE(choices), &v, err, n);
+    opt->tone_map = (sbfx_tone_map)v;
+    return rc;
+}
+
+static int set_exposure(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    double v = 0;
+    if (!parse_number(value, NULL, &v, NULL) || !(v >= 0.01) || v > 100.0) {
+        snprintf(err, n, "--exposure: expected a scale from 0.01 to 100 (e.g. 1 or 0.5), got '%s'", value);
+        return -EINVAL;
+    }
+    opt->exposure = (float)v;
+    return 0;
+}
+
 static int set_seed(struct player_options *opt, const char *value, char *err, size_t n)
 {
     long long v = 0;
@@ -346,6 +369,8 @@ static const struct flag flags[] = {
     {"--opacity", "planar|soft|spherical|exact", set_opacity},
     {"--format", "auto|rgba8|rgba16f|rgba32f", set_format},
     {"--upsample", "bilinear|nearest-depth", set_upsample},
+    {"--tone-map", "none|hue-preserving|per-channel", set_tone_map},
+    {"--exposure", "X (0.01..100)", set_exposure},
     {"--seed", "N (0..4294967295)", set_seed},
     {"--scene", "FILE", set_scene},
     {"--quiet", NULL, set_quiet},

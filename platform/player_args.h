@@ -48,6 +48,8 @@ struct player_options {
     sbfx_opacity_mode opacity;
     sbfx_target_format format;
     sbfx_upsample upsample;
+    sbfx_tone_map tone_map;   /* 0 = the scene's or the library's default */
+    float exposure;           /* 0 = the scene's or the library's default (1) */
     uint32_t seed;            /* 0 = the library's default */
     const char *scene_path;   /* NULL: the built-in timeline */
     bool quiet;

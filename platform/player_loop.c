@@ -114,7 +114,7 @@ static int update(struct player *p, double dt, char *err, size_t n)
 static int draw_scene(struct player *p, double t, sbfx_frame *frame, char *err, size_t n)
 {
     int w = p->display->width, h = p->display->height;
-    test_scene_orbit_camera(t, (float)w / (float)h, frame->view, frame->projection);
+    test_scene_camera(&p->camera, t, (float)w / (float)h, frame->view, frame->projection);
     if (test_scene_draw(&p->scene, frame->view, frame->projection) != 0) {
         snprintf(err, n, "test scene: GL error while drawing");
         return -EIO;

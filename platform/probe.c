@@ -3,8 +3,12 @@
  *     the opaque surface at ZS reaches the GPU as a host depth buffer holds it: reversed-Z
  *     float depth (infinite far, GL_EXT_clip_control's ZERO_TO_ONE) where the context offers
  *     the extension, else standard float depth; stderr says which at start
- *   blackbody T                      ->  R G B (CPU table)  R G B (GPU fetch of the LUT)
+ *   blackbody T                      ->  R G B (Planck x CIE in double)  R G B (GPU)
  *   phase COS G                      ->  CPU GPU   (COS = 1: light goes straight on)
+ * The GPU columns of blackbody and phase are particle.frag's own functions on tables sized for
+ * what is asked: a black-body table over at least 500..20000 K (wider if T is outside), a phase
+ * table made for G (or the analytic function where a table would miss 1e-3, as in sbfx). Both
+ * are normalised as sbfx normalises them (luminance 1 at 6000 K; 1 over the sphere).
  * A malformed line gets a message on stderr naming its line number; later lines are still
  * answered; the exit status is then 1. */
 #include <errno.h>
@@ -19,13 +23,18 @@
 
 typedef struct probe {
     sbfx *by_mode[SBFX_OPACITY_COUNT];
+    sbfx *tables;                  /* black body and phase, remade for what is asked */
+    double lo_kelvin, hi_kelvin, g;
     GLuint depth_texture, out_texture, out_fbo;
     sbfx_cmf cmf;
-    double *blackbody_table;
+    bool have_cmf;
     int line;
     bool failed;
     bool reversed_z;   /* host depth in reversed-Z float (GL_EXT_clip_control is offered) */
 } probe;
+
+#define PROBE_LO_KELVIN 500.0
+#define PROBE_HI_KELVIN 20000.0
 
 static const char *const mode_names[SBFX_OPACITY_COUNT] = {
     [SBFX_OPACITY_PLANAR] = "planar", [SBFX_OPACITY_SOFT] = "soft",
@@ -131,24 +140,44 @@ static void answer_opacity(probe *p, const char *args)
     printf("%.9g %.9g\n", cpu, gpu_opacity(p, fx, v));
 }
 
+/* A module whose fire reaches [lo, hi] and whose smoke scatters with g: the built-in scene's
+ * media set so sbfx's own range rule (tables.c) gives a table over that range, then reloaded. */
+static sbfx *tables_for(probe *p, double lo, double hi, double g)
+{
+    if (p->tables && lo >= p->lo_kelvin && hi <= p->hi_kelvin && g == p->g) return p->tables;
+    lo = fmin(lo, p->tables ? p->lo_kelvin : lo), hi = fmax(hi, p->tables ? p->hi_kelvin : hi);
+    if (!p->tables) {
+        sbfx_desc desc = {.target_divisor = 1, .max_particles = 16, .ignore_timeline = true, .log = log_to_stderr};
+        if (sbfx_create(&desc, &p->tables) != SBFX_OK) return NULL;
+    }
+    sbfx_medium_params *m = sbfx_media(p->tables);
+    m[SBFX_FIRE].t0 = (float)lo;
+    m[SBFX_FIRE].t1 = (float)(hi / SBFX_BLACKBODY_MARGIN - lo);
+    m[SBFX_FIRE].cooling = 0.0f;
+    m[SBFX_SMOKE].phase_g = (float)g;
+    p->lo_kelvin = lo, p->hi_kelvin = hi, p->g = g;
+    if (sbfx_reload(p->tables) != SBFX_OK) {
+        sbfx_destroy(p->tables);
+        p->tables = NULL;
+    }
+    return p->tables;
+}
+
 static void answer_blackbody(probe *p, const char *args)
 {
     double t;
-    if (parse_doubles(args, &t, 1) != 0) return complain(p, "%s", "blackbody needs T (kelvin)");
-    sbfx *fx = module_for(p, SBFX_OPACITY_SPHERICAL);
+    if (parse_doubles(args, &t, 1) != 0 || !(t >= 0.0) || !(t <= 1e7))
+        return complain(p, "%s", "blackbody needs T, kelvin from 0 to 1e7");
+    char err[256];
+    if (!p->have_cmf && sbfx_cmf_load(SBFX_CMF_DEFAULT_PATH, &p->cmf, err, sizeof(err)) != SBFX_OK)
+        return complain(p, "%s", err);
+    p->have_cmf = true;
+    sbfx *fx = tables_for(p, fmin(PROBE_LO_KELVIN, t), fmax(PROBE_HI_KELVIN, t), p->tables ? p->g : 0.0);
     if (!fx) return complain(p, "%s", "cannot create the module (see the message above)");
-    if (!p->blackbody_table) {
-        char err[256];
-        if (sbfx_cmf_load(SBFX_CMF_DEFAULT_PATH, &p->cmf, err, sizeof(err)) != SBFX_OK)
-            return complain(p, "%s", err);
-        p->blackbody_table = calloc(SBFX_BLACKBODY_SIZE * 3, sizeof(double));
-        if (!p->blackbody_table) return complain(p, "%s", "out of memory");
-        sbfx_blackbody_table(&p->cmf, SBFX_DEFAULT_MAX_KELVIN, SBFX_BLACKBODY_SIZE, p->blackbody_table);
-    }
-    double cpu[3];
+    double cpu[3] = {0.0, 0.0, 0.0};
+    if (t > 0.0) sbfx_blackbody_rgb(&p->cmf, t, sbfx_blackbody_norm(&p->cmf, SBFX_DEFAULT_MAX_KELVIN), cpu);
     float gpu[3], phase;
-    sbfx_blackbody_table_lookup(p->blackbody_table, SBFX_BLACKBODY_SIZE, SBFX_DEFAULT_MAX_KELVIN, t, cpu);
-    if (sbfx_fetch_luts(fx, (float)t, 0.0f, 0.0f, gpu, &phase) != SBFX_OK)
+    if (sbfx_fetch_luts(fx, SBFX_SMOKE, (float)t, 0.0f, gpu, &phase) != SBFX_OK)
         return complain(p, "%s", "GPU table fetch failed (see the message above)");
     printf("%.9g %.9g %.9g %.9g %.9g %.9g\n", cpu[0], cpu[1], cpu[2], gpu[0], gpu[1], gpu[2]);
 }
@@ -157,14 +186,15 @@ static void answer_phase(probe *p, const char *args)
 {
     double v[2];
     if (parse_doubles(args, v, 2) != 0) return complain(p, "%s", "phase needs COS G");
-    if (!(fabs(v[0]) <= 1.0) || !(fabs(v[1]) < 1.0))
-        return complain(p, "%s", "phase needs -1 <= COS <= 1 and -1 < G < 1");
-    sbfx *fx = module_for(p, SBFX_OPACITY_SPHERICAL);
+    if (!(fabs(v[0]) <= 1.0) || !(fabs(v[1]) <= SBFX_PHASE_G_MAX))
+        return complain(p, "%s", "phase needs -1 <= COS <= 1 and -0.99 <= G <= 0.99");
+    sbfx *fx = tables_for(p, p->tables ? p->lo_kelvin : PROBE_LO_KELVIN, p->tables ? p->hi_kelvin : PROBE_HI_KELVIN,
+                          (double)(float)v[1]);
     if (!fx) return complain(p, "%s", "cannot create the module (see the message above)");
     float rgb[3], gpu;
-    if (sbfx_fetch_luts(fx, 0.0f, (float)v[0], (float)v[1], rgb, &gpu) != SBFX_OK)
+    if (sbfx_fetch_luts(fx, SBFX_SMOKE, 0.0f, (float)v[0], rgb, &gpu) != SBFX_OK)
         return complain(p, "%s", "GPU table fetch failed (see the message above)");
-    printf("%.9g %.9g\n", sbfx_phase(v[0], v[1]), gpu);
+    printf("%.9g %.9g\n", sbfx_phase(v[0], (double)(float)v[1]), gpu);
 }
 
 static void answer(probe *p, char *line)
@@ -199,7 +229,7 @@ static void usage(FILE *to)
 {
     fprintf(to, "usage: sbfx-probe < queries\n"
                 "  opacity MODE D R ZC ZS NEAR TAU   -> CPU GPU (MODE: planar soft spherical exact)\n"
-                "  blackbody T                       -> R G B R G B (CPU table, GPU table fetch)\n"
+                "  blackbody T                       -> R G B R G B (Planck x CIE in double, GPU)\n"
                 "  phase COS G                       -> CPU GPU\n");
 }
 
@@ -232,7 +262,7 @@ int main(int argc, char **argv)
         answer(&p, line);
     }
     for (int m = 0; m < SBFX_OPACITY_COUNT; m++) sbfx_destroy(p.by_mode[m]);
-    free(p.blackbody_table);
+    sbfx_destroy(p.tables);
     glDeleteFramebuffers(1, &p.out_fbo);
     GLuint textures[] = {p.depth_texture, p.out_texture};
     glDeleteTextures(2, textures);

@@ -411,17 +411,25 @@ void test_scene_destroy(struct test_scene *scene)
 
 /* ---- camera and light ----------------------------------------------------------------- */
 
+void test_scene_camera(const sbfx_scene_camera *camera, double seconds, float aspect, float view[16],
+                       float projection[16])
+{
+    /* the angle reduced in double (DESIGN §7): an orbit an hour in is where it is at t mod 360 */
+    double degrees = fmod(camera->azimuth + camera->orbit * seconds, 360.0);
+    double angle = degrees * M_PI / 180.0;
+    const float *t = camera->target;
+    const float eye[3] = {t[0] + camera->distance * (float)sin(angle), camera->height,
+                          t[2] + camera->distance * (float)cos(angle)};
+    const float up[3] = {0.0f, 1.0f, 0.0f};
+    sbfx_look_at(view, eye, t, up);
+    sbfx_perspective(projection, camera->fov * (float)M_PI / 180.0f, aspect, TEST_SCENE_NEAR, TEST_SCENE_FAR);
+}
+
 void test_scene_orbit_camera(double seconds, float aspect, float view[16], float projection[16])
 {
-    const double start = 0.35, speed = 0.06; /* radians, radians per second */
-    const float distance = 8.5f, height = 2.6f;
-    double angle = start + speed * seconds;
-    const float eye[3] = {distance * (float)sin(angle), height, distance * (float)cos(angle)};
-    const float target[3] = {0.0f, 1.5f, 0.0f};
-    const float up[3] = {0.0f, 1.0f, 0.0f};
-    sbfx_look_at(view, eye, target, up);
-    sbfx_perspective(projection, 50.0f * (float)M_PI / 180.0f, aspect, TEST_SCENE_NEAR,
-                     TEST_SCENE_FAR);
+    sbfx_scene_camera orbit;
+    sbfx_scene_camera_get(NULL, &orbit);
+    test_scene_camera(&orbit, seconds, aspect, view, projection);
 }
 
 void test_scene_light(float direction[3], float color[3], float ambient[3])

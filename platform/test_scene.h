@@ -16,6 +16,7 @@
 #include <GLES3/gl3.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include "sbfx.h"
 
 struct test_scene {
     bool reversed_z;        /* test_scene_use_reversed_z */
@@ -45,10 +46,15 @@ void test_scene_destroy(struct test_scene *scene);
  * depth texture cannot be attached; err says which. */
 int test_scene_use_reversed_z(struct test_scene *scene, char *err, size_t n);
 
-/* The demo camera: a slow orbit (about 3.4 degrees per second) around the origin, 8.5 m away,
- * 2.6 m high, looking at (0, 1.5, 0); 50 degree vertical fov, near 0.1, far 200. */
+/* A scene file's camera (sbfx_scene_camera: the eye circling its target) at time `seconds`:
+ * view and projection, near 0.1, far 200. */
 #define TEST_SCENE_NEAR 0.1f
 #define TEST_SCENE_FAR 200.0f
+void test_scene_camera(const sbfx_scene_camera *camera, double seconds, float aspect, float view[16],
+                       float projection[16]);
+/* The demo camera, a scene's camera when it has none (sbfx_scene_camera_get): a slow orbit
+ * (about 3.4 degrees per second) around the origin, 8.5 m away, 2.6 m high, looking at
+ * (0, 1.5, 0); 50 degree vertical fov. */
 void test_scene_orbit_camera(double seconds, float aspect, float view[16], float projection[16]);
 
 /* The scene's light, for hosts that light particles to match: the direction sunlight

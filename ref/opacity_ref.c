@@ -230,8 +230,8 @@ double sbfx_ref_optical_depth(sbfx_opacity_mode mode, const sbfx_ref_particle *p
         double alpha = alpha_soft(p, px, near);
         return alpha < 1.0 ? od_clamp(-log1p(-alpha)) : OD_MAX;
     }
+    case SBFX_OPACITY_DEFAULT: /* the module's default */
     case SBFX_OPACITY_EXACT: return od_exact(p, px, near);
-    case SBFX_OPACITY_DEFAULT:
     case SBFX_OPACITY_SPHERICAL:
     default: return od_spherical(p, px, near);
     }

@@ -30,7 +30,8 @@ typedef struct sbfx_ref_pixel {
     double soft_scale;
 } sbfx_ref_pixel;
 
-/* Opacity alpha in [0,1] of one particle for one pixel, in the given mode (DEFAULT = SPHERICAL).
+/* Opacity alpha in [0,1] of one particle for one pixel, in the given mode (DEFAULT = EXACT, the
+ * module's default).
  * Always finite; a particle with a NaN/Inf input or radius <= 0 gives 0. */
 double sbfx_ref_opacity(sbfx_opacity_mode mode, const sbfx_ref_particle *p, const sbfx_ref_pixel *px);
 /* Optical depth (the exponent) instead of alpha; +inf never returned (clamped to 1e30). */

@@ -123,16 +123,16 @@ static double detail_sample(const sbfx_rf_frame *f, const sbfx_rf_particle *p, c
     return detail_lookup(f, uvw);
 }
 
-static double phase(const sbfx_rf_frame *f, double cos_theta, double g)
+static double phase(const sbfx_rf_frame *f, sbfx_medium medium, double cos_theta, double g)
 {
-    if (f->phase_table)
-        return sbfx_phase_table_lookup(f->phase_table, f->phase_table_cos, f->phase_table_g, cos_theta, g);
+    if (f->phase_tables[medium])
+        return sbfx_phase_table_lookup(f->phase_tables[medium], f->phase_table_size, g, cos_theta);
     return sbfx_phase(cos_theta, g);
 }
 
 /* in_scattered(): single scattering of every light toward the eye at the particle centre. */
-static void in_scattered(const sbfx_rf_frame *f, const sbfx_rf_medium *m, const double c[3],
-                         const double ray[3], double sum[3])
+static void in_scattered(const sbfx_rf_frame *f, sbfx_medium medium, const double c[3], const double ray[3],
+                         double sum[3])
 {
     double len = sqrt(ray[0] * ray[0] + ray[1] * ray[1] + ray[2] * ray[2]);
     double to_eye[3] = {-ray[0] / len, -ray[1] / len, -ray[2] / len};
@@ -148,20 +148,21 @@ static void in_scattered(const sbfx_rf_frame *f, const sbfx_rf_medium *m, const 
             falloff = 1.0 / d2;
         }
         double cos_theta = travel[0] * to_eye[0] + travel[1] * to_eye[1] + travel[2] * to_eye[2];
-        double ph = mp(f, phase(f, cos_theta, m->phase_g));
+        double ph = mp(f, phase(f, medium, cos_theta, f->media[medium].phase_g));
         for (int k = 0; k < 3; k++) sum[k] = mp(f, sum[k] + l->color[k] * (falloff * ph * FOUR_PI));
     }
 }
 
 static void blackbody(const sbfx_rf_frame *f, double kelvin, double rgb[3])
 {
-    if (f->blackbody_table) {
-        sbfx_blackbody_table_lookup(f->blackbody_table, f->blackbody_table_size, f->max_kelvin, kelvin, rgb);
-        return;
-    }
     rgb[0] = rgb[1] = rgb[2] = 0.0;
-    double t = clampd(kelvin, 0.0, f->max_kelvin);
-    if (t > 0.0 && f->cmf) sbfx_blackbody_rgb(f->cmf, t, f->blackbody_norm, rgb);
+    if (!(kelvin > 0.0)) return;
+    double t = fmin(kelvin, 1e7);
+    if (f->blackbody_table)
+        sbfx_blackbody_table_lookup(f->blackbody_table, f->blackbody_table_size, f->blackbody_lo, f->blackbody_hi, t,
+                                    rgb);
+    else if (f->cmf)
+        sbfx_blackbody_rgb(f->cmf, t, f->blackbody_norm, rgb);
 }
 
 /* emitted(): black body x emission scale x (1 - albedo), capped at the radiance ceiling. */
@@ -197,7 +198,7 @@ void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const doub
     double light[3] = {0.0, 0.0, 0.0};
     if (scatters) {
         double s[3];
-        in_scattered(f, m, p->center, ray, s);
+        in_scattered(f, p->medium, p->center, ray, s);
         for (int k = 0; k < 3; k++) light[k] = mp(f, light[k] + m->albedo * m->color[k] * s[k]);
     }
     if (emits) {
@@ -307,13 +308,35 @@ int sbfx_rf_render_layer(const sbfx_rf_frame *f, const sbfx_rf_particle *particl
     return skipped;
 }
 
-void sbfx_rf_composite(const double *layer, const uint8_t *scene_rgba8, int width, int height,
-                       double *out_rgb)
+void sbfx_rf_tone_map(sbfx_tone_map op, double exposure, const double c[3], double t, double out[3])
+{
+    double alpha = fmax(1.0 - t, 1e-4), l[3];
+    for (int k = 0; k < 3; k++) l[k] = c[k] * (exposure / alpha);
+    if (op == SBFX_TONE_MAP_NONE) {
+        for (int k = 0; k < 3; k++) out[k] = c[k] * exposure;
+        return;
+    }
+    sbfx_tone_curve curve = sbfx_tone_curve_default();
+    if (op == SBFX_TONE_MAP_PER_CHANNEL) {
+        for (int k = 0; k < 3; k++) l[k] = sbfx_tone_curve_apply(&curve, l[k]);
+    } else {
+        double top = fmax(l[0], fmax(l[1], l[2]));
+        double scale = top > curve.knee ? sbfx_tone_curve_apply(&curve, top) / top : 1.0;
+        for (int k = 0; k < 3; k++) l[k] *= scale;
+    }
+    for (int k = 0; k < 3; k++) out[k] = l[k] * alpha;
+}
+
+void sbfx_rf_composite(const double *layer, const uint8_t *scene_rgba8, int width, int height, sbfx_tone_map op,
+                       double exposure, double *out_rgb)
 {
     size_t n = (size_t)width * (size_t)height;
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < n; i++) {
+        double c[3];
+        sbfx_rf_tone_map(op, exposure, &layer[4 * i], layer[4 * i + 3], c);
         for (int k = 0; k < 3; k++) {
-            double v = scene_rgba8[4 * i + k] / 255.0 * layer[4 * i + 3] + layer[4 * i + k];
+            double v = scene_rgba8[4 * i + k] / 255.0 * layer[4 * i + 3] + c[k];
             out_rgb[3 * i + k] = clampd(v, 0.0, 1.0) * 255.0;
         }
+    }
 }

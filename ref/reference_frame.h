@@ -7,8 +7,9 @@
  * the black body and the phase function analytic (or, for tests of the GPU tables, through the
  * same tables), and accumulates the particles back to front in the order src/sort.c gives them:
  *     C <- c_i + C (1 - a_i),   T <- T (1 - a_i)      (C = premultiplied light, T = transmittance)
- * then composites over the opaque scene like composite.frag and an RGBA8 framebuffer do:
- *     out = clamp(scene * T + C, 0, 1) * 255.
+ * then composites over the opaque scene like composite.frag and an RGBA8 framebuffer do, with the
+ * same tone mapping of the layer's light (C' = tone_map(C, T)):
+ *     out = clamp(scene * T + C', 0, 1) * 255.
  *
  * Modelled: dust, smoke and fire with the phase-function lighting. Not modelled: heat (scene
  * displacement), lit media (lighting = "lit": ref/lit_ref.h is their reference), post effects.
@@ -75,15 +76,15 @@ typedef struct sbfx_rf_frame {
     int detail_size, detail_frames;
     double detail_time;            /* sbfx_detail_time(): added to the time coordinate */
 
-    const sbfx_cmf *cmf;           /* black body: analytic Planck x CMF... */
-    double max_kelvin;             /* ...clamped to [0, max_kelvin] like the shader */
-    double blackbody_norm;         /* sbfx_blackbody_norm(cmf, max_kelvin) */
+    const sbfx_cmf *cmf;           /* black body: analytic Planck x CMF (0 for T <= 0, T capped */
+    double blackbody_norm;         /* at 1e7 K like the shader), sbfx_blackbody_norm's scale */
     /* Tables instead of the analytic functions (NULL: analytic). Only tests of the GPU's own
-     * tables set these; the benchmark's reference is analytic. */
-    const double *blackbody_table; /* blackbody_table_size RGB entries up to max_kelvin */
+     * tables set these (sbfx_get_tables()); the benchmark's reference is analytic. */
+    const float *blackbody_table;  /* see sbfx_blackbody_table */
     int blackbody_table_size;
-    const double *phase_table;     /* phase_table_cos x phase_table_g, see sbfx_phase_table */
-    int phase_table_cos, phase_table_g;
+    double blackbody_lo, blackbody_hi;
+    const float *phase_tables[SBFX_MEDIUM_COUNT]; /* per medium (NULL: analytic), its phase_g */
+    int phase_table_size;
 
     sbfx_rf_precision precision;
 } sbfx_rf_frame;
@@ -113,9 +114,15 @@ void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const doub
 int sbfx_rf_render_layer(const sbfx_rf_frame *f, const sbfx_rf_particle *particles, int count,
                          double *layer, uint8_t *footprint);
 
-/* out[3 * i + k] = clamp(scene_k / 255 * T + C_k, 0, 1) * 255 for the RGBA8 scene colour
- * (rows in the same order as the layer). */
-void sbfx_rf_composite(const double *layer, const uint8_t *scene_rgba8, int width, int height,
-                       double *out_rgb);
+/* composite.frag's tone mapping of one layer pixel (premultiplied light c, transmittance t):
+ * the layer's colour c / alpha (alpha = max(1 - t, 1e-4)) times exposure through the tone curve
+ * (reference.h; by its largest channel, or per channel), times alpha again; NONE only scales by
+ * exposure. */
+void sbfx_rf_tone_map(sbfx_tone_map op, double exposure, const double c[3], double t, double out[3]);
+
+/* out[3 * i + k] = clamp(scene_k / 255 * T + C'_k, 0, 1) * 255 for the RGBA8 scene colour
+ * (rows in the same order as the layer), C' the tone-mapped light. */
+void sbfx_rf_composite(const double *layer, const uint8_t *scene_rgba8, int width, int height, sbfx_tone_map op,
+                       double exposure, double *out_rgb);
 
 #endif

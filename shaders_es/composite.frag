@@ -10,6 +10,8 @@
 //   OWN_SCENE     post effects follow: read the scene colour texture instead of blending over
 //                 the host's framebuffer, and write an opaque image
 //   HAS_SHIMMER   (with OWN_SCENE) heat particles' screen offsets displace the scene lookup
+//   TONE_MAP_NONE | TONE_MAP_HUE_PRESERVING | TONE_MAP_PER_CHANNEL   the particles' light on the
+//                 display (sbfx_tone_map in sbfx.h; src/reference_frame.c mirrors it)
 precision highp float;
 precision highp sampler2D;
 
@@ -48,6 +50,38 @@ float low_distance(ivec2 q)
     return e > 0.0 ? u_near / e : NO_SURFACE;
 }
 
+// ---- tone mapping: the particle layer's light before it meets the host's picture ----
+uniform float u_exposure;
+uniform vec3 u_tone_curve;        // knee, steepness, 1 / ln(1 + steepness x_white) (src/tonemap.c)
+
+// The identity up to the knee, a logarithmic shoulder above it reaching 1 at the white point.
+float tone_curve(float v)
+{
+    float k = u_tone_curve.x;
+    if (v <= k) return max(v, 0.0);
+    return min(k + (1.0 - k) * log(1.0 + u_tone_curve.y * (v - k) / (1.0 - k)) * u_tone_curve.z, 1.0);
+}
+
+// The layer's own colour L = C / alpha goes through the curve and back over its coverage, so
+// dst * T + alpha * L' stays within [0, 1] wherever dst does: no channel clips on its own.
+vec4 tone_map(vec4 p)
+{
+#ifdef TONE_MAP_NONE
+    return vec4(p.rgb * u_exposure, p.a);
+#else
+    float alpha = max(1.0 - p.a, 1e-4);
+    vec3 l = p.rgb * (u_exposure / alpha);
+#ifdef TONE_MAP_PER_CHANNEL
+    l = vec3(tone_curve(l.r), tone_curve(l.g), tone_curve(l.b));
+#else
+    float top = max(max(l.r, l.g), l.b);
+    if (top > u_tone_curve.x) l *= tone_curve(top) / top;
+#endif
+    return vec4(l * alpha, p.a);
+#endif
+}
+// ---- end of tone mapping ----
+
 vec4 sanitize(vec4 p)
 {
     // A NaN never reaches the screen; Inf is clamped to the largest half.
@@ -80,6 +114,7 @@ void main()
         if (dz.w < best) { result = p11; }
     }
 #endif
+    result = tone_map(result);
 #ifdef OWN_SCENE
     vec2 uv = gl_FragCoord.xy / u_full_size;
 #ifdef HAS_SHIMMER

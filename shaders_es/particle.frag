@@ -14,14 +14,18 @@
 //   LIGHTING_LIT     (with MEDIUM_SCATTERS) the lit-smoke seed instead of the phase function:
 //                    per-pixel normals, wrap-around Lambert, back-lighting, up to 4 lights
 //   LIT_SHADOW       (with LIGHTING_LIT) ray-marched self-shadowing through the height field
+//   TABLE_PROBE      diagnostics: main() writes blackbody(T) and phase(cos) for the probe and
+//                    the tests (src/diagnostics.c) instead of shading a particle
 // Light and colour are mediump (what a Mali-class GPU runs at half precision); geometry,
 // depth and opacity stay highp.
 precision highp float;
 precision highp sampler2D;
 precision highp sampler3D;
 
+#ifndef TABLE_PROBE
 flat in vec4 v_center_radius;
 flat in vec4 v_detail;
+#endif
 #ifdef LIGHT_PER_PARTICLE
 flat in vec3 v_light;            // in-scattered light evaluated once at the particle's centre
 #endif
@@ -46,8 +50,10 @@ uniform float u_detail_strength;
 uniform float u_time;            // in detail-volume loops
 #endif
 #ifdef MEDIUM_SCATTERS
-uniform sampler2D u_phase_lut;   // (cos, g) -> phase, cos = dot(light travel, to eye)
-uniform vec2 u_phase_lut_size;
+uniform sampler2D u_phase_lut;   // R32F, row m: medium m's phase function (src/tables.c)
+uniform int u_phase_row;
+uniform vec4 u_phase_warp;       // sign(g), (1-|g|)^2, 2|g| (0: unwarped), 1/ln((1-|g|)^2/(1+|g|)^2)
+uniform vec2 u_phase_shift;      // -ln((1+|g|)^2) * u_phase_warp.w, entries - 1
 uniform float u_g;
 uniform vec3 u_albedo_color;     // albedo * tint
 #define MAX_LIGHTS 8
@@ -76,9 +82,8 @@ uniform vec3 u_cmf_rgb[MAX_BANDS]; // sRGB weight of each band (CMF, trapezoid, 
 uniform float u_cmf_band[MAX_BANDS]; // wavelength [µm]
 #endif
 #ifdef MEDIUM_EMITS
-uniform sampler2D u_blackbody;   // T / max_kelvin -> normalised linear sRGB
-uniform float u_blackbody_size;
-uniform float u_max_kelvin;
+uniform sampler2D u_blackbody;   // RGBA32F, uniform in 1/T: rgb / Y, ln(Y / T) (src/blackbody.c)
+uniform vec3 u_blackbody_map;    // 1/T at entry 0, entries per unit of 1/T, entries - 2
 uniform vec3 u_temperature;      // T0, T1, cooling
 uniform float u_emission_scale;   // includes (1 - albedo)
 // Per-fragment radiance ceiling: keeps sums of many layers far below half-float's 65504.
@@ -164,18 +169,32 @@ float detail_sample(vec3 c, float r, vec3 ray)
 #endif
 
 #ifdef MEDIUM_SCATTERS
+// 1 + g^2 - 2 g cos, written (1-|g|)^2 + 2|g| (1 - sign(g) cos): no cancellation at the peak
+float phase_base(float cos_theta, float g)
+{
+    float a = abs(g), s = g < 0.0 ? -cos_theta : cos_theta;
+    return (1.0 - a) * (1.0 - a) + 2.0 * a * (1.0 - s);
+}
+
 mediump float phase(float cos_theta)
 {
 #ifdef PHASE_ANALYTIC
     // Cornette-Shanks, cos_theta between the light's travel and the way to the eye
     float g = u_g, gg = g * g;
-    float denom = max(1.0 + gg - 2.0 * g * cos_theta, 1e-6);
+    float denom = max(phase_base(cos_theta, g), 1e-6);
     return 3.0 * (1.0 - gg) * (1.0 + cos_theta * cos_theta) /
            (25.132741229 * (2.0 + gg) * denom * sqrt(denom));
 #else
-    vec2 lut = (vec2(cos_theta * 0.5 + 0.5, u_g / (2.0 * 0.99) + 0.5) * (u_phase_lut_size - 1.0) + 0.5)
-               / u_phase_lut_size;
-    return texture(u_phase_lut, lut).r;
+    // The table's coordinate (sbfx_phase_coordinate): ln of the base for a peaked function,
+    // cos itself for a nearly flat one; then the two entries around it, interpolated here.
+    float s = u_phase_warp.x * cos_theta;
+    float t = u_phase_warp.z > 0.0 ? log(u_phase_warp.y + u_phase_warp.z * (1.0 - s)) * u_phase_warp.w + u_phase_shift.x
+                                   : 0.5 * s + 0.5;
+    float pos = clamp(t, 0.0, 1.0) * u_phase_shift.y;
+    float i = min(floor(pos), u_phase_shift.y - 1.0);
+    float a = texelFetch(u_phase_lut, ivec2(int(i), u_phase_row), 0).r;
+    float b = texelFetch(u_phase_lut, ivec2(int(i) + 1, u_phase_row), 0).r;
+    return mix(a, b, pos - i);
 #endif
 }
 
@@ -299,13 +318,15 @@ float expm1_safe(float x)
 }
 
 #ifdef MEDIUM_EMITS
+// Normalised linear sRGB of the black body (luminance 1 at desc.blackbody_max_kelvin); 0 at
+// T <= 0. Hotter than 1e7 K the colour no longer changes (Y/T is constant to 1e-5).
 vec3 blackbody(float kelvin)
 {
+    if (!(kelvin > 0.0)) return vec3(0.0);
+    float t = min(kelvin, 1e7);
 #ifdef BLACKBODY_ANALYTIC
     // Planck x CIE 1931 per band (λ in µm, C2 = hc/k = 14387.77 µm K), like the table's rows.
     vec3 rgb = vec3(0.0);
-    float t = clamp(kelvin, 0.0, u_max_kelvin);
-    if (t <= 0.0) return rgb;
     for (int i = 0; i < MAX_BANDS; i++) {
         if (i >= u_cmf_count) break;
         float lambda = u_cmf_band[i];
@@ -316,9 +337,13 @@ vec3 blackbody(float kelvin)
     }
     return max(rgb, vec3(0.0));                   // out of gamut: clipped like the table
 #else
-    float x = clamp(kelvin / u_max_kelvin, 0.0, 1.0);
-    float s = (x * (u_blackbody_size - 1.0) + 0.5) / u_blackbody_size;
-    return texture(u_blackbody, vec2(s, 0.5)).rgb;
+    // Entries uniform in 1/T, interpolated here (and carried on along the end cells outside the
+    // table: Wien's law for ln(Y/T) below it), the clip to the gamut after interpolation.
+    float pos = (1.0 / t - u_blackbody_map.x) * u_blackbody_map.y;
+    float i = clamp(floor(pos), 0.0, u_blackbody_map.z), f = pos - i;
+    vec4 a = texelFetch(u_blackbody, ivec2(int(i), 0), 0);
+    vec4 b = texelFetch(u_blackbody, ivec2(int(i) + 1, 0), 0);
+    return max(mix(a.rgb, b.rgb, f) * (exp(mix(a.w, b.w, f)) * t), vec3(0.0));
 #endif
 }
 
@@ -334,6 +359,21 @@ float opacity_from_depth(float x)
     return x < 1e-3 ? x * (1.0 - 0.5 * x) : 1.0 - exp(-x);
 }
 
+#ifdef TABLE_PROBE
+uniform vec2 u_probe;            // kelvin, cos theta
+void main()
+{
+    vec3 rgb = vec3(0.0);
+    float p = 0.0;
+#ifdef MEDIUM_EMITS
+    rgb = blackbody(u_probe.x);
+#endif
+#ifdef MEDIUM_SCATTERS
+    p = phase(u_probe.y);
+#endif
+    o_color = vec4(rgb, p);
+}
+#else
 void main()
 {
 #ifdef OPACITY_FLOOR
@@ -405,3 +445,4 @@ void main()
 #endif
 #endif
 }
+#endif

@@ -190,42 +190,64 @@ void sbfx_blackbody_rgb(const sbfx_cmf *cmf, double kelvin, double norm, double 
         if (!(rgb[k] > 0.0) || !isfinite(rgb[k])) rgb[k] = 0.0;
 }
 
-double sbfx_blackbody_norm(const sbfx_cmf *cmf, double max_kelvin)
+double sbfx_blackbody_norm(const sbfx_cmf *cmf, double kelvin)
 {
     double xyz[3];
-    sbfx_blackbody_xyz(cmf, max_kelvin, xyz);
+    sbfx_blackbody_xyz(cmf, kelvin, xyz);
     double norm = 1.0 / xyz[1];
-    /* A table with no light at its top (T_max <= 0, or so cold Y underflows) stays black. */
+    /* No light at that temperature (T <= 0, or so cold Y underflows): a black table. */
     return (xyz[1] > 0.0 && isfinite(norm)) ? norm : 0.0;
 }
 
-static double table_kelvin(int i, int size, double max_kelvin)
+/* ---- the table (reference.h says why these coordinates) ----------------------------------- */
+
+static double table_inverse_kelvin(int i, int size, double lo, double hi)
 {
-    return size > 1 ? max_kelvin * i / (size - 1) : max_kelvin;
+    return size > 1 ? 1.0 / hi + (1.0 / lo - 1.0 / hi) * i / (size - 1) : 1.0 / hi;
 }
 
-void sbfx_blackbody_table(const sbfx_cmf *cmf, double max_kelvin, int size, double *rgb_out)
+void sbfx_blackbody_table(const sbfx_cmf *cmf, double norm, double lo, double hi, int size, float *out)
 {
-    if (!rgb_out || size < 1) return;
-    double norm = sbfx_blackbody_norm(cmf, max_kelvin);
-    for (int i = 0; i < size; i++)
-        sbfx_blackbody_rgb(cmf, table_kelvin(i, size, max_kelvin), norm, rgb_out + 3 * (size_t)i);
+    if (!out || size < 1) return;
+    for (int i = 0; i < size; i++) {
+        double w = table_inverse_kelvin(i, size, lo, hi), xyz[3], rgb[3];
+        sbfx_blackbody_xyz(cmf, 1.0 / w, xyz);
+        double y = xyz[1] * norm;
+        sbfx_xyz_to_linear_srgb(xyz, rgb); /* unclipped: the clip comes after interpolation */
+        float *e = out + 4 * (size_t)i;
+        for (int k = 0; k < 3; k++) e[k] = xyz[1] > 0.0 ? (float)(rgb[k] / xyz[1]) : 0.0f;
+        /* ln(Y/T) = ln(Y w); a table with no light at all holds -inf's stand-in */
+        e[3] = y > 0.0 ? (float)log(y * w) : -1e30f;
+    }
 }
 
-void sbfx_blackbody_table_lookup(const double *table, int size, double max_kelvin, double kelvin,
+void sbfx_blackbody_table_lookup(const float *table, int size, double lo, double hi, double kelvin,
                                  double rgb[3])
 {
     rgb[0] = rgb[1] = rgb[2] = 0.0;
-    if (!table || size < 1) return;
-    if (size == 1 || !(max_kelvin > 0.0)) {
-        for (int k = 0; k < 3; k++) rgb[k] = table[k];
-        return;
-    }
-    double t = kelvin > 0.0 ? (kelvin < max_kelvin ? kelvin : max_kelvin) : 0.0; /* NaN -> 0 */
-    double pos = t / max_kelvin * (size - 1);
-    int i = (int)pos;
-    if (i > size - 2) i = size - 2;
+    if (!table || size < 2 || !(kelvin > 0.0)) return;
+    double pos = (1.0 / kelvin - 1.0 / hi) / (1.0 / lo - 1.0 / hi) * (size - 1);
+    double cell = floor(pos);
+    int i = cell < 0.0 ? 0 : cell > size - 2 ? size - 2 : (int)cell;
     double f = pos - i;
-    const double *a = table + 3 * (size_t)i, *b = a + 3;
-    for (int k = 0; k < 3; k++) rgb[k] = a[k] + (b[k] - a[k]) * f;
+    const float *a = table + 4 * (size_t)i, *b = a + 4;
+    double y = exp(a[3] + (b[3] - a[3]) * f) * (kelvin < 1e30 ? kelvin : 1e30);
+    for (int k = 0; k < 3; k++) {
+        double v = (a[k] + (b[k] - a[k]) * f) * y;
+        rgb[k] = v > 0.0 && isfinite(v) ? v : 0.0;
+    }
+}
+
+double sbfx_blackbody_table_error(const sbfx_cmf *cmf, double norm, const float *table, int size,
+                                  double lo, double hi)
+{
+    double worst = 0.0;
+    for (int i = 0; i < 8 * (size - 1) + 1 && size > 1; i++) {
+        double w = 1.0 / hi + (1.0 / lo - 1.0 / hi) * i / (8.0 * (size - 1)), want[3], got[3];
+        sbfx_blackbody_rgb(cmf, 1.0 / w, norm, want);
+        sbfx_blackbody_table_lookup(table, size, lo, hi, 1.0 / w, got);
+        double top = fmax(want[0], fmax(want[1], want[2]));
+        for (int k = 0; k < 3 && top > 0.0; k++) worst = fmax(worst, fabs(got[k] - want[k]) / top);
+    }
+    return worst;
 }

@@ -1,6 +1,7 @@
 /* Read-backs for the probe and the GL tests: the particle target and the GPU's view of the
  * lookup tables. Not used by the frame loop; like every entry point they leave the host's GL
  * state as they found it. */
+#include <stdio.h>
 #include <string.h>
 #include "module.h"
 
@@ -36,13 +37,7 @@ static sbfx_result ensure_probe_target(sbfx *fx)
     if (gl->probe_fbo) return SBFX_OK;
     if (!sbfx_has_extension("GL_EXT_color_buffer_float"))
         return sbfx_fail(fx, SBFX_ERR_GL, "reading tables back needs GL_EXT_color_buffer_float");
-    if (!gl->lut_program) {
-        gl->lut_program = sbfx_program_build(fx, "fullscreen.vert", "lut_fetch.frag", NULL);
-        if (!gl->lut_program) return SBFX_ERR_SHADER;
-    }
-    glGenTextures(1, &gl->probe_texture);
-    glBindTexture(GL_TEXTURE_2D, gl->probe_texture);
-    sbfx_texture_params(GL_TEXTURE_2D, GL_NEAREST, GL_CLAMP_TO_EDGE);
+    gl->probe_texture = sbfx_texture_create(fx, GL_TEXTURE_2D, GL_NEAREST, GL_CLAMP_TO_EDGE);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 1, 1, 0, GL_RGBA, GL_FLOAT, NULL);
     glGenFramebuffers(1, &gl->probe_fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, gl->probe_fbo);
@@ -52,25 +47,41 @@ static sbfx_result ensure_probe_target(sbfx *fx)
     return sbfx_gl_check(fx, "creating the table read-back target") ? SBFX_OK : SBFX_ERR_GL;
 }
 
-static void draw_lut_fetch(sbfx *fx, float kelvin, float cos_theta, float g, float rgb[3], float *phase)
+/* particle.frag with TABLE_PROBE: its own blackbody() and phase(), table or analytic as the
+ * medium's program has them. Remade when the medium asked for changes. */
+static sbfx_result ensure_probe_program(sbfx *fx, sbfx_medium m)
 {
     sbfx_gl *gl = &fx->gl;
-    GLuint prog = gl->lut_program;
+    if (gl->lut_program && gl->lut_medium == (int)m) return SBFX_OK;
+    if (gl->lut_program) glDeleteProgram(gl->lut_program);
+    char defines[256];
+    snprintf(defines, sizeof(defines), "#define TABLE_PROBE\n#define MEDIUM_EMITS\n#define MEDIUM_SCATTERS\n%s%s",
+             fx->tables.blackbody_analytic ? "#define BLACKBODY_ANALYTIC\n" : "",
+             fx->tables.phase_analytic[m] ? "#define PHASE_ANALYTIC\n" : "");
+    gl->lut_program = sbfx_program_build(fx, "fullscreen.vert", "particle.frag", defines);
+    gl->lut_medium = (int)m;
+    if (!gl->lut_program) return SBFX_ERR_SHADER;
+    if (fx->tables.blackbody_analytic) {
+        sbfx_program p = {.id = gl->lut_program};
+        sbfx_program_locate(&p);
+        sbfx_program_load_cmf(fx, &p);
+    }
+    return SBFX_OK;
+}
+
+static void draw_lut_fetch(sbfx *fx, sbfx_medium medium, float kelvin, float cos_theta, float rgb[3],
+                           float *phase)
+{
+    sbfx_gl *gl = &fx->gl;
+    sbfx_program p = {.id = gl->lut_program};
+    sbfx_program_locate(&p);
     glBindFramebuffer(GL_FRAMEBUFFER, gl->probe_fbo);
     glViewport(0, 0, 1, 1);
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_TEST);
-    glUseProgram(prog);
-    sbfx_bind_texture(0, GL_TEXTURE_2D, gl->blackbody_texture, 0);
-    sbfx_bind_texture(1, GL_TEXTURE_2D, gl->phase_texture, 0);
-    glUniform1i(glGetUniformLocation(prog, "u_blackbody"), 0);
-    glUniform1i(glGetUniformLocation(prog, "u_phase_lut"), 1);
-    glUniform1f(glGetUniformLocation(prog, "u_blackbody_size"), SBFX_BLACKBODY_SIZE);
-    glUniform1f(glGetUniformLocation(prog, "u_max_kelvin"), fx->max_kelvin);
-    glUniform1f(glGetUniformLocation(prog, "u_kelvin"), kelvin);
-    glUniform2f(glGetUniformLocation(prog, "u_phase_lut_size"), SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE);
-    glUniform1f(glGetUniformLocation(prog, "u_cos_theta"), cos_theta);
-    glUniform1f(glGetUniformLocation(prog, "u_g"), g);
+    glUseProgram(p.id);
+    sbfx_tables_bind(fx, &p, medium);
+    glUniform2f(p.probe, kelvin, cos_theta);
     glBindVertexArray(gl->fullscreen_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     float out[4];
@@ -79,16 +90,18 @@ static void draw_lut_fetch(sbfx *fx, float kelvin, float cos_theta, float g, flo
     *phase = out[3];
 }
 
-sbfx_result sbfx_fetch_luts(sbfx *fx, float kelvin, float cos_theta, float g, float rgb[3], float *phase)
+sbfx_result sbfx_fetch_luts(sbfx *fx, sbfx_medium medium, float kelvin, float cos_theta, float rgb[3], float *phase)
 {
-    sbfx_gl *gl = &fx->gl;
-    if (!gl->blackbody_texture || !gl->phase_texture)
-        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "the loaded effects use no black-body or phase table");
-    const sbfx_gl_units units = {.tex_2d = 3u};
+    if ((unsigned)medium >= SBFX_MEDIUM_COUNT || !fx->tables.blackbody || !sbfx_medium_uses_phase(fx, medium))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "the loaded effects use no fire, or medium %d scatters "
+                         "no light through the phase function", (int)medium);
+    /* unit 0: where the read-back texture is made; 2 and 3: the tables */
+    const sbfx_gl_units units = {.tex_2d = 1u << 0 | 1u << SBFX_UNIT_PHASE | 1u << SBFX_UNIT_BLACKBODY};
     sbfx_gl_state saved;
     sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | SBFX_GL_SAVE_PACK, &units);
     sbfx_result r = ensure_probe_target(fx);
-    if (r == SBFX_OK) draw_lut_fetch(fx, kelvin, cos_theta, g, rgb, phase);
+    if (r == SBFX_OK) r = ensure_probe_program(fx, medium);
+    if (r == SBFX_OK) draw_lut_fetch(fx, medium, kelvin, cos_theta, rgb, phase);
     sbfx_gl_state_restore(&saved);
     if (r != SBFX_OK) return r;
     return sbfx_gl_check(fx, "fetching the tables") ? SBFX_OK : SBFX_ERR_GL;

@@ -45,6 +45,17 @@ void sbfx_texture_params(GLenum target, GLenum filter, GLenum wrap)
     if (target == GL_TEXTURE_3D) glTexParameteri(target, GL_TEXTURE_WRAP_R, (GLint)wrap);
 }
 
+/* A texture of the module: made, bound, its filters and wrap set, counted. */
+GLuint sbfx_texture_create(sbfx *fx, GLenum target, GLenum filter, GLenum wrap)
+{
+    GLuint tex = 0;
+    glGenTextures(1, &tex);
+    glBindTexture(target, tex);
+    sbfx_texture_params(target, filter, wrap);
+    fx->counters.textures++;
+    return tex;
+}
+
 /* Compiles one stage: the embedded source with `defines` inserted after its #version line. */
 static GLuint compile_stage(sbfx *fx, GLenum stage, const char *name, const char *defines)
 {

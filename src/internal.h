@@ -9,11 +9,33 @@
 
 #define ARRAY_SIZE(a) (sizeof(a) / sizeof((a)[0]))
 
-/* Table sizes (the GPU's copies of the reference tables). */
-#define SBFX_BLACKBODY_SIZE 1024
-#define SBFX_PHASE_COS_SIZE 128
-#define SBFX_PHASE_G_SIZE 64
-#define SBFX_DEFAULT_MAX_KELVIN 6000.0
+/* Lookup tables (reference.h has their coordinates; README "What accuracy costs" the sizes'
+ * measured error). Float32 entries fetched with texelFetch and interpolated in the shader:
+ * half floats would spend half the error budget on rounding (2^-11), float textures are not
+ * filterable in core ES 3.0, and the filter's fixed-point weights would add their own error. */
+#define SBFX_BLACKBODY_SIZE 512           /* RGBA32F entries, uniform in 1/T */
+#define SBFX_PHASE_SIZE 256               /* R32F entries per medium, warped cos θ */
+#define SBFX_DEFAULT_MAX_KELVIN 6000.0    /* blackbody_max_kelvin: luminance 1 at this T */
+#define SBFX_BLACKBODY_MIN_KELVIN 500.0   /* cooler fire: under 1e-19 of the unit's light */
+#define SBFX_BLACKBODY_MARGIN 1.25        /* the range reaches this factor beyond the scene's */
+#define SBFX_TABLE_TOLERANCE 1e-3         /* DESIGN §4: relative to the double function */
+#define SBFX_TABLE_GPU_ALLOWANCE 1e-4     /* of it, what the shader's float arithmetic may use
+                                             (llvmpipe: 6e-6 black body, 5e-7 phase) */
+
+/* The tables made at load, with the CPU copy of what was uploaded (tests mirror the GPU with
+ * it) and what was decided: a medium whose table would miss the tolerance is evaluated
+ * analytically instead (logged once). */
+typedef struct sbfx_tables {
+    float *blackbody;              /* SBFX_BLACKBODY_SIZE x 4; NULL without fire */
+    double blackbody_lo, blackbody_hi;  /* kelvin, from the scene's fire (tables.c) */
+    double blackbody_norm;         /* 1 / Y(desc.blackbody_max_kelvin) */
+    double blackbody_error;        /* the CPU lookup's largest error over the range */
+    bool blackbody_analytic;       /* desc.analytic_blackbody, or the table missed */
+    float *phase;                  /* SBFX_MEDIUM_COUNT rows of SBFX_PHASE_SIZE; row m: medium m */
+    double phase_error[SBFX_MEDIUM_COUNT];
+    bool phase_table[SBFX_MEDIUM_COUNT];    /* the medium samples its row */
+    bool phase_analytic[SBFX_MEDIUM_COUNT]; /* the medium evaluates the function per fragment */
+} sbfx_tables;
 
 /* Per-medium rendering parameters (the seed's values by default). */
 typedef struct sbfx_medium_params {
@@ -76,10 +98,16 @@ sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
 /* Reads back the particle target of the last render as float RGBA (premultiplied radiance,
  * transmittance in alpha). w*h floats*4 must fit in capacity (floats). */
 sbfx_result sbfx_read_particle_target(sbfx *fx, float *rgba, size_t capacity, int *w, int *h);
-/* Fetches the GPU black-body LUT at kelvin and the phase LUT at (cos, g) through a tiny
- * shader pass (what the particle shader sees). */
-sbfx_result sbfx_fetch_luts(sbfx *fx, float kelvin, float cos_theta, float g, float rgb[3],
+/* The black body at kelvin and a medium's phase function at cos_theta (its g is the one the
+ * tables were made for) as the particle shader computes them: particle.frag's own functions
+ * (table or analytic, whatever that medium's program uses) in a 1x1 pass. */
+sbfx_result sbfx_fetch_luts(sbfx *fx, sbfx_medium medium, float kelvin, float cos_theta, float rgb[3],
                             float *phase);
+/* The tables of the loaded scene (sbfx_tables above). */
+const sbfx_tables *sbfx_get_tables(const sbfx *fx);
+/* Remakes the tables, shader programs and targets from the current media (sbfx_media): for
+ * tests and tools that change media after sbfx_create. Allocates; not for the frame loop. */
+sbfx_result sbfx_reload(sbfx *fx);
 
 /* What the renderer would draw for this view: live particles in view space (unsorted,
  * invalid ones skipped), as the last sbfx_render saw them. Returns the count; *out is owned

@@ -1,19 +1,9 @@
-/* Lookup tables and the detail volume: computed on the CPU in double (tables.h), stored as
- * half floats (_Float16 rounds to nearest even), uploaded once at load — and only for media
- * the loaded effects use. */
+/* Lookup tables (tables.c) and the detail volume: computed on the CPU in double (tables.h),
+ * uploaded once at load — and only for media the loaded effects use. The detail volume is
+ * stored as half floats (_Float16 rounds to nearest even). */
 #include <stdlib.h>
 #include <string.h>
 #include "module.h"
-
-static GLuint make_texture(sbfx *fx, GLenum target, GLenum filter, GLenum wrap)
-{
-    GLuint tex = 0;
-    glGenTextures(1, &tex);
-    glBindTexture(target, tex);
-    sbfx_texture_params(target, filter, wrap);
-    fx->counters.textures++;
-    return tex;
-}
 
 /* The analytic black body sums Planck x CMF per fragment; the per-band constants fold the
  * XYZ -> sRGB matrix, the trapezoid weight, 2hc² (with λ in µm) and the table's normalisation,
@@ -28,7 +18,7 @@ static sbfx_result prepare_analytic_blackbody(sbfx *fx, const sbfx_cmf *cmf)
     fx->cmf_rgb = sbfx_calloc(fx, (size_t)cmf->bands * 3, sizeof(float));
     fx->cmf_band = sbfx_calloc(fx, (size_t)cmf->bands, sizeof(float));
     if (!fx->cmf_rgb || !fx->cmf_band) return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
-    double norm = sbfx_blackbody_norm(cmf, fx->max_kelvin), step_m = cmf->step_nm * 1e-9;
+    double norm = fx->tables.blackbody_norm, step_m = cmf->step_nm * 1e-9;
     for (int i = 0; i < cmf->bands; i++) {
         double weight = (i == 0 || i == cmf->bands - 1) ? 0.5 * step_m : step_m;
         double xyz[3] = {cmf->xyz[0][i], cmf->xyz[1][i], cmf->xyz[2][i]}, rgb[3];
@@ -40,53 +30,17 @@ static sbfx_result prepare_analytic_blackbody(sbfx *fx, const sbfx_cmf *cmf)
     return SBFX_OK;
 }
 
-static sbfx_result upload_blackbody(sbfx *fx)
+/* The CIE tables feed the black-body table, or the analytic black body's per-band constants. */
+static sbfx_result make_fire_tables(sbfx *fx)
 {
     char err[256];
     sbfx_cmf *cmf = sbfx_calloc(fx, 1, sizeof(*cmf));
-    double *rgb = sbfx_calloc(fx, SBFX_BLACKBODY_SIZE * 3, sizeof(double));
-    _Float16 *texels = sbfx_calloc(fx, SBFX_BLACKBODY_SIZE * 4, sizeof(_Float16));
-    sbfx_result r = SBFX_ERR_OUT_OF_MEMORY;
-    if (!cmf || !rgb || !texels) goto out;
-    r = sbfx_cmf_load(fx->desc.cmf_path, cmf, err, sizeof(err));
-    if (r != SBFX_OK) {
-        sbfx_fail(fx, r, "%s", err);
-        goto out;
-    }
-    sbfx_blackbody_table(cmf, fx->max_kelvin, SBFX_BLACKBODY_SIZE, rgb);
-    if (fx->desc.analytic_blackbody && (r = prepare_analytic_blackbody(fx, cmf)) != SBFX_OK) goto out;
-    for (int i = 0; i < SBFX_BLACKBODY_SIZE; i++) {
-        for (int c = 0; c < 3; c++) texels[4 * i + c] = (_Float16)rgb[3 * i + c];
-        texels[4 * i + 3] = (_Float16)1.0f;
-    }
-    fx->gl.blackbody_texture = make_texture(fx, GL_TEXTURE_2D, GL_LINEAR, GL_CLAMP_TO_EDGE);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, SBFX_BLACKBODY_SIZE, 1, 0, GL_RGBA, GL_HALF_FLOAT, texels);
-    fx->counters.gpu_bytes += SBFX_BLACKBODY_SIZE * 8;
-    r = sbfx_gl_check(fx, "uploading the black-body table") ? SBFX_OK : SBFX_ERR_GL;
-out:
+    if (!cmf) return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
+    sbfx_result r = sbfx_cmf_load(fx->desc.cmf_path, cmf, err, sizeof(err));
+    if (r != SBFX_OK) sbfx_fail(fx, r, "%s", err);
+    if (r == SBFX_OK) r = sbfx_tables_create(fx, cmf);
+    if (r == SBFX_OK && fx->tables.blackbody_analytic) r = prepare_analytic_blackbody(fx, cmf);
     sbfx_free(fx, cmf);
-    sbfx_free(fx, rgb);
-    sbfx_free(fx, texels);
-    return r;
-}
-
-static sbfx_result upload_phase(sbfx *fx)
-{
-    const int n = SBFX_PHASE_COS_SIZE * SBFX_PHASE_G_SIZE;
-    double *table = sbfx_calloc(fx, (size_t)n, sizeof(double));
-    _Float16 *texels = sbfx_calloc(fx, (size_t)n, sizeof(_Float16));
-    sbfx_result r = SBFX_ERR_OUT_OF_MEMORY;
-    if (table && texels) {
-        sbfx_phase_table(SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE, table);
-        for (int i = 0; i < n; i++) texels[i] = (_Float16)table[i];
-        fx->gl.phase_texture = make_texture(fx, GL_TEXTURE_2D, GL_LINEAR, GL_CLAMP_TO_EDGE);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_R16F, SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE, 0, GL_RED,
-                     GL_HALF_FLOAT, texels);
-        fx->counters.gpu_bytes += (size_t)n * 2;
-        r = sbfx_gl_check(fx, "uploading the phase-function table") ? SBFX_OK : SBFX_ERR_GL;
-    }
-    sbfx_free(fx, table);
-    sbfx_free(fx, texels);
     return r;
 }
 
@@ -106,13 +60,13 @@ static sbfx_result upload_detail(sbfx *fx)
         sbfx_detail_generate(size, frames, fx->desc.seed, values);
         if (fx->desc.detail_format == SBFX_DETAIL_R32F) {
             /* R32F is not filterable in core ES 3.0: sampled NEAREST, which is its cost. */
-            fx->gl.detail_texture = make_texture(fx, GL_TEXTURE_3D, GL_NEAREST, GL_REPEAT);
+            fx->gl.detail_texture = sbfx_texture_create(fx, GL_TEXTURE_3D, GL_NEAREST, GL_REPEAT);
             glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size, size, frames, 0, GL_RED, GL_FLOAT, values);
             fx->counters.gpu_bytes += n * 4;
         } else {
             for (size_t i = 0; i < n; i++) texels[i] = (_Float16)values[i];
             /* R16F: filterable in core ES 3.0, REPEAT so windows and time wrap. */
-            fx->gl.detail_texture = make_texture(fx, GL_TEXTURE_3D, GL_LINEAR, GL_REPEAT);
+            fx->gl.detail_texture = sbfx_texture_create(fx, GL_TEXTURE_3D, GL_LINEAR, GL_REPEAT);
             glTexImage3D(GL_TEXTURE_3D, 0, GL_R16F, size, size, frames, 0, GL_RED, GL_HALF_FLOAT, texels);
             fx->counters.gpu_bytes += n * 2;
         }
@@ -143,7 +97,7 @@ static sbfx_result upload_smoke(sbfx *fx, sbfx_medium m)
         /* CLAMP_TO_EDGE: the puff's height is 0 at the border, a lit particle's rim must not
          * pick up the opposite side. Mipmapped: small particles would alias the normal map. */
         int layers = SBFX_SMOKE_LAYERS_PER_VARIANT * variants, levels = sbfx_smoke_texture_levels(size);
-        fx->gl.smoke_texture[m] = make_texture(fx, GL_TEXTURE_2D_ARRAY, GL_LINEAR, GL_CLAMP_TO_EDGE);
+        fx->gl.smoke_texture[m] = sbfx_texture_create(fx, GL_TEXTURE_2D_ARRAY, GL_LINEAR, GL_CLAMP_TO_EDGE);
         glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
         glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, levels - 1);
         for (int level = 0; level < levels; level++)
@@ -163,13 +117,6 @@ static bool lit(const sbfx *fx, sbfx_medium m)
     return fx->uses_medium[m] && fx->media[m].lit && fx->media[m].albedo > 0;
 }
 
-/* Dust or smoke lit through the phase function (a lit medium does not sample the table). */
-static bool any_phase(const sbfx *fx)
-{
-    return (fx->uses_medium[SBFX_DUST] && !lit(fx, SBFX_DUST)) ||
-           (fx->uses_medium[SBFX_SMOKE] && !lit(fx, SBFX_SMOKE));
-}
-
 static bool any_detail(const sbfx *fx)
 {
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
@@ -181,8 +128,8 @@ sbfx_result sbfx_luts_create(sbfx *fx)
 {
     sbfx_result r = SBFX_OK;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    if (fx->uses_medium[SBFX_FIRE] && (r = upload_blackbody(fx)) != SBFX_OK) return r;
-    if (any_phase(fx) && (r = upload_phase(fx)) != SBFX_OK) return r;
+    r = fx->uses_medium[SBFX_FIRE] ? make_fire_tables(fx) : sbfx_tables_create(fx, NULL);
+    if (r != SBFX_OK) return r;
     if (any_detail(fx) && (r = upload_detail(fx)) != SBFX_OK) return r;
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
         if (lit(fx, (sbfx_medium)m) && (r = upload_smoke(fx, (sbfx_medium)m)) != SBFX_OK) return r;
@@ -191,15 +138,15 @@ sbfx_result sbfx_luts_create(sbfx *fx)
 
 void sbfx_luts_destroy(sbfx *fx)
 {
-    GLuint textures[] = {fx->gl.blackbody_texture, fx->gl.phase_texture, fx->gl.detail_texture};
-    glDeleteTextures((GLsizei)ARRAY_SIZE(textures), textures);
+    sbfx_tables_destroy(fx);
+    glDeleteTextures(1, &fx->gl.detail_texture);
     glDeleteTextures(SBFX_MEDIUM_COUNT, fx->gl.smoke_texture);
     memset(fx->gl.smoke_texture, 0, sizeof(fx->gl.smoke_texture));
     sbfx_free(fx, fx->cmf_rgb);
     sbfx_free(fx, fx->cmf_band);
     sbfx_free(fx, fx->detail_scratch);
     fx->cmf_rgb = fx->cmf_band = fx->detail_scratch = NULL;
-    fx->gl.blackbody_texture = fx->gl.phase_texture = fx->gl.detail_texture = 0;
+    fx->gl.detail_texture = 0;
 }
 
 void sbfx_detail_dimensions(const sbfx *fx, int *size, int *frames)

@@ -78,8 +78,8 @@ typedef struct sbfx_program {
     /* uniform locations used every frame */
     GLint near, projection, target_size, pixel, tau, soft_scale, full_size, heat_strength;
     GLint depth, detail, detail_window, detail_strength, time;
-    GLint phase_lut, phase_lut_size, g, albedo_color, light_count, light_vector, light_color, ambient;
-    GLint blackbody, blackbody_size, max_kelvin, temperature, emission_scale, cmf_rgb, cmf_band;
+    GLint phase_lut, phase_row, phase_warp, phase_shift, g, albedo_color, light_count, light_vector, light_color;
+    GLint ambient, blackbody, blackbody_map, temperature, emission_scale, cmf_rgb, cmf_band, probe;
     GLint smoke, smoke_size, smoke_variants, wrap, translucency, dampening, steps; /* LIGHTING_LIT */
 } sbfx_program;
 
@@ -136,12 +136,15 @@ typedef struct sbfx_pass_uniforms {
     GLint scene_depth, divisor, full_size, depth_model, near;         /* depth downsample */
     GLint particles, low_depth, low_size, depth_threshold;            /* composite */
     GLint scene_color, distortion;                                    /* composite, own scene */
+    GLint exposure, tone_curve;                                       /* composite, tone map */
 } sbfx_pass_uniforms;
 
 typedef struct sbfx_gl {
     sbfx_pass_uniforms depth_u, composite_u;
     GLuint fullscreen_vao, particle_vao, instance_buffer;
-    GLuint depth_program, composite_program, lut_program;
+    GLuint depth_program, composite_program;
+    GLuint lut_program;                      /* particle.frag's TABLE_PROBE (diagnostics.c)... */
+    int lut_medium;                          /* ...for this medium's table/analytic choices */
     sbfx_program particle[SBFX_MEDIUM_COUNT];
     GLuint blackbody_texture, phase_texture, detail_texture;
     GLuint smoke_texture[SBFX_MEDIUM_COUNT]; /* 2D arrays, lit media only (tables.h layout) */
@@ -203,7 +206,8 @@ struct sbfx {
     int schedule_count, next_scheduled;
     sbfx_live_flash flashes[SBFX_MAX_LIVE_FLASHES];
     int flash_count;
-    float max_kelvin;
+    sbfx_tables tables;
+    sbfx_tone_curve tone_curve;  /* the composite's (src/tonemap.c), made at load */
 
     sbfx_effect effects[SBFX_MAX_EFFECTS];
     int effect_count;
@@ -321,14 +325,29 @@ bool sbfx_gl_check(sbfx *fx, const char *what);
 GLuint sbfx_program_build(sbfx *fx, const char *vert_name, const char *frag_name,
                           const char *defines);
 void sbfx_texture_params(GLenum target, GLenum filter, GLenum wrap);
+GLuint sbfx_texture_create(sbfx *fx, GLenum target, GLenum filter, GLenum wrap);
 bool sbfx_has_extension(const char *name);
 
 /* luts.c */
 sbfx_result sbfx_luts_create(sbfx *fx);
 void sbfx_luts_destroy(sbfx *fx);
 
+/* tables.c: the black-body and phase tables of the loaded scene (sbfx_tables) */
+#define SBFX_UNIT_PHASE 2
+#define SBFX_UNIT_BLACKBODY 3
+bool sbfx_medium_uses_phase(const sbfx *fx, sbfx_medium m);
+sbfx_result sbfx_tables_create(sbfx *fx, const sbfx_cmf *cmf);
+void sbfx_tables_destroy(sbfx *fx);
+/* Binds the tables to their units and sets a particle program's table uniforms for medium m. */
+void sbfx_tables_bind(const sbfx *fx, const sbfx_program *p, sbfx_medium m);
+
 /* programs.c */
 sbfx_result sbfx_programs_create(sbfx *fx);
+/* The particle shader's defines for medium m (its opacity, lighting, table/analytic choices). */
+void sbfx_particle_defines(const sbfx *fx, sbfx_medium m, char *out, size_t size);
+void sbfx_program_locate(sbfx_program *p);
+/* The analytic black body's per-band constants (fire with tables.blackbody_analytic). */
+void sbfx_program_load_cmf(const sbfx *fx, const sbfx_program *p);
 void sbfx_programs_destroy(sbfx *fx);
 
 /* rt.c */

@@ -6,8 +6,6 @@
 
 #define UNIT_DEPTH 0
 #define UNIT_DETAIL 1
-#define UNIT_PHASE 2
-#define UNIT_BLACKBODY 3
 #define UNIT_SMOKE 4 /* a lit medium's smoke texture array */
 
 /* Heat shimmer in the composite: heat particles and a float target to hold their offsets. */
@@ -109,20 +107,15 @@ static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m, 
     glUniform1f(p->detail_window, mp->detail_window);
     glUniform1f(p->detail_strength, mp->detail_strength);
     glUniform1f(p->time, (float)sbfx_detail_time(fx));
-    glUniform1i(p->phase_lut, UNIT_PHASE);
-    glUniform2f(p->phase_lut_size, SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE);
-    glUniform1f(p->g, mp->phase_g);
     glUniform3f(p->albedo_color, mp->albedo * mp->color[0], mp->albedo * mp->color[1],
                 mp->albedo * mp->color[2]);
     glUniform1i(p->light_count, lights->count);
     glUniform4fv(p->light_vector, lights->count, &lights->vector[0][0]);
     glUniform3fv(p->light_color, lights->count, &lights->color[0][0]);
     glUniform3fv(p->ambient, 1, fx->ambient);
-    glUniform1i(p->blackbody, UNIT_BLACKBODY);
-    glUniform1f(p->blackbody_size, SBFX_BLACKBODY_SIZE);
-    glUniform1f(p->max_kelvin, fx->max_kelvin);
     glUniform3f(p->temperature, mp->t0, mp->t1, mp->cooling);
     glUniform1f(p->emission_scale, mp->emission_scale * (1.0f - mp->albedo));
+    sbfx_tables_bind(fx, p, m);
     if (fx->gl.smoke_texture[m]) set_lit_uniforms(fx, p, m);
 }
 
@@ -219,8 +212,6 @@ static void pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
     sbfx_bind_texture(UNIT_DEPTH, GL_TEXTURE_2D, gl->low_depth.depth, 0);
     if (gl->detail_texture) sbfx_bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture, 0);
-    if (gl->phase_texture) sbfx_bind_texture(UNIT_PHASE, GL_TEXTURE_2D, gl->phase_texture, 0);
-    if (gl->blackbody_texture) sbfx_bind_texture(UNIT_BLACKBODY, GL_TEXTURE_2D, gl->blackbody_texture, 0);
     upload_instances(fx, &lights, count);
     glBindVertexArray(gl->particle_vao);
     for (int first = 0; first < count;) {
@@ -273,6 +264,9 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     glUniform4fv(u->depth_model, 1, fp->depth_model);
     glUniform1f(u->near, fp->near);
     glUniform1f(u->depth_threshold, 0.05f);
+    glUniform1f(u->exposure, fx->desc.exposure);
+    glUniform3f(u->tone_curve, (float)fx->tone_curve.knee, (float)fx->tone_curve.steepness,
+                (float)fx->tone_curve.inverse_log_white);
     glBindVertexArray(gl->fullscreen_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_BLEND);
@@ -285,7 +279,7 @@ static sbfx_gl_units pass_units(const sbfx *fx)
 {
     const sbfx_gl *gl = &fx->gl;
     sbfx_gl_units u = {.tex_2d = 1u << 0 | 1u << 1 | 1u << 2};
-    if (gl->blackbody_texture || fx->plan.owns_scene) u.tex_2d |= 1u << UNIT_BLACKBODY;
+    if (gl->blackbody_texture || fx->plan.owns_scene) u.tex_2d |= 1u << SBFX_UNIT_BLACKBODY;
     if (fx->plan.distortion) u.tex_2d |= 1u << 4; /* the shimmer offsets, when the target holds them */
     if (gl->detail_texture) u.tex_3d |= 1u << UNIT_DETAIL;
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)

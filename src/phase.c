@@ -17,6 +17,7 @@
  *
  * Normalisation: ∫ over the sphere of P = 2 pi ∫_{-1}^{1} P dc = 1 for every |g| < 1. */
 #include <math.h>
+#include <stdbool.h>
 #include "tables.h"
 
 #define PI 3.14159265358979323846 /* M_PI is not C11 */
@@ -37,53 +38,60 @@ double sbfx_phase(double cos_theta, double g)
     return 3.0 * (1.0 - g2) * (1.0 + c * c) / (8.0 * PI * (2.0 + g2) * base * sqrt(base));
 }
 
-static double table_cos(int i, int n_cos)
+/* ---- the table of one medium (reference.h says why this coordinate) ----------------------- */
+
+static bool warped(double g) { return fabs(g) >= SBFX_PHASE_WARP_MIN_G; }
+
+double sbfx_phase_coordinate(double cos_theta, double g)
 {
-    return n_cos > 1 ? -1.0 + 2.0 * i / (n_cos - 1) : 1.0;
+    if (isnan(cos_theta) || isnan(g)) return 0.0;
+    double s = clamp(g < 0.0 ? -cos_theta : cos_theta, -1.0, 1.0);
+    if (!warped(g)) return 0.5 * s + 0.5;
+    double a = clamp(fabs(g), 0.0, SBFX_PHASE_G_MAX);
+    double back = (1.0 + a) * (1.0 + a), peak = (1.0 - a) * (1.0 - a);
+    return log((peak + 2.0 * a * (1.0 - s)) / back) / log(peak / back);
 }
 
-static double table_g(int j, int n_g)
+/* The s of coordinate t: b(t) = back^(1-t) peak^t, s = 1 - (b - peak) / 2|g|. */
+static double table_s(double t, double g)
 {
-    return n_g > 1 ? -SBFX_PHASE_G_MAX + 2.0 * SBFX_PHASE_G_MAX * j / (n_g - 1) : 0.0;
+    if (!warped(g)) return 2.0 * t - 1.0;
+    double a = clamp(fabs(g), 0.0, SBFX_PHASE_G_MAX);
+    double back = (1.0 + a) * (1.0 + a), peak = (1.0 - a) * (1.0 - a);
+    double b = back * exp(t * log(peak / back));
+    return clamp(1.0 - (b - peak) / (2.0 * a), -1.0, 1.0);
 }
 
-/* Layout: out[j * n_cos + i] = P(cos_i, g_j) — one row per g, cos varying fastest, i.e. a GL
- * texture of width n_cos (s = cos) and height n_g (t = g). A single-column or single-row table
- * (n == 1) holds cos = 1 or g = 0 respectively. */
-void sbfx_phase_table(int n_cos, int n_g, double *out)
+void sbfx_phase_table(double g, int size, float *out)
 {
-    if (!out || n_cos < 1 || n_g < 1) return;
-    for (int j = 0; j < n_g; j++)
-        for (int i = 0; i < n_cos; i++)
-            out[(size_t)j * (size_t)n_cos + (size_t)i] = sbfx_phase(table_cos(i, n_cos), table_g(j, n_g));
+    if (!out || size < 2) return;
+    double sign = g < 0.0 ? -1.0 : 1.0;
+    for (int i = 0; i < size; i++) out[i] = (float)sbfx_phase(sign * table_s((double)i / (size - 1), g), g);
 }
 
-/* Position of x in a grid of n points over [lo, hi]: integer cell and fraction. */
-static void grid_position(double x, double lo, double hi, int n, int *cell, double *frac)
+double sbfx_phase_table_lookup(const float *table, int size, double g, double cos_theta)
 {
-    if (n < 2) {
-        *cell = 0;
-        *frac = 0.0;
-        return;
+    if (!table || size < 2 || isnan(cos_theta) || isnan(g)) return 0.0;
+    double pos = sbfx_phase_coordinate(cos_theta, g) * (size - 1);
+    int i = (int)pos;
+    if (i > size - 2) i = size - 2;
+    return table[i] + (table[i + 1] - table[i]) * (pos - i);
+}
+
+double sbfx_phase_table_error(const float *table, int size, double g)
+{
+    double worst = 0.0;
+    int n = 16 * size;
+    for (int i = 0; i <= n; i++) { /* a uniform cos θ grid (the back, for a warped table) */
+        double c = -1.0 + 2.0 * i / n;
+        double want = sbfx_phase(c, g), got = sbfx_phase_table_lookup(table, size, g, c);
+        worst = fmax(worst, fabs(got - want) / want);
     }
-    double pos = (clamp(x, lo, hi) - lo) / (hi - lo) * (n - 1);
-    int k = (int)pos;
-    if (k > n - 2) k = n - 2;
-    *cell = k;
-    *frac = pos - k;
-}
-
-double sbfx_phase_table_lookup(const double *table, int n_cos, int n_g, double cos_theta, double g)
-{
-    if (!table || n_cos < 1 || n_g < 1 || isnan(cos_theta) || isnan(g)) return 0.0;
-    int i, j;
-    double fi, fj;
-    grid_position(cos_theta, -1.0, 1.0, n_cos, &i, &fi);
-    grid_position(g, -SBFX_PHASE_G_MAX, SBFX_PHASE_G_MAX, n_g, &j, &fj);
-    int i1 = n_cos > 1 ? i + 1 : i, j1 = n_g > 1 ? j + 1 : j;
-    const double *row0 = table + (size_t)j * (size_t)n_cos;
-    const double *row1 = table + (size_t)j1 * (size_t)n_cos;
-    double v0 = row0[i] + (row0[i1] - row0[i]) * fi;
-    double v1 = row1[i] + (row1[i1] - row1[i]) * fi;
-    return v0 + (v1 - v0) * fj;
+    double sign = g < 0.0 ? -1.0 : 1.0;
+    for (int i = 0; i < 8 * (size - 1); i++) { /* 8 points in every cell of t (the peak) */
+        double c = sign * table_s((i + 0.5) / (8.0 * (size - 1)), g);
+        double want = sbfx_phase(c, g), got = sbfx_phase_table_lookup(table, size, g, c);
+        worst = fmax(worst, fabs(got - want) / want);
+    }
+    return worst;
 }

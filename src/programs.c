@@ -13,7 +13,7 @@ static const char *const opacity_defines[SBFX_OPACITY_COUNT] = {
 
 /* Lit media (the lit-smoke seed) replace the phase function by per-pixel lighting; the ray
  * march is compiled only where it has steps to take. */
-static void particle_defines(const sbfx *fx, sbfx_medium m, char *out, size_t size)
+void sbfx_particle_defines(const sbfx *fx, sbfx_medium m, char *out, size_t size)
 {
     const sbfx_medium_params *p = &fx->media[m];
     bool heat = m == SBFX_HEAT;
@@ -28,12 +28,12 @@ static void particle_defines(const sbfx *fx, sbfx_medium m, char *out, size_t si
     snprintf(out, size, "%s%s%s%s%s%s%s%s", opacity_defines[fx->desc.opacity],
              scatters ? "#define MEDIUM_SCATTERS\n" : "", emits ? "#define MEDIUM_EMITS\n" : "",
              p->detail_strength > 0 ? "#define HAS_DETAIL\n" : "",
-             emits && fx->desc.analytic_blackbody ? "#define BLACKBODY_ANALYTIC\n" : "",
-             scatters && !lit && fx->desc.analytic_phase ? "#define PHASE_ANALYTIC\n" : "",
+             emits && fx->tables.blackbody_analytic ? "#define BLACKBODY_ANALYTIC\n" : "",
+             scatters && !lit && fx->tables.phase_analytic[m] ? "#define PHASE_ANALYTIC\n" : "",
              lit ? "#define LIGHTING_LIT\n" : "", lit && p->steps_max > 0 ? "#define LIT_SHADOW\n" : "");
 }
 
-static void locate_uniforms(sbfx_program *p)
+void sbfx_program_locate(sbfx_program *p)
 {
     GLuint id = p->id;
     p->near = glGetUniformLocation(id, "u_near");
@@ -50,7 +50,9 @@ static void locate_uniforms(sbfx_program *p)
     p->detail_strength = glGetUniformLocation(id, "u_detail_strength");
     p->time = glGetUniformLocation(id, "u_time");
     p->phase_lut = glGetUniformLocation(id, "u_phase_lut");
-    p->phase_lut_size = glGetUniformLocation(id, "u_phase_lut_size");
+    p->phase_row = glGetUniformLocation(id, "u_phase_row");
+    p->phase_warp = glGetUniformLocation(id, "u_phase_warp");
+    p->phase_shift = glGetUniformLocation(id, "u_phase_shift");
     p->g = glGetUniformLocation(id, "u_g");
     p->albedo_color = glGetUniformLocation(id, "u_albedo_color");
     p->light_count = glGetUniformLocation(id, "u_light_count");
@@ -58,8 +60,8 @@ static void locate_uniforms(sbfx_program *p)
     p->light_color = glGetUniformLocation(id, "u_light_color");
     p->ambient = glGetUniformLocation(id, "u_ambient");
     p->blackbody = glGetUniformLocation(id, "u_blackbody");
-    p->blackbody_size = glGetUniformLocation(id, "u_blackbody_size");
-    p->max_kelvin = glGetUniformLocation(id, "u_max_kelvin");
+    p->blackbody_map = glGetUniformLocation(id, "u_blackbody_map");
+    p->probe = glGetUniformLocation(id, "u_probe");
     p->temperature = glGetUniformLocation(id, "u_temperature");
     p->emission_scale = glGetUniformLocation(id, "u_emission_scale");
     p->cmf_rgb = glGetUniformLocation(id, "u_cmf_rgb");
@@ -74,7 +76,7 @@ static void locate_uniforms(sbfx_program *p)
 }
 
 /* Constant for the program's life: set once here, not per frame. */
-static void load_cmf_uniforms(sbfx *fx, const sbfx_program *p)
+void sbfx_program_load_cmf(const sbfx *fx, const sbfx_program *p)
 {
     glUseProgram(p->id);
     glUniform1i(glGetUniformLocation(p->id, "u_cmf_count"), fx->cmf_bands);
@@ -88,12 +90,12 @@ static sbfx_result build_particle_programs(sbfx *fx)
     char defines[384];
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) {
         if (!fx->uses_medium[m]) continue;
-        particle_defines(fx, (sbfx_medium)m, defines, sizeof(defines));
+        sbfx_particle_defines(fx, (sbfx_medium)m, defines, sizeof(defines));
         sbfx_program *p = &fx->gl.particle[m];
         p->id = sbfx_program_build(fx, "particle.vert", "particle.frag", defines);
         if (!p->id) return SBFX_ERR_SHADER;
-        locate_uniforms(p);
-        if (m == SBFX_FIRE && fx->desc.analytic_blackbody) load_cmf_uniforms(fx, p);
+        sbfx_program_locate(p);
+        if (m == SBFX_FIRE && fx->tables.blackbody_analytic) sbfx_program_load_cmf(fx, p);
     }
     return SBFX_OK;
 }
@@ -111,16 +113,25 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->depth_threshold = glGetUniformLocation(id, "u_depth_threshold");
     u->scene_color = glGetUniformLocation(id, "u_scene_color");
     u->distortion = glGetUniformLocation(id, "u_distortion");
+    u->exposure = glGetUniformLocation(id, "u_exposure");
+    u->tone_curve = glGetUniformLocation(id, "u_tone_curve");
 }
+
+static const char *const tone_map_defines[SBFX_TONE_MAP_COUNT] = {
+    [SBFX_TONE_MAP_NONE] = "#define TONE_MAP_NONE\n",
+    [SBFX_TONE_MAP_HUE_PRESERVING] = "#define TONE_MAP_HUE_PRESERVING\n",
+    [SBFX_TONE_MAP_PER_CHANNEL] = "#define TONE_MAP_PER_CHANNEL\n",
+};
 
 static sbfx_result build_pass_programs(sbfx *fx)
 {
-    char upsample[160];
-    snprintf(upsample, sizeof(upsample), "%s%s%s",
+    char upsample[192];
+    snprintf(upsample, sizeof(upsample), "%s%s%s%s",
              fx->desc.upsample == SBFX_UPSAMPLE_NEAREST_DEPTH ? "#define UPSAMPLE_NEAREST_DEPTH\n"
                                                                : "#define UPSAMPLE_BILINEAR\n",
              fx->plan.owns_scene ? "#define OWN_SCENE\n" : "",
-             fx->plan.distortion && sbfx_half_float_renderable() ? "#define HAS_SHIMMER\n" : "");
+             fx->plan.distortion && sbfx_half_float_renderable() ? "#define HAS_SHIMMER\n" : "",
+             tone_map_defines[fx->desc.tone_map]);
     fx->gl.depth_program = sbfx_program_build(fx, "fullscreen.vert", "depth_downsample.frag", NULL);
     if (!fx->gl.depth_program) return SBFX_ERR_SHADER;
     fx->gl.composite_program = sbfx_program_build(fx, "fullscreen.vert", "composite.frag", upsample);

@@ -74,10 +74,12 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
         d.analytic_blackbody = d.analytic_blackbody || s->analytic_blackbody;
         d.analytic_phase = d.analytic_phase || s->analytic_phase;
         if (!d.detail_format) d.detail_format = s->detail_format;
+        if (!d.tone_map) d.tone_map = s->tone_map;
+        if (!(d.exposure > 0)) d.exposure = s->exposure;
     }
     if (!d.target_divisor) d.target_divisor = 4;
     if (!d.upsample) d.upsample = SBFX_UPSAMPLE_NEAREST_DEPTH;
-    if (!d.opacity) d.opacity = SBFX_OPACITY_SPHERICAL;
+    if (!d.opacity) d.opacity = SBFX_OPACITY_EXACT;
     if (!d.seed) d.seed = 1;
     if (!d.max_particles) d.max_particles = 2048;
     if (!d.cmf_path) d.cmf_path = SBFX_CMF_DEFAULT_PATH;
@@ -85,6 +87,8 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
     if (!d.detail_size) d.detail_size = 64;
     if (!d.detail_frames) d.detail_frames = 32;
     if (!d.detail_format) d.detail_format = SBFX_DETAIL_R16F;
+    if (!d.tone_map) d.tone_map = SBFX_TONE_MAP_HUE_PRESERVING;
+    if (!(d.exposure > 0)) d.exposure = 1.0f;
     if (!(d.sim_step > 0)) d.sim_step = 1.0f / 120.0f;
     return d;
 }
@@ -98,8 +102,13 @@ static sbfx_result validate_desc(sbfx *fx, const sbfx_desc *d)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT,
                          "target_divisor %d: use 1, 2, 4 or 8", d->target_divisor);
     if ((unsigned)d->target_format >= SBFX_FORMAT_COUNT || (unsigned)d->upsample >= SBFX_UPSAMPLE_COUNT ||
-        (unsigned)d->opacity >= SBFX_OPACITY_COUNT || (unsigned)d->detail_format >= SBFX_DETAIL_COUNT)
-        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "unknown target format, upsample or opacity mode");
+        (unsigned)d->opacity >= SBFX_OPACITY_COUNT || (unsigned)d->detail_format >= SBFX_DETAIL_COUNT ||
+        (unsigned)d->tone_map >= SBFX_TONE_MAP_COUNT)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "unknown target format, upsample, opacity mode, detail format "
+                         "or tone map");
+    if (!(d->exposure <= 1e4f))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "exposure %g: use a scale above 0 and at most 1e4",
+                         (double)d->exposure);
     if (d->max_particles < 1 || d->max_particles > (1 << 20))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "max_particles %d: use 1 .. 1048576",
                          d->max_particles);
@@ -166,7 +175,7 @@ static void adopt_scene(sbfx *fx, const sbfx_scene *scene)
 
 /* Everything made on the GPU at load, inside one save and restore of what it changes: the
  * program, vertex array and buffer bindings, the unpack state, and unit 0 (active texture,
- * 2D, 3D and 2D-array bindings, sampler). */
+ * 2D, 3D and 2D-array bindings, sampler). Targets follow the first frame's size. */
 static sbfx_result load_gl(sbfx *fx)
 {
     const sbfx_gl_units unit0 = {1u, 1u, 1u};
@@ -178,6 +187,25 @@ static sbfx_result load_gl(sbfx *fx)
     if (r == SBFX_OK) r = sbfx_post_programs_create(fx);
     sbfx_gl_state_restore(&saved);
     return r;
+}
+
+/* Deleting sbfx's own objects changes no binding a host can hold. */
+static void destroy_gl(sbfx *fx)
+{
+    sbfx_targets_destroy(fx);
+    sbfx_post_destroy(fx);
+    sbfx_programs_destroy(fx);
+    sbfx_luts_destroy(fx);
+    sbfx_samplers_destroy(fx);
+}
+
+sbfx_result sbfx_reload(sbfx *fx)
+{
+    destroy_gl(fx);
+    memset(&fx->gl, 0, sizeof(fx->gl));
+    fx->counters.programs = fx->counters.textures = fx->counters.framebuffers = 0;
+    fx->counters.gpu_bytes = 0;
+    return load_gl(fx);
 }
 
 static sbfx_result load(sbfx *fx)
@@ -194,7 +222,7 @@ static sbfx_result load(sbfx *fx)
     adopt_scene(fx, scene);
     sbfx_free(fx, builtin);
     sbfx_orbit_lights(fx); /* where orbiting lights are at t = 0 */
-    fx->max_kelvin = fx->desc.blackbody_max_kelvin;
+    fx->tone_curve = sbfx_tone_curve_default();
     if ((r = check_context(fx)) != SBFX_OK) return r;
     if ((r = sbfx_pool_create(fx, fx->desc.max_particles)) != SBFX_OK) return r;
     return load_gl(fx);
@@ -222,11 +250,7 @@ sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out)
 void sbfx_destroy(sbfx *fx)
 {
     if (!fx) return;
-    sbfx_targets_destroy(fx);
-    sbfx_post_destroy(fx);
-    sbfx_programs_destroy(fx);
-    sbfx_luts_destroy(fx);
-    sbfx_samplers_destroy(fx);
+    destroy_gl(fx);
     sbfx_pool_destroy(fx);
     free(fx);
 }

@@ -47,10 +47,12 @@ typedef void (*sbfx_log_fn)(sbfx_log_level level, const char *message, void *use
 
 /* Accuracy knobs. Zero in a desc always means "the default" (marked). */
 typedef enum sbfx_opacity_mode {
-    SBFX_OPACITY_DEFAULT = 0, /* = SPHERICAL */
+    SBFX_OPACITY_DEFAULT = 0, /* = EXACT: as cheap as SPHERICAL and ten times closer to the
+                                 reference (README "What accuracy costs", the defaults) */
     SBFX_OPACITY_PLANAR,      /* classic billboard: radial profile, emulated depth test */
     SBFX_OPACITY_SOFT,        /* planar faded by an S-curve of the depth difference (RTR) */
-    SBFX_OPACITY_SPHERICAL,   /* the seed: parallel rays, (1 - d/r) * clipped chord */
+    SBFX_OPACITY_SPHERICAL,   /* the seed: parallel rays, (1 - d/r) * clipped chord; twice the
+                                 exact model's optical depth through the centre */
     SBFX_OPACITY_EXACT,       /* perspective ray, exact integral of the linear density */
     SBFX_OPACITY_FLOOR,       /* benchmark only: the same quads with a trivial shader */
     SBFX_OPACITY_COUNT
@@ -77,6 +79,19 @@ typedef enum sbfx_detail_format {
     SBFX_DETAIL_R32F,        /* not filterable in ES 3.0: sampled NEAREST (shows the cost) */
     SBFX_DETAIL_COUNT
 } sbfx_detail_format;
+
+/* How the particles' light meets the host's framebuffer (after desc.exposure scales it). The
+ * particle layer's own colour, L = C / alpha, is brought below 1 and put back over its coverage,
+ * so dst * (1 - alpha) + alpha * L never clips where the host's picture does not. The curve is
+ * the identity up to 0.6 and a logarithmic shoulder above that reaches 1 at 64, the particles'
+ * radiance ceiling (README "Colour on the display"). */
+typedef enum sbfx_tone_map {
+    SBFX_TONE_MAP_DEFAULT = 0,     /* = HUE_PRESERVING */
+    SBFX_TONE_MAP_NONE,            /* light added as computed: each channel clips on its own */
+    SBFX_TONE_MAP_HUE_PRESERVING,  /* L scaled by curve(max channel) / max channel: hue kept */
+    SBFX_TONE_MAP_PER_CHANNEL,     /* the curve on each channel: bright colours turn white */
+    SBFX_TONE_MAP_COUNT
+} sbfx_tone_map;
 
 /* Media of the particle family. Heat neither absorbs nor emits: it displaces the scene behind
  * it (heat shimmer). */
@@ -109,6 +124,22 @@ typedef struct sbfx_gpio_trigger {
 /* The scene's GPIO triggers; returns their count and sets *out to an array owned by the scene. */
 SBFX_API int sbfx_scene_gpio_triggers(const sbfx_scene *scene, const sbfx_gpio_trigger **out);
 
+/* Where a viewer's camera looks at the scene: its `camera` group, read by sbfx-play (the module
+ * itself draws from whatever view the host gives it). The eye circles the target. */
+typedef struct sbfx_scene_camera {
+    float target[3];   /* the point looked at (world) */
+    float distance;    /* of the eye from the target, horizontally (m) */
+    float height;      /* of the eye (world y, m) */
+    float azimuth;     /* degrees around +y at t = 0; 0: the eye on the target's +z side,
+                          90: on its +x side */
+    float orbit;       /* degrees per second the eye moves on (0: a fixed camera) */
+    float fov;         /* vertical field of view, degrees */
+} sbfx_scene_camera;
+
+/* Fills *out with the scene's camera, keys it leaves out taken from the default orbit; with no
+ * camera group (or scene NULL) with the default orbit, and returns false. */
+SBFX_API bool sbfx_scene_camera_get(const sbfx_scene *scene, sbfx_scene_camera *out);
+
 typedef struct sbfx_desc {
     int target_divisor;              /* particle target = output / divisor per axis: 1,2,4,8 (4) */
     sbfx_target_format target_format;
@@ -117,7 +148,9 @@ typedef struct sbfx_desc {
     uint32_t seed;                   /* random seed of spawns and detail windows (1) */
     int max_particles;               /* particle pool size (2048) */
     const char *cmf_path;            /* CIE 1931 2° CMF (colord-data's file) */
-    float blackbody_max_kelvin;      /* upper end of the black-body table (6000 K) */
+    float blackbody_max_kelvin;      /* the black body's unit: luminance 1 at this temperature,
+                                        before the fire's emission scale (6000 K). The table's
+                                        range follows what the scene's fire can reach. */
     int detail_size;                 /* detail volume width = height (64) */
     int detail_frames;               /* detail volume depth = animation frames (32) */
     sbfx_detail_format detail_format;
@@ -125,6 +158,8 @@ typedef struct sbfx_desc {
     bool analytic_phase;             /* phase function evaluated per fragment, not the table */
     bool light_per_particle;         /* phase-model in-scattering evaluated once per particle
                                         (on the CPU, at its centre) instead of per fragment */
+    sbfx_tone_map tone_map;          /* the particles' light on the display (hue-preserving) */
+    float exposure;                  /* scale of the particles' light before it (1) */
     float sim_step;                  /* fixed simulation step in seconds (1/120) */
     const sbfx_scene *scene;         /* NULL: the built-in explosion. Non-zero fields of this
                                         desc override the scene's render settings. The scene

@@ -201,7 +201,9 @@ static int parse_render(parser *p, const config_setting_t *g)
 {
     static const char *const keys[] = {"target_scale", "target_format", "upsample", "opacity",
                                        "seed", "max_particles", "sim_rate", "blackbody_max_kelvin",
-                                       "light_rate", "blackbody", "phase", "detail_format", NULL};
+                                       "light_rate", "blackbody", "phase", "detail_format", "tone_map",
+                                       "exposure", NULL};
+    static const char *const tone_maps[] = {"none", "hue-preserving", "per-channel", NULL};
     static const char *const rates[] = {"per-pixel", "per-particle", NULL};
     static const char *const evaluations[] = {"table", "analytic", NULL};
     static const char *const detail_formats[] = {"r16f", "r32f", NULL};
@@ -210,7 +212,7 @@ static int parse_render(parser *p, const config_setting_t *g)
     static const char *const opacities[] = {"planar", "soft", "spherical", "exact", NULL};
     sbfx_desc *d = &p->scene->render;
     int format = 0, upsample = 0, opacity = 0, seed = 0, rate_choice = 0, blackbody = 0, phase = 0;
-    int detail_format = 0;
+    int detail_format = 0, tone_map = 0;
     float rate = 0, kelvin = 0;
     if (check_keys(p, g, "render", keys) || get_int(p, g, "target_scale", 1, 8, &d->target_divisor) ||
         get_choice(p, g, "target_format", formats, 0, &format) ||
@@ -222,8 +224,11 @@ static int parse_render(parser *p, const config_setting_t *g)
         get_float(p, g, "blackbody_max_kelvin", 1000, 100000, &kelvin) ||
         get_choice(p, g, "light_rate", rates, 0, &rate_choice) ||
         get_choice(p, g, "blackbody", evaluations, 0, &blackbody) || get_choice(p, g, "phase", evaluations, 0, &phase) ||
-        get_choice(p, g, "detail_format", detail_formats, SBFX_DETAIL_R16F, &detail_format))
+        get_choice(p, g, "detail_format", detail_formats, SBFX_DETAIL_R16F, &detail_format) ||
+        get_choice(p, g, "tone_map", tone_maps, SBFX_TONE_MAP_NONE, &tone_map) ||
+        get_float(p, g, "exposure", 0.01, 100, &d->exposure))
         return -1;
+    d->tone_map = (sbfx_tone_map)tone_map;
     d->light_per_particle = rate_choice == 1;
     d->analytic_blackbody = blackbody == 1;
     d->analytic_phase = phase == 1;
@@ -552,9 +557,38 @@ static int parse_post(parser *p, const config_setting_t *g)
     return 0;
 }
 
+/* ---- camera (a viewer's; the module does not use it) ---- */
+
+/* The default orbit: 8.5 m out, 2.6 m up, around (0, 1.5, 0), starting 0.35 rad toward +x and
+ * moving 0.06 rad per second (in degrees below), 50 degrees of vertical field of view. */
+static const sbfx_scene_camera default_camera = {
+    .target = {0.0f, 1.5f, 0.0f}, .distance = 8.5f, .height = 2.6f, .azimuth = 20.0535228f, .orbit = 3.43774677f,
+    .fov = 50.0f};
+
+static int parse_camera(parser *p, const config_setting_t *g)
+{
+    static const char *const keys[] = {"target", "distance", "height", "azimuth", "orbit", "fov", NULL};
+    sbfx_scene_camera *c = &p->scene->camera;
+    if (check_keys(p, g, "camera", keys) || get_vector(p, g, "target", 3, -1e6, 1e6, c->target) ||
+        get_float(p, g, "distance", 0.01, 1e5, &c->distance) || get_float(p, g, "height", -1e5, 1e5, &c->height) ||
+        get_float(p, g, "azimuth", -360, 360, &c->azimuth) || get_float(p, g, "orbit", -360, 360, &c->orbit) ||
+        get_float(p, g, "fov", 1, 170, &c->fov))
+        return -1;
+    p->scene->has_camera = true;
+    return 0;
+}
+
+bool sbfx_scene_camera_get(const sbfx_scene *scene, sbfx_scene_camera *out)
+{
+    if (!out) return false;
+    *out = scene && scene->has_camera ? scene->camera : default_camera;
+    return scene && scene->has_camera;
+}
+
 static int parse_root(parser *p, const config_setting_t *root)
 {
-    static const char *const keys[] = {"render", "lights", "ambient", "media", "effects", "triggers", "post", NULL};
+    static const char *const keys[] = {"render", "lights", "ambient", "media", "effects", "triggers", "post",
+                                       "camera", NULL};
     if (check_keys(p, root, "the scene", keys)) return -1;
     const config_setting_t *s;
     if ((s = config_setting_get_member(root, "render")) && parse_render(p, s)) return -1;
@@ -566,6 +600,7 @@ static int parse_root(parser *p, const config_setting_t *root)
     if (parse_effects(p, s)) return -1;
     if ((s = config_setting_get_member(root, "triggers")) && parse_triggers(p, s)) return -1;
     if ((s = config_setting_get_member(root, "post")) && parse_post(p, s)) return -1;
+    if ((s = config_setting_get_member(root, "camera")) && parse_camera(p, s)) return -1;
     return 0;
 }
 
@@ -576,6 +611,7 @@ static void scene_defaults(sbfx_scene *scene, const char *name)
     snprintf(scene->name, sizeof(scene->name), "%s", name);
     sbfx_default_media(scene->media);
     sbfx_default_post(&scene->post);
+    scene->camera = default_camera;
     scene->light_count = 1;
     scene->lights[0] = (sbfx_light){.type = SBFX_LIGHT_DIRECTIONAL, .vector = {-0.45f, -0.8f, -0.4f},
                                     .color = {1.6f, 1.5f, 1.35f}};

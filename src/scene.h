@@ -39,6 +39,8 @@ struct sbfx_scene {
     int gpio_count;
     sbfx_gpio_trigger gpio[SBFX_MAX_GPIO];
     sbfx_post_params post;
+    bool has_camera;
+    sbfx_scene_camera camera; /* sbfx-play's view; the module does not use it */
 };
 
 /* The scene sbfx uses when the desc names none: the seed's explosion, fired at t = 0. */

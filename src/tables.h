@@ -34,13 +34,28 @@ void sbfx_blackbody_xyz(const sbfx_cmf *cmf, double kelvin, double xyz[3]);
 void sbfx_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
 /* Normalised linear sRGB: XYZ * norm -> sRGB, negative components clipped to 0. */
 void sbfx_blackbody_rgb(const sbfx_cmf *cmf, double kelvin, double norm, double rgb[3]);
-/* The normalisation used by the table: 1 / Y(max_kelvin), so luminance is <= 1 in the table. */
-double sbfx_blackbody_norm(const sbfx_cmf *cmf, double max_kelvin);
-/* Table of `size` entries, entry i at T_i = max_kelvin * i / (size - 1), RGB (3 doubles each). */
-void sbfx_blackbody_table(const sbfx_cmf *cmf, double max_kelvin, int size, double *rgb_out);
-/* Linear interpolation in such a table, T clamped to [0, max_kelvin] (what the GPU does). */
-void sbfx_blackbody_table_lookup(const double *table, int size, double max_kelvin, double kelvin,
+/* The normalisation: 1 / Y(kelvin), so the black body at `kelvin` has luminance 1. The module
+ * uses desc.blackbody_max_kelvin (6000 K): the unit the media's `emission` multiplies. */
+double sbfx_blackbody_norm(const sbfx_cmf *cmf, double kelvin);
+
+/* The black-body table (what the GPU samples): `size` entries over [lo, hi] kelvin, uniform in
+ * 1/T (entry i at 1/T = 1/hi + i/(size-1) * (1/lo - 1/hi)), 4 floats each: the colour's linear
+ * sRGB divided by its luminance, before clipping (r/Y, g/Y, b/Y), and ln(Y * norm / T).
+ * Why these: in 1/T Planck's law is nearly exponential at the cool end (Wien) and Y/T nearly
+ * constant at the hot end (Rayleigh–Jeans), and the chromaticity is smooth in 1/T throughout,
+ * so linear interpolation of these four stays within 1e-4 of the function where a table linear
+ * in T and in Y misses by orders of magnitude at the cool end. Clipping to the gamut comes after
+ * interpolation. */
+void sbfx_blackbody_table(const sbfx_cmf *cmf, double norm, double lo, double hi, int size, float *out);
+/* Linear interpolation in that table as the GPU does it (entries are float), extrapolated along
+ * the end cells outside [lo, hi] (for ln(Y/T) below lo that is Wien's law), times T, negative
+ * components clipped. 0 for T <= 0 or NaN. */
+void sbfx_blackbody_table_lookup(const float *table, int size, double lo, double hi, double kelvin,
                                  double rgb[3]);
+/* Largest error of the lookup against sbfx_blackbody_rgb over [lo, hi] (8 points per cell):
+ * max over channels |table - function| / the function's largest channel. */
+double sbfx_blackbody_table_error(const sbfx_cmf *cmf, double norm, const float *table, int size,
+                                  double lo, double hi);
 
 /* ---- phase function (DESIGN §2.3) ----------------------------------------------------- */
 
@@ -50,11 +65,34 @@ void sbfx_blackbody_table_lookup(const double *table, int size, double max_kelvi
  * peaks forward: P = 3(1-g^2)(1+c^2) / (8π (2+g^2) (1+g^2-2gc)^{3/2}). */
 double sbfx_phase(double cos_theta, double g);
 #define SBFX_PHASE_G_MAX 0.99
-/* Table n_cos x n_g, row-major by g: entry (i, j) at cos = -1 + 2i/(n_cos-1),
- * g = -G_MAX + 2 G_MAX j/(n_g-1). */
-void sbfx_phase_table(int n_cos, int n_g, double *out);
-/* Bilinear lookup in that table (what the GPU does), arguments clamped to the table's range. */
-double sbfx_phase_table_lookup(const double *table, int n_cos, int n_g, double cos_theta, double g);
+/* The phase table of one medium (its g is fixed at load): `size` entries over a coordinate
+ * t in [0, 1], t = 0 at the back (s = -1), t = 1 at the peak (s = 1), s = sign(g) cos θ (the
+ * function of (s, |g|) is that of (cos θ, g)). For |g| >= SBFX_PHASE_WARP_MIN_G
+ *     t = ln(b(s) / (1+|g|)^2) / ln((1-|g|)^2 / (1+|g|)^2),  b(s) = (1-|g|)^2 + 2|g| (1 - s),
+ * b being 1 + g^2 - 2 g cos θ written without cancellation at the peak. The function is
+ * ~ b^{-3/2}, so in t it is nearly exp(-1.5 ln b), an exponential whose relative curvature is
+ * the same everywhere: linear interpolation is as good at the peak as at the back, where a
+ * table linear in cos θ fails at the peak by orders of magnitude. Below that g, t = (s + 1) / 2
+ * (the function is nearly flat). Entry i at t = i / (size - 1). */
+#define SBFX_PHASE_WARP_MIN_G 0.02
+double sbfx_phase_coordinate(double cos_theta, double g);
+void sbfx_phase_table(double g, int size, float *out);
+/* Linear interpolation in that table at cos_theta, as the GPU does it. */
+double sbfx_phase_table_lookup(const float *table, int size, double g, double cos_theta);
+/* Largest relative error of the lookup against sbfx_phase over all angles (a cos θ grid 16
+ * times finer than the table, plus the peak and the back). */
+double sbfx_phase_table_error(const float *table, int size, double g);
+
+/* ---- tone curve of the particles' light (sbfx_tone_map; src/tonemap.c) ----------------- */
+
+#define SBFX_TONE_KNEE 0.6   /* light below this reaches the display unchanged */
+#define SBFX_TONE_WHITE 64.0 /* ...and this much (the radiance ceiling) reaches 1 */
+typedef struct sbfx_tone_curve {
+    double knee, white, steepness, inverse_log_white;
+} sbfx_tone_curve;
+sbfx_tone_curve sbfx_tone_curve_default(void);
+/* v for v <= knee, then the logarithmic shoulder, 1 at and above white; 0 for v <= 0, NaN. */
+double sbfx_tone_curve_apply(const sbfx_tone_curve *c, double v);
 
 /* ---- detail volume (DESIGN §2.4) ------------------------------------------------------ */
 

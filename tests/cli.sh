@@ -55,7 +55,7 @@ test_help() {
     play --help
     local missing="" flag
     for flag in --headless --size --frames --fps --out --contact-sheet --stats --trigger \
-        --no-timeline --scale --opacity --format --upsample --seed --scene --quiet --help \
+        --no-timeline --scale --opacity --format --upsample --tone-map --exposure --seed --scene --quiet --help \
         --display --device --connector --mode --modeset --screenshot --board --video --gpio; do
         grep -qF -- "$flag" "$tmp/out" || missing="$missing $flag"
     done
@@ -95,6 +95,11 @@ test_bad_arguments() {
     printf 'media = { smoke = { density = -2.0; }; };\n' >"$tmp/range.cfg"
     usage_error scene-range "range.cfg:1: 'density' = -2 is out of range" --scene "$tmp/range.cfg"
     usage_error scene-trigger-unknown "no effect named" --scene scenes/smoke.cfg --trigger explosion@1
+    usage_error bad-tone-map "none|hue-preserving|per-channel" --tone-map aces
+    usage_error bad-exposure --exposure --exposure 0
+    printf 'media = { smoke = { density = 0.4; }; };\ncamera = {\n  fov = 200.0; };\n%s\n' \
+        'effects = { puff = { steps = ( { type = "emitter"; medium = "smoke"; } ); }; };' >"$tmp/camera.cfg"
+    usage_error scene-camera "camera.cfg:3: 'fov' = 200 is out of range" --scene "$tmp/camera.cfg"
 }
 
 # check_stats NAME FILE: one JSON object holding every key with a number.

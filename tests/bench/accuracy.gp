@@ -1,7 +1,8 @@
 # Error against time of every accuracy configuration (tests/bench/run.sh runs this).
 #   gnuplot -e "dir='build/bench'" tests/bench/accuracy.gp  ->  dir/accuracy.png
 # points.dat: ms, mean abs error, label, group (0 = main grid: RGBA16F, tables, R16F detail;
-# 1 = a variant: RGBA8/RGBA32F target, analytic black body/phase, R32F detail), opacity mode
+# 1 = a variant: RGBA8/RGBA32F target, analytic black body/phase, R32F detail, light per
+# particle, density matched to the exact model), opacity mode
 # (1 planar, 2 soft, 3 spherical, 4 exact), divisor, upsampling (0 nearest-depth, 1 bilinear).
 # pareto.dat: the Pareto front (no configuration is both faster and closer), by time.
 # Left: everything, log-log, the front labelled. Right: the planar / soft / spherical cluster
@@ -34,7 +35,7 @@ set logscale xy
 set grid xtics ytics mxtics mytics lc rgb "#dddddd"
 set key top right box opaque font ",9"
 plot dir."/points.dat" using 1:($4 == 1 ? $2 : 1/0) with points pt 1 ps 1.2 lc rgb "#888888" \
-         title "variants: RGBA8 / RGBA32F target, analytic LUTs, R32F detail", \
+         title "variants: RGBA8 / RGBA32F target, analytic LUTs, R32F detail, light per particle, density τ/2", \
      for [m=1:4] dir."/points.dat" using 1:($4 == 0 && $5 == m ? $2 : 1/0):(pt_of($5, $7)):(lc_of($5)) \
          with points pt variable ps 1.4 lc rgb variable notitle, \
      for [m=1:4] keyentry with points pt pt_of(m, 0) ps 1.4 lc rgb lc_of(m) \

@@ -65,6 +65,8 @@ typedef struct config {
     bool analytic_blackbody, analytic_phase;
     sbfx_detail_format detail;
     bool light_per_particle; /* in-scattering once per particle (desc.light_per_particle) */
+    bool density_matched; /* every medium's density halved: the exact model's optical depth
+                             through a particle's centre in the cheaper models (DESIGN §2.1) */
     bool keep; /* keep the GPU images (LUT comparisons) */
 } config;
 
@@ -233,7 +235,6 @@ static void render_reference(bench *b, sbfx *fx, ref_frame *rf)
                        .opacity = SBFX_OPACITY_EXACT, .lights = lights, .detail = b->detail,
                        .detail_size = b->detail_size, .detail_frames = b->detail_frames,
                        .detail_time = sbfx_detail_time(fx), .cmf = &b->cmf,
-                       .max_kelvin = SBFX_DEFAULT_MAX_KELVIN,
                        .blackbody_norm = sbfx_blackbody_norm(&b->cmf, SBFX_DEFAULT_MAX_KELVIN)};
     fill_media(fx, &f);
     f.light_count = fill_lights(fx, rf->frame.view, lights, f.ambient);
@@ -241,7 +242,7 @@ static void render_reference(bench *b, sbfx *fx, ref_frame *rf)
     double *layer = xcalloc((size_t)w * h * 4, sizeof(double));
     uint8_t *footprint = xcalloc((size_t)w * h, 1);
     if (sbfx_rf_render_layer(&f, particles, rf->particles, layer, footprint) < 0) die("reference", "out of memory");
-    sbfx_rf_composite(layer, rf->scene_rgba, w, h, rf->ref_rgb);
+    sbfx_rf_composite(layer, rf->scene_rgba, w, h, SBFX_TONE_MAP_HUE_PRESERVING, 1.0, rf->ref_rgb);
     bench_edge_mask(rf->distance, w, h, EDGE_RELATIVE, EDGE_DILATE, rf->edge);
     rf->edge_pixels = 0;
     for (size_t i = 0; i < (size_t)w * h; i++) {
@@ -382,9 +383,18 @@ static void compare_frame(bench *b, result *res, int index, uint8_t *gpu)
     }
 }
 
+/* planar, soft and spherical integrate the centre's ray to 2 tau r, exact to tau r: with half the
+ * density they put the exact model's optical depth through the centre. Uniforms: no reload. */
+static void match_density(sbfx *fx)
+{
+    sbfx_medium_params *m = sbfx_media(fx);
+    for (int i = 0; i < SBFX_MEDIUM_COUNT; i++) m[i].tau *= 0.5f;
+}
+
 static void run_config(bench *b, result *res)
 {
     sbfx *fx = create_module(&res->c);
+    if (res->c.density_matched) match_density(fx);
     samples s = {.part_ok = true};
     uint8_t *gpu = xcalloc((size_t)b->opt.width * b->opt.height, 4);
     render_call rc = {fx, NULL, false};
@@ -468,10 +478,18 @@ static int variant_configs(const options *o, config *out)
     }
     /* lighting once per particle instead of per fragment, at every scale: the floor ratio's
      * largest lever (the light loop is about half of the particle pass on llvmpipe) */
-    for (int s = 1; s <= 8; s *= 2) {
-        out[n] = make_config(SBFX_OPACITY_SPHERICAL, s, SBFX_FORMAT_RGBA16F, nd);
-        out[n++].light_per_particle = true;
-    }
+    for (int s = 1; s <= 8; s *= 2)
+        for (int e = 0; e < 2; e++) {
+            out[n] = make_config(e ? SBFX_OPACITY_EXACT : SBFX_OPACITY_SPHERICAL, s, SBFX_FORMAT_RGBA16F, nd);
+            out[n++].light_per_particle = true;
+        }
+    /* model against shape: the cheaper models with the density that matches the exact model's
+     * optical depth through the centre, at full and quarter resolution */
+    for (int s = 1; s <= 4; s *= 4)
+        for (size_t m = 0; m < 3; m++) {
+            out[n] = make_config(modes[m], s, SBFX_FORMAT_RGBA16F, nd);
+            out[n++].density_matched = true;
+        }
     return n;
 }
 
@@ -508,16 +526,18 @@ static void short_label(const result *r, char *out, size_t n)
     const char *lut = c->analytic_blackbody && c->analytic_phase ? " aBP"
                       : c->analytic_blackbody ? " aBB" : c->analytic_phase ? " aPh" : "";
     const char *fmt = r->used_format == SBFX_FORMAT_RGBA8 ? " 8" : r->used_format == SBFX_FORMAT_RGBA32F ? " 32F" : "";
-    snprintf(out, n, "%.3s/%d %s%s%s%s%s", mode_names[c->opacity], c->divisor,
+    snprintf(out, n, "%.3s/%d %s%s%s%s%s%s", mode_names[c->opacity], c->divisor,
              c->upsample == SBFX_UPSAMPLE_BILINEAR ? "bl" : "nd", fmt, lut,
-             c->detail == SBFX_DETAIL_R32F ? " d32" : "", c->light_per_particle ? " lpp" : "");
+             c->detail == SBFX_DETAIL_R32F ? " d32" : "", c->light_per_particle ? " lpp" : "",
+             c->density_matched ? " tau/2" : "");
 }
 
 static bool is_grid_point(const result *r)
 {
     const config *c = &r->c;
     return c->format == SBFX_FORMAT_RGBA16F && !c->analytic_blackbody && !c->analytic_phase &&
-           c->detail == SBFX_DETAIL_R16F && c->opacity != SBFX_OPACITY_FLOOR && !c->light_per_particle;
+           c->detail == SBFX_DETAIL_R16F && c->opacity != SBFX_OPACITY_FLOOR && !c->light_per_particle &&
+           !c->density_matched;
 }
 
 /* ---- output -------------------------------------------------------------------------- */
@@ -536,17 +556,17 @@ static void write_csv(const bench *b)
     FILE *f = open_out(b, "accuracy.csv");
     fprintf(f, "mode,scale,format,upsample,lut,detail,ms,ms_min,ms_max,wall_ms,particle_ms,particle_ms_min,"
                "particle_ms_max,particle_wall_ms,mean_abs_err,max_abs_err,psnr,edge_mean_abs_err,"
-               "edge_max_abs_err,edge_psnr,pareto\n");
+               "edge_max_abs_err,edge_psnr,pareto,density\n");
     for (int i = 0; i < b->result_count; i++) {
         const result *r = &b->results[i];
         const config *c = &r->c;
-        fprintf(f, "%s,%s,%s,%s,%s,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.4f,%.2f,%.2f,%.4f,%.2f,%.2f,%d\n",
+        fprintf(f, "%s,%s,%s,%s,%s,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.4f,%.2f,%.2f,%.4f,%.2f,%.2f,%d,%s\n",
                 mode_names[c->opacity], scale_fraction(c->divisor), format_name(r->used_format),
                 upsample_name(c->upsample), lut_name(c), c->detail == SBFX_DETAIL_R32F ? "R32F" : "R16F", r->ms,
                 r->ms_min, r->ms_max, r->wall_ms, r->part_ms, r->part_min, r->part_max, r->part_wall_ms,
                 bench_error_mean(&r->err), r->err.max_abs, bench_psnr(r->err.sum_sq, r->err.count),
                 bench_error_edge_mean(&r->err), r->err.edge_max_abs,
-                bench_psnr(r->err.edge_sum_sq, r->err.edge_count), r->pareto);
+                bench_psnr(r->err.edge_sum_sq, r->err.edge_count), r->pareto, c->density_matched ? "matched" : "scene");
     }
     fclose(f);
 }
@@ -589,7 +609,9 @@ static void mark_pareto(bench *b)
     for (int i = 0; i < b->result_count; i++) {
         ms[i] = b->results[i].ms;
         err[i] = bench_error_mean(&b->results[i].err);
-        include[i] = b->results[i].ok && b->results[i].c.opacity != SBFX_OPACITY_FLOOR;
+        /* a matched density is a re-tuned scene, not a quality the module offers */
+        include[i] = b->results[i].ok && b->results[i].c.opacity != SBFX_OPACITY_FLOOR &&
+                     !b->results[i].c.density_matched;
     }
     bench_pareto(ms, err, include, b->result_count, front);
     for (int i = 0; i < b->result_count; i++) b->results[i].pareto = front[i];
@@ -604,7 +626,7 @@ static const result *find(const bench *b, sbfx_opacity_mode m, int divisor, sbfx
         const config *c = &b->results[i].c;
         if (c->opacity == m && c->divisor == divisor && c->upsample == u && c->format == SBFX_FORMAT_RGBA16F &&
             c->analytic_blackbody == (bool)(lut & 1) && c->analytic_phase == (bool)(lut & 2) && c->detail == detail &&
-            c->light_per_particle == (bool)(lut & 4))
+            c->light_per_particle == (bool)(lut & 4) && c->density_matched == (bool)(lut & 8))
             return &b->results[i];
     }
     return NULL;
@@ -740,6 +762,71 @@ static void summary_luts(const bench *b, FILE *f)
     }
 }
 
+/* Each cheaper model with the scene's density and with the density that matches the exact
+ * model's optical depth through the centre: what is left is the shape of the model. */
+static void summary_shape(const bench *b, FILE *f)
+{
+    fprintf(f, "\nmodel vs shape: mean error (edge mean) with the scene's density and with half of it (the exact\n"
+               "model's optical depth through a particle's centre), 8-bit levels:\n");
+    for (int s = 1; s <= 4; s *= 4)
+        for (int m = SBFX_OPACITY_PLANAR; m <= SBFX_OPACITY_SPHERICAL; m++) {
+            const result *plain = find_main(b, (sbfx_opacity_mode)m, s);
+            const result *matched = find(b, (sbfx_opacity_mode)m, s, SBFX_UPSAMPLE_NEAREST_DEPTH, 8, SBFX_DETAIL_R16F);
+            if (!plain || !matched) continue;
+            double e0 = bench_error_mean(&plain->err), e1 = bench_error_mean(&matched->err);
+            fprintf(f, "  %-9s 1/%d: %.3f (%.2f) -> matched %.3f (%.2f): %.0f %% of the error is the density scale, "
+                       "%.0f %% the shape\n", mode_names[m], s, e0, bench_error_edge_mean(&plain->err), e1,
+                    bench_error_edge_mean(&matched->err), 100.0 * (e0 - e1) / e0, 100.0 * e1 / e0);
+        }
+    const result *exact = find_main(b, SBFX_OPACITY_EXACT, 1), *exact4 = find_main(b, SBFX_OPACITY_EXACT, 4);
+    if (exact && exact4)
+        fprintf(f, "  exact     1/1: %.3f, 1/4: %.3f (its own model: precision and resolution only)\n",
+                bench_error_mean(&exact->err), bench_error_mean(&exact4->err));
+}
+
+/* A quality the module offers as a choice of opacity model, scale, upsampling and light rate
+ * (default target format, tables, half-float detail, the scene's density). */
+static bool is_quality(const result *r)
+{
+    const config *c = &r->c;
+    return r->ok && c->format == SBFX_FORMAT_RGBA16F && !c->analytic_blackbody && !c->analytic_phase &&
+           c->detail == SBFX_DETAIL_R16F && c->opacity != SBFX_OPACITY_FLOOR && !c->density_matched;
+}
+
+static void quality_line(FILE *f, const char *what, const result *r)
+{
+    char label[64];
+    short_label(r, label, sizeof(label));
+    fprintf(f, "  %-22s %-14s %6.2f ms [%.2f]  mean %.3f  near silhouettes %.2f%s\n", what, label, r->ms, r->ms_min,
+            bench_error_mean(&r->err), bench_error_edge_mean(&r->err), r->pareto ? "  (Pareto)" : "");
+}
+
+/* The defaults from the data: of the qualities that cost no more than the seed's default
+ * (spherical, 1/4, nearest-depth, light per pixel) plus 10 % (the noise of a shared machine, and
+ * a little paid for accuracy), the one closest to the reference; mean errors within 5 % of each
+ * other count as a tie, which the error near silhouettes (what the upsampling is for) decides. */
+static void summary_defaults(const bench *b, FILE *f)
+{
+    const result *seed = find_main(b, SBFX_OPACITY_SPHERICAL, 4), *best = NULL, *choice = NULL;
+    if (!seed) return;
+    double budget = 1.10 * seed->ms;
+    for (int i = 0; i < b->result_count; i++) {
+        const result *r = &b->results[i];
+        if (is_quality(r) && r->ms <= budget && (!best || bench_error_mean(&r->err) < bench_error_mean(&best->err)))
+            best = r;
+    }
+    for (int i = 0; i < b->result_count && best; i++) {
+        const result *r = &b->results[i];
+        if (!is_quality(r) || r->ms > budget || bench_error_mean(&r->err) > 1.05 * bench_error_mean(&best->err)) continue;
+        if (!choice || bench_error_edge_mean(&r->err) < bench_error_edge_mean(&choice->err)) choice = r;
+    }
+    fprintf(f, "\ndefaults from the data: the quality closest to the reference within the seed default's time "
+               "(+10 %%);\nmean errors within 5 %% are a tie, decided near silhouettes:\n");
+    quality_line(f, "the seed's default", seed);
+    if (best) quality_line(f, "least mean error", best);
+    if (choice) quality_line(f, "the choice", choice);
+}
+
 static void write_summary(const bench *b)
 {
     FILE *f = open_out(b, "summary.txt");
@@ -748,6 +835,8 @@ static void write_summary(const bench *b)
     summary_floor(b, f);
     summary_speedup(b, f);
     summary_distance(b, f);
+    summary_shape(b, f);
+    summary_defaults(b, f);
     summary_luts(b, f);
     fclose(f);
 }

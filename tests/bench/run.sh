@@ -26,13 +26,14 @@ eval "\"$BIN\" --out \"$OUT\" ${BENCH_ARGS:-}"
 # The table as markdown (for README "What accuracy costs").
 awk -F, 'NR == 1 {
     for (i = 1; i <= NF; i++) col[$i] = i
-    print "| mode | scale | target | upsample | LUT | detail | ms (min–max) | particle pass ms | mean err | max err | PSNR dB | edge mean | edge PSNR dB | Pareto |"
-    print "| --- | ---: | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |"
+    print "| mode | scale | target | upsample | LUT | detail | density | ms (min–max) | particle pass ms | mean err | max err | PSNR dB | edge mean | edge PSNR dB | Pareto |"
+    print "| --- | ---: | --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |"
     next
 }
 {
-    printf "| %s | %s | %s | %s | %s | %s | %.1f (%.1f–%.1f) | %.1f | %.3f | %.0f | %.1f | %.2f | %.1f | %s |\n",
+    printf "| %s | %s | %s | %s | %s | %s | %s | %.1f (%.1f–%.1f) | %.1f | %.3f | %.0f | %.1f | %.2f | %.1f | %s |\n",
         $col["mode"], $col["scale"], $col["format"], $col["upsample"], $col["lut"], $col["detail"],
+        $col["density"] == "matched" ? "τ/2" : "scene",
         $col["ms"], $col["ms_min"], $col["ms_max"], $col["particle_ms"], $col["mean_abs_err"],
         $col["max_abs_err"], $col["psnr"], $col["edge_mean_abs_err"], $col["edge_psnr"],
         $col["pareto"] == 1 ? "★" : ""
@@ -48,6 +49,11 @@ fi
 # (issue #7's lighting bench writes $OUT/lighting.csv).
 if [ -x "$BUILD/bench/bench_lighting" ]; then
     "$BUILD/bench/bench_lighting" --out "$OUT"
+fi
+# issue 12: what each tone map does to the particles' light on an 8-bit display
+if [ -x "$BUILD/bench/bench_tonemap" ]; then
+    "$BUILD/bench/bench_tonemap" --out "$OUT" >/dev/null
+    cat "$OUT/tonemap.txt" >>"$OUT/summary.txt"
 fi
 # issues #3 and #6: simulation throughput, load time and GPU bytes per scene, post effects
 if [ -x "$BUILD/bench/bench_scenes" ]; then

@@ -6,13 +6,14 @@
  *
  * The CPU side is given what the GPU has: the float particles, the window depth as the host
  * depth texture stores it (float), the detail volume rounded to half (R16F), and — for the
- * table paths — the tables rounded to half, looked up the way the GPU does; for the analytic
- * paths (desc.analytic_blackbody / analytic_phase) the analytic functions.
+ * table paths — the module's own float tables (sbfx_get_tables), looked up the way the GPU
+ * does; for the analytic paths (desc.analytic_blackbody / analytic_phase, or a table that
+ * would miss) the analytic functions.
  *
  * Tolerances (GPU float32 against double, RGBA32F target unless said):
  *   alpha: 1e-4 absolute (the opacity tests' 5e-5 per particle, a few particles deep);
- *   light: 2e-3 relative + 1e-5 absolute (half-float tables and detail fetched with float
- *          filtering weights; float exp/log in the shader);
+ *   light: 2e-3 relative + 1e-5 absolute (half-float detail fetched with the filter's
+ *          weights; float tables, float exp/log in the shader);
  *   RGBA16F target: every blend rounds C and T to 11 bits (at most 2^-12 relative each):
  *          light 1e-2 relative + 2e-3 absolute; alpha 1e-2 absolute, which is four times the
  *          random-walk estimate of 200 roundings of T in [0.5, 1) (sqrt(200) 2^-12 / sqrt(3),
@@ -96,9 +97,10 @@ static sbfx *hc_module(gl_fixture *f, const hc_setup *s, sbfx_opacity_mode mode,
     sbfx *fx = fixture_module(f, (sbfx_desc){.target_divisor = 1, .target_format = s->format, .opacity = mode,
                                              .max_particles = MAX_P, .analytic_blackbody = s->analytic_bb,
                                              .analytic_phase = s->analytic_phase});
-    /* the programs were specialised at load: detail sampled if the strength was > 0 then */
-    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) has_detail[m] = sbfx_media(fx)[m].detail_strength > 0;
+    /* the tables and programs follow the media: remade after the case changed them */
     if (s->media) s->media(sbfx_media(fx));
+    CHECK(sbfx_reload(fx) == SBFX_OK, "%s", sbfx_last_error(fx));
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) has_detail[m] = sbfx_media(fx)[m].detail_strength > 0;
     sbfx_set_light(fx, s->light_dir, s->light_color, s->ambient);
     return fx;
 }
@@ -127,7 +129,6 @@ static void gpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, hc_result *r)
 
 static sbfx_cmf cmf;
 static float *half_detail;
-static double *half_phase, *half_blackbody;
 
 static double to_half(double v) { return (double)(_Float16)v; }
 
@@ -140,12 +141,6 @@ static void load_tables(void)
     half_detail = malloc(n * sizeof(float));
     sbfx_detail_generate(64, 32, 1, half_detail);
     for (size_t i = 0; i < n; i++) half_detail[i] = (float)to_half(half_detail[i]);
-    half_phase = malloc(SBFX_PHASE_COS_SIZE * SBFX_PHASE_G_SIZE * sizeof(double));
-    sbfx_phase_table(SBFX_PHASE_COS_SIZE, SBFX_PHASE_G_SIZE, half_phase);
-    for (int i = 0; i < SBFX_PHASE_COS_SIZE * SBFX_PHASE_G_SIZE; i++) half_phase[i] = to_half(half_phase[i]);
-    half_blackbody = malloc(SBFX_BLACKBODY_SIZE * 3 * sizeof(double));
-    sbfx_blackbody_table(&cmf, SBFX_DEFAULT_MAX_KELVIN, SBFX_BLACKBODY_SIZE, half_blackbody);
-    for (int i = 0; i < SBFX_BLACKBODY_SIZE * 3; i++) half_blackbody[i] = to_half(half_blackbody[i]);
 }
 
 static void rf_media(sbfx *fx, const bool has_detail[], sbfx_rf_frame *f)
@@ -187,11 +182,16 @@ static void cpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, sbfx_opacity_
     sbfx_rf_frame rf = {.width = SIZE, .height = SIZE, .projection = {p[0], p[5], p[8], p[9]},
                         .near = fixture_near(&f->frame), .opaque_distance = distance, .opacity = mode,
                         .lights = lights, .detail = half_detail, .detail_size = 64, .detail_frames = 32,
-                        .detail_time = sbfx_detail_time(fx), .cmf = &cmf, .max_kelvin = SBFX_DEFAULT_MAX_KELVIN,
+                        .detail_time = sbfx_detail_time(fx), .cmf = &cmf,
                         .blackbody_norm = sbfx_blackbody_norm(&cmf, SBFX_DEFAULT_MAX_KELVIN)};
-    if (!s->analytic_bb) rf.blackbody_table = half_blackbody, rf.blackbody_table_size = SBFX_BLACKBODY_SIZE;
-    if (!s->analytic_phase)
-        rf.phase_table = half_phase, rf.phase_table_cos = SBFX_PHASE_COS_SIZE, rf.phase_table_g = SBFX_PHASE_G_SIZE;
+    const sbfx_tables *t = sbfx_get_tables(fx);
+    if (t->blackbody && !t->blackbody_analytic) {
+        rf.blackbody_table = t->blackbody, rf.blackbody_table_size = SBFX_BLACKBODY_SIZE;
+        rf.blackbody_lo = t->blackbody_lo, rf.blackbody_hi = t->blackbody_hi;
+    }
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
+        if (t->phase_table[m]) rf.phase_tables[m] = t->phase + (size_t)m * SBFX_PHASE_SIZE;
+    rf.phase_table_size = SBFX_PHASE_SIZE;
     rf_media(fx, has_detail, &rf);
     rf.light_count = rf_lights(fx, f->frame.view, lights, rf.ambient);
     sbfx_rf_particle *v = calloc(MAX_P, sizeof(*v));

@@ -2,8 +2,8 @@
  * deterministic whatever the frame times; a full pool refuses triggers cleanly. */
 #include "gl_fixture.h"
 
-#define BLACKBODY_BYTES (SBFX_BLACKBODY_SIZE * 8)
-#define PHASE_BYTES (SBFX_PHASE_COS_SIZE * SBFX_PHASE_G_SIZE * 2)
+#define BLACKBODY_BYTES (SBFX_BLACKBODY_SIZE * 16)
+#define PHASE_BYTES (SBFX_PHASE_SIZE * SBFX_MEDIUM_COUNT * 4)
 #define DETAIL_BYTES (64 * 64 * 32 * 2)
 
 static sbfx_scene *load_scene(const char *name)

@@ -5,7 +5,7 @@
 #include "check.h"
 #include "reference.h"
 
-#define TABLE_MAX_K 6000.0 /* the module's default black-body range */
+#define TABLE_MAX_K 6000.0 /* the module's default black-body unit (luminance 1 here) */
 
 /* Loads colord-data's CMF or skips the test (the missing-file path is tested on its own). */
 static void load_cmf(sbfx_cmf *cmf)
@@ -246,10 +246,10 @@ CHECK_TEST(blackbody_1e5_kelvin_finite)
     CHECK(rgb[2] > rgb[0], "1e5 K should be blue: %g %g %g", rgb[0], rgb[1], rgb[2]);
     sbfx_blackbody_xyz(&cmf, 1e6, xyz);
     for (int k = 0; k < 3; k++) CHECK(isfinite(xyz[k]) && xyz[k] > 0);
-    /* Table up to 1e5 K, un-normalised path stays finite too. */
-    static double table[3 * 256];
-    sbfx_blackbody_table(&cmf, 1e5, 256, table);
-    for (int i = 0; i < 3 * 256; i++) CHECK(isfinite(table[i]) && table[i] >= 0);
+    /* A table from 500 K to 1e6 K stays finite too. */
+    static float table[4 * 256];
+    sbfx_blackbody_table(&cmf, norm, 500, 1e6, 256, table);
+    for (int i = 0; i < 4 * 256; i++) CHECK(isfinite(table[i]), "entry %d: %g", i / 4, table[i]);
 }
 
 CHECK_TEST(blackbody_6500_is_roughly_white)
@@ -307,66 +307,76 @@ CHECK_TEST(blackbody_norm_is_inverse_y_of_max)
     CHECK(sbfx_blackbody_norm(NULL, 6000.0) == 0.0);
 }
 
-CHECK_TEST(table_monotone_luminance_and_half_float_range)
+/* Entries: chromaticity (rgb / Y, unclipped) and ln(Y / T) at T uniform in 1/T. */
+CHECK_TEST(table_entries)
 {
     static sbfx_cmf cmf;
     load_cmf(&cmf);
-    enum { N = 1024 };
-    static double table[3 * N];
-    sbfx_blackbody_table(&cmf, TABLE_MAX_K, N, table);
-    double prev = -1, max_c = 0;
+    enum { N = 64 };
+    static float table[4 * N];
+    double norm = sbfx_blackbody_norm(&cmf, TABLE_MAX_K), lo = 800, hi = 9000;
+    sbfx_blackbody_table(&cmf, norm, lo, hi, N, table);
     for (int i = 0; i < N; i++) {
-        double *c = table + 3 * i, y = luminance(c);
-        for (int k = 0; k < 3; k++) {
-            CHECK(isfinite(c[k]) && c[k] >= 0, "entry %d", i);
-            if (c[k] > max_c) max_c = c[k];
-        }
-        CHECK(y >= prev, "luminance drops at entry %d (%g K): %g < %g", i, TABLE_MAX_K * i / (N - 1), y, prev);
-        prev = y;
+        double t = 1.0 / (1.0 / hi + (1.0 / lo - 1.0 / hi) * i / (N - 1)), xyz[3], rgb[3];
+        sbfx_blackbody_xyz(&cmf, t, xyz);
+        sbfx_xyz_to_linear_srgb(xyz, rgb);
+        for (int k = 0; k < 3; k++) CHECK_NEAR(table[4 * i + k], rgb[k] / xyz[1], 1e-6 * fabs(rgb[k] / xyz[1]) + 1e-7);
+        CHECK_NEAR(table[4 * i + 3], log(xyz[1] * norm / t), 1e-6 * fabs(log(xyz[1] * norm / t)));
     }
-    CHECK(table[0] == 0 && table[1] == 0 && table[2] == 0);
-    /* Top entry: Y = 1 before clipping; clipping negative blue can only raise it a little. */
-    CHECK_NEAR(luminance(table + 3 * (N - 1)), 1.0, 1e-3);
-    printf("# table %d x RGB up to %g K: largest component %.4f (half float max 65504)\n", N,
-           TABLE_MAX_K, max_c);
-    CHECK(max_c < 4.0);
+    /* entry 0 is the hot end; blue is out of gamut (negative, kept until after interpolation)
+     * at 800 K only */
+    CHECK(table[2] > 0.0f && table[4 * (N - 1) + 2] < 0.0f, "blue %g at 9000 K, %g at 800 K", table[2],
+          table[4 * (N - 1) + 2]);
 }
 
-CHECK_TEST(table_lookup_matches_direct)
+/* Both ends exact (up to float), and the interpolation within 1e-4 of the largest channel over
+ * 500..20000 K with the module's 512 entries; a table linear in T (the old one) is far off. */
+CHECK_TEST(table_lookup_matches_function)
 {
     static sbfx_cmf cmf;
     load_cmf(&cmf);
-    enum { N = 1024 };
-    static double table[3 * N];
-    sbfx_blackbody_table(&cmf, TABLE_MAX_K, N, table);
-    double norm = sbfx_blackbody_norm(&cmf, TABLE_MAX_K), worst = 0, worst_t = 0;
-    for (int i = 0; i < N; i++) { /* entries are exact */
+    enum { N = 512 };
+    static float table[4 * N];
+    double norm = sbfx_blackbody_norm(&cmf, TABLE_MAX_K), lo = 500, hi = 20000;
+    sbfx_blackbody_table(&cmf, norm, lo, hi, N, table);
+    const double ends[] = {lo, hi};
+    for (int i = 0; i < 2; i++) {
         double rgb[3], want[3];
-        double t = TABLE_MAX_K * i / (N - 1);
-        sbfx_blackbody_table_lookup(table, N, TABLE_MAX_K, t, rgb);
-        sbfx_blackbody_rgb(&cmf, t, norm, want);
-        for (int k = 0; k < 3; k++) CHECK_NEAR(rgb[k], want[k], 1e-12 * (1 + want[k]));
+        sbfx_blackbody_table_lookup(table, N, lo, hi, ends[i], rgb);
+        sbfx_blackbody_rgb(&cmf, ends[i], norm, want);
+        /* float entries: ln(Y/T) ~ -50 at 500 K is held to 2^-24 of that */
+        for (int k = 0; k < 3; k++) CHECK_NEAR(rgb[k], want[k], 5e-6 * fmax(want[0], want[1]));
     }
-    for (double t = 800; t <= TABLE_MAX_K; t += 7.3) { /* between entries: linear error */
-        double rgb[3], want[3];
-        sbfx_blackbody_table_lookup(table, N, TABLE_MAX_K, t, rgb);
-        sbfx_blackbody_rgb(&cmf, t, norm, want);
-        double e = fabs(luminance(rgb) - luminance(want)) / luminance(want);
-        if (e > worst) worst = e, worst_t = t;
+    double err = sbfx_blackbody_table_error(&cmf, norm, table, N, lo, hi);
+    printf("# table %d entries, %g..%g K: largest error %.3g of the largest channel\n", N, lo, hi, err);
+    CHECK(err < 1.5e-4, "%g", err);
+    CHECK(sbfx_blackbody_table_error(&cmf, norm, table, 64, lo, hi) > 1e-3, "a coarse table must show its error");
+}
+
+CHECK_TEST(table_lookup_edges)
+{
+    static sbfx_cmf cmf;
+    load_cmf(&cmf);
+    enum { N = 128 };
+    static float table[4 * N];
+    double norm = sbfx_blackbody_norm(&cmf, TABLE_MAX_K), lo = 1000, hi = 4000, rgb[3], want[3];
+    sbfx_blackbody_table(&cmf, norm, lo, hi, N, table);
+    const double dark[] = {0.0, -50.0, NAN, -INFINITY, 1e-30};
+    for (size_t i = 0; i < sizeof dark / sizeof dark[0]; i++) {
+        sbfx_blackbody_table_lookup(table, N, lo, hi, dark[i], rgb);
+        CHECK(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0, "T = %g: %g %g %g", dark[i], rgb[0], rgb[1], rgb[2]);
     }
-    printf("# table lookup (1024 entries, 0..6000 K) max relative luminance error above 800 K: "
-           "%.3g at %.0f K\n", worst, worst_t);
-    CHECK(worst < 0.05);
-    /* Clamping: below 0 K and NaN give entry 0, above the top gives the top. */
-    double rgb[3];
-    sbfx_blackbody_table_lookup(table, N, TABLE_MAX_K, -50, rgb);
-    CHECK(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0);
-    sbfx_blackbody_table_lookup(table, N, TABLE_MAX_K, NAN, rgb);
-    CHECK(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0);
-    sbfx_blackbody_table_lookup(table, N, TABLE_MAX_K, 1e9, rgb);
-    for (int k = 0; k < 3; k++) CHECK(rgb[k] == table[3 * (N - 1) + k]);
-    sbfx_blackbody_table_lookup(table, N, TABLE_MAX_K, INFINITY, rgb);
-    for (int k = 0; k < 3; k++) CHECK(rgb[k] == table[3 * (N - 1) + k]);
+    /* Below the table: Wien's law carries the luminance on (not the end entry's value). */
+    sbfx_blackbody_table_lookup(table, N, lo, hi, 900, rgb);
+    sbfx_blackbody_rgb(&cmf, 900, norm, want);
+    CHECK(rel_err(rgb[0], want[0]) < 1e-2, "900 K: %g vs %g", rgb[0], want[0]);
+    /* Far above: finite, not clamped to the top entry's colour. */
+    sbfx_blackbody_table_lookup(table, N, lo, hi, INFINITY, rgb);
+    for (int k = 0; k < 3; k++) CHECK(isfinite(rgb[k]) && rgb[k] >= 0.0);
+    double top[3];
+    sbfx_blackbody_table_lookup(table, N, lo, hi, hi, top);
+    sbfx_blackbody_table_lookup(table, N, lo, hi, 1.3 * hi, rgb);
+    CHECK(rgb[1] > top[1], "not clamped at the top");
 }
 
 int main(int argc, char **argv) { return check_main_args(argc, argv); }

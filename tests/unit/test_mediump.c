@@ -134,7 +134,6 @@ static void random_config(sbfx_rng *rng, mp_config *c)
     c->f.opacity = SBFX_OPACITY_EXACT;
     c->f.lights = c->lights;
     c->f.cmf = &cmf;
-    c->f.max_kelvin = 6000.0;
     c->f.blackbody_norm = sbfx_blackbody_norm(&cmf, 6000.0);
 }
 

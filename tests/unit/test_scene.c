@@ -1,5 +1,6 @@
 /* Scene files: the examples load; every kind of bad input gets one message with the file name
  * and line number, an error code, and no scene. */
+#include <math.h>
 #include <string.h>
 #include "check.h"
 #include "sbfx.h"
@@ -117,6 +118,46 @@ CHECK_TEST(gpio_triggers_are_exposed)
     CHECK(g && strcmp(g->chip, "gpiochip1") == 0 && g->line == 17 && g->edge == SBFX_EDGE_FALLING &&
           g->debounce_ms == 25 && strcmp(g->effect, "puff") == 0 && g->position[2] == -2.0f);
     sbfx_scene_free(scene);
+}
+
+/* The camera group is read by viewers (sbfx-play): validated like every other key, left-out keys
+ * at the default orbit's values; no group, the default orbit. */
+CHECK_TEST(camera_group)
+{
+    char err[256];
+    sbfx_scene *scene = NULL;
+    sbfx_scene_camera cam, orbit;
+    CHECK(!sbfx_scene_camera_get(NULL, &orbit));
+    CHECK(orbit.distance == 8.5f && orbit.height == 2.6f && orbit.fov == 50.0f && orbit.target[1] == 1.5f);
+    CHECK(fabs(orbit.azimuth - 20.0535) < 1e-3 && fabs(orbit.orbit - 3.43775) < 1e-4, "%g %g", orbit.azimuth,
+          orbit.orbit);
+    CHECK(sbfx_scene_parse(MEDIA EFFECT(EMITTER), "ok.cfg", &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
+    CHECK(!sbfx_scene_camera_get(scene, &cam) && memcmp(&cam, &orbit, sizeof(cam)) == 0);
+    sbfx_scene_free(scene);
+    const char *text = MEDIA EFFECT(EMITTER) "camera = { target = [0.0, 0.8, 0.5]; distance = 3.0; orbit = 0.0; };\n";
+    CHECK(sbfx_scene_parse(text, "cam.cfg", &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
+    CHECK(sbfx_scene_camera_get(scene, &cam));
+    CHECK(cam.target[1] == 0.8f && cam.target[2] == 0.5f && cam.distance == 3.0f && cam.orbit == 0.0f);
+    CHECK(cam.height == orbit.height && cam.fov == orbit.fov && cam.azimuth == orbit.azimuth, "defaults kept");
+    sbfx_scene_free(scene);
+    expect_error(MEDIA EFFECT(EMITTER) "camera = {\n distance = 0.0; };\n", 4, "'distance' = 0 is out of range");
+    expect_error(MEDIA EFFECT(EMITTER) "camera = { fov = 180.0; };\n", 3, "'fov' = 180 is out of range");
+    expect_error(MEDIA EFFECT(EMITTER) "camera = { taget = [0.0, 1.0, 0.0]; };\n", 3, "did you mean 'target'");
+    expect_error(MEDIA EFFECT(EMITTER) "camera = { target = [0.0, 1.0]; };\n", 3, "'target' must be an array of 3");
+    expect_error(MEDIA EFFECT(EMITTER) "camera = 5;\n", 3, "camera must be a group");
+}
+
+CHECK_TEST(tone_map_and_exposure_keys)
+{
+    char err[256];
+    sbfx_scene *scene = NULL;
+    const char *text = "render = { tone_map = \"per-channel\"; exposure = 0.5; };\n" MEDIA EFFECT(EMITTER);
+    CHECK(sbfx_scene_parse(text, "tone.cfg", &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
+    sbfx_scene_free(scene);
+    expect_error("render = {\n tone_map = \"aces\"; };\n" MEDIA EFFECT(EMITTER), 2,
+                 "is not one of: none, hue-preserving, per-channel");
+    expect_error("render = { exposure = 0.0; };\n" MEDIA EFFECT(EMITTER), 1, "'exposure' = 0 is out of range");
+    expect_error("render = { tonemap = \"none\"; };\n" MEDIA EFFECT(EMITTER), 1, "did you mean 'tone_map'");
 }
 
 int main(int argc, char **argv) { return check_main_args(argc, argv); }

@@ -126,7 +126,9 @@ static sbfx *module_for(const char *scene_text, sbfx_target_format format)
         exit(1);
     }
     sbfx *fx = NULL;
-    sbfx_desc desc = {.scene = scene, .target_divisor = DIVISOR, .target_format = format, .max_particles = 64};
+    /* the reference's alpha is the spherical model's: the GPU's the same (the lighting is measured) */
+    sbfx_desc desc = {.scene = scene, .target_divisor = DIVISOR, .target_format = format, .max_particles = 64,
+                      .opacity = SBFX_OPACITY_SPHERICAL};
     sbfx_result r = sbfx_create(&desc, &fx);
     sbfx_scene_free(scene);
     if (r != SBFX_OK) {

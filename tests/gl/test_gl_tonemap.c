@@ -1,0 +1,143 @@
+/* The particles' light on the display (sbfx_tone_map): the composite's output against the CPU
+ * tone map (src/reference_frame.c) applied to the particle target the GPU made; `none` is the
+ * old composite; the hue-preserving default clips no channel over a picture within [0, 1] and
+ * keeps each pixel's chromaticity; exposure scales. */
+#include "gl_fixture.h"
+#include "reference_frame.h"
+
+#define SIZE 48
+
+static const float background[3] = {0.35f, 0.5f, 0.7f}; /* a sky: bright blue */
+
+static void clear_out(gl_fixture *f, const float rgb[3])
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, f->out_fbo);
+    glClearColor(rgb[0], rgb[1], rgb[2], 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+/* Hot fire in front of dust lit by a strong light: light far above 1 in most covered pixels. */
+static void render(gl_fixture *f, sbfx_tone_map op, float exposure, const float back[3], float **target,
+                   uint8_t *out)
+{
+    sbfx *fx = fixture_module(f, (sbfx_desc){.target_divisor = 1, .target_format = SBFX_FORMAT_RGBA32F,
+                                             .ignore_timeline = true, .tone_map = op, .exposure = exposure});
+    const float dir[3] = {0, -0.3f, -1}, color[3] = {6, 5, 4}, ambient[3] = {0.3f, 0.3f, 0.3f};
+    sbfx_set_light(fx, dir, color, ambient);
+    sbfx_view_particle p[3] = {
+        {.center = {0.4f, 0.1f, -5}, .radius = 1.3f, .detail = {0.6f, 0.1f, 0.5f}, .intensity = 1, .medium = SBFX_DUST},
+        {.center = {-0.5f, 0, -4}, .radius = 1.0f, .detail = {0.2f, 0.4f, 0.1f}, .intensity = 1, .medium = SBFX_FIRE},
+        {.center = {-0.9f, -0.6f, -3.5f}, .radius = 0.5f, .detail = {0.3f, 0.7f, 0.2f}, .intensity = 0.3f,
+         .medium = SBFX_FIRE}};
+    clear_out(f, back);
+    CHECK(sbfx_render_view_particles(fx, &f->frame, p, 3) == SBFX_OK, "%s", sbfx_last_error(fx));
+    int w, h;
+    *target = fixture_read_target(fx, &w, &h);
+    glBindFramebuffer(GL_FRAMEBUFFER, f->out_fbo);
+    glReadPixels(0, 0, SIZE, SIZE, GL_RGBA, GL_UNSIGNED_BYTE, out);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    sbfx_destroy(fx);
+}
+
+typedef struct outcome {
+    int covered, clipped;     /* pixels the particles touch; of them, a channel at 255 */
+    double worst_level;       /* |GPU - CPU tone map| in 8-bit levels */
+    double worst_ratio;       /* largest change of a channel ratio (g/r, b/r) over a black picture */
+} outcome;
+
+static outcome compare(sbfx_tone_map op, float exposure, const float back[3], const float *target,
+                       const uint8_t *out)
+{
+    outcome o = {0};
+    for (int i = 0; i < SIZE * SIZE; i++) {
+        const float *px = &target[4 * i];
+        double c[3] = {px[0], px[1], px[2]}, mapped[3];
+        if (px[3] > 1.0f - 1.0f / 255.0f) continue;
+        o.covered++;
+        sbfx_rf_tone_map(op, exposure, c, px[3], mapped);
+        bool clipped = false;
+        for (int k = 0; k < 3; k++) {
+            double want = fmin(fmax(back[k] * px[3] + mapped[k], 0.0), 1.0) * 255.0;
+            o.worst_level = fmax(o.worst_level, fabs(out[4 * i + k] - want));
+            clipped = clipped || out[4 * i + k] == 255;
+        }
+        o.clipped += clipped;
+        if (back[0] == 0.0f && c[0] > 0.05 && out[4 * i] > 60) /* 8-bit rounding: 0.5 / 60 */
+            for (int k = 1; k < 3; k++)
+                o.worst_ratio = fmax(o.worst_ratio, fabs((double)out[4 * i + k] / out[4 * i] - c[k] / c[0]));
+    }
+    return o;
+}
+
+static outcome run(gl_fixture *f, sbfx_tone_map op, float exposure, const float back[3], const char *name)
+{
+    float *target;
+    uint8_t out[SIZE * SIZE * 4];
+    render(f, op, exposure, back, &target, out);
+    /* zero in the desc: the defaults */
+    outcome o = compare(op ? op : SBFX_TONE_MAP_HUE_PRESERVING, exposure > 0 ? exposure : 1.0f, back, target, out);
+    printf("# %-15s exposure %.2f over %.2f %.2f %.2f: %d of %d covered pixels clipped, GPU vs CPU %.1f levels, "
+           "channel ratios moved %.3f\n", name, exposure, back[0], back[1], back[2], o.clipped, o.covered,
+           o.worst_level, o.worst_ratio);
+    free(target);
+    CHECK(o.covered > SIZE * SIZE / 8, "%s: the particles cover %d pixels", name, o.covered);
+    /* 1 level of rounding, 1 of float vs double near a rounding edge */
+    CHECK(o.worst_level <= 2.0, "%s: GPU %.1f levels off the CPU tone map", name, o.worst_level);
+    return o;
+}
+
+CHECK_TEST(none_is_the_plain_composite)
+{
+    gl_fixture f;
+    fixture_open_far(&f, SIZE, SIZE);
+    outcome o = run(&f, SBFX_TONE_MAP_NONE, 1.0f, background, "none");
+    CHECK(o.clipped > o.covered / 10, "the case must clip without tone mapping: %d of %d", o.clipped, o.covered);
+    fixture_close(&f);
+}
+
+CHECK_TEST(hue_preserving_clips_nothing_and_keeps_ratios)
+{
+    gl_fixture f;
+    fixture_open_far(&f, SIZE, SIZE);
+    outcome o = run(&f, SBFX_TONE_MAP_DEFAULT, 0.0f, background, "hue-preserving");
+    CHECK(o.clipped == 0, "%d of %d pixels clipped", o.clipped, o.covered);
+    const float black[3] = {0, 0, 0};
+    o = run(&f, SBFX_TONE_MAP_HUE_PRESERVING, 1.0f, black, "hue-preserving");
+    CHECK(o.worst_ratio < 0.02, "a channel ratio moved by %g", o.worst_ratio); /* 8-bit rounding */
+    outcome per_channel = run(&f, SBFX_TONE_MAP_PER_CHANNEL, 1.0f, black, "per-channel");
+    CHECK(per_channel.worst_ratio > 0.1, "per channel should bend hues: %g", per_channel.worst_ratio);
+    fixture_close(&f);
+}
+
+CHECK_TEST(exposure_scales_the_light)
+{
+    gl_fixture f;
+    fixture_open_far(&f, SIZE, SIZE);
+    const float black[3] = {0, 0, 0};
+    run(&f, SBFX_TONE_MAP_NONE, 0.25f, black, "none");
+    run(&f, SBFX_TONE_MAP_HUE_PRESERVING, 4.0f, background, "hue-preserving");
+    fixture_close(&f);
+}
+
+/* The curve: identity to the knee, slope 1 there, 1 at the white point, monotone. */
+CHECK_TEST(tone_curve_shape)
+{
+    sbfx_tone_curve c = sbfx_tone_curve_default();
+    CHECK(sbfx_tone_curve_apply(&c, 0.3) == 0.3 && sbfx_tone_curve_apply(&c, c.knee) == c.knee);
+    double h = 1e-6, slope = (sbfx_tone_curve_apply(&c, c.knee + h) - c.knee) / h;
+    CHECK(fabs(slope - 1.0) < 1e-4, "slope above the knee %g", slope);
+    CHECK(fabs(sbfx_tone_curve_apply(&c, c.white) - 1.0) < 1e-12);
+    CHECK(sbfx_tone_curve_apply(&c, 1e9) == 1.0 && sbfx_tone_curve_apply(&c, NAN) == 0.0);
+    double prev = 0;
+    for (double v = 0; v < 100; v += 0.01) {
+        double y = sbfx_tone_curve_apply(&c, v);
+        CHECK(y >= prev, "not monotone at %g", v);
+        prev = y;
+    }
+    printf("# tone curve: knee %.2f, steepness %.4f; 1 -> %.3f, 2 -> %.3f, 10 -> %.3f, 30 -> %.3f\n", c.knee,
+           c.steepness, sbfx_tone_curve_apply(&c, 1), sbfx_tone_curve_apply(&c, 2), sbfx_tone_curve_apply(&c, 10),
+           sbfx_tone_curve_apply(&c, 30));
+}
+
+int main(int argc, char **argv) { return check_main_args(argc, argv); }
