@@ -75,7 +75,7 @@ PLATFORM_COMMON_OBJ := $(PLATFORM_COMMON:%=$(BUILD)/obj/platform/%.o)
 UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/unit/%,$(wildcard tests/unit/*.c))
 GL_TESTS := $(patsubst tests/gl/%.c,$(BUILD)/tests/gl/%,$(wildcard tests/gl/*.c))
 
-.PHONY: all deps lib test test-unit test-gl test-asan demo gallery bench install uninstall clean
+.PHONY: all deps lib test test-unit test-gl test-asan demo gallery bench ladder install uninstall clean
 all: lib $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(BUILD)/sbfx.pc
 lib: $(BUILD)/libsbfx.a $(SO_LINKS) $(BUILD)/libsbfx_ref.a
 
@@ -259,6 +259,12 @@ $(BUILD)/bench/bench_accuracy: $(BENCH_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	$(CC) $(LDSAN) $(BENCH_WRAP) -o $@ $^ $(PLATFORM_LIBS)
 
 bench: $(BUILD)/bench/bench_accuracy
+
+# ---- the default quality ladder (issue 11): src/ladder_default.h from the accuracy bench's CSV ----
+# make bench writes $(BUILD)/bench/ladder_default.h (the ladder its run proposes); make ladder
+# regenerates the committed src/ladder_default.h from $(BUILD)/bench/accuracy.csv (tools/ladder.sh).
+ladder:
+	tools/ladder.sh $(BUILD)/bench/accuracy.csv src/ladder_default.h
 
 # ---- lighting bench (issue #7: lit smoke) -------------------------------------------------
 # A program of its own (tests/bench/lighting/, outside the accuracy bench's tests/bench/*.c):

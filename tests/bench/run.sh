@@ -39,6 +39,9 @@ awk -F, 'NR == 1 {
         $col["pareto"] == 1 ? "★" : ""
 }' "$OUT/accuracy.csv" >"$OUT/accuracy.md"
 
+# issue 11: the quality ladder this run's front proposes (make ladder commits it to src/)
+tools/ladder.sh "$OUT/accuracy.csv" "$OUT/ladder_default.h" || true
+
 if command -v gnuplot >/dev/null 2>&1; then
     gnuplot -e "dir='$OUT'" tests/bench/accuracy.gp
 else
