@@ -5,6 +5,7 @@
 #include "internal.h"
 #include "governor.h"
 #include "gpu_timer.h"
+#include "lod.h"
 
 #define SBFX_MAX_EFFECTS 16
 #define SBFX_MAX_EMITTERS 8
@@ -286,6 +287,8 @@ struct sbfx {
     int cmf_bands;
     float *cmf_rgb, *cmf_band;
     float *detail_scratch;       /* one R32F slice, only with SBFX_DETAIL_R32F */
+    particle_lod lod;            /* level of detail (lodN levels): work memory made with the */
+    void *lod_work;              /* first level that needs it (at load for declared ones) */
 };
 
 /* projection.c: what a frame's projection says (DESIGN §5). View distance from window depth d:
@@ -402,6 +405,8 @@ void sbfx_particle_defines(const sbfx *fx, const sbfx_variant_key *key, sbfx_med
 /* Builds a variant's particle programs / an upsampling's composite (when not built yet). */
 sbfx_result sbfx_variant_build(sbfx *fx, const sbfx_variant_key *key);
 sbfx_result sbfx_composite_build(sbfx *fx, sbfx_upsample upsample);
+/* The level of detail's work memory (first lodN level). */
+sbfx_result sbfx_lod_create(sbfx *fx);
 /* Re-creates the instance buffer with room for the per-particle light (first use of lpp). */
 sbfx_result sbfx_instances_reserve_light(sbfx *fx);
 void sbfx_program_locate(sbfx_program *p);

@@ -216,7 +216,7 @@ static bool missing(const sbfx *fx, const sbfx_quality *q)
            (sbfx_quality_uses_blackbody_table(fx, q) && !fx->gl.blackbody_texture) ||
            (sbfx_quality_uses_blackbody_analytic(fx, q) && !fx->cmf_rgb) ||
            (sbfx_quality_uses_phase_table(fx, q) && !fx->gl.phase_texture) ||
-           (q->light_per_particle && !fx->instance_light);
+           (q->light_per_particle && !fx->instance_light) || (q->lod_particles && !fx->lod_work);
 }
 
 /* What q's first use needs; called inside a saved state (load_gl's, or build_first_use's). */
@@ -228,6 +228,7 @@ static sbfx_result build(sbfx *fx, const sbfx_quality *q)
     if (r == SBFX_OK && sbfx_quality_uses_blackbody_analytic(fx, q) && !fx->cmf_rgb) r = sbfx_blackbody_constants_load(fx);
     if (r == SBFX_OK && sbfx_quality_uses_phase_table(fx, q) && !fx->gl.phase_texture) r = sbfx_tables_upload_phase(fx);
     if (r == SBFX_OK && q->light_per_particle && !fx->instance_light) r = sbfx_instances_reserve_light(fx);
+    if (r == SBFX_OK && q->lod_particles && !fx->lod_work) r = sbfx_lod_create(fx);
     if (r == SBFX_OK) r = sbfx_variant_build(fx, &key);
     if (r == SBFX_OK) r = sbfx_composite_build(fx, q->upsample);
     return r;

@@ -7,14 +7,15 @@
 
 #define W 96
 #define H 64
-#define FRAMES 14
+#define FRAMES 16
 
 /* Levels over every axis a level names: opacity models, divisors, upsampling, target formats,
  * light per particle, analytic black body and phase (the built-in explosion has fire, smoke
- * and dust, so each flag changes a program). */
+ * and dust, so each flag changes a program), particle level of detail. */
 static const char *const levels[] = {
     "exact/4/nd",   "planar/1/bl",        "soft/2/nd",         "spherical/8/bl/rgba8", "exact/4/nd/lpp",
     "exact/2/bl/abb/aph", "exact/4/nd/rgba32f", "spherical/4/nd/lpp/abb", "exact/8/nd/aph", "planar/4/nd/rgba16f",
+    "exact/4/nd/lod40",   "spherical/8/bl/lpp/lod12",
 };
 #define LEVELS ((int)ARRAY_SIZE(levels))
 
@@ -103,8 +104,10 @@ static void switching_matches_fresh(const char *const *ladder, int ladder_count)
     sbfx *sw = module(&h, d);
     static picture a, b, top;
     int compared = 0, identical = 0, other = 0, differs = 0;
+    unsigned seen = 0;
     for (int i = 0; i < FRAMES; i++) {
-        int l = (i * 3) % LEVELS; /* every level, in an order that is not the ladder's */
+        int l = (i * 5) % LEVELS; /* every level, in an order that is not the ladder's */
+        seen |= 1u << l;
         sbfx_quality q = level(l);
         CHECK(sbfx_set_quality(sw, &q) == SBFX_OK, "%s", sbfx_last_error(sw));
         CHECK(sbfx_update(sw, 1.0 / 30) == SBFX_OK);
@@ -127,6 +130,7 @@ static void switching_matches_fresh(const char *const *ladder, int ladder_count)
     printf("# %d of %d frames over %d levels bit-identical to a fresh module%s\n", identical, compared, LEVELS,
            ladder ? " (levels declared at load)" : " (levels built on first use)");
     CHECK(identical == compared);
+    CHECK(seen == (1u << LEVELS) - 1, "levels visited: %#x", seen);
     for (int l = 0; l < LEVELS; l++) sbfx_destroy(fresh[l]);
     sbfx_destroy(sw);
     host_close(&h);
