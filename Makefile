@@ -227,7 +227,7 @@ clean:
 
 # ---- fuzzing (clang, libFuzzer): FUZZ_SECONDS bounded, the example scenes as corpus ----
 FUZZ_SECONDS ?= 60
-FUZZ_SRC := src/scene.c src/effects.c
+FUZZ_SRC := src/scene.c src/effects.c src/quality_name.c
 $(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) src/sbfx.h src/scene.h
 	@mkdir -p $(@D)
 	clang -std=c11 -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -Isrc \
