@@ -301,6 +301,35 @@ CHECK_TEST(impossible_budget_walks_down_host_reported)
     impossible_budget(true);
 }
 
+/* render.budget_ms and render.ladder reach the module; the desc's own budget wins. The ladder
+ * below the top (exact/4/nd, not on it): the levels with a coarser target only. */
+CHECK_TEST(scene_budget_and_ladder)
+{
+    gl_fixture f;
+    fixture_open(&f, 8, 8);
+    const char *text = "media = { smoke = { albedo = 0.5; density = 0.4; }; };\n"
+                       "effects = { puff = { steps = ( { type = \"emitter\"; medium = \"smoke\"; count = 10; } ); }; };\n"
+                       "render = { budget_ms = 10000.0; ladder = [ \"exact/2/nd\", \"exact/8/bl\", \"planar/4/bl\" ]; };\n";
+    char err[256];
+    sbfx_scene *scene = NULL;
+    CHECK(sbfx_scene_parse(text, "budget.cfg", &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
+    if (!scene) exit(1);
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.scene = scene});
+    sbfx *own = fixture_module(&f, (sbfx_desc){.scene = scene, .frame_budget_ms = 5.0f});
+    sbfx_scene_free(scene);
+    sbfx_counters c, d;
+    sbfx_stats(fx, &c);
+    sbfx_stats(own, &d);
+    CHECK(c.budget_ms == 10000.0f && d.budget_ms == 5.0f, "budgets %g, %g", (double)c.budget_ms, (double)d.budget_ms);
+    CHECK(strcmp(c.quality, "exact/4/nd") == 0, "%s", c.quality);
+    /* smoke + depth + the composites of nd (top) and bl (exact/8/bl): planar/4/bl and exact/2/nd
+     * are not below the top, so not built */
+    CHECK(c.programs == 4, "%d programs", c.programs);
+    sbfx_destroy(fx);
+    sbfx_destroy(own);
+    fixture_close(&f);
+}
+
 /* ---- names and bad input (no GL) ---- */
 
 CHECK_TEST(names_are_canonical)
