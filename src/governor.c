@@ -27,11 +27,22 @@ void governor_init(governor *g, double budget_ms, int level_count)
 
 void governor_set_prior(governor *g, const double *cost, int count)
 {
-    if (count > g->level_count)
-        count = g->level_count;
-    for (int i = 0; i < count; i++)
-        if (isfinite(cost[i]) && cost[i] > 0.0)
-            g->rel[i] = cost[i];
+    double rel[GOVERNOR_MAX_LEVELS];
+    int known = -1; /* the last level with a cost */
+    for (int i = 0; i < g->level_count; i++) {
+        bool valid = i < count && isfinite(cost[i]) && cost[i] > 0.0;
+        rel[i] = valid ? cost[i] : 0.0;
+        if (valid && known < 0) /* levels above the first given cost: the default step */
+            for (int k = i - 1; k >= 0; k--) rel[k] = rel[k + 1] / GOVERNOR_DEFAULT_STEP;
+        if (!valid && known >= 0)
+            rel[i] = rel[i - 1] * GOVERNOR_DEFAULT_STEP;
+        if (valid || known >= 0)
+            known = i;
+    }
+    if (known < 0)
+        return; /* nothing given: the default prior stays */
+    for (int i = 0; i < g->level_count; i++)
+        g->rel[i] = rel[i];
 }
 
 /* est(j) = smoothed × rel[j] / rel[level]; before the first measurement of this level, from

@@ -65,7 +65,9 @@ typedef struct governor {
 
 void governor_init(governor *g, double budget_ms, int level_count);
 /* The ladder's relative costs (e.g. the bench's milliseconds), level 0 first; any positive
- * scale. Entries that are not finite and positive keep the default prior. Call after init. */
+ * scale. Levels without a cost (count short, or not finite and positive) are filled in at the
+ * default step (0.7 a rung) from their neighbour above (below, for those above the first
+ * cost). Call after init. */
 void governor_set_prior(governor *g, const double *cost, int count);
 void governor_observe(governor *g, int level_rendered, double gpu_ms, bool valid);
 int governor_level(const governor *g);

@@ -266,4 +266,21 @@ CHECK_TEST(deterministic)
     CHECK(governor_smoothed_ms(&a.g) == governor_smoothed_ms(&b.g), "");
 }
 
+CHECK_TEST(prior_with_gaps_is_filled_on_one_scale)
+{
+    governor g;
+    governor_init(&g, BUDGET, 5);
+    const double cost[5] = {NAN, 40.0, 0.0, 10.0, -1.0}; /* level 0, 2 and 4 unknown */
+    governor_set_prior(&g, cost, 4);
+    CHECK_NEAR(g.rel[0], 40.0 / 0.7, 1e-9);
+    CHECK_NEAR(g.rel[1], 40.0, 1e-12);
+    CHECK_NEAR(g.rel[2], 28.0, 1e-9);
+    CHECK_NEAR(g.rel[3], 10.0, 1e-12);
+    CHECK_NEAR(g.rel[4], 7.0, 1e-9);
+    const double none[2] = {NAN, 0.0};
+    governor_init(&g, BUDGET, 3);
+    governor_set_prior(&g, none, 2);
+    CHECK_NEAR(g.rel[2], 0.49, 1e-12); /* nothing given: the default prior */
+}
+
 int main(int argc, char **argv) { return check_main_args(argc, argv); }
