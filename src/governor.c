@@ -79,6 +79,18 @@ static void governor_learn(governor *g, int a, double ca, int b, double cb)
         g->rel[k] *= g->rel[hi] / old_hi;
 }
 
+/* The median of n <= GOVERNOR_WINDOW values: one frame stretched by another job moves it not. */
+static double governor_median(const double *v, int n)
+{
+    double s[GOVERNOR_WINDOW];
+    for (int i = 0; i < n; i++) {
+        int k = i;
+        for (; k > 0 && s[k - 1] > v[i]; k--) s[k] = s[k - 1];
+        s[k] = v[i];
+    }
+    return n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+}
+
 static void governor_switch(governor *g, int level)
 {
     if (!g->learned && g->from_level >= 0 && g->samples >= GOVERNOR_DOWN_SAMPLES)
@@ -141,7 +153,8 @@ void governor_observe(governor *g, int level_rendered, double gpu_ms, bool valid
         g->last_ms[level_rendered] = gpu_ms; /* late: from a level already left */
         return;
     }
-    g->smoothed = g->samples == 0 ? gpu_ms : g->smoothed + GOVERNOR_SMOOTHING * (gpu_ms - g->smoothed);
+    g->window[g->samples % GOVERNOR_WINDOW] = gpu_ms;
+    g->smoothed = governor_median(g->window, g->samples + 1 < GOVERNOR_WINDOW ? g->samples + 1 : GOVERNOR_WINDOW);
     g->samples++;
     g->frames_here++;
     g->over_run = gpu_ms > g->budget_ms ? g->over_run + 1 : 0;

@@ -137,6 +137,29 @@ CHECK_TEST(bounded_changes_under_constant_noisy_load)
     CHECK(wrong == 0, "%d", wrong);
 }
 
+/* A shared machine: other jobs stretch some frames. One frame in 20 takes 3x as long (alone,
+ * not in runs): single spikes must not move it, and what they cost stays bounded. */
+CHECK_TEST(isolated_spikes_bounded)
+{
+    int worst = 0, wrong = 0;
+    for (int k = 0; k < 30; k++) {
+        double load = BUDGET * 0.6 * pow(15.0, k / 29.0);
+        sim s;
+        sim_init(&s, true);
+        for (int f = 0; f < 1000; f++) {
+            int level = governor_level(&s.g), changes = governor_changes(&s.g);
+            sim_frame(&s, load * (f % 20 == 7 ? 3.0 : 1.0), 0.05);
+            (void)level, (void)changes;
+        }
+        if (governor_changes(&s.g) > worst) worst = governor_changes(&s.g);
+        wrong += !settled_ok(load, governor_level(&s.g), 0.05);
+    }
+    printf("# one frame in 20 at 3x, 30 loads 0.6x-9x: at most %d changes in 1000 frames, %d runs on a wrong rung\n",
+           worst, wrong);
+    CHECK(worst <= 3, "%d changes", worst);
+    CHECK(wrong == 0, "%d", wrong);
+}
+
 CHECK_TEST(no_oscillation_at_a_boundary)
 {
     /* loads that put a rung just over or just at the budget, without noise: after the descent
