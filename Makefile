@@ -266,6 +266,17 @@ bench: $(BUILD)/bench/bench_accuracy
 ladder:
 	tools/ladder.sh $(BUILD)/bench/accuracy.csv src/ladder_default.h
 
+# ---- frame budget bench (issue 11): the barrage at several budgets and at every fixed level ----
+# A program of its own (tests/bench/budget/), with the accuracy bench's read-backs, metrics and
+# CPU reference; writes $(BUILD)/bench/budget.csv and budget.txt when run (tests/bench/run.sh).
+BUDGET_BENCH_OBJ := $(addprefix $(BUILD)/obj/bench/,bench_gl.o bench_metrics.o bench_reference.o)
+$(BUILD)/bench/bench_budget: tests/bench/budget/bench_budget.c $(BUDGET_BENCH_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests/bench $(LDSAN) $(BENCH_WRAP) -o $@ $< $(BUDGET_BENCH_OBJ) \
+		$(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
+
+bench: $(BUILD)/bench/bench_budget
+
 # ---- lighting bench (issue #7: lit smoke) -------------------------------------------------
 # A program of its own (tests/bench/lighting/, outside the accuracy bench's tests/bench/*.c):
 # step count vs time and error of the lit-smoke ray march, lit vs phase cost. Writes

@@ -81,6 +81,7 @@ sbfx_result sbfx_budget_init(sbfx *fx)
     build_ladder(fx, given, count);
     for (int i = 0; i < b->count; i++) declare(fx, &b->ladder[i]);
     governor_init(&b->gov, fx->desc.frame_budget_ms, b->count);
+    sbfx_ladder_prior(b->ladder, b->count, &b->gov);
     b->on = true;
     b->level = 0;
     return SBFX_OK;

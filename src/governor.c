@@ -27,11 +27,22 @@ void governor_init(governor *g, double budget_ms, int level_count)
 
 void governor_set_prior(governor *g, const double *cost, int count)
 {
-    if (count > g->level_count)
-        count = g->level_count;
-    for (int i = 0; i < count; i++)
-        if (isfinite(cost[i]) && cost[i] > 0.0)
-            g->rel[i] = cost[i];
+    double rel[GOVERNOR_MAX_LEVELS];
+    int known = -1; /* the last level with a cost */
+    for (int i = 0; i < g->level_count; i++) {
+        bool valid = i < count && isfinite(cost[i]) && cost[i] > 0.0;
+        rel[i] = valid ? cost[i] : 0.0;
+        if (valid && known < 0) /* levels above the first given cost: the default step */
+            for (int k = i - 1; k >= 0; k--) rel[k] = rel[k + 1] / GOVERNOR_DEFAULT_STEP;
+        if (!valid && known >= 0)
+            rel[i] = rel[i - 1] * GOVERNOR_DEFAULT_STEP;
+        if (valid || known >= 0)
+            known = i;
+    }
+    if (known < 0)
+        return; /* nothing given: the default prior stays */
+    for (int i = 0; i < g->level_count; i++)
+        g->rel[i] = rel[i];
 }
 
 /* est(j) = smoothed × rel[j] / rel[level]; before the first measurement of this level, from
@@ -66,6 +77,18 @@ static void governor_learn(governor *g, int a, double ca, int b, double cb)
     }
     for (int k = hi + 1; k < g->level_count; k++)
         g->rel[k] *= g->rel[hi] / old_hi;
+}
+
+/* The median of n <= GOVERNOR_WINDOW values: one frame stretched by another job moves it not. */
+static double governor_median(const double *v, int n)
+{
+    double s[GOVERNOR_WINDOW];
+    for (int i = 0; i < n; i++) {
+        int k = i;
+        for (; k > 0 && s[k - 1] > v[i]; k--) s[k] = s[k - 1];
+        s[k] = v[i];
+    }
+    return n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
 }
 
 static void governor_switch(governor *g, int level)
@@ -130,7 +153,8 @@ void governor_observe(governor *g, int level_rendered, double gpu_ms, bool valid
         g->last_ms[level_rendered] = gpu_ms; /* late: from a level already left */
         return;
     }
-    g->smoothed = g->samples == 0 ? gpu_ms : g->smoothed + GOVERNOR_SMOOTHING * (gpu_ms - g->smoothed);
+    g->window[g->samples % GOVERNOR_WINDOW] = gpu_ms;
+    g->smoothed = governor_median(g->window, g->samples + 1 < GOVERNOR_WINDOW ? g->samples + 1 : GOVERNOR_WINDOW);
     g->samples++;
     g->frames_here++;
     g->over_run = gpu_ms > g->budget_ms ? g->over_run + 1 : 0;

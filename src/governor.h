@@ -16,8 +16,9 @@
  * load, so a ladder walked down under a heavy load is walked up again when the load falls.
  *
  * Down, at once: when GOVERNOR_DOWN_SAMPLES consecutive measurements of the current level are
- * over the budget (one spike does not move it), or its smoothed time is after
- * GOVERNOR_LEARN_SAMPLES of them — to the first level below whose estimate fits
+ * over the budget (one spike does not move it), or its smoothed time (the median of its last
+ * GOVERNOR_WINDOW measurements: isolated frames stretched by other jobs move neither it nor the
+ * estimates) is after GOVERNOR_LEARN_SAMPLES of them — to the first level below whose estimate fits
  * GOVERNOR_DOWN_FILL × budget: several rungs at once when far over; at least one.
  * Up, slowly: one rung, after a run of GOVERNOR_UP_FRAMES (doubled per failed attempt at that
  * rung) consecutive measurements at which est(level - 1) × GOVERNOR_UP_MARGIN fits the budget.
@@ -33,7 +34,7 @@
 #include <stdbool.h>
 
 #define GOVERNOR_MAX_LEVELS 16
-#define GOVERNOR_SMOOTHING 0.3      /* EMA weight of a new measurement */
+#define GOVERNOR_WINDOW 5           /* smoothed: the median of the last measurements */
 #define GOVERNOR_DOWN_SAMPLES 2     /* consecutive measurements over budget that move it */
 #define GOVERNOR_DOWN_FILL 0.85     /* stepping down aims at this share of the budget */
 #define GOVERNOR_UP_MARGIN 1.15     /* the upper rung's estimate × this must fit */
@@ -49,7 +50,8 @@ typedef struct governor {
     double rel[GOVERNOR_MAX_LEVELS];        /* relative cost (prior corrected by measurements) */
     double last_ms[GOVERNOR_MAX_LEVELS];    /* last smoothed time seen at each level (0: never) */
     int up_wait[GOVERNOR_MAX_LEVELS];       /* frames with room needed to go up to level i */
-    double smoothed;                /* EMA of the current level's measurements */
+    double window[GOVERNOR_WINDOW]; /* the current level's last measurements */
+    double smoothed;                /* their median */
     int samples;                    /* measurements of the current level since it was chosen */
     int room_run;                   /* consecutive measurements with room for level - 1 */
     int over_run;                   /* consecutive measurements over budget */
@@ -65,7 +67,9 @@ typedef struct governor {
 
 void governor_init(governor *g, double budget_ms, int level_count);
 /* The ladder's relative costs (e.g. the bench's milliseconds), level 0 first; any positive
- * scale. Entries that are not finite and positive keep the default prior. Call after init. */
+ * scale. Levels without a cost (count short, or not finite and positive) are filled in at the
+ * default step (0.7 a rung) from their neighbour above (below, for those above the first
+ * cost). Call after init. */
 void governor_set_prior(governor *g, const double *cost, int count);
 void governor_observe(governor *g, int level_rendered, double gpu_ms, bool valid);
 int governor_level(const governor *g);

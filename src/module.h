@@ -450,6 +450,8 @@ sbfx_result sbfx_quality_apply(sbfx *fx, const sbfx_quality *q);
 /* budget.c: the declared levels and the frame budget's ladder */
 /* At create, after the desc is validated: fx->top, fx->declared and the budget's ladder. */
 sbfx_result sbfx_budget_init(sbfx *fx);
+/* ladder_prior.c: the bench's costs of the ladder's levels (ladder_default.h) as g's prior */
+void sbfx_ladder_prior(const sbfx_quality *ladder, int count, governor *g);
 bool sbfx_budget_active(const sbfx *fx);
 /* Around a frame's GL work: picks and applies the level before, measures after. */
 sbfx_result sbfx_budget_begin_frame(sbfx *fx);

@@ -30,6 +30,7 @@
 
 #include "bench_gl.h"
 #include "bench_metrics.h"
+#include "bench_reference.h"
 #include "egl_headless.h"
 #include "internal.h"
 #include "lod.h"
@@ -192,74 +193,21 @@ static void read_distances(ref_frame *rf, int w, int h)
     free(window);
 }
 
-static void fill_media(sbfx *fx, sbfx_rf_frame *f)
-{
-    const sbfx_medium_params *m = sbfx_media(fx);
-    for (int i = 0; i < SBFX_MEDIUM_COUNT; i++)
-        f->media[i] = (sbfx_rf_medium){
-            .albedo = m[i].albedo, .tau = m[i].tau, .phase_g = m[i].phase_g,
-            .color = {m[i].color[0], m[i].color[1], m[i].color[2]},
-            .detail_strength = m[i].detail_strength, .detail_window = m[i].detail_window,
-            .t0 = m[i].t0, .t1 = m[i].t1, .cooling = m[i].cooling, .emission_scale = m[i].emission_scale,
-            .has_detail = m[i].detail_strength > 0};
-}
-
-static int fill_lights(sbfx *fx, const float view[16], sbfx_rf_light *out, double ambient[3])
-{
-    sbfx_view_light lights[SBFX_RF_MAX_LIGHTS];
-    int n = sbfx_frame_lights(fx, view, lights, SBFX_RF_MAX_LIGHTS);
-    for (int i = 0; i < n; i++)
-        for (int k = 0; k < 4; k++) {
-            out[i].vector[k] = lights[i].vector[k];
-            if (k < 3) out[i].color[k] = lights[i].color[k];
-        }
-    float a[3];
-    sbfx_frame_ambient(fx, a);
-    for (int k = 0; k < 3; k++) ambient[k] = a[k];
-    return n;
-}
-
-static sbfx_rf_particle *fill_particles(sbfx *fx, const float view[16], int *count)
-{
-    const sbfx_view_particle *v;
-    int n = sbfx_frame_particles(fx, view, &v);
-    sbfx_rf_particle *p = xcalloc(n > 0 ? (size_t)n : 1, sizeof(*p));
-    for (int i = 0; i < n; i++) {
-        p[i] = (sbfx_rf_particle){.radius = v[i].radius, .intensity = v[i].intensity, .medium = v[i].medium};
-        for (int k = 0; k < 3; k++) p[i].center[k] = v[i].center[k], p[i].detail[k] = v[i].detail[k];
-    }
-    *count = n;
-    return p;
-}
-
 /* The exact model per full-resolution pixel, composited over the scene. */
 static void render_reference(bench *b, sbfx *fx, ref_frame *rf)
 {
     int w = b->opt.width, h = b->opt.height;
-    const float *p = rf->frame.projection;
-    sbfx_rf_light lights[SBFX_RF_MAX_LIGHTS];
-    sbfx_rf_frame f = {.width = w, .height = h, .projection = {p[0], p[5], p[8], p[9]},
-                       .near = sbfx_window_distance(&rf->frame, 0.0f), .opaque_distance = rf->distance,
-                       .opacity = SBFX_OPACITY_EXACT, .lights = lights, .detail = b->detail,
-                       .detail_size = b->detail_size, .detail_frames = b->detail_frames,
-                       .detail_time = sbfx_detail_time(fx), .cmf = &b->cmf,
-                       .blackbody_norm = sbfx_blackbody_norm(&b->cmf, SBFX_DEFAULT_MAX_KELVIN)};
-    fill_media(fx, &f);
-    f.light_count = fill_lights(fx, rf->frame.view, lights, f.ambient);
-    sbfx_rf_particle *particles = fill_particles(fx, rf->frame.view, &rf->particles);
-    double *layer = xcalloc((size_t)w * h * 4, sizeof(double));
     uint8_t *footprint = xcalloc((size_t)w * h, 1);
-    if (sbfx_rf_render_layer(&f, particles, rf->particles, layer, footprint) < 0) die("reference", "out of memory");
-    sbfx_rf_composite(layer, rf->scene_rgba, w, h, SBFX_TONE_MAP_HUE_PRESERVING, 1.0, rf->ref_rgb);
+    bench_reference r = {b->detail, b->detail_size, b->detail_frames, &b->cmf};
+    rf->particles = bench_reference_render(&r, fx, &rf->frame, rf->distance, rf->scene_rgba, rf->ref_rgb, footprint);
+    if (rf->particles < 0) die("reference", "out of memory");
     bench_edge_mask(rf->distance, w, h, EDGE_RELATIVE, EDGE_DILATE, rf->edge);
     rf->edge_pixels = 0;
     for (size_t i = 0; i < (size_t)w * h; i++) {
         rf->edge[i] = rf->edge[i] && footprint[i];
         rf->edge_pixels += rf->edge[i];
     }
-    free(layer);
     free(footprint);
-    free(particles);
 }
 
 static void write_png(const bench *b, const char *name, const uint8_t *rgba)
@@ -515,12 +463,14 @@ static int variant_configs(const options *o, config *out)
             out[n] = make_config(e ? SBFX_OPACITY_EXACT : SBFX_OPACITY_SPHERICAL, s, SBFX_FORMAT_RGBA16F, nd);
             out[n++].light_per_particle = true;
         }
-    /* the ladder's last resort (issue 11): at most N particles, at 1/8 (the cheapest scale) */
+    /* the ladder's last resort (issue 11): at most N particles, at 1/8 (the cheapest scale),
+     * with light per pixel (both upsamplings) and per particle: below whichever is cheapest */
     for (size_t m = 0; m < 4 && !o->quick; m++)
-        for (int u = 0; u < 2; u++)
-            for (int lod = 256; lod >= 16; lod /= 4) {
+        for (int u = 0; u < 3; u++)
+            for (int lod = 256; lod >= 16 && (u < 2 || m >= 2); lod /= 4) {
                 out[n] = make_config(modes[m], 8, SBFX_FORMAT_RGBA16F,
-                                     u ? SBFX_UPSAMPLE_BILINEAR : SBFX_UPSAMPLE_NEAREST_DEPTH);
+                                     u == 1 ? SBFX_UPSAMPLE_BILINEAR : SBFX_UPSAMPLE_NEAREST_DEPTH);
+                out[n].light_per_particle = u == 2;
                 out[n++].lod = lod;
             }
     /* model against shape: the cheaper models with the density that matches the exact model's

@@ -137,6 +137,29 @@ CHECK_TEST(bounded_changes_under_constant_noisy_load)
     CHECK(wrong == 0, "%d", wrong);
 }
 
+/* A shared machine: other jobs stretch some frames. One frame in 20 takes 3x as long (alone,
+ * not in runs): single spikes must not move it, and what they cost stays bounded. */
+CHECK_TEST(isolated_spikes_bounded)
+{
+    int worst = 0, wrong = 0;
+    for (int k = 0; k < 30; k++) {
+        double load = BUDGET * 0.6 * pow(15.0, k / 29.0);
+        sim s;
+        sim_init(&s, true);
+        for (int f = 0; f < 1000; f++) {
+            int level = governor_level(&s.g), changes = governor_changes(&s.g);
+            sim_frame(&s, load * (f % 20 == 7 ? 3.0 : 1.0), 0.05);
+            (void)level, (void)changes;
+        }
+        if (governor_changes(&s.g) > worst) worst = governor_changes(&s.g);
+        wrong += !settled_ok(load, governor_level(&s.g), 0.05);
+    }
+    printf("# one frame in 20 at 3x, 30 loads 0.6x-9x: at most %d changes in 1000 frames, %d runs on a wrong rung\n",
+           worst, wrong);
+    CHECK(worst <= 3, "%d changes", worst);
+    CHECK(wrong == 0, "%d", wrong);
+}
+
 CHECK_TEST(no_oscillation_at_a_boundary)
 {
     /* loads that put a rung just over or just at the budget, without noise: after the descent
@@ -264,6 +287,23 @@ CHECK_TEST(deterministic)
     }
     CHECK(governor_changes(&a.g) == governor_changes(&b.g), "");
     CHECK(governor_smoothed_ms(&a.g) == governor_smoothed_ms(&b.g), "");
+}
+
+CHECK_TEST(prior_with_gaps_is_filled_on_one_scale)
+{
+    governor g;
+    governor_init(&g, BUDGET, 5);
+    const double cost[5] = {NAN, 40.0, 0.0, 10.0, -1.0}; /* level 0, 2 and 4 unknown */
+    governor_set_prior(&g, cost, 4);
+    CHECK_NEAR(g.rel[0], 40.0 / 0.7, 1e-9);
+    CHECK_NEAR(g.rel[1], 40.0, 1e-12);
+    CHECK_NEAR(g.rel[2], 28.0, 1e-9);
+    CHECK_NEAR(g.rel[3], 10.0, 1e-12);
+    CHECK_NEAR(g.rel[4], 7.0, 1e-9);
+    const double none[2] = {NAN, 0.0};
+    governor_init(&g, BUDGET, 3);
+    governor_set_prior(&g, none, 2);
+    CHECK_NEAR(g.rel[2], 0.49, 1e-12); /* nothing given: the default prior */
 }
 
 int main(int argc, char **argv) { return check_main_args(argc, argv); }
