@@ -39,15 +39,27 @@ static bool cheaper_than_top(const sbfx_quality *top, const sbfx_quality *q)
     return q->lod_particles && (!top->lod_particles || q->lod_particles < top->lod_particles);
 }
 
+/* Where the top stands on the given ladder: after the level equal to it, else after the level
+ * that differs from it in target format only (the format moves the error least: README "What
+ * accuracy costs"); -1 when neither is there. */
+static int after_top(const sbfx_quality *top, const sbfx_quality *given, int count)
+{
+    for (int pass = 0; pass < 2; pass++)
+        for (int i = 0; i < count; i++) {
+            sbfx_quality q = given[i];
+            if (pass == 1) q.target_format = top->target_format;
+            if (sbfx_quality_equal(&q, top)) return i + 1;
+        }
+    return -1;
+}
+
 /* The budget's ladder: the top first, then the given ladder's levels below it — those after
- * the top where the top is on it (the ladder is ordered most accurate first), else those
+ * the top's place on it (after_top; the ladder is ordered most accurate first), else those
  * cheaper than the top (above). The governor never goes above level 0. */
 static void build_ladder(sbfx *fx, const sbfx_quality *given, int count)
 {
     sbfx_budget *b = &fx->budget;
-    int from = -1;
-    for (int i = 0; i < count && from < 0; i++)
-        if (sbfx_quality_equal(&given[i], &fx->top)) from = i + 1;
+    int from = after_top(&fx->top, given, count);
     b->ladder[0] = fx->top;
     b->count = 1;
     for (int i = from < 0 ? 0 : from; i < count && b->count < SBFX_LADDER_MAX; i++)

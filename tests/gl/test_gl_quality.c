@@ -3,6 +3,8 @@
  * when switched back to; only the declared levels' variants exist; a budget the top level
  * meets changes nothing; bad names, budgets and ladders are clear errors. */
 #include "gl_fixture.h"
+#include "ladder_default.h"
+#include "module.h"
 #include "test_scene.h"
 
 #define W 96
@@ -327,6 +329,49 @@ CHECK_TEST(scene_budget_and_ladder)
     CHECK(c.programs == 4, "%d programs", c.programs);
     sbfx_destroy(fx);
     sbfx_destroy(own);
+    fixture_close(&f);
+}
+
+/* The budget's ladder below a top on the default ladder: the levels after it; below a top that
+ * differs from one of them in target format only, the levels after that one. */
+static void expect_ladder(gl_fixture *f, const sbfx_quality *top, int from)
+{
+    sbfx_desc d = desc_of(top);
+    d.frame_budget_ms = 16.0f;
+    sbfx *fx = fixture_module(f, d);
+    const sbfx_budget *b = &fx->budget;
+    char name[64], want[64];
+    CHECK(b->count == 1 + SBFX_LADDER_DEFAULT_COUNT - from, "%d levels below %s, want %d", b->count - 1,
+          sbfx_quality_name(top, name, sizeof(name)), SBFX_LADDER_DEFAULT_COUNT - from);
+    CHECK(sbfx_quality_equal(&b->ladder[0], top), "the top is level 0");
+    for (int i = 1; i < b->count && from + i - 1 < SBFX_LADDER_DEFAULT_COUNT; i++) {
+        sbfx_quality_name(&b->ladder[i], name, sizeof(name));
+        sbfx_quality q;
+        CHECK(sbfx_quality_parse(sbfx_ladder_default[from + i - 1], &q, NULL, 0) == SBFX_OK);
+        sbfx_quality_name(&q, want, sizeof(want));
+        CHECK(strcmp(name, want) == 0, "level %d: %s, want %s", i, name, want);
+    }
+    sbfx_destroy(fx);
+}
+
+CHECK_TEST(budget_ladder_starts_below_the_top)
+{
+    gl_fixture f;
+    fixture_open(&f, 8, 8);
+    for (int k = 0; k < SBFX_LADDER_DEFAULT_COUNT; k++) {
+        sbfx_quality q;
+        CHECK(sbfx_quality_parse(sbfx_ladder_default[k], &q, NULL, 0) == SBFX_OK);
+        expect_ladder(&f, &q, k + 1);
+        q.target_format = q.target_format == SBFX_FORMAT_RGBA8 ? SBFX_FORMAT_RGBA32F : SBFX_FORMAT_RGBA8;
+        expect_ladder(&f, &q, k + 1);
+    }
+    /* a top off the ladder: only coarser targets (or fewer particles) below it */
+    sbfx_quality top = {.opacity = SBFX_OPACITY_SOFT, .target_divisor = 4, .upsample = SBFX_UPSAMPLE_BILINEAR};
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.opacity = top.opacity, .target_divisor = 4,
+                                              .upsample = top.upsample, .frame_budget_ms = 16.0f});
+    for (int i = 1; i < fx->budget.count; i++)
+        CHECK(fx->budget.ladder[i].target_divisor > 4 || fx->budget.ladder[i].lod_particles > 0, "level %d", i);
+    sbfx_destroy(fx);
     fixture_close(&f);
 }
 
