@@ -7,6 +7,8 @@
 #include "module.h"
 #include "ladder_default.h"
 
+_Static_assert(ARRAY_SIZE(sbfx_ladder_default) < SBFX_LADDER_MAX, "the default ladder and a top must fit a ladder");
+
 /* desc.ladder (the scene's render.ladder), or with a budget and none given the default. */
 static sbfx_result given_ladder(sbfx *fx, sbfx_quality *out, int *count)
 {
