@@ -4,6 +4,7 @@
 #   make gallery      one contact sheet per example scene into docs/gallery/ (README "Gallery")
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, then ASan+UBSan
 #   make bench        timings into build/bench/
+#   make ladder       src/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
 #   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR); make uninstall
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links

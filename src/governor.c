@@ -104,11 +104,14 @@ static void governor_switch(governor *g, int level)
     g->changes++;
 }
 
-/* The first rung below whose estimate fits the fill target; the last resort if none does. */
+/* The first rung below whose estimate fits the fill target; the last resort if none does. The
+ * estimate starts from the least of the over-budget run's times when that run moved it (what
+ * the level costs at least: a few frames stretched by another job do not throw it further). */
 static int governor_down_target(const governor *g)
 {
+    double base = g->over_run >= GOVERNOR_DOWN_SAMPLES ? fmin(g->over_min, g->smoothed) : g->smoothed;
     for (int j = g->level + 1; j < g->level_count; j++)
-        if (governor_estimate_ms(g, j) <= GOVERNOR_DOWN_FILL * g->budget_ms)
+        if (base * g->rel[j] / g->rel[g->level] <= GOVERNOR_DOWN_FILL * g->budget_ms)
             return j;
     return g->level_count - 1;
 }
@@ -157,6 +160,7 @@ void governor_observe(governor *g, int level_rendered, double gpu_ms, bool valid
     g->smoothed = governor_median(g->window, g->samples + 1 < GOVERNOR_WINDOW ? g->samples + 1 : GOVERNOR_WINDOW);
     g->samples++;
     g->frames_here++;
+    g->over_min = g->over_run == 0 ? gpu_ms : fmin(g->over_min, gpu_ms);
     g->over_run = gpu_ms > g->budget_ms ? g->over_run + 1 : 0;
     g->last_ms[g->level] = g->smoothed;
     if (!g->learned && g->from_level >= 0 && g->samples >= GOVERNOR_LEARN_SAMPLES) {

@@ -19,7 +19,8 @@
  * over the budget (one spike does not move it), or its smoothed time (the median of its last
  * GOVERNOR_WINDOW measurements: isolated frames stretched by other jobs move neither it nor the
  * estimates) is after GOVERNOR_LEARN_SAMPLES of them — to the first level below whose estimate fits
- * GOVERNOR_DOWN_FILL × budget: several rungs at once when far over; at least one.
+ * GOVERNOR_DOWN_FILL × budget (from the least time of the over-budget run, when a run moved it):
+ * several rungs at once when far over; at least one.
  * Up, slowly: one rung, after a run of GOVERNOR_UP_FRAMES (doubled per failed attempt at that
  * rung) consecutive measurements at which est(level - 1) × GOVERNOR_UP_MARGIN fits the budget.
  * A load on the boundary between two rungs (the upper just over, the lower under) therefore
@@ -55,6 +56,7 @@ typedef struct governor {
     int samples;                    /* measurements of the current level since it was chosen */
     int room_run;                   /* consecutive measurements with room for level - 1 */
     int over_run;                   /* consecutive measurements over budget */
+    double over_min;                /* the least of them */
     int from_level;                 /* the level left for this one (-1: none) */
     double from_ms;                 /* its smoothed time when left */
     bool learned;                   /* the ratio from_level / level is in rel[] */

@@ -20,19 +20,31 @@ static void some_work(gl_fixture *f, int n)
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+/* The context and a timer on it; skips the test where the extension is not listed. */
+static void open_timer(gl_fixture *f, int size, gpu_timer *t)
+{
+    fixture_open(f, size, size);
+    if (!gpu_timer_init(t))
+        CHECK_SKIP("GL_EXT_disjoint_timer_query is not listed");
+}
+
+/* One frame's work, timed as level `level`. */
+static void timed_frame(gpu_timer *t, gl_fixture *f, int level, int clears)
+{
+    gpu_timer_begin(t, level);
+    some_work(f, clears);
+    gpu_timer_end(t);
+}
+
 CHECK_TEST(results_arrive_late_tagged_with_their_level)
 {
     gl_fixture f;
-    fixture_open(&f, 256, 256);
     gpu_timer t;
-    if (!gpu_timer_init(&t))
-        CHECK_SKIP("GL_EXT_disjoint_timer_query is not listed");
+    open_timer(&f, 256, &t);
     int got = 0, next_level = 0, max_in_flight = 0;
     double total = 0;
     for (int frame = 0; frame < 40; frame++) {
-        gpu_timer_begin(&t, frame);
-        some_work(&f, 4);
-        gpu_timer_end(&t);
+        timed_frame(&t, &f, frame, 4);
         glFlush(); /* the host's swap: results become available after a flush */
         usleep(2000); /* the rest of the host's frame: time for the rasteriser threads */
         if (t.count > max_in_flight)
@@ -69,15 +81,10 @@ CHECK_TEST(results_arrive_late_tagged_with_their_level)
 CHECK_TEST(never_waits_when_the_ring_is_full)
 {
     gl_fixture f;
-    fixture_open(&f, 64, 64);
     gpu_timer t;
-    if (!gpu_timer_init(&t))
-        CHECK_SKIP("GL_EXT_disjoint_timer_query is not listed");
-    for (int frame = 0; frame < GPU_TIMER_RING + 3; frame++) { /* no poll: the ring fills */
-        gpu_timer_begin(&t, 0);
-        some_work(&f, 1);
-        gpu_timer_end(&t);
-    }
+    open_timer(&f, 64, &t);
+    for (int frame = 0; frame < GPU_TIMER_RING + 3; frame++) /* no poll: the ring fills */
+        timed_frame(&t, &f, 0, 1);
     CHECK(t.count == GPU_TIMER_RING && t.dropped == 3, "count %d dropped %d", t.count, t.dropped);
     CHECK(t.failed == NULL, "%s", t.failed);
     gpu_timer_destroy(&t);
@@ -87,16 +94,12 @@ CHECK_TEST(never_waits_when_the_ring_is_full)
 CHECK_TEST(host_time_query_left_alone)
 {
     gl_fixture f;
-    fixture_open(&f, 64, 64);
     gpu_timer t;
-    if (!gpu_timer_init(&t))
-        CHECK_SKIP("GL_EXT_disjoint_timer_query is not listed");
+    open_timer(&f, 64, &t);
     GLuint host = 0;
     glGenQueries(1, &host);
     glBeginQuery(GL_TIME_ELAPSED_EXT, host);
-    gpu_timer_begin(&t, 2);
-    some_work(&f, 1);
-    gpu_timer_end(&t);
+    timed_frame(&t, &f, 2, 1);
     GLint current = 0;
     glGetQueryiv(GL_TIME_ELAPSED_EXT, GL_CURRENT_QUERY, &current);
     CHECK((GLuint)current == host, "current query %d, host's %u", current, host);

@@ -160,6 +160,20 @@ CHECK_TEST(isolated_spikes_bounded)
     CHECK(wrong == 0, "%d", wrong);
 }
 
+/* Two frames over the budget in a row, one of them stretched 10x by another job: the step down
+ * goes by the lesser (1.2x: one rung), not by the stretched one. */
+CHECK_TEST(step_down_by_the_least_of_the_over_run)
+{
+    governor g;
+    governor_init(&g, BUDGET, LEVELS);
+    governor_set_prior(&g, COST, LEVELS);
+    for (int i = 0; i < 5; i++) governor_observe(&g, 0, 0.9 * BUDGET, true);
+    governor_observe(&g, 0, 10.0 * BUDGET, true);
+    governor_observe(&g, 0, 1.05 * BUDGET, true);
+    printf("# at 0.9x, then 10x and 1.05x: level 0 -> %d\n", governor_level(&g));
+    CHECK(governor_level(&g) == 1, "level %d", governor_level(&g)); /* 0.62 x 1.05 fits 0.85 */
+}
+
 CHECK_TEST(no_oscillation_at_a_boundary)
 {
     /* loads that put a rung just over or just at the budget, without noise: after the descent
