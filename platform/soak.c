@@ -62,7 +62,6 @@ struct soak {
     int sample_count, sample_capacity;
     FILE *csv;
     double wall_start;
-    uint64_t leaked_bytes;
 };
 
 /* A history-blur scene with two effects: the post effect and effect cycling the example scenes
@@ -104,7 +103,7 @@ static void usage(FILE *f)
           "  --sample-every N       frames between samples (default: 400 samples in all)\n"
           "  --warmup F             fraction of the samples before the check starts (0.25)\n"
           "  --rss-tolerance KIB    resident memory growth allowed after warm-up (4096)\n"
-          "  --heap-tolerance KIB   malloc'ed bytes growth allowed after warm-up (1024)\n"
+          "  --heap-tolerance KIB   malloc'ed bytes growth allowed after warm-up (2048)\n"
           "  --out DIR              DIR/soak.csv (build/soak)\n"
           "  --quiet                no progress lines\n"
           "Exit status: 0 flat, 1 bad arguments or a failure, 2 something grew.\n", f);
@@ -169,7 +168,7 @@ static int parse_args(struct soak_options *o, int argc, char **argv)
 {
     *o = (struct soak_options){.hours = 10, .dt = 0.25, .trigger_every = 0.2, .warmup = 0.25, .width = 128,
                                .height = 72, .leak_every = 10, .render_every = 8, .rss_tolerance_kib = 4096,
-                               .heap_tolerance_kib = 1024, .out_dir = "build/soak"};
+                               .heap_tolerance_kib = 2048, .out_dir = "build/soak"};
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             usage(stdout);
@@ -332,6 +331,10 @@ static int draw_frame(struct soak *s, double since_start)
     return 0;
 }
 
+/* Where the debug leak's last block is kept, overwritten each time (the compiler may not drop
+ * the allocation; the earlier blocks are lost, which is the leak). */
+static void *volatile leak_sink;
+
 /* The debug leak of --inject-leak: a 64x64 RGBA8 texture, or 256 KiB of touched heap. */
 static void inject_leak(struct soak *s)
 {
@@ -345,7 +348,7 @@ static void inject_leak(struct soak *s)
     } else {
         char *p = malloc(LEAK_BYTES);
         if (p) memset(p, 1, LEAK_BYTES);
-        s->leaked_bytes += LEAK_BYTES; /* the pointer is dropped on purpose */
+        leak_sink = p;
     }
 }
 
@@ -395,6 +398,13 @@ static void count_gl_objects(struct soak_sample *x)
     glDeleteBuffers(1, &b);
 }
 
+/* malloc'ed bytes in use: small blocks in the arenas and large ones mapped on their own. */
+static int64_t heap_bytes(void)
+{
+    struct mallinfo2 m = mallinfo2();
+    return (int64_t)(m.uordblks + m.hblkhd);
+}
+
 static int take_sample(struct soak *s)
 {
     if (glGetError() != GL_NO_ERROR) {
@@ -404,7 +414,7 @@ static int take_sample(struct soak *s)
     struct soak_sample *x = &s->samples[s->sample_count++];
     *x = (struct soak_sample){.frames = s->frames, .sim_seconds = sbfx_elapsed(s->modules[0].fx),
                               .wall_seconds = now_seconds() - s->wall_start, .rss_kib = rss_kib(),
-                              .heap_bytes = (int64_t)mallinfo2().uordblks};
+                              .heap_bytes = heap_bytes()};
     count_gl_objects(x);
     for (int i = 0; i < s->module_count; i++) {
         sbfx_counters c;

@@ -25,7 +25,7 @@ static const struct metric metrics[] = {
 
 void soak_limits_default(struct soak_limits *lim)
 {
-    *lim = (struct soak_limits){.warmup = 0.25, .rss_kib = 4096, .heap_bytes = 1 << 20, .dt = 0.0, .step = 0.0};
+    *lim = (struct soak_limits){.warmup = 0.25, .rss_kib = 4096, .heap_bytes = 2 << 20, .dt = 0.0, .step = 0.0};
 }
 
 void soak_write_header(FILE *f)

@@ -22,7 +22,7 @@ struct soak_sample {
     double sim_seconds;       /* sbfx_elapsed() of the modules */
     double wall_seconds;
     int64_t rss_kib;          /* /proc/self/statm resident pages */
-    int64_t heap_bytes;       /* malloc'ed bytes in use (mallinfo2 uordblks) */
+    int64_t heap_bytes;       /* malloc'ed bytes in use (mallinfo2 uordblks + hblkhd) */
     int64_t programs, textures, framebuffers, gpu_bytes, heap_allocs; /* sbfx_stats, summed */
     int64_t gl_textures, gl_framebuffers, gl_buffers; /* alive in the whole context (glIs*) */
     int64_t particles_alive, triggers_fired, triggers_refused;
@@ -31,7 +31,7 @@ struct soak_sample {
 struct soak_limits {
     double warmup;            /* fraction of the samples ignored at the start (0.25) */
     int64_t rss_kib;          /* resident memory may grow this much (4096) */
-    int64_t heap_bytes;       /* malloc'ed bytes may grow this much (1 MiB) */
+    int64_t heap_bytes;       /* malloc'ed bytes may grow this much (2 MiB: glibc moves in 1 MiB steps) */
     double dt;                /* seconds per frame: sim_seconds must be frames x dt ... */
     double step;              /* ... within one simulation step */
 };
