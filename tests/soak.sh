@@ -31,7 +31,7 @@ soak() {
     rc=$?
 }
 
-soak flat --hours 0.2
+soak flat --hours 0.2 --rss-tolerance 8192
 samples=$(($(wc -l <"$tmp/flat/soak.csv" 2>/dev/null || echo 1) - 1))
 if [ "$rc" -ne 0 ]; then
     not_ok flat "exit $rc: $(grep -m 3 . "$tmp/flat.err" | tr '\n' ' ')"

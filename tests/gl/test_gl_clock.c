@@ -18,21 +18,11 @@ typedef struct clock_run {
     bool target_finite;
 } clock_run;
 
-static sbfx_scene *load_scene(const char *name)
-{
-    char path[256], err[512];
-    snprintf(path, sizeof(path), "scenes/%s.cfg", name);
-    sbfx_scene *scene = NULL;
-    CHECK(sbfx_scene_load(path, &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
-    if (!scene) exit(1);
-    return scene;
-}
-
 /* Renders FRAMES frames of `scene_name` over the test scene, the camera following the time
  * since the start (as sbfx-play does), the module's clock starting at `start`. */
 static void render_run(gl_fixture *f, struct test_scene *host, const char *scene_name, double start, clock_run *out)
 {
-    sbfx_scene *scene = load_scene(scene_name);
+    sbfx_scene *scene = fixture_load_scene(scene_name);
     sbfx_scene_camera camera;
     sbfx_scene_camera_get(scene, &camera);
     sbfx *fx = fixture_module(f, (sbfx_desc){.scene = scene, .start_time = start});
@@ -159,4 +149,4 @@ CHECK_TEST(start_time_is_validated)
     fixture_close(&f);
 }
 
-int main(void) { return check_main(); }
+int main(int argc, char **argv) { return check_main_args(argc, argv); }

@@ -94,4 +94,4 @@ CHECK_TEST(too_few_samples_fail)
     CHECK(strstr(report, "only 5 samples") != NULL, "%s", report);
 }
 
-int main(void) { return check_main(); }
+int main(int argc, char **argv) { return check_main_args(argc, argv); }

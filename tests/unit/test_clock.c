@@ -99,4 +99,4 @@ CHECK_TEST(clock_is_start_plus_elapsed)
     CHECK(sbfx_time(NULL) == 0.0 && sbfx_elapsed(NULL) == 0.0);
 }
 
-int main(void) { return check_main(); }
+int main(int argc, char **argv) { return check_main_args(argc, argv); }
