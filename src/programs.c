@@ -112,6 +112,7 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->low_size = glGetUniformLocation(id, "u_low_size");
     u->depth_threshold = glGetUniformLocation(id, "u_depth_threshold");
     u->scene_color = glGetUniformLocation(id, "u_scene_color");
+    u->scene_known = glGetUniformLocation(id, "u_scene_known");
     u->distortion = glGetUniformLocation(id, "u_distortion");
     u->exposure = glGetUniformLocation(id, "u_exposure");
     u->tone_curve = glGetUniformLocation(id, "u_tone_curve");

@@ -80,16 +80,18 @@ typedef enum sbfx_detail_format {
     SBFX_DETAIL_COUNT
 } sbfx_detail_format;
 
-/* How the particles' light meets the host's framebuffer (after desc.exposure scales it). The
- * particle layer's own colour, L = C / alpha, is brought below 1 and put back over its coverage,
- * so dst * (1 - alpha) + alpha * L never clips where the host's picture does not. The curve is
- * the identity up to 0.6 and a logarithmic shoulder above that reaches 1 at 64, the particles'
- * radiance ceiling (README "Colour on the display"). */
+/* How the particles' light meets the host's framebuffer (after desc.exposure scales it). Over a
+ * host pixel dst seen through the particles' transmittance T, the light C is brought within the
+ * room the picture leaves, room_k = 1 - T dst_k, so dst * T + C never clips where the host's
+ * picture does not. dst is read from frame.scene_color_texture (black when there is none, or when
+ * it is the texture out_framebuffer draws into). The curve is the identity up to 0.6 and a
+ * logarithmic shoulder above that reaches 1 at 64, the particles' radiance ceiling (README
+ * "Colour on the display"). */
 typedef enum sbfx_tone_map {
     SBFX_TONE_MAP_DEFAULT = 0,     /* = HUE_PRESERVING */
     SBFX_TONE_MAP_NONE,            /* light added as computed: each channel clips on its own */
-    SBFX_TONE_MAP_HUE_PRESERVING,  /* L scaled by curve(max channel) / max channel: hue kept */
-    SBFX_TONE_MAP_PER_CHANNEL,     /* the curve on each channel: bright colours turn white */
+    SBFX_TONE_MAP_HUE_PRESERVING,  /* C scaled by curve(r) / r, r = max C_k / room_k: hue kept */
+    SBFX_TONE_MAP_PER_CHANNEL,     /* C_k = room_k curve(C_k / room_k): bright colours turn white */
     SBFX_TONE_MAP_COUNT
 } sbfx_tone_map;
 
@@ -201,7 +203,7 @@ typedef enum sbfx_clip_depth_mode {
 typedef struct sbfx_frame {
     float view[16];          /* world -> view */
     float projection[16];    /* a perspective projection (above) */
-    uint32_t scene_color_texture;
+    uint32_t scene_color_texture; /* 0: none (post effects need it; the tone map reads it) */
     uint32_t scene_depth_texture;
     uint32_t out_framebuffer;
     int width, height;

@@ -418,11 +418,14 @@ static void run_case(const state_case *c, int expected_queries[3])
  * so the restore asks glIsProgram once): 20 for the pass state (program, vertex array, array
  * buffer, draw framebuffer, viewport, 4 blend functions, 2 equations, depth function and
  * mask, colour mask, 6 enables), 1 glIsProgram, 1 active texture, then one per (unit,
- * target) sbfx binds and one sampler binding per unit. */
+ * target) sbfx binds and one sampler binding per unit; without post effects, 2 more: the
+ * composite asks which texture the host's framebuffer draws into (its scene colour texture is
+ * read for the tone map only when it is not that one). */
 CHECK_TEST(builtin_explosion_leaves_state)
 {
-    /* units 0-3 2D (+ sampler each), unit 1 3D: 22 + 4 + 4 + 1; idle: no pass, no query */
-    int expected[3] = {31, 31, 0};
+    /* units 0-3 2D (+ sampler each), unit 1 3D: 22 + 4 + 4 + 1, + 2 attachment queries; idle: no
+     * pass, no query */
+    int expected[3] = {33, 33, 0};
     run_case(&cases[0], expected);
 }
 
@@ -442,8 +445,9 @@ CHECK_TEST(history_blur_leaves_state)
 
 CHECK_TEST(lit_smoke_leaves_state)
 {
-    /* units 0-2 2D (no black body), unit 1 3D, unit 4 2D array, 4 samplers */
-    int expected[3] = {31, 31, 0};
+    /* units 0-3 2D (3: no black body, the scene colour for the tone map), unit 1 3D, unit 4 2D
+     * array, 4 samplers, + 2 attachment queries */
+    int expected[3] = {35, 35, 0};
     run_case(&cases[3], expected);
 }
 
