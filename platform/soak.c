@@ -5,7 +5,7 @@
  * and depth of field, campfire with heat shimmer, lit-smoke with its orbiting light, and a
  * history-blur scene of two effects). Every frame advances the fixed-step simulation by --dt
  * (at most 0.25 s: what one sbfx_update takes without cutting time). Every N frames a sample
- * goes to DIR/soak.csv (soak_check.h: RSS, heap bytes, what sbfx holds, the GL objects alive
+ * goes to DIR/soak.csv (soak_check.h: RSS, anonymous and file-backed, heap bytes, what sbfx holds, the GL objects alive
  * in the context, particles, triggers); at the end the flatness check runs on the samples.
  * Exit status: 0 flat, 1 bad arguments or a GL/sbfx failure, 2 something grew (named on stderr).
  * --inject-leak texture|malloc (with --leak-every N frames, default 10) leaks on purpose, so
@@ -102,7 +102,7 @@ static void usage(FILE *f)
           "  --render-every N       draw every N-th frame (8); the others only simulate\n"
           "  --sample-every N       frames between samples (default: 400 samples in all)\n"
           "  --warmup F             fraction of the samples before the check starts (0.25)\n"
-          "  --rss-tolerance KIB    resident memory growth allowed after warm-up (4096)\n"
+          "  --rss-tolerance KIB    anonymous resident memory growth allowed after warm-up (4096)\n"
           "  --heap-tolerance KIB   malloc'ed bytes growth allowed after warm-up (2048)\n"
           "  --out DIR              DIR/soak.csv (build/soak)\n"
           "  --quiet                no progress lines\n"
@@ -371,14 +371,18 @@ static int step(struct soak *s)
 
 /* ---- samples ------------------------------------------------------------------------------ */
 
-static int64_t rss_kib(void)
+/* Resident memory from /proc/self/status: all of it, anonymous (heap, mappings, JIT code,
+ * stacks) and file-backed (library code paged in: it grows when a code path runs first). */
+static void read_rss(struct soak_sample *x)
 {
-    long size = 0, resident = 0;
-    FILE *f = fopen("/proc/self/statm", "r");
-    if (!f) return -1;
-    int got = fscanf(f, "%ld %ld", &size, &resident);
-    fclose(f);
-    return got == 2 ? (int64_t)resident * (sysconf(_SC_PAGESIZE) / 1024) : -1;
+    static const char *const keys[] = {"VmRSS:", "RssAnon:", "RssFile:"};
+    int64_t *dst[] = {&x->rss_kib, &x->rss_anon_kib, &x->rss_file_kib};
+    char line[256];
+    FILE *f = fopen("/proc/self/status", "r");
+    while (f && fgets(line, sizeof(line), f))
+        for (int k = 0; k < 3; k++)
+            if (!strncmp(line, keys[k], strlen(keys[k]))) *dst[k] = strtoll(line + strlen(keys[k]), NULL, 10);
+    if (f) fclose(f);
 }
 
 /* GL objects alive in the whole context (sbfx's, the host's, a leak): Mesa hands out names
@@ -413,8 +417,9 @@ static int take_sample(struct soak *s)
     }
     struct soak_sample *x = &s->samples[s->sample_count++];
     *x = (struct soak_sample){.frames = s->frames, .sim_seconds = sbfx_elapsed(s->modules[0].fx),
-                              .wall_seconds = now_seconds() - s->wall_start, .rss_kib = rss_kib(),
+                              .wall_seconds = now_seconds() - s->wall_start,
                               .heap_bytes = heap_bytes()};
+    read_rss(x);
     count_gl_objects(x);
     for (int i = 0; i < s->module_count; i++) {
         sbfx_counters c;

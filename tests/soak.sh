@@ -36,10 +36,10 @@ samples=$(($(wc -l <"$tmp/flat/soak.csv" 2>/dev/null || echo 1) - 1))
 if [ "$rc" -ne 0 ]; then
     not_ok flat "exit $rc: $(grep -m 3 . "$tmp/flat.err" | tr '\n' ' ')"
 elif ! grep -q "flat after warm-up" "$tmp/flat.out" || [ "$samples" -lt 100 ] ||
-    ! head -n 1 "$tmp/flat/soak.csv" | grep -q '^sim_hours,frames,.*rss_kib.*gl_textures'; then
+    ! head -n 1 "$tmp/flat/soak.csv" | grep -q '^sim_hours,frames,.*rss_anon_kib.*gl_textures'; then
     not_ok flat "no verdict or no record ($samples samples): $(tail -n 3 "$tmp/flat.out" | tr '\n' ' ')"
 else
-    ok "flat (12 simulated minutes, $samples samples: $(grep -m 1 'rss_kib' "$tmp/flat.out" | sed 's/^sbfx-soak: //'))"
+    ok "flat (12 simulated minutes, $samples samples: $(grep -m 1 'rss_anon_kib' "$tmp/flat.out" | sed 's/^sbfx-soak: //'))"
 fi
 
 # catches KIND NEEDLE: a leak of KIND must fail the check with NEEDLE on stderr.
