@@ -255,7 +255,9 @@ SBFX_API double sbfx_time(const sbfx *fx);
 /* Simulation time in seconds since sbfx_create, counted in whole fixed steps: the clock of
  * sbfx_schedule and of the scene's timeline. */
 SBFX_API double sbfx_elapsed(const sbfx *fx);
-/* Advances the simulation by dt seconds in fixed steps (an accumulator keeps the remainder). */
+/* Advances the simulation by dt seconds in fixed steps (an accumulator keeps the remainder). At
+ * most 0.25 s (+ one step) is owed at a time: a longer dt (a stall, a suspended board) is cut
+ * there, so the simulation never spins to catch up; hosts that want more call it again. */
 SBFX_API sbfx_result sbfx_update(sbfx *fx, double dt);
 SBFX_API sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);
 SBFX_API void sbfx_stats(const sbfx *fx, sbfx_counters *out);
