@@ -1,5 +1,5 @@
 # sbfx — build, test, demo, bench, install.
-#   make [all]        library (build/libsbfx.a, .so), build/sbfx-play, build/sbfx-probe
+#   make [all]        library (build/libsbfx.a, .so), build/sbfx-play, build/sbfx-probe, build/sbfx-soak
 #   make demo         render the built-in explosion headless into build/demo/
 #   make gallery      one contact sheet per example scene into docs/gallery/ (README "Gallery")
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, then ASan+UBSan
@@ -143,8 +143,8 @@ $(BUILD)/obj/platform/probe.o: PLATFORM_CFLAGS += -Iref
 $(BUILD)/sbfx-probe: $(BUILD)/obj/platform/probe.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
-# sbfx-soak: the kiosk loop for simulated hours, flatness checked (README "Long uptime and
-# soak"); a test tool, not installed. `make soak` runs it for SOAK_HOURS and plots the record
+# sbfx-soak: the kiosk loop for simulated hours, flatness checked (README "Kiosk months");
+# a test tool, not installed. `make soak` runs it for SOAK_HOURS and plots the record
 # with gnuplot (tests/soak/soak.gp); tests/soak.sh runs a short one inside `make test`.
 $(BUILD)/sbfx-soak: $(BUILD)/obj/platform/soak.o $(BUILD)/obj/platform/soak_check.o $(PLATFORM_COMMON_OBJ) \
 		$(BUILD)/libsbfx.a

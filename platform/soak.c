@@ -1,6 +1,6 @@
-/* sbfx-soak: the kiosk loop for simulated hours, compressed into minutes (README "Long uptime
- * and soak"). Headless (EGL surfaceless), small frames; one module per scene on one context,
- * all drawn over the test scene every frame; an effect is triggered every fraction of a second,
+/* sbfx-soak: the kiosk loop for simulated hours, compressed into minutes (README "Kiosk
+ * months"). Headless (EGL surfaceless), small frames; one module per scene on one context, all
+ * drawn over the test scene every --render-every frames (8); an effect is triggered every fraction of a second,
  * cycling through every effect of every scene (the defaults: barrage, post with velocity blur
  * and depth of field, campfire with heat shimmer, lit-smoke with its orbiting light, and a
  * history-blur scene of two effects). Every frame advances the fixed-step simulation by --dt

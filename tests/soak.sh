@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# The short soak of `make test` (README "Long uptime and soak"; `make soak` runs hours):
-#   soak/flat          12 simulated minutes of the five default scenes, triggers every 0.2 s:
+# The short soak of `make test` (README "Kiosk months"; `make soak` runs hours):
+#   soak/flat          9 simulated minutes of the five default scenes, triggers every 0.2 s:
 #                      exit 0, "flat after warm-up", a CSV with a header and every sample
 #   soak/catches-*     the same check must fail (exit 2) and name what grew when the soak
 #                      leaks on purpose: a 64x64 GL texture (the context's live textures) or
-#                      256 KiB of heap (malloc) every 40 frames (10 simulated seconds)
+#                      256 KiB of heap (malloc) every 20 frames (5 simulated seconds)
 #   soak/bad-argument  a bad value names the flag, exit 1
 # Usage: tests/soak.sh [BUILD] (default build). Prints ok/not ok lines (tests/check.h style).
 set -u
@@ -31,7 +31,7 @@ soak() {
     rc=$?
 }
 
-soak flat --hours 0.2 --rss-tolerance 8192
+soak flat --hours 0.15 --rss-tolerance 8192
 samples=$(($(wc -l <"$tmp/flat/soak.csv" 2>/dev/null || echo 1) - 1))
 if [ "$rc" -ne 0 ]; then
     not_ok flat "exit $rc: $(grep -m 3 . "$tmp/flat.err" | tr '\n' ' ')"
@@ -39,13 +39,13 @@ elif ! grep -q "flat after warm-up" "$tmp/flat.out" || [ "$samples" -lt 100 ] ||
     ! head -n 1 "$tmp/flat/soak.csv" | grep -q '^sim_hours,frames,.*rss_anon_kib.*gl_textures'; then
     not_ok flat "no verdict or no record ($samples samples): $(tail -n 3 "$tmp/flat.out" | tr '\n' ' ')"
 else
-    ok "flat (12 simulated minutes, $samples samples: $(grep -m 1 'rss_anon_kib' "$tmp/flat.out" | sed 's/^sbfx-soak: //'))"
+    ok "flat (9 simulated minutes, $samples samples: $(grep -m 1 'rss_anon_kib' "$tmp/flat.out" | sed 's/^sbfx-soak: //'))"
 fi
 
 # catches KIND NEEDLE: a leak of KIND must fail the check with NEEDLE on stderr.
 catches() {
     local kind=$1 needle=$2
-    soak "leak-$kind" --hours 0.1 --scene history-blur --render-every 2 --leak-every 40 --inject-leak "$kind"
+    soak "leak-$kind" --hours 0.05 --scene history-blur --render-every 2 --leak-every 20 --inject-leak "$kind"
     if [ "$rc" -ne 2 ]; then
         not_ok "catches-$kind" "a leaking soak exited with $rc, expected 2: $(grep -m 3 . "$tmp/leak-$kind.err" | tr '\n' ' ')"
     elif ! grep -q -- "$needle" "$tmp/leak-$kind.err"; then
