@@ -1,12 +1,13 @@
 /* sbfx-soak: the kiosk loop for simulated hours, compressed into minutes (README "Kiosk
  * months"). Headless (EGL surfaceless), small frames; one module per scene on one context, all
- * drawn over the test scene every --render-every frames (8); an effect is triggered every fraction of a second,
- * cycling through every effect of every scene (the defaults: barrage, post with velocity blur
- * and depth of field, campfire with heat shimmer, lit-smoke with its orbiting light, and a
- * history-blur scene of two effects). Every frame advances the fixed-step simulation by --dt
- * (at most 0.25 s: what one sbfx_update takes without cutting time). Every N frames a sample
- * goes to DIR/soak.csv (soak_check.h: RSS, anonymous and file-backed, heap bytes, what sbfx holds, the GL objects alive
- * in the context, particles, triggers); at the end the flatness check runs on the samples.
+ * drawn over the test scene every --render-every frames (8); an effect is triggered every
+ * fraction of a second, cycling through every effect of every scene (the defaults: barrage,
+ * post with velocity blur and depth of field, campfire with heat shimmer, lit-smoke with its
+ * orbiting light, and a history-blur scene of two effects). Every frame advances the fixed-step
+ * simulation by --dt (at most 0.25 s: what one sbfx_update takes without cutting time). Every N
+ * frames a sample goes to DIR/soak.csv (soak_check.h: RSS, anonymous and file-backed, heap
+ * bytes, what sbfx holds, the GL objects alive in the context, particles, triggers); at the end
+ * the flatness check runs on the samples.
  * Exit status: 0 flat, 1 bad arguments or a GL/sbfx failure, 2 something grew (named on stderr).
  * --inject-leak texture|malloc (with --leak-every N frames, default 10) leaks on purpose, so
  * that tests/soak.sh can show the check catches it. */
