@@ -53,6 +53,7 @@ struct player_options {
     float exposure;           /* 0 = the scene's or the library's default (1) */
     uint32_t seed;            /* 0 = the library's default */
     double start_time;        /* --start-time: desc.start_time, the clock's start (0) */
+    float budget_ms;          /* --budget-ms: desc.frame_budget_ms; 0 = the scene's or none */
     const char *scene_path;   /* NULL: the built-in timeline */
     bool quiet;
     bool help;
