@@ -1,5 +1,5 @@
 # sbfx — build, test, demo, bench, install.
-#   make [all]        library (build/libsbfx.a, .so), build/sbfx-play, build/sbfx-probe
+#   make [all]        library (build/libsbfx.a, .so), build/sbfx-play, build/sbfx-probe, build/sbfx-soak
 #   make demo         render the built-in explosion headless into build/demo/
 #   make gallery      one contact sheet per example scene into docs/gallery/ (README "Gallery")
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, then ASan+UBSan
@@ -9,6 +9,7 @@
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
 #   make test-vm      real-kernel tests in a qemu VM (vkms, vivid, gpio-sim; tests/vm/)
+#   make soak         SOAK_HOURS (10) simulated hours of the kiosk loop: build/soak/soak.csv, .png
 # Every build first checks the Debian packages it needs (tools/deps.sh $(DEPS): as root it
 # installs what is missing, otherwise it names the apt-get line and stops).
 PREFIX ?= /usr/local
@@ -77,7 +78,7 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/unit/%,$(wildcard tests/u
 GL_TESTS := $(patsubst tests/gl/%.c,$(BUILD)/tests/gl/%,$(wildcard tests/gl/*.c))
 
 .PHONY: all deps lib test test-unit test-gl test-asan demo gallery bench ladder install uninstall clean
-all: lib $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(BUILD)/sbfx.pc
+all: lib $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(BUILD)/sbfx-soak $(BUILD)/sbfx.pc
 lib: $(BUILD)/libsbfx.a $(SO_LINKS) $(BUILD)/libsbfx_ref.a
 
 # Every compile waits for this step (order-only: it never makes anything out of date).
@@ -142,6 +143,24 @@ $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 $(BUILD)/obj/platform/probe.o: PLATFORM_CFLAGS += -Iref
 $(BUILD)/sbfx-probe: $(BUILD)/obj/platform/probe.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
+
+# sbfx-soak: the kiosk loop for simulated hours, flatness checked (README "Kiosk months");
+# a test tool, not installed. `make soak` runs it for SOAK_HOURS and plots the record
+# with gnuplot (tests/soak/soak.gp); tests/soak.sh runs a short one inside `make test`.
+$(BUILD)/sbfx-soak: $(BUILD)/obj/platform/soak.o $(BUILD)/obj/platform/soak_check.o $(PLATFORM_COMMON_OBJ) \
+		$(BUILD)/libsbfx.a
+	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
+
+SOAK_HOURS ?= 10
+.PHONY: soak
+soak:
+	@tools/deps.sh build
+	@$(MAKE) --no-print-directory $(BUILD)/sbfx-soak
+	@rc=0; $(BUILD)/sbfx-soak --hours $(SOAK_HOURS) --out $(BUILD)/soak || rc=$$?; \
+	if command -v gnuplot >/dev/null 2>&1; then \
+		gnuplot -e "dir='$(BUILD)/soak'" tests/soak/soak.gp && echo "soak: $(BUILD)/soak/soak.png"; \
+	else echo "soak: gnuplot is not installed (apt-get install gnuplot-nox): no $(BUILD)/soak/soak.png" >&2; fi; \
+	exit $$rc
 
 # sbfx.pc: sbfx.pc.in with the install directories. build/sbfx.pc is rewritten on every run, as
 # they may differ between "make" and "make install", which writes its own.
@@ -314,7 +333,7 @@ bench: $(BUILD)/bench/bench_state
 # ---- platform (issue #5: DRM/KMS kiosk, V4L2 detail, GPIO triggers, boards) ---------------
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,
 # the --gpio/--mode syntax), run by tests/run.sh like the unit tests.
-PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,luma.o trigger_filter.o board.o player_args.o)
+PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,luma.o trigger_filter.o board.o player_args.o soak_check.o)
 PLATFORM_TESTS := $(patsubst tests/platform/%.c,$(BUILD)/tests/platform/%,$(wildcard tests/platform/*.c))
 $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h
 	@mkdir -p $(@D)

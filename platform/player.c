@@ -121,6 +121,7 @@ static int create_fx(struct player *p, char *err, size_t n)
         .tone_map = opt->tone_map,
         .exposure = opt->exposure,
         .seed = opt->seed,
+        .start_time = opt->start_time,
         .frame_budget_ms = opt->budget_ms,
         .max_particles = p->board.max_particles,
         .scene = scene,
@@ -212,8 +213,8 @@ static void write_platform_stats(const struct player *p, FILE *f)
 {
     const sbfx_counters *c = &p->last;
     const struct display_counts *d = &p->display->counts;
-    fprintf(f, ", \"frames\": %d, \"flips\": %llu, \"missed_vblanks\": %llu, \"triggers_fired\": %d, "
-            "\"triggers_refused\": %d", p->frames_done, (unsigned long long)d->flips,
+    fprintf(f, ", \"frames\": %lld, \"flips\": %llu, \"missed_vblanks\": %llu, \"triggers_fired\": %d, "
+            "\"triggers_refused\": %d", (long long)p->frames_done, (unsigned long long)d->flips,
             (unsigned long long)d->missed, c->triggers_fired, c->triggers_refused);
     if (p->gpio_on) {
         const struct gpio_trigger_counts *g = &p->gpio.counts;
@@ -269,7 +270,7 @@ static const char *format_name(sbfx_target_format format)
 static void print_headless_summary(const struct player *p)
 {
     const struct frame_times *t = &p->times;
-    int frames = p->frames_done;
+    int frames = (int)p->frames_done; /* headless runs are limited by --frames */
     printf("sbfx-play: %d frames of %dx%d in %s (frame-0000.png .. frame-%04d.png)\n", frames,
            p->opt->width, p->opt->height, p->out_dir, frames - 1);
     if (p->opt->contact_sheet) printf("sbfx-play: contact sheet: %s/contact-sheet.png\n", p->out_dir);
@@ -284,12 +285,12 @@ static void print_drm_summary(const struct player *p)
 {
     const struct display_counts *c = &p->display->counts;
     double seconds = (double)(player_now_ns() - p->run_start_ns) / 1e9;
-    int frames = p->frames_done;
-    printf("sbfx-play: %d frames in %.1f s (%.1f fps) on %s; flips %llu, missed vblanks %llu; "
+    long long frames = (long long)p->frames_done;
+    printf("sbfx-play: %lld frames in %.1f s (%.1f fps) on %s; flips %llu, missed vblanks %llu; "
            "sbfx update+render mean %.2f ms, max %.2f ms (particle target %s)\n", frames, seconds,
-           seconds > 0 ? frames / seconds : 0.0, p->display->description,
+           seconds > 0 ? (double)frames / seconds : 0.0, p->display->description,
            (unsigned long long)c->flips, (unsigned long long)c->missed,
-           frames ? p->times.sbfx_sum / frames : 0.0, p->times.sbfx_max, format_name(p->last.target_format));
+           frames ? p->times.sbfx_sum / (double)frames : 0.0, p->times.sbfx_max, format_name(p->last.target_format));
     if (p->opt->screenshot) printf("sbfx-play: screenshot: %s\n", p->opt->screenshot);
 }
 

@@ -43,7 +43,7 @@ struct player {
     int frame_simulated;      /* particles advanced by this frame's updates, summed */
     sbfx_counters last;       /* sbfx_stats() after the last frame */
     struct frame_times times;
-    int frames_done;
+    int64_t frames_done;      /* 64-bit: a kiosk at 60 Hz passes 2^31 frames in 414 days */
     bool realtime;            /* drm without --fps: the simulation follows the clock */
     bool measure_gpu;         /* glFinish around sbfx (headless timings) */
     int64_t run_start_ns, last_frame_ns;

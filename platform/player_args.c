@@ -123,6 +123,18 @@ static int set_fps(struct player_options *opt, const char *value, char *err, siz
     return 0;
 }
 
+static int set_start_time(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    double v = 0;
+    if (!parse_number(value, NULL, &v, NULL) || !(v >= 0.0) || v > PLAYER_MAX_START_TIME) {
+        snprintf(err, n, "--start-time: expected seconds from 0 to 1e10 (e.g. 31536000 for a year), "
+                 "got '%s'", value);
+        return -EINVAL;
+    }
+    opt->start_time = v;
+    return 0;
+}
+
 static int set_path(const char *flag, const char **dst, const char *value, char *err, size_t n)
 {
     if (!*value) {
@@ -372,6 +384,7 @@ static const struct flag flags[] = {
     {"--size", "WxH (e.g. 960x540)", set_size},
     {"--frames", "N (1..1000000)", set_frames},
     {"--fps", "F (0 < F <= 1000)", set_fps},
+    {"--start-time", "SECONDS (0..1e10)", set_start_time},
     {"--out", "DIR", set_out},
     {"--contact-sheet", NULL, set_contact_sheet},
     {"--stats", "FILE", set_stats},

@@ -16,6 +16,7 @@
 #define PLAYER_MAX_SIZE 16384 /* the run also checks the GL limits */
 #define PLAYER_MAX_FRAMES 1000000
 #define PLAYER_MAX_GPIO 32
+#define PLAYER_MAX_START_TIME 1e10 /* desc.start_time's range: about 317 years */
 
 /* --trigger EFFECT@SECONDS[:X,Y,Z] */
 struct player_trigger {
@@ -51,6 +52,7 @@ struct player_options {
     sbfx_tone_map tone_map;   /* 0 = the scene's or the library's default */
     float exposure;           /* 0 = the scene's or the library's default (1) */
     uint32_t seed;            /* 0 = the library's default */
+    double start_time;        /* --start-time: desc.start_time, the clock's start (0) */
     float budget_ms;          /* --budget-ms: desc.frame_budget_ms; 0 = the scene's or none */
     const char *scene_path;   /* NULL: the built-in timeline */
     bool quiet;

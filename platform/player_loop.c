@@ -3,6 +3,7 @@
  * scene, copy it into the display's framebuffer, sbfx_update + sbfx_render over it, present.
  * Nothing here allocates. */
 #include <errno.h>
+#include <limits.h>
 #include <poll.h>
 #include <signal.h>
 #include <stdio.h>
@@ -164,15 +165,15 @@ static void record_times(struct frame_times *t, double sbfx_ms, double total_ms)
 
 /* Simulated time of frame i: i/F, or (drm without --fps) the clock since the first frame,
  * advancing at most MAX_REALTIME_STEP per frame. */
-static double frame_time(struct player *p, int index, int64_t now)
+static double frame_time(struct player *p, int64_t index, int64_t now)
 {
-    if (!p->realtime) return index / p->opt->fps;
+    if (!p->realtime) return (double)index / p->opt->fps;
     if (index == 0) return 0.0;
     double dt = (double)(now - p->last_frame_ns) / NS_PER_S;
     return p->sim_time + (dt < MAX_REALTIME_STEP ? dt : MAX_REALTIME_STEP);
 }
 
-static int play_frame(struct player *p, int index, char *err, size_t n)
+static int play_frame(struct player *p, int64_t index, char *err, size_t n)
 {
     int64_t start = player_now_ns();
     double t = frame_time(p, index, start);
@@ -186,7 +187,8 @@ static int play_frame(struct player *p, int index, char *err, size_t n)
     if (rc) return rc;
     int64_t fx_end = player_now_ns();
     sbfx_stats(p->fx, &p->last);
-    rc = p->display->ops->present(p->display, index, err, n);
+    /* headless runs stop at --frames (int); a kiosk's display does not name its frames */
+    rc = p->display->ops->present(p->display, index < INT_MAX ? (int)index : INT_MAX, err, n);
     if (rc) return rc;
     report_time(p, (double)(fx_end - fx_start) / 1e6);
     record_times(&p->times, (double)(fx_end - fx_start) / 1e6, (double)(player_now_ns() - start) / 1e6);
@@ -253,13 +255,13 @@ int player_run_frames(struct player *p, char *err, size_t n)
     bool limited = opt->display != PLAYER_DISPLAY_DRM || opt->frames_set;
     p->run_start_ns = player_now_ns();
     second_reset(p, p->run_start_ns);
-    for (int i = 0; !limited || i < opt->frames; i++) {
+    for (int64_t i = 0; !limited || i < opt->frames; i++) {
         char why[1024];
         int rc = wait_ready(p, why, sizeof(why));
         if (rc == 0 && player_stop_requested()) break;
         if (rc == 0) rc = play_frame(p, i, why, sizeof(why));
         if (rc) {
-            snprintf(err, n, "frame %d: %s", i, why);
+            snprintf(err, n, "frame %lld: %s", (long long)i, why);
             return rc;
         }
         p->frames_done++;

@@ -11,8 +11,9 @@ void sbfx_orbit_lights(sbfx *fx)
         sbfx_scene_light *l = &fx->lights[i];
         const sbfx_orbit *o = &l->orbit;
         if (!l->point || !o->on) continue;
-        /* fmod keeps the angle small: sin/cos of a huge float angle would lose the phase */
-        double turns = fmod(fx->time / o->period, 1.0);
+        /* the phase is reduced in double: sin/cos of a huge angle would lose it */
+        double turns = sbfx_clock_phase(fx, o->period);
+        if (o->period < 0) turns = -turns;
         double a = 2.0 * M_PI * turns + o->phase;
         l->vector[0] = o->center[0] + o->radius * (float)cos(a);
         l->vector[1] = o->center[1];

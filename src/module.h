@@ -262,7 +262,8 @@ struct sbfx {
     int effect_count;
 
     sbfx_pool pool;
-    double time, accumulator;
+    double time, accumulator;    /* time: seconds since create (whole steps); the clock
+                                    is desc.start_time + time (sbfx_time) */
     uint64_t step_index;
     uint32_t trigger_count;
     int particles_simulated;
@@ -364,7 +365,13 @@ GLuint sbfx_post_composite_texture(const sbfx *fx);
 /* sbfx.c */
 sbfx_result sbfx_fire(sbfx *fx, int effect, const float position[3]);
 
-/* lights.c: moves orbiting point lights to their place at fx->time */
+/* The clock's phase in a cycle of |period| seconds, in [0, 1), reduced in double precision
+ * (DESIGN §7): what every periodic value starts from. */
+double sbfx_clock_phase(const sbfx *fx, double period);
+#define SBFX_MAX_START_TIME 1e10
+#define SBFX_DETAIL_LOOP_SECONDS 4.0 /* the detail animation's loop */
+
+/* lights.c: moves orbiting point lights to their place on the clock */
 void sbfx_orbit_lights(sbfx *fx);
 
 /* effects.c */

@@ -375,5 +375,6 @@ int sbfx_frame_lights(const sbfx *fx, const float view[16], sbfx_view_light *out
 
 void sbfx_frame_ambient(const sbfx *fx, float ambient[3]) { memcpy(ambient, fx->ambient, 3 * sizeof(float)); }
 
-/* The detail animation loops every 4 s. */
-double sbfx_detail_time(const sbfx *fx) { return fx->time * 0.25; }
+/* The detail animation loops every 4 s: its phase on the clock, in [0, 1) loops (the volume's
+ * time axis wraps with REPEAT, so the jump from 1 back to 0 is seamless). */
+double sbfx_detail_time(const sbfx *fx) { return sbfx_clock_phase(fx, SBFX_DETAIL_LOOP_SECONDS); }

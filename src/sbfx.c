@@ -119,6 +119,9 @@ static sbfx_result validate_desc(sbfx *fx, const sbfx_desc *d)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT,
                          "detail volume %dx%dx%d: use powers of two from 4 to 256",
                          d->detail_size, d->detail_size, d->detail_frames);
+    if (!(d->start_time >= 0.0 && d->start_time <= SBFX_MAX_START_TIME))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "start_time %g s: use 0 .. %g s",
+                         d->start_time, SBFX_MAX_START_TIME);
     if (!(d->frame_budget_ms >= 0.0f && d->frame_budget_ms <= 1e4f))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "frame_budget_ms %g: use a time in milliseconds above 0 "
                          "and at most 10000 (0: no budget)", (double)d->frame_budget_ms);
@@ -340,7 +343,19 @@ sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds, const fl
     return SBFX_OK;
 }
 
-double sbfx_time(const sbfx *fx) { return fx ? fx->time : 0.0; }
+double sbfx_time(const sbfx *fx) { return fx ? fx->desc.start_time + fx->time : 0.0; }
+
+double sbfx_elapsed(const sbfx *fx) { return fx ? fx->time : 0.0; }
+
+/* The clock's place in a cycle of `period` seconds, in [0, 1): both parts reduced in double
+ * (fmod is exact) before they meet, so a start a year in keeps the phase to the last bit, and a
+ * start that is a whole number of periods gives bit for bit what a start at 0 gives. */
+double sbfx_clock_phase(const sbfx *fx, double period)
+{
+    double p = fabs(period);
+    double turns = fmod(fmod(fx->desc.start_time, p) + fmod(fx->time, p), p) / p;
+    return turns < 1.0 ? turns : 0.0;
+}
 
 /* Scheduled triggers due at the current step; a refused one is counted and dropped. */
 static void fire_due(sbfx *fx)

@@ -163,6 +163,13 @@ typedef struct sbfx_desc {
     sbfx_tone_map tone_map;          /* the particles' light on the display (hue-preserving) */
     float exposure;                  /* scale of the particles' light before it (1) */
     float sim_step;                  /* fixed simulation step in seconds (1/120) */
+    double start_time;               /* seconds: where the simulation clock starts (0). A kiosk
+                                        that keeps its clock across restarts passes the last
+                                        sbfx_time() here. Everything periodic (detail
+                                        animation, orbiting lights) follows the clock, reduced
+                                        in double precision, so it renders the same after a
+                                        year as at 0; timelines and sbfx_schedule count from
+                                        the start (sbfx_elapsed). 0 .. 1e10 (about 317 years). */
     const sbfx_scene *scene;         /* NULL: the built-in explosion. Non-zero fields of this
                                         desc override the scene's render settings. The scene
                                         may be freed once sbfx_create returns. */
@@ -249,16 +256,24 @@ SBFX_API const char *sbfx_last_error(const sbfx *fx);
  * the trigger is refused (SBFX_ERR_POOL_FULL, counted in triggers_refused); live instances
  * are never cut short. */
 SBFX_API sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float position[3]);
-/* Schedules a trigger at simulation time `seconds` (since sbfx_create); it fires at the first
- * simulation step at or after that time, so results do not depend on frame times. */
+/* Schedules a trigger at `seconds` since sbfx_create (the sbfx_elapsed() clock, not
+ * sbfx_time(): a scene's timeline means the same whatever desc.start_time is); it fires at the
+ * first simulation step at or after that time, so results do not depend on frame times. */
 SBFX_API sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds,
                                    const float position[3]);
 /* True when the module has an effect of that name (the scene's, or the built-in "explosion"):
  * lets a host check at start the names it will trigger later (GPIO lines, remote commands). */
 SBFX_API bool sbfx_has_effect(const sbfx *fx, const char *effect);
-/* Simulation time in seconds since sbfx_create. */
+/* The simulation clock in seconds: desc.start_time + sbfx_elapsed(). Absolute, so a kiosk can
+ * persist it and restart where it was (desc.start_time); hosts that animate from it should reduce
+ * periodic values in double precision (fmod) before making floats of them. */
 SBFX_API double sbfx_time(const sbfx *fx);
-/* Advances the simulation by dt seconds in fixed steps (an accumulator keeps the remainder). */
+/* Simulation time in seconds since sbfx_create, counted in whole fixed steps: the clock of
+ * sbfx_schedule and of the scene's timeline. */
+SBFX_API double sbfx_elapsed(const sbfx *fx);
+/* Advances the simulation by dt seconds in fixed steps (an accumulator keeps the remainder). At
+ * most 0.25 s (+ one step) is owed at a time: a longer dt (a stall, a suspended board) is cut
+ * there, so the simulation never spins to catch up; hosts that want more call it again. */
 SBFX_API sbfx_result sbfx_update(sbfx *fx, double dt);
 SBFX_API sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);
 SBFX_API void sbfx_stats(const sbfx *fx, sbfx_counters *out);

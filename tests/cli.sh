@@ -55,7 +55,7 @@ is_png() {
 test_help() {
     play --help
     local missing="" flag
-    for flag in --headless --size --frames --fps --out --contact-sheet --stats --trigger \
+    for flag in --headless --size --frames --fps --start-time --out --contact-sheet --stats --trigger \
         --no-timeline --scale --opacity --format --upsample --tone-map --exposure --budget-ms --seed --scene --quiet --help \
         --display --device --connector --mode --modeset --screenshot --board --video --gpio; do
         grep -qF -- "$flag" "$tmp/out" || missing="$missing $flag"
@@ -212,6 +212,35 @@ test_trigger_run() {
         --frames 1 --out "$tmp/unknown" --quiet
 }
 
+# --start-time (README "Kiosk months"): a clock started a year in (a whole number of the 4 s
+# detail loop and of lit-smoke's 4 s orbit) gives the frames a start at 0 gives; a start of 1 s
+# does not (the flag reaches the module); bad values name the flag.
+test_start_time() {
+    usage_error start-time-negative --start-time --start-time -1
+    usage_error start-time-nan --start-time --start-time nan
+    usage_error start-time-junk --start-time --start-time 1year
+    usage_error start-time-huge --start-time --start-time 1e11
+    local s bad="" same=0 f
+    for s in 0 31536000 1; do
+        play --scene scenes/lit-smoke.cfg --start-time "$s" --size 160x90 --frames 4 --fps 2 --out "$tmp/start-$s" --quiet
+        if [ "$rc" -ne 0 ]; then
+            fail start-time-year "--start-time $s exited with $rc: $(first_error_line)"
+            return
+        fi
+    done
+    for f in frame-0000 frame-0001 frame-0002 frame-0003; do
+        cmp -s "$tmp/start-0/$f.png" "$tmp/start-31536000/$f.png" || bad="$bad $f"
+        cmp -s "$tmp/start-0/$f.png" "$tmp/start-1/$f.png" && same=$((same + 1))
+    done
+    if [ -n "$bad" ]; then
+        fail start-time-year "--start-time 31536000 differs from 0 in:$bad"
+    elif [ "$same" -eq 4 ]; then
+        fail start-time-year "--start-time 1 renders what 0 renders: the flag does not reach the clock"
+    else
+        ok start-time-year
+    fi
+}
+
 # The platform flags (README "Kiosk displays, cameras and GPIO"): bad values, missing devices
 # and files exit 1 naming them; a missing camera is not fatal. Never opens a real display: the
 # DRM device named here does not exist.
@@ -287,5 +316,6 @@ test_headless_run
 test_idle_run
 test_scene_run
 test_trigger_run
+test_start_time
 test_platform_arguments
 [ "$failures" -eq 0 ]

@@ -78,6 +78,17 @@ static inline sbfx *fixture_module(gl_fixture *f, sbfx_desc desc)
     return fx;
 }
 
+/* scenes/NAME.cfg, loaded (the test stops if it cannot be). */
+static inline sbfx_scene *fixture_load_scene(const char *name)
+{
+    char path[256], err[512];
+    snprintf(path, sizeof(path), "scenes/%s.cfg", name);
+    sbfx_scene *scene = NULL;
+    CHECK(sbfx_scene_load(path, &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
+    if (!scene) exit(1);
+    return scene;
+}
+
 static inline void fixture_projection(gl_fixture *f, float fov_y, float near, float far)
 {
     sbfx_perspective(f->frame.projection, fov_y, (float)f->width / f->height, near, far);

@@ -6,16 +6,6 @@
 #define PHASE_BYTES (SBFX_PHASE_SIZE * SBFX_MEDIUM_COUNT * 4)
 #define DETAIL_BYTES (64 * 64 * 32 * 2)
 
-static sbfx_scene *load_scene(const char *name)
-{
-    char path[256], err[512];
-    snprintf(path, sizeof(path), "scenes/%s.cfg", name);
-    sbfx_scene *scene = NULL;
-    CHECK(sbfx_scene_load(path, &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
-    if (!scene) exit(1);
-    return scene;
-}
-
 typedef struct plan {
     const char *scene;
     int particle_programs; /* one per medium used */
@@ -39,7 +29,7 @@ CHECK_TEST(plan_holds_only_what_each_scene_uses)
     fixture_open(&f, 64, 64);
     for (size_t i = 0; i < ARRAY_SIZE(plans); i++) {
         const plan *want = &plans[i];
-        sbfx_scene *scene = load_scene(want->scene);
+        sbfx_scene *scene = fixture_load_scene(want->scene);
         sbfx *fx = fixture_module(&f, (sbfx_desc){.scene = scene});
         sbfx_scene_free(scene);
         sbfx_counters c;
@@ -64,7 +54,7 @@ CHECK_TEST(idle_scene_simulates_and_draws_nothing)
 {
     gl_fixture f;
     fixture_open_far(&f, 64, 64);
-    sbfx_scene *scene = load_scene("barrage");
+    sbfx_scene *scene = fixture_load_scene("barrage");
     sbfx *fx = fixture_module(&f, (sbfx_desc){.scene = scene, .ignore_timeline = true});
     sbfx_scene_free(scene);
     for (int i = 0; i < 30; i++) {
@@ -96,7 +86,7 @@ CHECK_TEST(simulation_is_deterministic_across_frame_times)
 {
     gl_fixture f;
     fixture_open(&f, 16, 16);
-    sbfx_scene *scene = load_scene("barrage");
+    sbfx_scene *scene = fixture_load_scene("barrage");
     double (*sequences[])(sbfx_rng *) = {steady_dt, jittery_dt, tiny_dt};
     uint64_t hashes[3];
     for (int s = 0; s < 3; s++) {
