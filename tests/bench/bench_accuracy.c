@@ -534,14 +534,7 @@ static bool is_grid_point(const result *r)
 
 /* ---- output -------------------------------------------------------------------------- */
 
-static FILE *open_out(const bench *b, const char *name)
-{
-    char path[1024];
-    snprintf(path, sizeof(path), "%s/%s", b->opt.out, name);
-    FILE *f = fopen(path, "w");
-    if (!f) die(path, strerror(errno));
-    return f;
-}
+static FILE *open_out(const bench *b, const char *name) { return bench_open_out(b->opt.out, name); }
 
 static void write_csv(const bench *b)
 {

@@ -1,6 +1,7 @@
 /* Image comparison and statistics of the accuracy benchmark: see bench_metrics.h. */
 #include "bench_metrics.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -127,4 +128,16 @@ void bench_pareto(const double *ms, const double *err, const bool *include, int 
             if (no_worse && better) pareto[i] = false;
         }
     }
+}
+
+FILE *bench_open_out(const char *dir, const char *name)
+{
+    char path[1024];
+    snprintf(path, sizeof(path), "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "bench: %s: %s\n", path, strerror(errno));
+        exit(1);
+    }
+    return f;
 }

@@ -8,6 +8,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 typedef struct bench_error {
     double sum_abs, sum_sq, max_abs;
@@ -36,5 +37,8 @@ void bench_stats(double *values, int n, double *median, double *min, double *max
 /* pareto[i] = true when no other included point is at least as fast and at least as accurate,
  * and strictly better in one of the two. */
 void bench_pareto(const double *ms, const double *err, const bool *include, int n, bool *pareto);
+
+/* DIR/NAME opened for writing; a bench that cannot write its results stops with the reason. */
+FILE *bench_open_out(const char *dir, const char *name);
 
 #endif

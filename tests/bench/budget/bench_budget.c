@@ -342,14 +342,7 @@ static int fixed_of_share(const bench *b, const run *fixed, double budget, doubl
     return best;
 }
 
-static FILE *open_out(const bench *b, const char *name)
-{
-    char path[1024];
-    snprintf(path, sizeof(path), "%s/%s", b->opt.out, name);
-    FILE *f = fopen(path, "w");
-    if (!f) die(path, strerror(errno));
-    return f;
-}
+static FILE *open_out(const bench *b, const char *name) { return bench_open_out(b->opt.out, name); }
 
 static void write_plot_data(const bench *b, const run *fixed, const run *budgets)
 {
