@@ -301,6 +301,12 @@ PLATFORM_TESTS := $(patsubst tests/platform/%.c,$(BUILD)/tests/platform/%,$(wild
 $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(PLATFORM_TEST_OBJ) $(PLATFORM_LIBS)
+# GPIO lines lost and requested again: gpio_triggers.c against a fake gpio.h backend (in the test)
+$(BUILD)/tests/platform/test_gpio_recovery: tests/platform/test_gpio_recovery.c \
+		$(BUILD)/obj/platform/gpio_triggers.o $(BUILD)/obj/platform/trigger_filter.o tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio_triggers.o \
+		$(BUILD)/obj/platform/trigger_filter.o $(PLATFORM_LIBS)
 .PHONY: test-platform test-vm cross-check
 test-platform: $(PLATFORM_TESTS)
 
@@ -308,7 +314,7 @@ test-platform: $(PLATFORM_TESTS)
 # sbfx-play against them (tests/vm/run.sh, README "Real-kernel tests"). Downloads from Debian's
 # archive, cached in build/vm/.
 VM_TOOLS := $(BUILD)/tests/vm/pngdiff $(BUILD)/tests/vm/drm_state $(BUILD)/tests/vm/v4l2_ctrl \
-	$(BUILD)/tests/vm/alloc_count.so
+	$(BUILD)/tests/vm/alloc_count.so $(BUILD)/tests/vm/vblank_stress
 $(BUILD)/tests/vm/pngdiff: tests/vm/pngdiff.c $(BUILD)/obj/platform/png_io.o
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -o $@ $^ $(PLATFORM_LIBS)
@@ -318,6 +324,9 @@ $(BUILD)/tests/vm/alloc_count.so: tests/vm/alloc_count.c
 $(BUILD)/tests/vm/v4l2_ctrl: tests/vm/v4l2_ctrl.c
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -o $@ $<
+$(BUILD)/tests/vm/vblank_stress: tests/vm/vblank_stress.c
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -o $@ $< $(PLATFORM_LIBS)
 $(BUILD)/tests/vm/drm_state: tests/vm/drm_state.c
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -o $@ $< $(PLATFORM_LIBS)

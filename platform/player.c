@@ -217,9 +217,12 @@ static void write_platform_stats(const struct player *p, FILE *f)
     if (p->gpio_on) {
         const struct gpio_trigger_counts *g = &p->gpio.counts;
         fprintf(f, ", \"gpio_edges\": %llu, \"gpio_fired\": %llu, \"gpio_filtered\": %llu, "
-                "\"gpio_refused\": %llu, \"gpio_overflows\": %llu", (unsigned long long)g->edges,
+                "\"gpio_refused\": %llu, \"gpio_overflows\": %llu, \"gpio_losses\": %llu, "
+                "\"gpio_returns\": %llu, \"gpio_retries\": %llu", (unsigned long long)g->edges,
                 (unsigned long long)g->fired, (unsigned long long)g->filtered,
-                (unsigned long long)g->refused, (unsigned long long)g->overflows);
+                (unsigned long long)g->refused, (unsigned long long)g->overflows,
+                (unsigned long long)g->losses, (unsigned long long)g->returns,
+                (unsigned long long)g->retries);
     }
     if (p->live_on) {
         const struct live_detail_counts *v = &p->live.counts;
