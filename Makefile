@@ -69,7 +69,7 @@ SO_LINKS := $(BUILD)/$(SONAME) $(BUILD)/libsbfx.so
 # link it before the runtime library, whose table math it calls.
 REF_OBJ := $(patsubst ref/%.c,$(BUILD)/obj/ref/%.o,$(wildcard ref/*.c))
 REF_LIBS := $(BUILD)/libsbfx_ref.a $(BUILD)/libsbfx.a
-PLATFORM_COMMON := egl_headless png_io test_scene gl_check host_depth
+PLATFORM_COMMON := egl_headless gl_reset png_io test_scene gl_check host_depth
 PLATFORM_COMMON_OBJ := $(PLATFORM_COMMON:%=$(BUILD)/obj/platform/%.o)
 
 UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/unit/%,$(wildcard tests/unit/*.c))
@@ -133,7 +133,7 @@ $(BUILD)/libsbfx.so: $(BUILD)/$(SONAME)
 # sbfx-play: the player, its displays (headless, DRM/KMS), camera and GPIO inputs (platform/)
 PLAYER_SRC := player player_args player_usage player_inputs player_loop board luma live_detail \
 	v4l2_source gpio_gpiod1 gpio_triggers trigger_filter display_headless display_drm drm_device \
-	drm_fb drm_atomic drm_legacy drm_writeback gbm_egl
+	drm_fb drm_atomic drm_legacy drm_writeback gbm_egl player_reset
 PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o)
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
@@ -307,6 +307,9 @@ $(BUILD)/tests/platform/test_gpio_recovery: tests/platform/test_gpio_recovery.c 
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio_triggers.o \
 		$(BUILD)/obj/platform/trigger_filter.o $(PLATFORM_LIBS)
+$(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(BUILD)/obj/platform/gl_reset.o tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gl_reset.o $(PLATFORM_LIBS)
 .PHONY: test-platform test-vm cross-check
 test-platform: $(PLATFORM_TESTS)
 

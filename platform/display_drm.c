@@ -143,10 +143,20 @@ static void drm_destroy(struct display *d)
     free(k);
 }
 
+/* The GBM surface, its buffers on screen and the KMS state stay: only the context is new. */
+static int drm_reset_context(struct display *d, char *err, size_t n)
+{
+    struct display_drm *k = to_drm(d);
+    int rc = gbm_egl_recreate_context(&k->ge, err, n);
+    d->robust_context = k->ge.robust;
+    return rc;
+}
+
 static const struct display_ops drm_ops = {
     .present = drm_present,
     .dispatch = drm_dispatch,
     .finish = drm_finish,
+    .reset_context = drm_reset_context,
     .destroy = drm_destroy,
 };
 
@@ -191,6 +201,7 @@ static int drm_setup(struct display_drm *k, char *err, size_t n)
     d->height = m->vdisplay;
     d->fd = k->drm.fd;
     d->refresh_hz = drm_mode_refresh(m);
+    d->robust_context = k->ge.robust;
     snprintf(d->description, sizeof(d->description), "DRM %s (%s) %s %dx%d@%.2f %s", k->drm.path,
              k->drm.driver, k->drm.connector_name, d->width, d->height, d->refresh_hz, k->kms->name);
     return 0;

@@ -80,7 +80,12 @@ static int schedule_triggers(struct player *p, char *err, size_t n)
     const struct player_options *opt = p->opt;
     for (int i = 0; i < opt->trigger_count; i++) {
         const struct player_trigger *t = &opt->triggers[i];
-        sbfx_result r = sbfx_schedule(p->fx, t->effect, t->seconds, t->position);
+        double at = t->seconds;
+        if (p->recovering) { /* a new module after a GPU reset: its time 0 is the player's now */
+            if (at <= p->fx_time_lost) continue; /* fired before the reset */
+            at = at > p->sim_time ? at - p->sim_time : 0.0;
+        }
+        sbfx_result r = sbfx_schedule(p->fx, t->effect, at, t->position);
         if (r != SBFX_OK) {
             snprintf(err, n, "--trigger %s@%g: %s: %s", t->effect, t->seconds, sbfx_result_string(r),
                      sbfx_last_error(p->fx));
@@ -102,12 +107,12 @@ static int load_scene(const char *path, sbfx_scene **scene, char *err, size_t n)
     return 0;
 }
 
-static int create_fx(struct player *p, char *err, size_t n)
+int player_create_fx(struct player *p, char *err, size_t n)
 {
     const struct player_options *opt = p->opt;
     sbfx_scene *scene = NULL;
     int rc = load_scene(opt->scene_path, &scene, err, n);
-    if (rc == 0) rc = player_collect_scene_gpio(p, scene, err, n);
+    if (rc == 0 && !p->recovering) rc = player_collect_scene_gpio(p, scene, err, n);
     sbfx_scene_camera_get(scene, &p->camera); /* the default orbit without a camera group */
     if (rc) {
         sbfx_scene_free(scene);
@@ -123,7 +128,7 @@ static int create_fx(struct player *p, char *err, size_t n)
         .seed = opt->seed,
         .max_particles = p->board.max_particles,
         .scene = scene,
-        .ignore_timeline = opt->no_timeline,
+        .ignore_timeline = opt->no_timeline || p->recovering, /* not replayed after a reset */
         .log = on_sbfx_log,
         .log_user = (void *)opt,
     };
@@ -189,7 +194,8 @@ static int setup(struct player *p, char *err, size_t n)
     struct display *d = p->display;
     if ((rc = test_scene_create(&p->scene, d->width, d->height, err, n)) != 0) return rc;
     p->scene_made = true;
-    if ((rc = create_fx(p, err, n)) != 0) return rc;
+    player_reset_setup(p);
+    if ((rc = player_create_fx(p, err, n)) != 0) return rc;
     return player_open_inputs(p, err, n);
 }
 
@@ -248,6 +254,8 @@ static int write_stats(const struct player *p, const char *path, char *err, size
             "\"heap_allocs_after_load\": %llu",
             c->programs, c->textures, c->framebuffers, c->gpu_bytes, c->passes, c->draw_calls,
             p->frame_simulated, (unsigned long long)c->heap_allocs_after_load);
+    fprintf(f, ", \"gpu_resets\": %llu, \"gpu_reset_notification\": %d",
+            (unsigned long long)p->gpu_resets, p->reset.status ? 1 : 0);
     if (p->display->fd >= 0 || p->gpio_on || p->live_on) write_platform_stats(p, f);
     fprintf(f, "}\n");
     bool failed = ferror(f) != 0;

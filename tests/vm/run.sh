@@ -18,6 +18,7 @@
 # Environment: BUILD (build), VM_DIR (build/vm), VM_TIMEOUT (seconds for the VM, 600: the outer
 # guard; each test group has its own limit inside the guest, see guest.sh; the tests take about
 # three minutes on two cores), VM_TESTS (only these test groups, e.g. "gpio gpio-loss"),
+# VBLANK_CYCLES (drm-vblank-off-stress's CRTC on/off cycles, 1000),
 # VM_SMP (2), VM_MEM (1536M), KERNEL_ABI (e.g. 6.1.0-56-amd64; default: what linux-image-amd64
 # depends on, remembered in $VM_DIR/kernel-abi).
 set -u
@@ -242,7 +243,7 @@ boot() {
     qemu-system-x86_64 -machine q35 -accel tcg,thread=multi,tb-size=256 \
         -cpu qemu64 -m "$VM_MEM" -smp "$VM_SMP" -nodefaults -display none -no-reboot \
         -kernel "$KERNEL" -initrd "$VM_DIR/initrd.gz" -pidfile "$VM_DIR/qemu.pid" \
-        -append "console=ttyS0 quiet loglevel=4 panic=-1 SBFX_GUEST=$ROOT/tests/vm/guest.sh SBFX_SRC=$ROOT SBFX_BUILD=$BUILD${tests:+ SBFX_VM_TESTS=${tests// /,}}" \
+        -append "console=ttyS0 quiet loglevel=4 panic=-1 SBFX_GUEST=$ROOT/tests/vm/guest.sh SBFX_SRC=$ROOT SBFX_BUILD=$BUILD${tests:+ SBFX_VM_TESTS=${tests// /,}}${VBLANK_CYCLES:+ SBFX_VBLANK_CYCLES=$VBLANK_CYCLES}" \
         -serial "file:$VM_DIR/kernel.log" -serial stdio -monitor "pipe:$mon" \
         -virtfs local,path=/,mount_tag=hostroot,security_model=none,readonly=on,multidevs=remap \
         -virtfs "local,path=$VM_DIR/modules,mount_tag=modules,security_model=none,readonly=on" \
