@@ -192,30 +192,39 @@ prepare() {
 # process runs any more (a deadlock in a driver with interrupts off) tells nothing itself: this
 # is the only way to see where its CPUs are.
 monitor_dump() {
-    local cpu
+    local cpu off log=$VM_DIR/monitor.log
+    : >"$VM_DIR/wedged.txt"
     for ((cpu = 0; cpu < VM_SMP; cpu++)); do
+        off=$(($(stat -c %s "$log") + 1))
         printf 'cpu %d\ninfo registers\nx /96gx $sp\n' "$cpu" >&7
+        sleep 2
+        tail -c "+$off" "$log" >"$VM_DIR/monitor-cpu$cpu.txt"
+        {
+            printf 'CPU %d: %s\n' "$cpu" "$(grep -m1 -oE 'RFL=[0-9a-f]+' "$VM_DIR/monitor-cpu$cpu.txt" |
+                awk '{v = substr($0, 5); printf "%s (interrupts %s)", $0, (index("2367abef", substr(v, length(v) - 2, 1)) ? "on" : "off")}')"
+            grep -oE '(RIP=|0x)ffffffff[89a-f][0-9a-f]{7}' "$VM_DIR/monitor-cpu$cpu.txt" |
+                sed 's/^RIP=//; s/^0x//' | symbolize | awk '$2 !~ /^\?/ && !seen[$2]++ {print "  " $2}' | head -n 24
+        } >>"$VM_DIR/wedged.txt"
     done
-    sleep 3
 }
 
-# symbolize: kernel text addresses (16 hex digits) on stdin -> "address symbol+offset", the
-# symbols being sorted as strings (same width: the same order as numbers).
+# symbolize: kernel text addresses (16 hex digits) on stdin -> "address symbol+offset" in the
+# same order, the symbols and the addresses sorted together as strings (same width: the same
+# order as numbers).
 symbolize() {
-    { awk '{print $1, $2, $3 $4}' "$VM_DIR/out/kallsyms.txt" 2>/dev/null; sed 's/$/ Q ?/'; } | sort -s -k1,1 | awk '
-        $2 == "Q" { if (sym != "") printf "%s %s 0x%s\n", $1, sym, base; next }
-        { sym = $3; base = $1 }' |
-        while read -r addr sym base; do
-            printf '%s %s+0x%x\n' "$addr" "$sym" $((0x$addr - base))
+    { awk '{print $1, $2, $3 $4}' "$VM_DIR/out/kallsyms.txt" 2>/dev/null; awk '{print $1, "Q", NR}'; } |
+        sort -s -k1,1 | awk '
+        $2 == "Q" { if (sym != "") printf "%d %s %s %s\n", $3, $1, sym, base; next }
+        { sym = $3; base = $1 }' | sort -n |
+        while read -r _ addr sym base; do
+            printf '%s %s+0x%x\n' "$addr" "$sym" $((0x$addr - 0x$base))
         done
 }
 
 wedged_report() {
-    local log=$VM_DIR/monitor.log
-    echo "# vm: the guest's CPUs when it was stopped (from qemu's monitor; $log):"
-    grep -E '^(CPU#|RIP=|RSP=)' "$log" | sed 's/^/#   /' | head -n 12
-    grep -oE '(RIP=|0x)ffffffff[89a-f][0-9a-f]{7}' "$log" | sed 's/^RIP=//; s/^0x//' | awk '!seen[$0]++' |
-        symbolize | awk '$2 !~ /^\?/' | head -n 40 | sed 's/^/#   /'
+    echo "# vm: the guest's CPUs when it was stopped (qemu's monitor: the instruction pointer, then"
+    echo "# the kernel code addresses on the stack, innermost first; $VM_DIR/monitor-cpu*.txt):"
+    sed 's/^/#   /' "$VM_DIR/wedged.txt"
 }
 
 # The logs the guest wrote into the share while it ran: what it was doing, the newest player
