@@ -133,7 +133,7 @@ $(BUILD)/libsbfx.so: $(BUILD)/$(SONAME)
 # sbfx-play: the player, its displays (headless, DRM/KMS), camera and GPIO inputs (platform/)
 PLAYER_SRC := player player_args player_usage player_inputs player_loop board luma live_detail \
 	v4l2_source gpio_gpiod1 gpio_triggers trigger_filter display_headless display_drm drm_device \
-	drm_fb drm_atomic drm_legacy drm_writeback gbm_egl player_reset
+	drm_fb drm_atomic drm_legacy drm_writeback gbm_egl player_reset display_link
 PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o)
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
@@ -296,7 +296,8 @@ bench: $(BUILD)/bench/bench_state
 # ---- platform (issue #5: DRM/KMS kiosk, V4L2 detail, GPIO triggers, boards) ---------------
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,
 # the --gpio/--mode syntax), run by tests/run.sh like the unit tests.
-PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,luma.o trigger_filter.o board.o player_args.o)
+PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,luma.o trigger_filter.o board.o player_args.o \
+	display_link.o)
 PLATFORM_TESTS := $(patsubst tests/platform/%.c,$(BUILD)/tests/platform/%,$(wildcard tests/platform/*.c))
 $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h
 	@mkdir -p $(@D)

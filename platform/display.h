@@ -41,6 +41,9 @@ struct display_counts {
     uint64_t presented;   /* frames handed to the display */
     uint64_t flips;       /* page flips completed (drm) */
     uint64_t missed;      /* vblanks that passed with no new frame between two flips (drm) */
+    uint64_t unplugs;     /* the connector went away: scan-out paused (drm, display_link.h) */
+    uint64_t replugs;     /* it came back: mode set again, scan-out resumed */
+    uint64_t paused;      /* frames rendered but not shown while it was away */
 };
 
 struct display {

@@ -218,8 +218,11 @@ static void write_platform_stats(const struct player *p, FILE *f)
     const sbfx_counters *c = &p->last;
     const struct display_counts *d = &p->display->counts;
     fprintf(f, ", \"frames\": %d, \"flips\": %llu, \"missed_vblanks\": %llu, \"triggers_fired\": %d, "
-            "\"triggers_refused\": %d", p->frames_done, (unsigned long long)d->flips,
-            (unsigned long long)d->missed, c->triggers_fired, c->triggers_refused);
+            "\"triggers_refused\": %d, \"display_unplugs\": %llu, \"display_replugs\": %llu, "
+            "\"display_paused_frames\": %llu", p->frames_done, (unsigned long long)d->flips,
+            (unsigned long long)d->missed, c->triggers_fired, c->triggers_refused,
+            (unsigned long long)d->unplugs, (unsigned long long)d->replugs,
+            (unsigned long long)d->paused);
     if (p->gpio_on) {
         const struct gpio_trigger_counts *g = &p->gpio.counts;
         fprintf(f, ", \"gpio_edges\": %llu, \"gpio_fired\": %llu, \"gpio_filtered\": %llu, "

@@ -580,6 +580,73 @@ test_gpio_loss() {
     fi
 }
 
+# flips_so_far NAME: the flips the kiosk NAME counted in its stats lines so far.
+flips_so_far() { sed -n 's/.*, flips \([0-9]*\),.*/\1/p' "$L/$1.out" | awk '{s += $1} END {print s + 0}'; }
+
+# The display unplugged and plugged back while the kiosk runs. vkms (6.1) cannot hot-unplug its
+# one connector and its device cannot be unbound (no driver to unbind; the module is in use), so
+# this is the DRM core's forced connector state on the real driver: "off" written to the
+# connector's sysfs status makes the kernel report it disconnected (what a cable pulled does to
+# a real connector's state), "detect" gives it back. The player pauses scan-out (logged once,
+# no flips, frames still rendered at 10 Hz, stats lines keep coming), then sets the mode again
+# and flips resume.
+test_display_unplug() {
+    local status
+    status=$(ls -d /sys/class/drm/card0-Virtual-*/status 2>/dev/null | head -n 1)
+    if [ ! -w "$status" ]; then
+        skip display-unplug "no writable connector status in /sys/class/drm"
+        return
+    fi
+    step "kiosk on $CARD"
+    if ! kiosk unplugdisp --scale 8 --stats "$L/unplugdisp.json"; then
+        fail display-unplug "no banner: $(first_line "$L/unplugdisp.err")"
+        stop_kiosk
+        return
+    fi
+    wait_stats unplugdisp 2 30
+    step "connector forced off ($status)"
+    echo off >"$status"
+    local paused=no resumed=no at_pause flips_at_pause lines_after flips_paused
+    wait_for "$L/unplugdisp.err" "disconnected; scan-out paused" 15 && paused=yes
+    pause 1.5 # the stats line of the second the pause began may still count flips
+    at_pause=$(stats_lines unplugdisp)
+    flips_at_pause=$(flips_so_far unplugdisp)
+    step "frames while disconnected"
+    wait_stats unplugdisp $((at_pause + 3)) 30
+    lines_after=$(stats_lines unplugdisp)
+    flips_paused=$(($(flips_so_far unplugdisp) - flips_at_pause))
+    step "connector back (detect)"
+    echo detect >"$status"
+    wait_for "$L/unplugdisp.err" "connected again" 15 && resumed=yes
+    local at_resume
+    at_resume=$(flips_so_far unplugdisp)
+    wait_stats unplugdisp $((lines_after + 3)) 30
+    step "stopping the kiosk"
+    stop_kiosk
+    local unplugs replugs flips_after
+    unplugs=$(json_number "$L/unplugdisp.json" display_unplugs)
+    replugs=$(json_number "$L/unplugdisp.json" display_replugs)
+    flips_after=$(($(flips_so_far unplugdisp) - at_resume))
+    note "display unplug: paused=$paused resumed=$resumed; stats lines $at_pause -> $lines_after while" \
+        "disconnected with $flips_paused flips; $flips_after flips after; display_unplugs=$unplugs" \
+        "display_replugs=$replugs display_paused_frames=$(json_number "$L/unplugdisp.json" display_paused_frames)"
+    if [ "$kiosk_rc" -ne 0 ]; then
+        fail display-unplug "exit $kiosk_rc: $(grep -v -e vkms -e kmsro "$L/unplugdisp.err" | tail -n 1)"
+    elif [ "$paused" != yes ] || [ "$(grep -c 'scan-out paused' "$L/unplugdisp.err")" -ne 1 ] ||
+        [ "${unplugs:-0}" -ne 1 ]; then
+        fail display-unplug "forced off: paused=$paused, display_unplugs=$unplugs"
+    elif [ "$lines_after" -lt $((at_pause + 3)) ] || [ "$flips_paused" -ne 0 ]; then
+        fail display-unplug "while disconnected: stats lines $at_pause -> $lines_after, flips $flips_paused (expected none)"
+    else
+        ok display-unplug
+    fi
+    if [ "$resumed" = yes ] && [ "${replugs:-0}" -eq 1 ] && [ "$flips_after" -gt 0 ]; then
+        ok display-replug
+    else
+        fail display-replug "resumed=$resumed display_replugs=$replugs, $flips_after flips after"
+    fi
+}
+
 # The CRTC switched on and off 1000 times (VBLANK_CYCLES on the host) with a page flip in between
 # (tests/vm/vblank_stress.c):
 # every cycle disables the vblank timer while it may be firing, which deadlocks Debian 6.1's
@@ -657,6 +724,7 @@ if [ -s "$T/gpio.env" ]; then
     group drm-no-allocations 120 test_no_allocations_per_frame
     group gpio-loss 120 test_gpio_loss
 fi
+group display-unplug 120 test_display_unplug
 group drm-vblank-off-stress $((90 + VBLANK_CYCLES / 10)) test_vblank_off_stress
 kill "$DMESG_PID" 2>/dev/null
 note "guest done after $(uptime_s) s (logs: build/vm/out/logs/, steps: build/vm/out/steps.txt)"
