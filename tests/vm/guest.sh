@@ -6,7 +6,7 @@
 #
 # Each test group runs under its own time limit (run_test): a group that hangs fails with the
 # step it was at (step) and the tail of the newest player log, its processes are killed, and the
-# next group runs. Everything that tells what happened is written as it happens into the host's
+# next group runs (harness-limit checks that with a group that hangs on purpose). Everything that tells what happened is written as it happens into the host's
 # writable share (/vmout = build/vm/out on the host), so it is there even when the whole VM has
 # to be killed: the player logs (logs/NAME.out, .err, .json), the kernel log (logs/dmesg.txt,
 # followed), the steps with their uptime (steps.txt) and the kernel's code symbols (kallsyms.txt,
@@ -61,9 +61,18 @@ pause() { read -r -t "$1" -u 6; }
 # newest_log: the player log written last (the one a hung test was running).
 newest_log() { ls -t "$L"/*.err 2>/dev/null | head -n 1; }
 
-# run_test NAME SECONDS FUNCTION [ARGS...]: FUNCTION in its own process group; past SECONDS it
-# is killed and NAME fails with its step and the tail of the newest player log; blocked tasks'
-# kernel backtraces go to the kernel log first (sysrq w: a player stuck in a driver shows where).
+# kill_tree SIGNAL PID: PID and every process under it, the children first (a subshell, its
+# players, their helpers), found through their parent ids.
+kill_tree() {
+    local child
+    for child in $(ps -o pid= --ppid "$2" 2>/dev/null); do kill_tree "$1" "$child"; done
+    kill "-$1" "$2" 2>/dev/null
+}
+
+# run_test NAME SECONDS FUNCTION [ARGS...]: FUNCTION in a child shell; past SECONDS it and what it
+# started are killed and NAME fails with its step and the tail of the newest player log; blocked
+# tasks' kernel backtraces go to the kernel log first (sysrq w: a player stuck in a driver shows
+# where).
 CURRENT_TEST=setup
 run_test() {
     local name=$1 limit=$2 t0=$SECONDS
@@ -71,10 +80,8 @@ run_test() {
     CURRENT_TEST=$name
     printf '%s\n' "$name" >"$OUT/current-test.txt"
     step "start (limit $limit s)"
-    set -m
     "$@" &
     local pid=$! i
-    set +m
     for ((i = 0; i < limit * 5; i++)); do
         kill -0 "$pid" 2>/dev/null || break
         pause 0.2
@@ -84,9 +91,9 @@ run_test() {
         at=$(cat "$T/step" 2>/dev/null)
         log=$(newest_log)
         echo w >/proc/sysrq-trigger 2>/dev/null
-        kill -TERM -- "-$pid" 2>/dev/null
+        kill_tree TERM "$pid"
         for ((i = 0; i < 25; i++)); do kill -0 "$pid" 2>/dev/null || break; pause 0.2; done
-        kill -KILL -- "-$pid" 2>/dev/null
+        kill_tree KILL "$pid"
         fail "$name" "timed out after $limit s at step '$at'; ${log:-no player log}: $(tail -n 3 "$log" 2>/dev/null | grep -v -e vkms -e kmsro | tr '\n' ' ' | cut -c 1-300)"
         ps -eo pid,stat,wchan:32,args 2>/dev/null | grep -e sbfx -e vblank_stress | grep -v grep | sed 's/^/# still there: /'
     fi
@@ -537,8 +544,12 @@ test_gpio_loss() {
         return
     fi
     step "press on line 3 before the loss"
+    local lines
+    lines=$(stats_lines gpioloss)
     press 3
-    pause 1
+    # an edge still in the kernel's FIFO when the chip goes is lost with it: let the kiosk read
+    # it first (two stats lines: at least one whole frame, whose GPIO service reads it)
+    wait_stats gpioloss $((lines + 2)) 30
     step "gpio-sim device removed (live = 0)"
     echo 0 >"$cfg/live"
     local lost=no back=no at_loss after
@@ -552,8 +563,9 @@ test_gpio_loss() {
     gpio_sim_paths
     wait_for "$L/gpioloss.err" "is back" 20 && back=yes
     step "press on line 3 after the return ($GPIO_CHIP)"
+    lines=$(stats_lines gpioloss)
     press 3
-    pause 1.5
+    wait_stats gpioloss $((lines + 2)) 30
     step "stopping the kiosk"
     stop_kiosk
     local losses returns fired said
@@ -694,6 +706,36 @@ test_gpio_errors() {
     fi
 }
 
+# The per-test limit itself: a group that hangs (blocked on a FIFO nobody writes, with a child
+# process in its group, like a kiosk) must fail with its step and its log's tail, its processes
+# killed, within its limit; the tier then goes on.
+hang_forever() {
+    step "blocked on a FIFO nobody writes"
+    echo "selftest: about to block" >"$L/selftest.err"
+    sleep 1000 &
+    echo "$!" >"$T/selftest-child"
+    mkfifo "$T/selftest-fifo"
+    read -r <"$T/selftest-fifo"
+}
+
+test_harness_limit() {
+    local t0=$SECONDS line child
+    RESULTS=$T/selftest.txt run_test selftest-hang 3 hang_forever >/dev/null
+    CURRENT_TEST=harness-limit
+    line=$(cat "$T/selftest.txt" 2>/dev/null)
+    child=$(cat "$T/selftest-child" 2>/dev/null)
+    if [[ "$line" != "not ok - vm/selftest-hang: timed out after 3 s at step 'blocked on a FIFO nobody writes'"* ]] ||
+        [[ "$line" != *"selftest: about to block"* ]]; then
+        fail harness-limit "a hung group gave: '$line'"
+    elif [ -n "$child" ] && [ -e "/proc/$child" ] && [ "$(ps -o stat= -p "$child")" != Z ]; then
+        fail harness-limit "the hung group's child $child is still running"
+    elif [ $((SECONDS - t0)) -gt 15 ]; then
+        fail harness-limit "the hung group took $((SECONDS - t0)) s to be stopped (limit 3 s)"
+    else
+        ok harness-limit
+    fi
+}
+
 # ---- the tier --------------------------------------------------------------------------------
 
 # SBFX_VM_TESTS (VM_TESTS on the host): only the groups named there (space separated); setup
@@ -706,6 +748,7 @@ group() {
 
 note "guest up after $(uptime_s) s"
 watch_kernel
+group harness-limit 30 test_harness_limit
 run_test modules 60 setup_modules
 kernel_symbols
 make_scenes

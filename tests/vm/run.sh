@@ -246,7 +246,8 @@ log_tails() {
 boot() {
     local out=$VM_DIR/out mon=$VM_DIR/monitor
     rm -rf "$out" && mkdir -p "$out"
-    rm -f "$mon.in" "$mon.out" "$VM_DIR/qemu.pid" && mkfifo "$mon.in" "$mon.out"
+    rm -f "$mon.in" "$mon.out" "$VM_DIR/qemu.pid" "$VM_DIR/guest.log" "$VM_DIR"/monitor-cpu*.txt &&
+        mkfifo "$mon.in" "$mon.out" && : >"$VM_DIR/guest.log"
     say "booting $ABI (TCG, $VM_SMP CPUs) for tests/vm/guest.sh${VM_TESTS:+ (only: $VM_TESTS)}"
     local tests=${VM_TESTS:-}
     qemu-system-x86_64 -machine q35 -accel tcg,thread=multi,tb-size=256 \
