@@ -128,7 +128,7 @@ static const struct display_ops headless_ops = {
 static int headless_setup(struct display_headless *h, char *err, size_t n)
 {
     const struct display_headless_desc *desc = &h->desc;
-    int rc = egl_headless_open(&h->egl, err, n);
+    int rc = egl_headless_open_robust(&h->egl, err, n);
     if (rc == 0) rc = create_output(h, err, n);
     if (rc) return rc;
     h->pixels = malloc((size_t)desc->width * desc->height * 4);

@@ -175,7 +175,7 @@ static int create_context(struct egl_headless *egl, char *err, size_t n)
         return -ENOTSUP;
     }
     EGLint robust[GL_RESET_ATTRIBS_MAX];
-    egl->robust = gl_reset_context_attribs(egl->display, true, robust);
+    egl->robust = egl->robust && gl_reset_context_attribs(egl->display, true, robust);
     if (egl->robust) egl->context = eglCreateContext(egl->display, egl->config, EGL_NO_CONTEXT, robust);
     if (egl->context != EGL_NO_CONTEXT) return 0;
     egl->robust = false; /* offered but refused for this config: a plain context then */
@@ -205,10 +205,11 @@ static int check_gles3(char *err, size_t n)
     return 0;
 }
 
-int egl_headless_open(struct egl_headless *out, char *err, size_t n)
+static int open_context(struct egl_headless *out, bool robust, char *err, size_t n)
 {
     struct egl_headless egl = {
         .display = EGL_NO_DISPLAY, .context = EGL_NO_CONTEXT, .surface = EGL_NO_SURFACE,
+        .robust = robust,
     };
     int rc = open_display(&egl, err, n);
     if (rc) return rc;
@@ -257,6 +258,16 @@ int egl_headless_recreate_context(struct egl_headless *egl, char *err, size_t n)
         return -EIO;
     }
     return check_gles3(err, n);
+}
+
+int egl_headless_open(struct egl_headless *out, char *err, size_t n)
+{
+    return open_context(out, false, err, n);
+}
+
+int egl_headless_open_robust(struct egl_headless *out, char *err, size_t n)
+{
+    return open_context(out, true, err, n);
 }
 
 void egl_headless_close(struct egl_headless *egl)
