@@ -261,6 +261,35 @@ test_screenshot_matches_headless() {
     note "writeback vs headless frame 7: $diff ($((SECONDS - t0)) s)"
 }
 
+# A GPU reset injected before frame 3 on the DRM display (SBFX_PLAY_INJECT_GPU_RESET: no GPU
+# here can be made to hang): the player makes a new context on the same GBM surface, its GL
+# objects and sbfx, the page flips go on, and the frame scanned out at the end (writeback) equals
+# the headless run with the same injected reset.
+test_drm_gpu_reset() {
+    step "sbfx-play --display drm, reset injected before frame 3"
+    SBFX_PLAY_INJECT_GPU_RESET=3 play --display drm --device "$CARD" --mode "$MODE" --fps 12 --frames 8 \
+        --screenshot "$T/reset-shot.png" --stats "$L/drmreset.json" >"$L/drmreset.out" 2>"$L/drmreset.err"
+    local rc=$? flips resets
+    flips=$(json_number "$L/drmreset.json" flips)
+    resets=$(json_number "$L/drmreset.json" gpu_resets)
+    step "the same headless"
+    SBFX_PLAY_INJECT_GPU_RESET=3 play --headless --size "$MODE" --fps 12 --frames 8 --out "$T/reset-headless" \
+        --quiet >"$L/headlessreset.out" 2>"$L/headlessreset.err"
+    local diff max
+    diff=$("$PNGDIFF" "$T/reset-shot.png" "$T/reset-headless/frame-0007.png" 2>&1)
+    max=$(printf '%s' "$diff" | sed -n 's/^max \([0-9]*\).*/\1/p')
+    note "drm gpu reset: $(grep -h -e 'GPU reset' -e recovered "$L/drmreset.err" | tr '\n' ' ')"
+    if [ "$rc" -ne 0 ]; then
+        fail drm-gpu-reset "exit $rc: $(grep -v -e vkms -e kmsro "$L/drmreset.err" | tail -n 1)"
+    elif [ "${resets:-0}" -ne 1 ] || [ "${flips:-0}" -ne 7 ] || ! grep -q "recovered at" "$L/drmreset.err"; then
+        fail drm-gpu-reset "gpu_resets=$resets flips=$flips (8 frames: 1 modeset + 7 flips)"
+    elif [ -z "$max" ] || [ "$max" -gt 2 ]; then
+        fail drm-gpu-reset "the frame scanned out after the reset differs from the headless run's: $diff"
+    else
+        ok drm-gpu-reset
+    fi
+}
+
 test_drm_legacy() {
     local t0=$SECONDS
     play --display drm --device "$CARD" --mode "$MODE" --modeset legacy --fps 12 --frames 6 \
@@ -754,6 +783,7 @@ kernel_symbols
 make_scenes
 group drm-atomic 120 test_drm_atomic
 group drm-writeback 90 test_screenshot_matches_headless
+group drm-gpu-reset 90 test_drm_gpu_reset
 group drm-legacy 60 test_drm_legacy
 group drm-errors 60 test_drm_errors
 group drm-kiosk 90 test_kiosk_and_busy
