@@ -4,6 +4,7 @@
 #   make gallery      one contact sheet per example scene into docs/gallery/ (README "Gallery")
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, then ASan+UBSan
 #   make bench        timings into build/bench/
+#   make ladder       src/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
 #   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR); make uninstall
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
@@ -20,7 +21,7 @@ CC ?= cc
 PKG_CONFIG ?= pkg-config
 # The library's version: the minor grows when a function is added to src/sbfx.h, the major
 # (the soname's number) when a signature or a public struct's layout changes.
-VERSION := 0.1.0
+VERSION := 1.0.0
 SOVERSION := $(firstword $(subst ., ,$(VERSION)))
 # tools/deps.sh's package set for this build (a board's .mk names its own)
 DEPS := build
@@ -75,7 +76,7 @@ PLATFORM_COMMON_OBJ := $(PLATFORM_COMMON:%=$(BUILD)/obj/platform/%.o)
 UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/unit/%,$(wildcard tests/unit/*.c))
 GL_TESTS := $(patsubst tests/gl/%.c,$(BUILD)/tests/gl/%,$(wildcard tests/gl/*.c))
 
-.PHONY: all deps lib test test-unit test-gl test-asan demo gallery bench install uninstall clean
+.PHONY: all deps lib test test-unit test-gl test-asan demo gallery bench ladder install uninstall clean
 all: lib $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(BUILD)/sbfx.pc
 lib: $(BUILD)/libsbfx.a $(SO_LINKS) $(BUILD)/libsbfx_ref.a
 
@@ -227,7 +228,7 @@ clean:
 
 # ---- fuzzing (clang, libFuzzer): FUZZ_SECONDS bounded, the example scenes as corpus ----
 FUZZ_SECONDS ?= 60
-FUZZ_SRC := src/scene.c src/effects.c
+FUZZ_SRC := src/scene.c src/effects.c src/quality_name.c
 $(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) src/sbfx.h src/scene.h
 	@mkdir -p $(@D)
 	clang -std=c11 -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -Isrc \
@@ -259,6 +260,23 @@ $(BUILD)/bench/bench_accuracy: $(BENCH_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	$(CC) $(LDSAN) $(BENCH_WRAP) -o $@ $^ $(PLATFORM_LIBS)
 
 bench: $(BUILD)/bench/bench_accuracy
+
+# ---- the default quality ladder (issue 11): src/ladder_default.h from the accuracy bench's CSV ----
+# make bench writes $(BUILD)/bench/ladder_default.h (the ladder its run proposes); make ladder
+# regenerates the committed src/ladder_default.h from $(BUILD)/bench/accuracy.csv (tools/ladder.sh).
+ladder:
+	tools/ladder.sh $(BUILD)/bench/accuracy.csv src/ladder_default.h
+
+# ---- frame budget bench (issue 11): the barrage at several budgets and at every fixed level ----
+# A program of its own (tests/bench/budget/), with the accuracy bench's read-backs, metrics and
+# CPU reference; writes $(BUILD)/bench/budget.csv and budget.txt when run (tests/bench/run.sh).
+BUDGET_BENCH_OBJ := $(addprefix $(BUILD)/obj/bench/,bench_gl.o bench_metrics.o bench_reference.o)
+$(BUILD)/bench/bench_budget: tests/bench/budget/bench_budget.c $(BUDGET_BENCH_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests/bench $(LDSAN) $(BENCH_WRAP) -o $@ $< $(BUDGET_BENCH_OBJ) \
+		$(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
+
+bench: $(BUILD)/bench/bench_budget
 
 # ---- lighting bench (issue #7: lit smoke) -------------------------------------------------
 # A program of its own (tests/bench/lighting/, outside the accuracy bench's tests/bench/*.c):

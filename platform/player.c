@@ -126,6 +126,7 @@ int player_create_fx(struct player *p, char *err, size_t n)
         .tone_map = opt->tone_map,
         .exposure = opt->exposure,
         .seed = opt->seed,
+        .frame_budget_ms = opt->budget_ms,
         .max_particles = p->board.max_particles,
         .scene = scene,
         .ignore_timeline = opt->no_timeline || p->recovering, /* not replayed after a reset */
@@ -257,6 +258,10 @@ static int write_stats(const struct player *p, const char *path, char *err, size
             "\"heap_allocs_after_load\": %llu",
             c->programs, c->textures, c->framebuffers, c->gpu_bytes, c->passes, c->draw_calls,
             p->frame_simulated, (unsigned long long)c->heap_allocs_after_load);
+    /* the level's name comes from sbfx_quality_name: letters, digits and '/' only */
+    fprintf(f, ", \"budget_ms\": %g, \"gpu_ms\": %.3f, \"frames_over_budget\": %d, \"quality_changes\": %d, "
+            "\"quality\": \"%s\"", (double)c->budget_ms, (double)c->gpu_ms, c->frames_over_budget,
+            c->quality_changes, c->quality);
     fprintf(f, ", \"gpu_resets\": %llu, \"gpu_reset_notification\": %d",
             (unsigned long long)p->gpu_resets, p->reset.status ? 1 : 0);
     if (p->display->fd >= 0 || p->gpio_on || p->live_on) write_platform_stats(p, f);

@@ -225,6 +225,18 @@ static int set_exposure(struct player_options *opt, const char *value, char *err
     return 0;
 }
 
+static int set_budget(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    double v = 0;
+    if (!parse_number(value, NULL, &v, NULL) || !(v > 0.0) || v > 10000.0) {
+        snprintf(err, n, "--budget-ms: expected a frame time in milliseconds above 0 and at most 10000 "
+                 "(e.g. 16.7), got '%s'", value);
+        return -EINVAL;
+    }
+    opt->budget_ms = (float)v;
+    return 0;
+}
+
 static int set_seed(struct player_options *opt, const char *value, char *err, size_t n)
 {
     long long v = 0;
@@ -371,6 +383,7 @@ static const struct flag flags[] = {
     {"--upsample", "bilinear|nearest-depth", set_upsample},
     {"--tone-map", "none|hue-preserving|per-channel", set_tone_map},
     {"--exposure", "X (0.01..100)", set_exposure},
+    {"--budget-ms", "MS (0 < MS <= 10000)", set_budget},
     {"--seed", "N (0..4294967295)", set_seed},
     {"--scene", "FILE", set_scene},
     {"--quiet", NULL, set_quiet},

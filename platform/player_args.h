@@ -51,6 +51,7 @@ struct player_options {
     sbfx_tone_map tone_map;   /* 0 = the scene's or the library's default */
     float exposure;           /* 0 = the scene's or the library's default (1) */
     uint32_t seed;            /* 0 = the library's default */
+    float budget_ms;          /* --budget-ms: desc.frame_budget_ms; 0 = the scene's or none */
     const char *scene_path;   /* NULL: the built-in timeline */
     bool quiet;
     bool help;

@@ -308,23 +308,23 @@ int sbfx_rf_render_layer(const sbfx_rf_frame *f, const sbfx_rf_particle *particl
     return skipped;
 }
 
-void sbfx_rf_tone_map(sbfx_tone_map op, double exposure, const double c[3], double t, double out[3])
+void sbfx_rf_tone_map(sbfx_tone_map op, double exposure, const double c[3], double t, const double dst[3],
+                      double out[3])
 {
-    double alpha = fmax(1.0 - t, 1e-4), l[3];
-    for (int k = 0; k < 3; k++) l[k] = c[k] * (exposure / alpha);
-    if (op == SBFX_TONE_MAP_NONE) {
-        for (int k = 0; k < 3; k++) out[k] = c[k] * exposure;
-        return;
+    double room[3];
+    for (int k = 0; k < 3; k++) {
+        out[k] = c[k] * exposure;
+        room[k] = fmax(1.0 - t * (dst ? clampd(dst[k], 0.0, 1.0) : 0.0), 1.0 / 1024.0);
     }
+    if (op == SBFX_TONE_MAP_NONE) return;
     sbfx_tone_curve curve = sbfx_tone_curve_default();
     if (op == SBFX_TONE_MAP_PER_CHANNEL) {
-        for (int k = 0; k < 3; k++) l[k] = sbfx_tone_curve_apply(&curve, l[k]);
-    } else {
-        double top = fmax(l[0], fmax(l[1], l[2]));
-        double scale = top > curve.knee ? sbfx_tone_curve_apply(&curve, top) / top : 1.0;
-        for (int k = 0; k < 3; k++) l[k] *= scale;
+        for (int k = 0; k < 3; k++) out[k] = room[k] * sbfx_tone_curve_apply(&curve, out[k] / room[k]);
+        return;
     }
-    for (int k = 0; k < 3; k++) out[k] = l[k] * alpha;
+    double r = fmax(out[0] / room[0], fmax(out[1] / room[1], out[2] / room[2]));
+    double scale = r > curve.knee ? sbfx_tone_curve_apply(&curve, r) / r : 1.0;
+    for (int k = 0; k < 3; k++) out[k] *= scale;
 }
 
 void sbfx_rf_composite(const double *layer, const uint8_t *scene_rgba8, int width, int height, sbfx_tone_map op,
@@ -332,8 +332,9 @@ void sbfx_rf_composite(const double *layer, const uint8_t *scene_rgba8, int widt
 {
     size_t n = (size_t)width * (size_t)height;
     for (size_t i = 0; i < n; i++) {
-        double c[3];
-        sbfx_rf_tone_map(op, exposure, &layer[4 * i], layer[4 * i + 3], c);
+        double c[3], dst[3] = {scene_rgba8[4 * i] / 255.0, scene_rgba8[4 * i + 1] / 255.0,
+                               scene_rgba8[4 * i + 2] / 255.0};
+        sbfx_rf_tone_map(op, exposure, &layer[4 * i], layer[4 * i + 3], dst, c);
         for (int k = 0; k < 3; k++) {
             double v = scene_rgba8[4 * i + k] / 255.0 * layer[4 * i + 3] + c[k];
             out_rgb[3 * i + k] = clampd(v, 0.0, 1.0) * 255.0;

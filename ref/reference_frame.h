@@ -114,14 +114,17 @@ void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const doub
 int sbfx_rf_render_layer(const sbfx_rf_frame *f, const sbfx_rf_particle *particles, int count,
                          double *layer, uint8_t *footprint);
 
-/* composite.frag's tone mapping of one layer pixel (premultiplied light c, transmittance t):
- * the layer's colour c / alpha (alpha = max(1 - t, 1e-4)) times exposure through the tone curve
- * (reference.h; by its largest channel, or per channel), times alpha again; NONE only scales by
- * exposure. */
-void sbfx_rf_tone_map(sbfx_tone_map op, double exposure, const double c[3], double t, double out[3]);
+/* composite.frag's tone mapping of one layer pixel (premultiplied light c, transmittance t) over
+ * the host's pixel dst (NULL: unknown, taken as black): the light times exposure is brought
+ * within the room the picture leaves, room_k = 1 - t dst_k, through the tone curve (reference.h)
+ * of its largest ratio c_k / room_k (the colour scaled: hue kept) or of each channel's ratio;
+ * NONE only scales by exposure. */
+void sbfx_rf_tone_map(sbfx_tone_map op, double exposure, const double c[3], double t, const double dst[3],
+                      double out[3]);
 
 /* out[3 * i + k] = clamp(scene_k / 255 * T + C'_k, 0, 1) * 255 for the RGBA8 scene colour
- * (rows in the same order as the layer), C' the tone-mapped light. */
+ * (rows in the same order as the layer), C' the light tone-mapped over that scene colour (the
+ * GPU reads it too when frame.scene_color_texture is given and not drawn into). */
 void sbfx_rf_composite(const double *layer, const uint8_t *scene_rgba8, int width, int height, sbfx_tone_map op,
                        double exposure, double *out_rgb);
 

@@ -11,7 +11,7 @@
 //                 the host's framebuffer, and write an opaque image
 //   HAS_SHIMMER   (with OWN_SCENE) heat particles' screen offsets displace the scene lookup
 //   TONE_MAP_NONE | TONE_MAP_HUE_PRESERVING | TONE_MAP_PER_CHANNEL   the particles' light on the
-//                 display (sbfx_tone_map in sbfx.h; src/reference_frame.c mirrors it)
+//                 display (sbfx_tone_map in sbfx.h; ref/reference_frame.c mirrors it)
 precision highp float;
 precision highp sampler2D;
 
@@ -23,8 +23,9 @@ uniform float u_divisor;
 uniform vec4 u_depth_model;       // window depth -> distance (view_distance)
 uniform float u_near;
 uniform float u_depth_threshold;  // relative depth difference that counts as an edge
-#ifdef OWN_SCENE
 uniform sampler2D u_scene_color;  // full res, LINEAR filtering for the shimmer offset
+uniform bool u_scene_known;       // u_scene_color may be read (given, and not being drawn into)
+#ifdef OWN_SCENE
 uniform vec2 u_full_size;
 #endif
 #ifdef HAS_SHIMMER
@@ -62,23 +63,25 @@ float tone_curve(float v)
     return min(k + (1.0 - k) * log(1.0 + u_tone_curve.y * (v - k) / (1.0 - k)) * u_tone_curve.z, 1.0);
 }
 
-// The layer's own colour L = C / alpha goes through the curve and back over its coverage, so
-// dst * T + alpha * L' stays within [0, 1] wherever dst does: no channel clips on its own.
-vec4 tone_map(vec4 p)
+// The light C is brought within the room the host's picture leaves: over a pixel dst seen through
+// transmittance T, dst * T + C stays within [0, 1] when C_k <= room_k = 1 - T dst_k. Hue
+// preserving: C scaled by curve(r) / r, r = max_k C_k / room_k, so no channel clips on its own
+// and the light keeps its chromaticity; per channel: C_k = room_k curve(C_k / room_k). dst is the
+// scene colour when sbfx may read it (u_scene_known), else black (room 1).
+vec4 tone_map(vec4 p, vec3 dst)
 {
-#ifdef TONE_MAP_NONE
-    return vec4(p.rgb * u_exposure, p.a);
-#else
-    float alpha = max(1.0 - p.a, 1e-4);
-    vec3 l = p.rgb * (u_exposure / alpha);
+    vec3 c = p.rgb * u_exposure;
+#ifndef TONE_MAP_NONE
+    vec3 room = max(1.0 - p.a * dst, vec3(1.0 / 1024.0));
 #ifdef TONE_MAP_PER_CHANNEL
-    l = vec3(tone_curve(l.r), tone_curve(l.g), tone_curve(l.b));
+    c = room * vec3(tone_curve(c.r / room.r), tone_curve(c.g / room.g), tone_curve(c.b / room.b));
 #else
-    float top = max(max(l.r, l.g), l.b);
-    if (top > u_tone_curve.x) l *= tone_curve(top) / top;
+    vec3 q = c / room;
+    float r = max(max(q.r, q.g), q.b);
+    if (r > u_tone_curve.x) c *= tone_curve(r) / r;
 #endif
-    return vec4(l * alpha, p.a);
 #endif
+    return vec4(c, p.a);
 }
 // ---- end of tone mapping ----
 
@@ -114,7 +117,6 @@ void main()
         if (dz.w < best) { result = p11; }
     }
 #endif
-    result = tone_map(result);
 #ifdef OWN_SCENE
     vec2 uv = gl_FragCoord.xy / u_full_size;
 #ifdef HAS_SHIMMER
@@ -129,8 +131,10 @@ void main()
     uv = clamp(uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);
 #endif
     vec3 scene = texture(u_scene_color, uv).rgb;
+    result = tone_map(result, scene);
     o_color = vec4(scene * result.a + result.rgb, 1.0);
 #else
-    o_color = result;
+    vec3 dst = u_scene_known ? clamp(texelFetch(u_scene_color, ivec2(gl_FragCoord.xy), 0).rgb, 0.0, 1.0) : vec3(0.0);
+    o_color = tone_map(result, dst);
 #endif
 }

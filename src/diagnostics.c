@@ -48,11 +48,14 @@ static sbfx_result ensure_probe_target(sbfx *fx)
 }
 
 /* particle.frag with TABLE_PROBE: its own blackbody() and phase(), table or analytic as the
- * medium's program has them. Remade when the medium asked for changes. */
+ * medium's program at the current level has them. */
 static sbfx_result ensure_probe_program(sbfx *fx, sbfx_medium m)
 {
     sbfx_gl *gl = &fx->gl;
-    if (gl->lut_program && gl->lut_medium == (int)m) return SBFX_OK;
+    const sbfx_tables *t = &fx->tables;
+    if (gl->lut_program && gl->lut_medium == (int)m && gl->lut_blackbody_analytic == t->blackbody_analytic &&
+        gl->lut_phase_analytic == t->phase_analytic[m])
+        return SBFX_OK; /* remade when the medium or the level's table/analytic choice changed */
     if (gl->lut_program) glDeleteProgram(gl->lut_program);
     char defines[256];
     snprintf(defines, sizeof(defines), "#define TABLE_PROBE\n#define MEDIUM_EMITS\n#define MEDIUM_SCATTERS\n%s%s",
@@ -60,6 +63,8 @@ static sbfx_result ensure_probe_program(sbfx *fx, sbfx_medium m)
              fx->tables.phase_analytic[m] ? "#define PHASE_ANALYTIC\n" : "");
     gl->lut_program = sbfx_program_build(fx, "fullscreen.vert", "particle.frag", defines);
     gl->lut_medium = (int)m;
+    gl->lut_blackbody_analytic = t->blackbody_analytic;
+    gl->lut_phase_analytic = t->phase_analytic[m];
     if (!gl->lut_program) return SBFX_ERR_SHADER;
     if (fx->tables.blackbody_analytic) {
         sbfx_program p = {.id = gl->lut_program};

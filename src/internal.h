@@ -30,11 +30,13 @@ typedef struct sbfx_tables {
     double blackbody_lo, blackbody_hi;  /* kelvin, from the scene's fire (tables.c) */
     double blackbody_norm;         /* 1 / Y(desc.blackbody_max_kelvin) */
     double blackbody_error;        /* the CPU lookup's largest error over the range */
-    bool blackbody_analytic;       /* desc.analytic_blackbody, or the table missed */
+    bool blackbody_missed;         /* the table misses the tolerance: always analytic */
+    bool blackbody_analytic;       /* the current level's analytic_blackbody, or the table missed */
     float *phase;                  /* SBFX_MEDIUM_COUNT rows of SBFX_PHASE_SIZE; row m: medium m */
     double phase_error[SBFX_MEDIUM_COUNT];
     bool phase_table[SBFX_MEDIUM_COUNT];    /* the medium samples its row */
     bool phase_analytic[SBFX_MEDIUM_COUNT]; /* the medium evaluates the function per fragment */
+    bool phase_missed[SBFX_MEDIUM_COUNT];   /* its table misses the tolerance: always analytic */
 } sbfx_tables;
 
 /* Per-medium rendering parameters (the seed's values by default). */

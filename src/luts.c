@@ -39,7 +39,19 @@ static sbfx_result make_fire_tables(sbfx *fx)
     sbfx_result r = sbfx_cmf_load(fx->desc.cmf_path, cmf, err, sizeof(err));
     if (r != SBFX_OK) sbfx_fail(fx, r, "%s", err);
     if (r == SBFX_OK) r = sbfx_tables_create(fx, cmf);
-    if (r == SBFX_OK && fx->tables.blackbody_analytic) r = prepare_analytic_blackbody(fx, cmf);
+    if (r == SBFX_OK && sbfx_declared_any(fx, sbfx_quality_uses_blackbody_analytic)) r = prepare_analytic_blackbody(fx, cmf);
+    sbfx_free(fx, cmf);
+    return r;
+}
+
+sbfx_result sbfx_blackbody_constants_load(sbfx *fx)
+{
+    char err[256];
+    sbfx_cmf *cmf = sbfx_calloc(fx, 1, sizeof(*cmf));
+    if (!cmf) return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
+    sbfx_result r = sbfx_cmf_load(fx->desc.cmf_path, cmf, err, sizeof(err));
+    if (r != SBFX_OK) sbfx_fail(fx, r, "%s", err);
+    else r = prepare_analytic_blackbody(fx, cmf);
     sbfx_free(fx, cmf);
     return r;
 }

@@ -3,6 +3,9 @@
 #define SBFX_MODULE_H
 
 #include "internal.h"
+#include "governor.h"
+#include "gpu_timer.h"
+#include "lod.h"
 
 #define SBFX_MAX_EFFECTS 16
 #define SBFX_MAX_EMITTERS 8
@@ -135,9 +138,32 @@ typedef struct sbfx_plan {
 typedef struct sbfx_pass_uniforms {
     GLint scene_depth, divisor, full_size, depth_model, near;         /* depth downsample */
     GLint particles, low_depth, low_size, depth_threshold;            /* composite */
-    GLint scene_color, distortion;                                    /* composite, own scene */
+    GLint scene_color, scene_known, distortion;                       /* composite: scene colour */
     GLint exposure, tone_curve;                                       /* composite, tone map */
 } sbfx_pass_uniforms;
+
+/* Run-time quality (quality.c). What a level needs on the GPU is kept per part, indexed
+ * directly (no search, no eviction): the particle programs by (opacity, light per particle,
+ * analytic black body, analytic phase) as far as the loaded media are affected by each; the
+ * composite by upsampling; the targets by (divisor, format). Fixed arrays inside the module:
+ * a level used once costs nothing to switch back to. */
+typedef struct sbfx_variant_key {
+    sbfx_opacity_mode opacity;
+    bool lpp, abb, aph;        /* only where a loaded medium is affected by it */
+} sbfx_variant_key;
+#define SBFX_VARIANTS (SBFX_OPACITY_COUNT * 8)
+typedef struct sbfx_variant {
+    bool built;
+    sbfx_program particle[SBFX_MEDIUM_COUNT];
+} sbfx_variant;
+#define SBFX_TARGET_SETS (4 * SBFX_FORMAT_COUNT)
+typedef struct sbfx_target_set {
+    sbfx_rt particles, low_depth;
+    int low_width, low_height;
+    GLenum target_type;
+    sbfx_target_format format;  /* what was made (a fallback may replace the one asked for) */
+} sbfx_target_set;
+#define SBFX_LADDER_MAX 16
 
 typedef struct sbfx_gl {
     sbfx_pass_uniforms depth_u, composite_u;
@@ -155,6 +181,12 @@ typedef struct sbfx_gl {
     int out_width, out_height, low_width, low_height;
     GLenum target_type;
     sbfx_post_gl post;
+    /* quality caches (the fields above hold the current level's copies) */
+    sbfx_variant variants[SBFX_VARIANTS];
+    GLuint composites[SBFX_UPSAMPLE_COUNT];
+    sbfx_pass_uniforms composite_us[SBFX_UPSAMPLE_COUNT];
+    sbfx_target_set targets[SBFX_TARGET_SETS];
+    bool lut_blackbody_analytic, lut_phase_analytic; /* what lut_program was built with */
 } sbfx_gl;
 
 #define SBFX_MAX_SCHEDULE 128
@@ -188,8 +220,25 @@ typedef struct sbfx_scene_light { /* scene light, as the module keeps it */
     sbfx_orbit orbit;  /* point lights: vector follows it (sbfx_orbit_lights) */
 } sbfx_scene_light;
 
+/* The frame budget (budget.c): the ladder it walks, the governor, sbfx's GPU timer. */
+typedef struct sbfx_budget {
+    bool on;
+    int count;                           /* ladder levels; [0] is the top */
+    sbfx_quality ladder[SBFX_LADDER_MAX];
+    governor gov;
+    gpu_timer timer;                     /* timer.ok false: the host reports frame times */
+    bool timing;                         /* a query begun this frame */
+    bool warned;                         /* the timer's failure was logged */
+    int level;                           /* the level rendered last */
+} sbfx_budget;
+
 struct sbfx {
-    sbfx_desc desc;
+    sbfx_desc desc;                      /* quality fields: the current level's */
+    sbfx_quality top;                    /* the quality of the desc (and scene) at create */
+    sbfx_quality current;
+    sbfx_quality declared[SBFX_LADDER_MAX + 1]; /* made at load: the top and the ladders */
+    int declared_count;
+    sbfx_budget budget;
     char last_error[512];
     bool loaded;                 /* sbfx_create finished: heap allocations now count */
     uint64_t heap_allocs_after_load;
@@ -238,6 +287,8 @@ struct sbfx {
     int cmf_bands;
     float *cmf_rgb, *cmf_band;
     float *detail_scratch;       /* one R32F slice, only with SBFX_DETAIL_R32F */
+    particle_lod lod;            /* level of detail (lodN levels): work memory made with the */
+    void *lod_work;              /* first level that needs it (at load for declared ones) */
 };
 
 /* projection.c: what a frame's projection says (DESIGN §5). View distance from window depth d:
@@ -330,9 +381,14 @@ bool sbfx_has_extension(const char *name);
 
 /* luts.c */
 sbfx_result sbfx_luts_create(sbfx *fx);
+/* The analytic black body's per-band constants (reads the CMF file again after load). */
+sbfx_result sbfx_blackbody_constants_load(sbfx *fx);
 void sbfx_luts_destroy(sbfx *fx);
 
-/* tables.c: the black-body and phase tables of the loaded scene (sbfx_tables) */
+/* tables.c: the black-body and phase tables of the loaded scene (sbfx_tables). The textures
+ * exist when a declared level samples them; a later first use uploads them from the CPU copy. */
+sbfx_result sbfx_tables_upload_blackbody(sbfx *fx);
+sbfx_result sbfx_tables_upload_phase(sbfx *fx);
 #define SBFX_UNIT_PHASE 2
 #define SBFX_UNIT_BLACKBODY 3
 bool sbfx_medium_uses_phase(const sbfx *fx, sbfx_medium m);
@@ -343,8 +399,16 @@ void sbfx_tables_bind(const sbfx *fx, const sbfx_program *p, sbfx_medium m);
 
 /* programs.c */
 sbfx_result sbfx_programs_create(sbfx *fx);
-/* The particle shader's defines for medium m (its opacity, lighting, table/analytic choices). */
-void sbfx_particle_defines(const sbfx *fx, sbfx_medium m, char *out, size_t size);
+/* The particle shader's defines for medium m under a variant (its opacity, lighting,
+ * table/analytic choices). */
+void sbfx_particle_defines(const sbfx *fx, const sbfx_variant_key *key, sbfx_medium m, char *out, size_t size);
+/* Builds a variant's particle programs / an upsampling's composite (when not built yet). */
+sbfx_result sbfx_variant_build(sbfx *fx, const sbfx_variant_key *key);
+sbfx_result sbfx_composite_build(sbfx *fx, sbfx_upsample upsample);
+/* The level of detail's work memory (first lodN level). */
+sbfx_result sbfx_lod_create(sbfx *fx);
+/* Re-creates the instance buffer with room for the per-particle light (first use of lpp). */
+sbfx_result sbfx_instances_reserve_light(sbfx *fx);
 void sbfx_program_locate(sbfx_program *p);
 /* The analytic black body's per-band constants (fire with tables.blackbody_analytic). */
 void sbfx_program_load_cmf(const sbfx *fx, const sbfx_program *p);
@@ -357,9 +421,46 @@ void sbfx_rt_destroy(sbfx *fx, sbfx_rt *rt);
 void sbfx_rt_bind(const sbfx_rt *rt);
 bool sbfx_half_float_renderable(void);
 
-/* targets.c */
+/* targets.c: the current level's targets at the output size (on a size change, those of
+ * every declared level: a budget's switch never creates one) */
 sbfx_result sbfx_targets_ensure(sbfx *fx, int width, int height);
 void sbfx_targets_destroy(sbfx *fx);
+
+/* quality.c */
+sbfx_quality sbfx_quality_from_desc(const sbfx_desc *d);
+/* Fills zero fields with the defaults; false (err says why) for values out of range. */
+bool sbfx_quality_resolve(sbfx_quality *q, char *err, size_t size);
+bool sbfx_quality_equal(const sbfx_quality *a, const sbfx_quality *b);
+sbfx_variant_key sbfx_variant_key_of(const sbfx *fx, const sbfx_quality *q);
+int sbfx_variant_index(const sbfx_variant_key *k);
+int sbfx_target_index(int divisor, sbfx_target_format format);
+/* What a level uses of the loaded scene's tables and instance data. */
+bool sbfx_quality_uses_blackbody_table(const sbfx *fx, const sbfx_quality *q);
+bool sbfx_quality_uses_blackbody_analytic(const sbfx *fx, const sbfx_quality *q);
+bool sbfx_quality_uses_phase_table(const sbfx *fx, const sbfx_quality *q);
+bool sbfx_quality_uses_light_slot(const sbfx *fx, const sbfx_quality *q);
+/* True when one of the levels made at load (fx->declared) does. */
+bool sbfx_declared_any(const sbfx *fx, bool (*uses)(const sbfx *, const sbfx_quality *));
+/* Load: builds what the declared levels need (inside load_gl's saved state). */
+sbfx_result sbfx_quality_load(sbfx *fx);
+/* Makes q the current level: builds what its first use needs (own saved state), then points
+ * the module's current programs, composite and tables at it. No allocation once used. */
+sbfx_result sbfx_quality_apply(sbfx *fx, const sbfx_quality *q);
+
+/* budget.c: the declared levels and the frame budget's ladder */
+/* At create, after the desc is validated: fx->top, fx->declared and the budget's ladder. */
+sbfx_result sbfx_budget_init(sbfx *fx);
+/* ladder_prior.c: the bench's costs of the ladder's levels (ladder_default.h) as g's prior */
+void sbfx_ladder_prior(const sbfx_quality *ladder, int count, governor *g);
+bool sbfx_budget_active(const sbfx *fx);
+/* Around a frame's GL work: picks and applies the level before, measures after. */
+sbfx_result sbfx_budget_begin_frame(sbfx *fx);
+void sbfx_budget_end_frame(sbfx *fx);
+/* The GPU timer (load_gl / destroy_gl). */
+void sbfx_budget_gl_init(sbfx *fx);
+void sbfx_budget_gl_destroy(sbfx *fx);
+
+
 
 /* sort.c: back-to-front order of fx->view[0..count) by view distance into fx->order */
 void sbfx_sort_back_to_front(sbfx *fx, int count);

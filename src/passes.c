@@ -228,6 +228,24 @@ static void pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     fx->counters.passes++;
 }
 
+/* The tone map leaves room for the host's picture (composite.frag) when it may read the scene
+ * colour: given, and not attached to the framebuffer being drawn (a feedback loop is undefined
+ * in GLES). Two counted queries of the bound draw framebuffer when it is the host's own. */
+static bool scene_color_readable(sbfx *fx, const sbfx_frame *f)
+{
+    if (!f->scene_color_texture) return false;
+    if (f->out_framebuffer == 0) return true;
+    GLint type = GL_NONE, name = 0;
+    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                          GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    fx->counters.gl_state_queries++;
+    if (type != GL_TEXTURE) return true;
+    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                          GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+    fx->counters.gl_state_queries++;
+    return (GLuint)name != f->scene_color_texture;
+}
+
 /* Pass 3: dst = dst * T + C over the host's framebuffer (its alpha is kept). */
 static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
 {
@@ -243,11 +261,11 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
         glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
     }
     glUseProgram(prog);
-    if (owns) {
-        sbfx_bind_texture(3, GL_TEXTURE_2D, f->scene_color_texture, gl->color_sampler);
-        glUniform1i(gl->composite_u.scene_color, 3);
-        glUniform2f(gl->composite_u.full_size, (float)f->width, (float)f->height);
-    }
+    bool scene_known = owns || scene_color_readable(fx, f);
+    if (scene_known) sbfx_bind_texture(3, GL_TEXTURE_2D, f->scene_color_texture, gl->color_sampler);
+    glUniform1i(gl->composite_u.scene_color, 3);
+    glUniform1i(gl->composite_u.scene_known, scene_known);
+    if (owns) glUniform2f(gl->composite_u.full_size, (float)f->width, (float)f->height);
     if (shimmer(fx)) {
         sbfx_bind_texture(4, GL_TEXTURE_2D, gl->particles.texture[1], 0);
         glUniform1i(gl->composite_u.distortion, 4);
@@ -275,11 +293,12 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
 }
 
 /* Which units the particle passes bind which targets on (depth, particle, composite). */
-static sbfx_gl_units pass_units(const sbfx *fx)
+static sbfx_gl_units pass_units(const sbfx *fx, bool scene_color)
 {
     const sbfx_gl *gl = &fx->gl;
     sbfx_gl_units u = {.tex_2d = 1u << 0 | 1u << 1 | 1u << 2};
-    if (gl->blackbody_texture || fx->plan.owns_scene) u.tex_2d |= 1u << SBFX_UNIT_BLACKBODY;
+    /* unit 3: the black body for the particles, the scene colour for the composite */
+    if (gl->blackbody_texture || fx->plan.owns_scene || scene_color) u.tex_2d |= 1u << SBFX_UNIT_BLACKBODY;
     if (fx->plan.distortion) u.tex_2d |= 1u << 4; /* the shimmer offsets, when the target holds them */
     if (gl->detail_texture) u.tex_3d |= 1u << UNIT_DETAIL;
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
@@ -294,6 +313,8 @@ static sbfx_result draw_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
     if (r != SBFX_OK) return r;
     frame_params fp = frame_params_from(depth);
     if (count > 0) {
+        /* a lodN level: at most N particles, the least visible merged (src/lod.h) */
+        if (fx->desc.lod_particles > 0) count = lod_reduce(&fx->lod, fx->view, count, fx->desc.lod_particles);
         sbfx_sort_back_to_front(fx, count);
         pass_depth(fx, frame, &fp);
         pass_particles(fx, frame, &fp, count);
@@ -313,20 +334,20 @@ static sbfx_result draw_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
  * all inside one save and restore of the host's state (only the units this frame binds).
  * Where the post chain reads from: the composite's image, nothing (the composite already
  * wrote the host's framebuffer), or on a frame without particles the bare scene. */
-static sbfx_gl_units frame_units(const sbfx *fx, int count)
+static sbfx_gl_units frame_units(const sbfx *fx, int count, bool scene_color)
 {
-    sbfx_gl_units units = count > 0 ? pass_units(fx) : (sbfx_gl_units){0};
+    sbfx_gl_units units = count > 0 ? pass_units(fx, scene_color) : (sbfx_gl_units){0};
     if (fx->plan.owns_scene) units.tex_2d |= sbfx_post_units(fx).tex_2d;
     return units;
 }
 
 sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_depth_model *depth, int count)
 {
-    sbfx_gl_units units = frame_units(fx, count);
+    sbfx_gl_units units = frame_units(fx, count, frame->scene_color_texture != 0);
     sbfx_gl_state saved;
     sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS, &units);
     sbfx_result r = draw_frame(fx, frame, depth, count);
-    fx->counters.gl_state_queries = sbfx_gl_state_restore(&saved);
+    fx->counters.gl_state_queries += sbfx_gl_state_restore(&saved);
     if (r != SBFX_OK) return r;
     return sbfx_gl_check(fx, "rendering the frame's passes") ? SBFX_OK : SBFX_ERR_GL;
 }
@@ -334,7 +355,7 @@ sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
 int sbfx_host_state_roundtrip(sbfx *fx, bool particles)
 {
     if (!particles && !fx->plan.owns_scene) return 0; /* such a frame runs no pass */
-    sbfx_gl_units units = frame_units(fx, particles ? 1 : 0);
+    sbfx_gl_units units = frame_units(fx, particles ? 1 : 0, true);
     sbfx_gl_state saved;
     sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS, &units);
     return sbfx_gl_state_restore(&saved);

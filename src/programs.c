@@ -13,23 +13,23 @@ static const char *const opacity_defines[SBFX_OPACITY_COUNT] = {
 
 /* Lit media (the lit-smoke seed) replace the phase function by per-pixel lighting; the ray
  * march is compiled only where it has steps to take. */
-void sbfx_particle_defines(const sbfx *fx, sbfx_medium m, char *out, size_t size)
+void sbfx_particle_defines(const sbfx *fx, const sbfx_variant_key *key, sbfx_medium m, char *out, size_t size)
 {
     const sbfx_medium_params *p = &fx->media[m];
     bool heat = m == SBFX_HEAT;
     bool scatters = p->albedo > 0 && !heat, emits = m == SBFX_FIRE, lit = scatters && p->lit;
     bool float_targets = sbfx_half_float_renderable();
     size_t used = (size_t)snprintf(out, size, "%s%s%s%s%s", heat ? "#define MEDIUM_HEAT\n" : "",
-                                   scatters && !lit && fx->desc.light_per_particle ? "#define LIGHT_PER_PARTICLE\n" : "",
+                                   scatters && !lit && key->lpp ? "#define LIGHT_PER_PARTICLE\n" : "",
                                    fx->plan.particle_velocity ? "#define HAS_PARTICLE_MOTION\n" : "",
                                    fx->plan.distortion && float_targets ? "#define HAS_DISTORTION_TARGET\n" : "",
                                    fx->plan.motion_target ? "#define HAS_MOTION_TARGET\n" : "");
     out += used, size -= used;
-    snprintf(out, size, "%s%s%s%s%s%s%s%s", opacity_defines[fx->desc.opacity],
+    snprintf(out, size, "%s%s%s%s%s%s%s%s", opacity_defines[key->opacity],
              scatters ? "#define MEDIUM_SCATTERS\n" : "", emits ? "#define MEDIUM_EMITS\n" : "",
              p->detail_strength > 0 ? "#define HAS_DETAIL\n" : "",
-             emits && fx->tables.blackbody_analytic ? "#define BLACKBODY_ANALYTIC\n" : "",
-             scatters && !lit && fx->tables.phase_analytic[m] ? "#define PHASE_ANALYTIC\n" : "",
+             emits && key->abb ? "#define BLACKBODY_ANALYTIC\n" : "",
+             scatters && !lit && (key->aph || fx->tables.phase_missed[m]) ? "#define PHASE_ANALYTIC\n" : "",
              lit ? "#define LIGHTING_LIT\n" : "", lit && p->steps_max > 0 ? "#define LIT_SHADOW\n" : "");
 }
 
@@ -85,18 +85,21 @@ void sbfx_program_load_cmf(const sbfx *fx, const sbfx_program *p)
     glUseProgram(0);
 }
 
-static sbfx_result build_particle_programs(sbfx *fx)
+sbfx_result sbfx_variant_build(sbfx *fx, const sbfx_variant_key *key)
 {
+    sbfx_variant *v = &fx->gl.variants[sbfx_variant_index(key)];
+    if (v->built) return SBFX_OK;
     char defines[384];
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) {
         if (!fx->uses_medium[m]) continue;
-        sbfx_particle_defines(fx, (sbfx_medium)m, defines, sizeof(defines));
-        sbfx_program *p = &fx->gl.particle[m];
+        sbfx_particle_defines(fx, key, (sbfx_medium)m, defines, sizeof(defines));
+        sbfx_program *p = &v->particle[m];
         p->id = sbfx_program_build(fx, "particle.vert", "particle.frag", defines);
         if (!p->id) return SBFX_ERR_SHADER;
         sbfx_program_locate(p);
-        if (m == SBFX_FIRE && fx->tables.blackbody_analytic) sbfx_program_load_cmf(fx, p);
+        if (m == SBFX_FIRE && key->abb) sbfx_program_load_cmf(fx, p);
     }
+    v->built = true;
     return SBFX_OK;
 }
 
@@ -112,6 +115,7 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->low_size = glGetUniformLocation(id, "u_low_size");
     u->depth_threshold = glGetUniformLocation(id, "u_depth_threshold");
     u->scene_color = glGetUniformLocation(id, "u_scene_color");
+    u->scene_known = glGetUniformLocation(id, "u_scene_known");
     u->distortion = glGetUniformLocation(id, "u_distortion");
     u->exposure = glGetUniformLocation(id, "u_exposure");
     u->tone_curve = glGetUniformLocation(id, "u_tone_curve");
@@ -123,28 +127,34 @@ static const char *const tone_map_defines[SBFX_TONE_MAP_COUNT] = {
     [SBFX_TONE_MAP_PER_CHANNEL] = "#define TONE_MAP_PER_CHANNEL\n",
 };
 
-static sbfx_result build_pass_programs(sbfx *fx)
+sbfx_result sbfx_composite_build(sbfx *fx, sbfx_upsample upsample)
 {
-    char upsample[192];
-    snprintf(upsample, sizeof(upsample), "%s%s%s%s",
-             fx->desc.upsample == SBFX_UPSAMPLE_NEAREST_DEPTH ? "#define UPSAMPLE_NEAREST_DEPTH\n"
-                                                               : "#define UPSAMPLE_BILINEAR\n",
+    if (fx->gl.composites[upsample]) return SBFX_OK;
+    char defines[192];
+    snprintf(defines, sizeof(defines), "%s%s%s%s",
+             upsample == SBFX_UPSAMPLE_NEAREST_DEPTH ? "#define UPSAMPLE_NEAREST_DEPTH\n" : "#define UPSAMPLE_BILINEAR\n",
              fx->plan.owns_scene ? "#define OWN_SCENE\n" : "",
              fx->plan.distortion && sbfx_half_float_renderable() ? "#define HAS_SHIMMER\n" : "",
              tone_map_defines[fx->desc.tone_map]);
+    GLuint id = sbfx_program_build(fx, "fullscreen.vert", "composite.frag", defines);
+    if (!id) return SBFX_ERR_SHADER;
+    fx->gl.composites[upsample] = id;
+    locate_pass_uniforms(id, &fx->gl.composite_us[upsample]);
+    return SBFX_OK;
+}
+
+static sbfx_result build_depth_program(sbfx *fx)
+{
     fx->gl.depth_program = sbfx_program_build(fx, "fullscreen.vert", "depth_downsample.frag", NULL);
     if (!fx->gl.depth_program) return SBFX_ERR_SHADER;
-    fx->gl.composite_program = sbfx_program_build(fx, "fullscreen.vert", "composite.frag", upsample);
-    if (!fx->gl.composite_program) return SBFX_ERR_SHADER;
     locate_pass_uniforms(fx->gl.depth_program, &fx->gl.depth_u);
-    locate_pass_uniforms(fx->gl.composite_program, &fx->gl.composite_u);
     return SBFX_OK;
 }
 
 static sbfx_result create_buffers(sbfx *fx)
 {
     sbfx_gl *gl = &fx->gl;
-    glGenVertexArrays(1, &gl->fullscreen_vao);
+    if (!gl->fullscreen_vao) glGenVertexArrays(1, &gl->fullscreen_vao);
     glGenVertexArrays(1, &gl->particle_vao);
     glGenBuffers(1, &gl->instance_buffer);
     glBindVertexArray(gl->particle_vao);
@@ -167,17 +177,38 @@ static sbfx_result create_buffers(sbfx *fx)
 sbfx_result sbfx_programs_create(sbfx *fx)
 {
     sbfx_result r;
-    if ((r = build_particle_programs(fx)) != SBFX_OK) return r;
-    if ((r = build_pass_programs(fx)) != SBFX_OK) return r;
+    if ((r = build_depth_program(fx)) != SBFX_OK) return r;
+    if ((r = create_buffers(fx)) != SBFX_OK) return r;
+    return sbfx_quality_load(fx);
+}
+
+/* First use of a level with light per particle in a module made without: a wider instance
+ * layout (the CPU copy and the buffer's storage; the buffer object stays). */
+sbfx_result sbfx_instances_reserve_light(sbfx *fx)
+{
+    size_t floats = (size_t)fx->pool.capacity * (size_t)(fx->instance_floats + 4);
+    float *wider = sbfx_calloc(fx, floats, sizeof(float));
+    if (!wider) return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
+    sbfx_free(fx, fx->instances);
+    fx->instances = wider;
+    fx->counters.gpu_bytes -= (size_t)fx->pool.capacity * fx->instance_floats * sizeof(float);
+    fx->instance_light = fx->instance_floats;
+    fx->instance_floats += 4;
+    glBindVertexArray(0);
+    glDeleteBuffers(1, &fx->gl.instance_buffer);
+    glDeleteVertexArrays(1, &fx->gl.particle_vao);
     return create_buffers(fx);
 }
 
 void sbfx_programs_destroy(sbfx *fx)
 {
     sbfx_gl *gl = &fx->gl;
-    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
-        if (gl->particle[m].id) glDeleteProgram(gl->particle[m].id);
-    GLuint programs[] = {gl->depth_program, gl->composite_program, gl->lut_program};
+    for (int v = 0; v < SBFX_VARIANTS; v++)
+        for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
+            if (gl->variants[v].particle[m].id) glDeleteProgram(gl->variants[v].particle[m].id);
+    for (int u = 0; u < SBFX_UPSAMPLE_COUNT; u++)
+        if (gl->composites[u]) glDeleteProgram(gl->composites[u]);
+    GLuint programs[] = {gl->depth_program, gl->lut_program};
     for (size_t i = 0; i < ARRAY_SIZE(programs); i++)
         if (programs[i]) glDeleteProgram(programs[i]);
     if (gl->instance_buffer) glDeleteBuffers(1, &gl->instance_buffer);

@@ -94,7 +94,11 @@ sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame)
     int count = sbfx_collect_view_particles(fx, frame->view);
     sbfx_result r = SBFX_OK;
     /* Idle without post effects: no pass at all, no GL call: the host's state is untouched. */
-    if (count > 0 || fx->plan.owns_scene) r = sbfx_render_frame(fx, frame, &depth, count);
+    if (count > 0 || fx->plan.owns_scene) {
+        r = sbfx_budget_begin_frame(fx); /* the budget's level, and its GPU timer */
+        if (r == SBFX_OK) r = sbfx_render_frame(fx, frame, &depth, count);
+        sbfx_budget_end_frame(fx);
+    }
     memcpy(fx->previous_view, frame->view, sizeof(fx->previous_view));
     fx->previous_render_time = fx->time;
     fx->have_previous_view = true;

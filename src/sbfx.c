@@ -76,6 +76,8 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
         if (!d.detail_format) d.detail_format = s->detail_format;
         if (!d.tone_map) d.tone_map = s->tone_map;
         if (!(d.exposure > 0)) d.exposure = s->exposure;
+        if (d.frame_budget_ms == 0) d.frame_budget_ms = s->frame_budget_ms;
+        if (!d.ladder) d.ladder = s->ladder, d.ladder_count = s->ladder_count;
     }
     if (!d.target_divisor) d.target_divisor = 4;
     if (!d.upsample) d.upsample = SBFX_UPSAMPLE_NEAREST_DEPTH;
@@ -117,6 +119,14 @@ static sbfx_result validate_desc(sbfx *fx, const sbfx_desc *d)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT,
                          "detail volume %dx%dx%d: use powers of two from 4 to 256",
                          d->detail_size, d->detail_size, d->detail_frames);
+    if (!(d->frame_budget_ms >= 0.0f && d->frame_budget_ms <= 1e4f))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "frame_budget_ms %g: use a time in milliseconds above 0 "
+                         "and at most 10000 (0: no budget)", (double)d->frame_budget_ms);
+    if (d->ladder_count < 0 || d->ladder_count > SBFX_LADDER_MAX || (d->ladder_count > 0 && !d->ladder))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "ladder: %d levels%s: use 1 .. %d names", d->ladder_count,
+                         d->ladder ? "" : " and no names", SBFX_LADDER_MAX);
+    if (d->lod_particles < 0 || d->lod_particles > (1 << 20))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "lod_particles %d: use 0 (all) .. 1048576", d->lod_particles);
     if (!(d->sim_step <= 0.1f))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "sim_step %g s: use at most 0.1 s",
                          (double)d->sim_step);
@@ -165,7 +175,9 @@ static void adopt_scene(sbfx *fx, const sbfx_scene *scene)
     fx->plan.owns_scene = fx->plan.distortion || fx->post.blur != SBFX_BLUR_NONE || fx->post.dof;
     fx->instance_floats = 8;
     fx->instance_previous = fx->plan.particle_velocity ? (fx->instance_floats += 4, 8) : 0;
-    fx->instance_light = fx->desc.light_per_particle ? (fx->instance_floats += 4) - 4 : 0;
+    /* a slot for the per-particle light when a declared level uses it (bit-identical frames
+     * either way: levels without it do not read it) */
+    fx->instance_light = sbfx_declared_any(fx, sbfx_quality_uses_light_slot) ? (fx->instance_floats += 4) - 4 : 0;
     if (!fx->desc.ignore_timeline)
         for (int i = 0; i < scene->timeline_count; i++) {
             const sbfx_timeline_entry *t = &scene->timeline[i];
@@ -185,6 +197,7 @@ static sbfx_result load_gl(sbfx *fx)
     if (r == SBFX_OK) r = sbfx_luts_create(fx);
     if (r == SBFX_OK) r = sbfx_programs_create(fx);
     if (r == SBFX_OK) r = sbfx_post_programs_create(fx);
+    if (r == SBFX_OK) sbfx_budget_gl_init(fx);
     sbfx_gl_state_restore(&saved);
     return r;
 }
@@ -192,6 +205,7 @@ static sbfx_result load_gl(sbfx *fx)
 /* Deleting sbfx's own objects changes no binding a host can hold. */
 static void destroy_gl(sbfx *fx)
 {
+    sbfx_budget_gl_destroy(fx);
     sbfx_targets_destroy(fx);
     sbfx_post_destroy(fx);
     sbfx_programs_destroy(fx);
@@ -236,6 +250,9 @@ sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out)
     if (!fx) return SBFX_ERR_OUT_OF_MEMORY;
     fx->desc = desc_with_defaults(desc);
     sbfx_result r = validate_desc(fx, &fx->desc);
+    if (r == SBFX_OK) r = sbfx_budget_init(fx);
+    fx->desc.ladder = NULL; /* parsed: the scene's names may go away */
+    fx->desc.ladder_count = 0;
     if (r == SBFX_OK) r = load(fx);
     if (r != SBFX_OK) {
         /* Hand the message to the caller's log before the handle goes away. */

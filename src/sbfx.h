@@ -80,16 +80,18 @@ typedef enum sbfx_detail_format {
     SBFX_DETAIL_COUNT
 } sbfx_detail_format;
 
-/* How the particles' light meets the host's framebuffer (after desc.exposure scales it). The
- * particle layer's own colour, L = C / alpha, is brought below 1 and put back over its coverage,
- * so dst * (1 - alpha) + alpha * L never clips where the host's picture does not. The curve is
- * the identity up to 0.6 and a logarithmic shoulder above that reaches 1 at 64, the particles'
- * radiance ceiling (README "Colour on the display"). */
+/* How the particles' light meets the host's framebuffer (after desc.exposure scales it). Over a
+ * host pixel dst seen through the particles' transmittance T, the light C is brought within the
+ * room the picture leaves, room_k = 1 - T dst_k, so dst * T + C never clips where the host's
+ * picture does not. dst is read from frame.scene_color_texture (black when there is none, or when
+ * it is the texture out_framebuffer draws into). The curve is the identity up to 0.6 and a
+ * logarithmic shoulder above that reaches 1 at 64, the particles' radiance ceiling (README
+ * "Colour on the display"). */
 typedef enum sbfx_tone_map {
     SBFX_TONE_MAP_DEFAULT = 0,     /* = HUE_PRESERVING */
     SBFX_TONE_MAP_NONE,            /* light added as computed: each channel clips on its own */
-    SBFX_TONE_MAP_HUE_PRESERVING,  /* L scaled by curve(max channel) / max channel: hue kept */
-    SBFX_TONE_MAP_PER_CHANNEL,     /* the curve on each channel: bright colours turn white */
+    SBFX_TONE_MAP_HUE_PRESERVING,  /* C scaled by curve(r) / r, r = max C_k / room_k: hue kept */
+    SBFX_TONE_MAP_PER_CHANNEL,     /* C_k = room_k curve(C_k / room_k): bright colours turn white */
     SBFX_TONE_MAP_COUNT
 } sbfx_tone_map;
 
@@ -167,6 +169,17 @@ typedef struct sbfx_desc {
     bool ignore_timeline;            /* do not fire the scene's timeline triggers */
     sbfx_log_fn log;                 /* NULL: messages go nowhere, sbfx_last_error() still works */
     void *log_user;
+    /* Frame budget (README "Frame budgets"): with frame_budget_ms > 0 sbfx measures its own GPU
+     * time per frame and walks a quality ladder to stay within it. The quality this desc (and
+     * the scene) gives is the ladder's top: the budget never raises it. 0 = no budget. */
+    int lod_particles;               /* at most this many particles drawn, the least visible
+                                        merged (level of detail); 0 = all */
+    float frame_budget_ms;
+    /* Quality levels (sbfx_quality_parse names), most accurate first: the ladder the budget
+     * walks below the top (NULL: the scene's render.ladder, else the default ladder). Their
+     * shader variants are built at load, so sbfx_set_quality to any of them never compiles. */
+    const char *const *ladder;
+    int ladder_count;
 } sbfx_desc;
 
 /* How the host's clip-space depth became the window depth its depth texture holds (with the
@@ -194,7 +207,7 @@ typedef enum sbfx_clip_depth_mode {
 typedef struct sbfx_frame {
     float view[16];          /* world -> view */
     float projection[16];    /* a perspective projection (above) */
-    uint32_t scene_color_texture;
+    uint32_t scene_color_texture; /* 0: none (post effects need it; the tone map reads it) */
     uint32_t scene_depth_texture;
     uint32_t out_framebuffer;
     int width, height;
@@ -218,6 +231,11 @@ typedef struct sbfx_counters {
     int gl_state_queries;     /* glGet* / glIs* calls the last sbfx_render made to save and
                                  restore the host's GL state (0 when it ran no pass); README
                                  "What sbfx does to your GL state" */
+    char quality[64];         /* the current quality level's name (sbfx_quality_name) */
+    float budget_ms;          /* desc.frame_budget_ms (0: none) */
+    float gpu_ms;             /* smoothed GPU time of sbfx's work per frame (budget only) */
+    int frames_over_budget;   /* measured frames whose GPU time exceeded the budget */
+    int quality_changes;      /* level changes the budget made */
 } sbfx_counters;
 
 typedef struct sbfx sbfx;
@@ -244,6 +262,41 @@ SBFX_API double sbfx_time(const sbfx *fx);
 SBFX_API sbfx_result sbfx_update(sbfx *fx, double dt);
 SBFX_API sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);
 SBFX_API void sbfx_stats(const sbfx *fx, sbfx_counters *out);
+
+/* Run-time quality (README "Run-time quality"): what sbfx_desc's accuracy knobs choose at
+ * create, changeable between frames without losing the simulation. Zero fields mean the
+ * default, as in sbfx_desc. */
+typedef struct sbfx_quality {
+    sbfx_opacity_mode opacity;
+    int target_divisor;              /* 1, 2, 4 or 8 */
+    sbfx_upsample upsample;
+    sbfx_target_format target_format;
+    bool light_per_particle;
+    bool analytic_blackbody;
+    bool analytic_phase;
+    int lod_particles;               /* at most this many particles drawn (level of detail);
+                                        0 = all */
+} sbfx_quality;
+
+/* Effective at the next sbfx_render. A frame rendered after switching to q is bit-identical to
+ * the same frame of a module created with q. The first use of a level the load did not declare
+ * (desc.ladder, render.ladder, the budget's ladder) builds its shader variants and targets;
+ * after that, switching to it allocates nothing. With a frame budget the governor goes on
+ * choosing: q becomes the ladder's top only when created so (set_quality picks a level). */
+SBFX_API sbfx_result sbfx_set_quality(sbfx *fx, const sbfx_quality *q);
+SBFX_API sbfx_result sbfx_get_quality(const sbfx *fx, sbfx_quality *out);
+/* Level names: <opacity>/<divisor>/<upsample>[/<flag>...] with opacity planar | soft |
+ * spherical | exact, divisor 1 | 2 | 4 | 8, upsample nd (nearest-depth) | bl (bilinear), flags
+ * rgba8 | rgba16f | rgba32f (target format), lpp (light per particle), abb (analytic black
+ * body), aph (analytic phase), lodN (at most N particles). "exact/4/nd", "spherical/8/bl/lod256".
+ * Parse fills *out (defaults resolved) or names the bad token in err. */
+SBFX_API sbfx_result sbfx_quality_parse(const char *name, sbfx_quality *out, char *err, size_t err_size);
+/* The canonical name of q (parse(name(q)) == q); returns buf. */
+SBFX_API const char *sbfx_quality_name(const sbfx_quality *q, char *buf, size_t size);
+/* The frame-budget fallback where GL_EXT_disjoint_timer_query is missing: the host passes the
+ * time sbfx's work took in the frame just rendered (e.g. glFinish before and after sbfx_render,
+ * or a timer of its own). Ignored when the module measures itself or has no budget. */
+SBFX_API void sbfx_report_frame_time(sbfx *fx, double ms);
 
 /* Live detail images (e.g. from a V4L2 camera). The detail volume is size x size x frames
  * half floats in [0,1] whose third axis is a time ring; each call writes the next slice

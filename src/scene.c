@@ -197,12 +197,47 @@ static int get_name(parser *p, const config_setting_t *g, const char *key, char 
 static const char *const medium_names[] = {"dust", "smoke", "fire", "heat", NULL};
 
 /* ---- render ---- */
+/* budget_ms: a positive time (get_float would let 0 mean "none" silently) */
+static int parse_budget(parser *p, const config_setting_t *g)
+{
+    const config_setting_t *s = config_setting_get_member(g, "budget_ms");
+    float ms = 0;
+    if (get_float(p, g, "budget_ms", -INFINITY, INFINITY, &ms)) return -1;
+    if (s && !(ms > 0 && ms <= 1e4f))
+        return fail_at(p, s, "'budget_ms' = %g: use a frame time in milliseconds above 0 and at most 10000", (double)ms);
+    p->scene->render.frame_budget_ms = ms;
+    return 0;
+}
+
+/* ladder = ["exact/4/nd", ...]: quality level names (sbfx_quality_parse), most accurate first */
+static int parse_ladder(parser *p, const config_setting_t *g)
+{
+    const config_setting_t *s = config_setting_get_member(g, "ladder");
+    if (!s) return 0;
+    int n = config_setting_length(s);
+    if (!config_setting_is_array(s) || n < 1 || n > SBFX_LADDER_MAX)
+        return fail_at(p, s, "'ladder' must be an array of 1 to %d quality names [ \"exact/4/nd\", ... ]", SBFX_LADDER_MAX);
+    sbfx_scene *scene = p->scene;
+    for (int i = 0; i < n; i++) {
+        const char *name = config_setting_get_string_elem(s, (unsigned)i);
+        char why[256];
+        sbfx_quality q;
+        if (!name) return fail_at(p, s, "'ladder'[%d] must be a string", i);
+        if (sbfx_quality_parse(name, &q, why, sizeof(why)) != SBFX_OK) return fail_at(p, s, "'ladder'[%d]: %s", i, why);
+        snprintf(scene->ladder_names[i], sizeof(scene->ladder_names[i]), "%s", name);
+        scene->ladder_ptrs[i] = scene->ladder_names[i];
+    }
+    scene->render.ladder = scene->ladder_ptrs;
+    scene->render.ladder_count = n;
+    return 0;
+}
+
 static int parse_render(parser *p, const config_setting_t *g)
 {
     static const char *const keys[] = {"target_scale", "target_format", "upsample", "opacity",
                                        "seed", "max_particles", "sim_rate", "blackbody_max_kelvin",
                                        "light_rate", "blackbody", "phase", "detail_format", "tone_map",
-                                       "exposure", NULL};
+                                       "exposure", "budget_ms", "ladder", NULL};
     static const char *const tone_maps[] = {"none", "hue-preserving", "per-channel", NULL};
     static const char *const rates[] = {"per-pixel", "per-particle", NULL};
     static const char *const evaluations[] = {"table", "analytic", NULL};
@@ -226,7 +261,7 @@ static int parse_render(parser *p, const config_setting_t *g)
         get_choice(p, g, "blackbody", evaluations, 0, &blackbody) || get_choice(p, g, "phase", evaluations, 0, &phase) ||
         get_choice(p, g, "detail_format", detail_formats, SBFX_DETAIL_R16F, &detail_format) ||
         get_choice(p, g, "tone_map", tone_maps, SBFX_TONE_MAP_NONE, &tone_map) ||
-        get_float(p, g, "exposure", 0.01, 100, &d->exposure))
+        get_float(p, g, "exposure", 0.01, 100, &d->exposure) || parse_budget(p, g) || parse_ladder(p, g))
         return -1;
     d->tone_map = (sbfx_tone_map)tone_map;
     d->light_per_particle = rate_choice == 1;

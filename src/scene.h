@@ -26,7 +26,10 @@ typedef struct sbfx_timeline_entry {
 
 struct sbfx_scene {
     char name[128];
-    sbfx_desc render;   /* render settings given by the file (zero = not given) */
+    sbfx_desc render;   /* render settings given by the file (zero = not given); its ladder
+                           points at ladder_names below */
+    char ladder_names[SBFX_LADDER_MAX][64];
+    const char *ladder_ptrs[SBFX_LADDER_MAX];
     int light_count;
     sbfx_light lights[SBFX_MAX_LIGHTS];
     float ambient[3];

@@ -48,7 +48,17 @@ void sbfx_pool_destroy(sbfx *fx)
     sbfx_free(fx, fx->order);
     sbfx_free(fx, fx->order_tmp);
     sbfx_free(fx, fx->instances);
+    sbfx_free(fx, fx->lod_work);
+    fx->lod_work = NULL;
     memset(&fx->pool, 0, sizeof(fx->pool));
+}
+
+sbfx_result sbfx_lod_create(sbfx *fx)
+{
+    fx->lod_work = sbfx_calloc(fx, 1, lod_work_size(fx->pool.capacity));
+    if (!fx->lod_work) return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
+    lod_init(&fx->lod, fx->lod_work, fx->pool.capacity);
+    return SBFX_OK;
 }
 
 static void random_direction(sbfx_rng *rng, float upward, float out[3])

@@ -59,16 +59,20 @@ static sbfx_result make_blackbody(sbfx *fx, const sbfx_cmf *cmf)
     sbfx_blackbody_table(cmf, t->blackbody_norm, t->blackbody_lo, t->blackbody_hi, SBFX_BLACKBODY_SIZE, t->blackbody);
     t->blackbody_error = sbfx_blackbody_table_error(cmf, t->blackbody_norm, t->blackbody, SBFX_BLACKBODY_SIZE,
                                                     t->blackbody_lo, t->blackbody_hi);
-    t->blackbody_analytic = fx->desc.analytic_blackbody;
-    if (!t->blackbody_analytic && !(t->blackbody_error <= SBFX_TABLE_TOLERANCE - SBFX_TABLE_GPU_ALLOWANCE)) {
-        t->blackbody_analytic = true;
+    t->blackbody_missed = !(t->blackbody_error <= SBFX_TABLE_TOLERANCE - SBFX_TABLE_GPU_ALLOWANCE);
+    t->blackbody_analytic = fx->desc.analytic_blackbody || t->blackbody_missed;
+    if (t->blackbody_missed) {
         sbfx_log(fx, SBFX_LOG_WARN, "media.fire: the black-body table over %.0f..%.0f K would be %.2g off "
                  "Planck x CIE (a table may be %.0e off: %.0e less what the shader's float arithmetic adds): "
                  "fire evaluates it per fragment instead", t->blackbody_lo, t->blackbody_hi, t->blackbody_error,
                  SBFX_TABLE_TOLERANCE - SBFX_TABLE_GPU_ALLOWANCE, SBFX_TABLE_TOLERANCE);
     }
-    if (t->blackbody_analytic) return SBFX_OK;
-    fx->gl.blackbody_texture = make_table_texture(fx, GL_RGBA32F, GL_RGBA, SBFX_BLACKBODY_SIZE, 1, t->blackbody);
+    return sbfx_declared_any(fx, sbfx_quality_uses_blackbody_table) ? sbfx_tables_upload_blackbody(fx) : SBFX_OK;
+}
+
+sbfx_result sbfx_tables_upload_blackbody(sbfx *fx)
+{
+    fx->gl.blackbody_texture = make_table_texture(fx, GL_RGBA32F, GL_RGBA, SBFX_BLACKBODY_SIZE, 1, fx->tables.blackbody);
     return sbfx_gl_check(fx, "uploading the black-body table") ? SBFX_OK : SBFX_ERR_GL;
 }
 
@@ -89,9 +93,9 @@ static void decide_phase(sbfx *fx, sbfx_medium m)
     double g = fx->media[m].phase_g;
     sbfx_phase_table(g, SBFX_PHASE_SIZE, row);
     t->phase_error[m] = sbfx_phase_table_error(row, SBFX_PHASE_SIZE, g);
-    t->phase_analytic[m] = fx->desc.analytic_phase;
-    if (!t->phase_analytic[m] && !(t->phase_error[m] <= SBFX_TABLE_TOLERANCE - SBFX_TABLE_GPU_ALLOWANCE)) {
-        t->phase_analytic[m] = true;
+    t->phase_missed[m] = !(t->phase_error[m] <= SBFX_TABLE_TOLERANCE - SBFX_TABLE_GPU_ALLOWANCE);
+    t->phase_analytic[m] = fx->desc.analytic_phase || t->phase_missed[m];
+    if (t->phase_missed[m]) {
         sbfx_log(fx, SBFX_LOG_WARN, "media.%s: its %d-entry phase table for phase_g = %g would be %.2g off the "
                  "function (a table may be %.0e off: %.0e less what the shader's float arithmetic adds): %s "
                  "evaluates the phase function per fragment instead", medium_names[m], SBFX_PHASE_SIZE, g,
@@ -106,14 +110,14 @@ static sbfx_result make_phase(sbfx *fx)
     sbfx_tables *t = &fx->tables;
     t->phase = sbfx_calloc(fx, (size_t)SBFX_MEDIUM_COUNT * SBFX_PHASE_SIZE, sizeof(float));
     if (!t->phase) return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
-    bool any_table = false;
-    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) {
-        if (!sbfx_medium_uses_phase(fx, (sbfx_medium)m)) continue;
-        decide_phase(fx, (sbfx_medium)m);
-        any_table = any_table || t->phase_table[m];
-    }
-    if (!any_table) return SBFX_OK;
-    fx->gl.phase_texture = make_table_texture(fx, GL_R32F, GL_RED, SBFX_PHASE_SIZE, SBFX_MEDIUM_COUNT, t->phase);
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
+        if (sbfx_medium_uses_phase(fx, (sbfx_medium)m)) decide_phase(fx, (sbfx_medium)m);
+    return sbfx_declared_any(fx, sbfx_quality_uses_phase_table) ? sbfx_tables_upload_phase(fx) : SBFX_OK;
+}
+
+sbfx_result sbfx_tables_upload_phase(sbfx *fx)
+{
+    fx->gl.phase_texture = make_table_texture(fx, GL_R32F, GL_RED, SBFX_PHASE_SIZE, SBFX_MEDIUM_COUNT, fx->tables.phase);
     return sbfx_gl_check(fx, "uploading the phase-function table") ? SBFX_OK : SBFX_ERR_GL;
 }
 

@@ -26,18 +26,17 @@ static bool format_allowed(const target_format *f)
     return sbfx_half_float_renderable();
 }
 
-static bool try_format(sbfx *fx, const target_format *f)
+static bool try_format(sbfx *fx, sbfx_target_set *set, const target_format *f)
 {
-    sbfx_gl *gl = &fx->gl;
     if (!format_allowed(f)) return false;
     /* Signed offsets and velocities need a float format: with RGBA8 they are left out
      * (the shaders' extra outputs then go nowhere) and the loss is logged at load. */
     bool is_float = f->id != SBFX_FORMAT_RGBA8;
     const sbfx_rt_format *colors[SBFX_RT_MAX] = {
         f->rt, is_float && fx->plan.distortion ? f->rt : NULL, is_float && fx->plan.motion_target ? f->rt : NULL};
-    if (!sbfx_rt_create(fx, &gl->particles, gl->low_width, gl->low_height, colors, NULL, GL_NEAREST)) return false;
-    gl->target_type = f->rt->type;
-    fx->counters.target_format = f->id;
+    if (!sbfx_rt_create(fx, &set->particles, set->low_width, set->low_height, colors, NULL, GL_NEAREST)) return false;
+    set->target_type = f->rt->type;
+    set->format = f->id;
     return true;
 }
 
@@ -49,13 +48,13 @@ static const target_format *format_by_id(sbfx_target_format id)
 }
 
 /* Requested format first, then each cheaper one; RGBA8 always works. */
-static sbfx_result create_particle_target(sbfx *fx)
+static sbfx_result create_particle_target(sbfx *fx, sbfx_target_set *set, sbfx_target_format want)
 {
-    sbfx_target_format want = fx->desc.target_format ? fx->desc.target_format : SBFX_FORMAT_RGBA16F;
+    if (!want) want = SBFX_FORMAT_RGBA16F;
     size_t start = 0;
     while (formats[start].id != want) start++;
     for (size_t i = start; i < ARRAY_SIZE(formats); i++) {
-        if (!try_format(fx, &formats[i])) continue;
+        if (!try_format(fx, set, &formats[i])) continue;
         if (i != start && !fx->warned_format) {
             fx->warned_format = true;
             sbfx_log(fx, SBFX_LOG_WARN,
@@ -69,34 +68,62 @@ static sbfx_result create_particle_target(sbfx *fx)
     return sbfx_fail(fx, SBFX_ERR_GL, "no particle target format is renderable (not even RGBA8)");
 }
 
-static sbfx_result create_low_depth(sbfx *fx)
+static sbfx_result create_low_depth(sbfx *fx, sbfx_target_set *set)
 {
-    sbfx_gl *gl = &fx->gl;
-    if (!sbfx_rt_create(fx, &gl->low_depth, gl->low_width, gl->low_height, NULL, &sbfx_rt_depth32f, GL_NEAREST))
+    if (!sbfx_rt_create(fx, &set->low_depth, set->low_width, set->low_height, NULL, &sbfx_rt_depth32f, GL_NEAREST))
         return sbfx_fail(fx, SBFX_ERR_GL, "the %dx%d DEPTH_COMPONENT32F target is incomplete",
-                         gl->low_width, gl->low_height);
+                         set->low_width, set->low_height);
     return sbfx_gl_check(fx, "creating the low-resolution depth target") ? SBFX_OK : SBFX_ERR_GL;
+}
+
+static void destroy_set(sbfx *fx, sbfx_target_set *set)
+{
+    sbfx_rt_destroy(fx, &set->particles);
+    sbfx_rt_destroy(fx, &set->low_depth);
+}
+
+/* The targets of level q at the output size (made once per size). */
+static sbfx_result ensure_set(sbfx *fx, const sbfx_quality *q)
+{
+    sbfx_target_set *set = &fx->gl.targets[sbfx_target_index(q->target_divisor, q->target_format)];
+    if (set->particles.framebuffer) return SBFX_OK;
+    int div = q->target_divisor;
+    set->low_width = (fx->gl.out_width + div - 1) / div;
+    set->low_height = (fx->gl.out_height + div - 1) / div;
+    sbfx_result r = create_particle_target(fx, set, q->target_format);
+    if (r == SBFX_OK) r = create_low_depth(fx, set);
+    if (r != SBFX_OK) destroy_set(fx, set);
+    return r;
 }
 
 sbfx_result sbfx_targets_ensure(sbfx *fx, int width, int height)
 {
     sbfx_gl *gl = &fx->gl;
-    if (gl->particles.framebuffer && gl->out_width == width && gl->out_height == height) return SBFX_OK;
-    sbfx_targets_destroy(fx);
-    int div = fx->desc.target_divisor;
-    gl->out_width = width;
-    gl->out_height = height;
-    gl->low_width = (width + div - 1) / div;
-    gl->low_height = (height + div - 1) / div;
-    sbfx_result r = create_particle_target(fx);
-    if (r == SBFX_OK) r = create_low_depth(fx);
-    if (r != SBFX_OK) sbfx_targets_destroy(fx);
-    return r;
+    sbfx_result r = SBFX_OK;
+    if (gl->out_width != width || gl->out_height != height) {
+        sbfx_targets_destroy(fx);
+        gl->out_width = width;
+        gl->out_height = height;
+        for (int i = 0; i < fx->declared_count && r == SBFX_OK; i++) r = ensure_set(fx, &fx->declared[i]);
+    }
+    if (r == SBFX_OK) r = ensure_set(fx, &fx->current);
+    if (r != SBFX_OK) {
+        sbfx_targets_destroy(fx);
+        return r;
+    }
+    const sbfx_target_set *set = &gl->targets[sbfx_target_index(fx->current.target_divisor, fx->current.target_format)];
+    gl->particles = set->particles;
+    gl->low_depth = set->low_depth;
+    gl->low_width = set->low_width;
+    gl->low_height = set->low_height;
+    gl->target_type = set->target_type;
+    fx->counters.target_format = set->format;
+    return SBFX_OK;
 }
 
 void sbfx_targets_destroy(sbfx *fx)
 {
-    sbfx_rt_destroy(fx, &fx->gl.particles);
-    sbfx_rt_destroy(fx, &fx->gl.low_depth);
+    for (int i = 0; i < SBFX_TARGET_SETS; i++) destroy_set(fx, &fx->gl.targets[i]);
+    fx->gl.particles = fx->gl.low_depth = (sbfx_rt){0};
     fx->gl.out_width = fx->gl.out_height = 0;
 }

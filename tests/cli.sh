@@ -8,7 +8,8 @@ set -u
 PLAYER=${1:-build/sbfx-play}
 SUITE=cli
 RUN_TIMEOUT=${CLI_RUN_TIMEOUT:-120}
-STATS_KEYS="programs textures framebuffers gpu_bytes passes draw_calls particles_simulated heap_allocs_after_load"
+STATS_KEYS="programs textures framebuffers gpu_bytes passes draw_calls particles_simulated heap_allocs_after_load
+    budget_ms gpu_ms frames_over_budget quality_changes"
 failures=0
 
 tmp=$(mktemp -d)
@@ -55,7 +56,7 @@ test_help() {
     play --help
     local missing="" flag
     for flag in --headless --size --frames --fps --out --contact-sheet --stats --trigger \
-        --no-timeline --scale --opacity --format --upsample --tone-map --exposure --seed --scene --quiet --help \
+        --no-timeline --scale --opacity --format --upsample --tone-map --exposure --budget-ms --seed --scene --quiet --help \
         --display --device --connector --mode --modeset --screenshot --board --video --gpio; do
         grep -qF -- "$flag" "$tmp/out" || missing="$missing $flag"
     done
@@ -97,6 +98,15 @@ test_bad_arguments() {
     usage_error scene-trigger-unknown "no effect named" --scene scenes/smoke.cfg --trigger explosion@1
     usage_error bad-tone-map "none|hue-preserving|per-channel" --tone-map aces
     usage_error bad-exposure --exposure --exposure 0
+    usage_error budget-zero --budget-ms --budget-ms 0
+    usage_error budget-negative --budget-ms --budget-ms -16
+    usage_error budget-nan --budget-ms --budget-ms nan
+    usage_error budget-garbage --budget-ms --budget-ms 16ms
+    printf 'render = {\n  ladder = [ "exact/4/nd", "exact/8/fast" ]; };\n' >"$tmp/ladder.cfg"
+    usage_error scene-ladder "ladder.cfg:2: 'ladder'[1]: quality \"exact/8/fast\": unknown upsample 'fast'" \
+        --scene "$tmp/ladder.cfg"
+    printf 'render = { budget_ms = 0.0; };\n' >"$tmp/budget.cfg"
+    usage_error scene-budget "budget.cfg:1: 'budget_ms' = 0" --scene "$tmp/budget.cfg"
     printf 'media = { smoke = { density = 0.4; }; };\ncamera = {\n  fov = 200.0; };\n%s\n' \
         'effects = { puff = { steps = ( { type = "emitter"; medium = "smoke"; } ); }; };' >"$tmp/camera.cfg"
     usage_error scene-camera "camera.cfg:3: 'fov' = 200 is out of range" --scene "$tmp/camera.cfg"
@@ -297,8 +307,34 @@ if [ ! -x "$PLAYER" ]; then
     fail player "$PLAYER is not built"
     exit 1
 fi
+# With --budget-ms the stats say the budget and the level (a string); a budget nothing meets
+# moves below the top level given by the quality flags.
+test_budget_run() {
+    play --size 160x90 --frames 12 --out "$tmp/budget" --scale 2 --budget-ms 0.001 --stats "$tmp/budget.json" --quiet
+    local quality budget changes
+    quality=$(sed -n 's/.*"quality": "\([^"]*\)".*/\1/p' "$tmp/budget.json" 2>/dev/null)
+    budget=$(sed -n 's/.*"budget_ms": \([0-9.e-]*\).*/\1/p' "$tmp/budget.json" 2>/dev/null)
+    changes=$(json_number "$tmp/budget.json" quality_changes)
+    if [ "$rc" -ne 0 ]; then
+        fail budget-run "a run with --budget-ms exited with $rc: $(first_error_line)"
+    elif [ "$budget" != 0.001 ] || [ -z "$quality" ] || [ "$quality" = exact/2/nd ] || [ "${changes:-0}" -lt 1 ]; then
+        fail budget-run "budget_ms=$budget quality=$quality changes=$changes: expected 0.001, a level below exact/2/nd"
+    else
+        ok budget-run
+    fi
+    check_stats budget-stats "$tmp/budget.json"
+    play --size 160x90 --frames 2 --out "$tmp/nobudget" --stats "$tmp/nobudget.json" --quiet
+    quality=$(sed -n 's/.*"quality": "\([^"]*\)".*/\1/p' "$tmp/nobudget.json" 2>/dev/null)
+    if [ "$rc" -eq 0 ] && [ "$quality" = exact/4/nd ] && [ "$(json_number "$tmp/nobudget.json" budget_ms)" = 0 ]; then
+        ok budget-none-stats
+    else
+        fail budget-none-stats "without a budget: rc $rc, quality '$quality' ($(head -c 300 "$tmp/nobudget.json"))"
+    fi
+}
+
 test_help
 test_bad_arguments
+test_budget_run
 test_headless_run
 test_idle_run
 test_scene_run

@@ -73,7 +73,7 @@ else
     not_ok soname "'$soname', expected libsbfx.so.$SOVERSION"
 fi
 
-# libsbfx.so -> libsbfx.so.0 -> libsbfx.so.0.1.0, the last a real file
+# libsbfx.so -> libsbfx.so.1 -> libsbfx.so.1.0.0, the last a real file
 real=$BUILD/libsbfx.so.$VERSION
 if [ -L "$so" ] && [ "$(readlink "$so")" = "libsbfx.so.$SOVERSION" ] &&
     [ -L "$BUILD/libsbfx.so.$SOVERSION" ] &&

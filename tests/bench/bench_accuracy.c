@@ -10,7 +10,12 @@
  *   bench_accuracy [--out DIR] [--size WxH] [--reps N] [--quick] [--match LABEL]
  *
  * --quick runs a subset; --match only the configurations whose plot label ("sph/4 nd",
- * "exa/1 nd aBB", "flo/8 nd"...) contains LABEL (for profiling one of them).
+ * "exa/1 nd aBB", "flo/8 nd"...) contains LABEL (for profiling one of them); several labels
+ * separated by commas run the configurations that contain any of them.
+ *
+ * The rows with a `lod` (issue 11, the quality ladder's last resort: src/lod.h) draw at most
+ * that many particles, merged by lod_reduce from the frame's particles, and are compared with the
+ * same reference of all of them: their error is what the level of detail costs.
  *
  * Writes DIR/accuracy.csv, DIR/points.dat and DIR/pareto.dat (for tests/bench/accuracy.gp),
  * DIR/summary.txt (the verdicts of DESIGN §4) and a few PNGs (reference and GPU frames). */
@@ -25,14 +30,17 @@
 
 #include "bench_gl.h"
 #include "bench_metrics.h"
+#include "bench_reference.h"
 #include "egl_headless.h"
 #include "internal.h"
+#include "lod.h"
+#include "module.h" /* the pool's capacity: the level of detail's work memory */
 #include "png_io.h"
 #include "reference_frame.h"
 #include "test_scene.h"
 
 #define FRAME_COUNT 3
-#define MAX_CONFIGS 96
+#define MAX_CONFIGS 128
 #define EDGE_RELATIVE 0.01 /* second difference of 1/z above 1 % of 1/z: a silhouette */
 #define EDGE_DILATE 3      /* pixels around it */
 
@@ -68,6 +76,7 @@ typedef struct config {
     bool density_matched; /* every medium's density halved: the exact model's optical depth
                              through a particle's centre in the cheaper models (DESIGN §2.1) */
     bool keep; /* keep the GPU images (LUT comparisons) */
+    int lod; /* at most this many particles drawn (src/lod.h), 0: all */
 } config;
 
 typedef struct result {
@@ -184,74 +193,21 @@ static void read_distances(ref_frame *rf, int w, int h)
     free(window);
 }
 
-static void fill_media(sbfx *fx, sbfx_rf_frame *f)
-{
-    const sbfx_medium_params *m = sbfx_media(fx);
-    for (int i = 0; i < SBFX_MEDIUM_COUNT; i++)
-        f->media[i] = (sbfx_rf_medium){
-            .albedo = m[i].albedo, .tau = m[i].tau, .phase_g = m[i].phase_g,
-            .color = {m[i].color[0], m[i].color[1], m[i].color[2]},
-            .detail_strength = m[i].detail_strength, .detail_window = m[i].detail_window,
-            .t0 = m[i].t0, .t1 = m[i].t1, .cooling = m[i].cooling, .emission_scale = m[i].emission_scale,
-            .has_detail = m[i].detail_strength > 0};
-}
-
-static int fill_lights(sbfx *fx, const float view[16], sbfx_rf_light *out, double ambient[3])
-{
-    sbfx_view_light lights[SBFX_RF_MAX_LIGHTS];
-    int n = sbfx_frame_lights(fx, view, lights, SBFX_RF_MAX_LIGHTS);
-    for (int i = 0; i < n; i++)
-        for (int k = 0; k < 4; k++) {
-            out[i].vector[k] = lights[i].vector[k];
-            if (k < 3) out[i].color[k] = lights[i].color[k];
-        }
-    float a[3];
-    sbfx_frame_ambient(fx, a);
-    for (int k = 0; k < 3; k++) ambient[k] = a[k];
-    return n;
-}
-
-static sbfx_rf_particle *fill_particles(sbfx *fx, const float view[16], int *count)
-{
-    const sbfx_view_particle *v;
-    int n = sbfx_frame_particles(fx, view, &v);
-    sbfx_rf_particle *p = xcalloc(n > 0 ? (size_t)n : 1, sizeof(*p));
-    for (int i = 0; i < n; i++) {
-        p[i] = (sbfx_rf_particle){.radius = v[i].radius, .intensity = v[i].intensity, .medium = v[i].medium};
-        for (int k = 0; k < 3; k++) p[i].center[k] = v[i].center[k], p[i].detail[k] = v[i].detail[k];
-    }
-    *count = n;
-    return p;
-}
-
 /* The exact model per full-resolution pixel, composited over the scene. */
 static void render_reference(bench *b, sbfx *fx, ref_frame *rf)
 {
     int w = b->opt.width, h = b->opt.height;
-    const float *p = rf->frame.projection;
-    sbfx_rf_light lights[SBFX_RF_MAX_LIGHTS];
-    sbfx_rf_frame f = {.width = w, .height = h, .projection = {p[0], p[5], p[8], p[9]},
-                       .near = sbfx_window_distance(&rf->frame, 0.0f), .opaque_distance = rf->distance,
-                       .opacity = SBFX_OPACITY_EXACT, .lights = lights, .detail = b->detail,
-                       .detail_size = b->detail_size, .detail_frames = b->detail_frames,
-                       .detail_time = sbfx_detail_time(fx), .cmf = &b->cmf,
-                       .blackbody_norm = sbfx_blackbody_norm(&b->cmf, SBFX_DEFAULT_MAX_KELVIN)};
-    fill_media(fx, &f);
-    f.light_count = fill_lights(fx, rf->frame.view, lights, f.ambient);
-    sbfx_rf_particle *particles = fill_particles(fx, rf->frame.view, &rf->particles);
-    double *layer = xcalloc((size_t)w * h * 4, sizeof(double));
     uint8_t *footprint = xcalloc((size_t)w * h, 1);
-    if (sbfx_rf_render_layer(&f, particles, rf->particles, layer, footprint) < 0) die("reference", "out of memory");
-    sbfx_rf_composite(layer, rf->scene_rgba, w, h, SBFX_TONE_MAP_HUE_PRESERVING, 1.0, rf->ref_rgb);
+    bench_reference r = {b->detail, b->detail_size, b->detail_frames, &b->cmf};
+    rf->particles = bench_reference_render(&r, fx, &rf->frame, rf->distance, rf->scene_rgba, rf->ref_rgb, footprint);
+    if (rf->particles < 0) die("reference", "out of memory");
     bench_edge_mask(rf->distance, w, h, EDGE_RELATIVE, EDGE_DILATE, rf->edge);
     rf->edge_pixels = 0;
     for (size_t i = 0; i < (size_t)w * h; i++) {
         rf->edge[i] = rf->edge[i] && footprint[i];
         rf->edge_pixels += rf->edge[i];
     }
-    free(layer);
     free(footprint);
-    free(particles);
 }
 
 static void write_png(const bench *b, const char *name, const uint8_t *rgba)
@@ -326,12 +282,25 @@ typedef struct render_call {
     sbfx *fx;
     const sbfx_frame *frame;
     bool failed;
+    int lod;                   /* config.lod */
+    particle_lod *lod_state;   /* its work memory, sized for the pool */
+    sbfx_view_particle *lod_view;
 } render_call;
 
+/* With a level of detail: the frame's particles, reduced, drawn as view particles (the same
+ * passes as sbfx_render; the scene has no post effects, so no velocities are lost). */
 static void render_once(void *user)
 {
     render_call *rc = user;
-    if (sbfx_render(rc->fx, rc->frame) != SBFX_OK) rc->failed = true;
+    if (!rc->lod) {
+        if (sbfx_render(rc->fx, rc->frame) != SBFX_OK) rc->failed = true;
+        return;
+    }
+    const sbfx_view_particle *v;
+    int n = sbfx_frame_particles(rc->fx, rc->frame->view, &v);
+    memcpy(rc->lod_view, v, (size_t)n * sizeof(*v));
+    n = lod_reduce(rc->lod_state, rc->lod_view, n, rc->lod);
+    if (sbfx_render_view_particles(rc->fx, rc->frame, rc->lod_view, n) != SBFX_OK) rc->failed = true;
 }
 
 typedef struct samples {
@@ -397,7 +366,16 @@ static void run_config(bench *b, result *res)
     if (res->c.density_matched) match_density(fx);
     samples s = {.part_ok = true};
     uint8_t *gpu = xcalloc((size_t)b->opt.width * b->opt.height, 4);
-    render_call rc = {fx, NULL, false};
+    render_call rc = {fx, NULL, false, res->c.lod, NULL, NULL};
+    particle_lod lod;
+    void *lod_work = NULL;
+    if (rc.lod) {
+        int capacity = fx->pool.capacity;
+        lod_work = xcalloc(1, lod_work_size(capacity));
+        lod_init(&lod, lod_work, capacity);
+        rc.lod_state = &lod;
+        rc.lod_view = xcalloc((size_t)capacity, sizeof(*rc.lod_view));
+    }
     for (int i = 0; i < FRAME_COUNT && !rc.failed; i++) {
         const ref_frame *rf = &b->frames[i];
         advance_to(fx, rf->t);
@@ -414,6 +392,8 @@ static void run_config(bench *b, result *res)
     if (rc.failed) fprintf(stderr, "bench: render failed: %s\n", sbfx_last_error(fx));
     summarise(b, res, &s);
     free(gpu);
+    free(lod_work);
+    free(rc.lod_view);
     sbfx_destroy(fx);
 }
 
@@ -483,6 +463,16 @@ static int variant_configs(const options *o, config *out)
             out[n] = make_config(e ? SBFX_OPACITY_EXACT : SBFX_OPACITY_SPHERICAL, s, SBFX_FORMAT_RGBA16F, nd);
             out[n++].light_per_particle = true;
         }
+    /* the ladder's last resort (issue 11): at most N particles, at 1/8 (the cheapest scale),
+     * with light per pixel (both upsamplings) and per particle: below whichever is cheapest */
+    for (size_t m = 0; m < 4 && !o->quick; m++)
+        for (int u = 0; u < 3; u++)
+            for (int lod = 256; lod >= 16 && (u < 2 || m >= 2); lod /= 4) {
+                out[n] = make_config(modes[m], 8, SBFX_FORMAT_RGBA16F,
+                                     u == 1 ? SBFX_UPSAMPLE_BILINEAR : SBFX_UPSAMPLE_NEAREST_DEPTH);
+                out[n].light_per_particle = u == 2;
+                out[n++].lod = lod;
+            }
     /* model against shape: the cheaper models with the density that matches the exact model's
      * optical depth through the centre, at full and quarter resolution */
     for (int s = 1; s <= 4; s *= 4)
@@ -526,10 +516,12 @@ static void short_label(const result *r, char *out, size_t n)
     const char *lut = c->analytic_blackbody && c->analytic_phase ? " aBP"
                       : c->analytic_blackbody ? " aBB" : c->analytic_phase ? " aPh" : "";
     const char *fmt = r->used_format == SBFX_FORMAT_RGBA8 ? " 8" : r->used_format == SBFX_FORMAT_RGBA32F ? " 32F" : "";
-    snprintf(out, n, "%.3s/%d %s%s%s%s%s%s", mode_names[c->opacity], c->divisor,
+    char lod[16] = "";
+    if (c->lod) snprintf(lod, sizeof(lod), " lod%d", c->lod);
+    snprintf(out, n, "%.3s/%d %s%s%s%s%s%s%s", mode_names[c->opacity], c->divisor,
              c->upsample == SBFX_UPSAMPLE_BILINEAR ? "bl" : "nd", fmt, lut,
              c->detail == SBFX_DETAIL_R32F ? " d32" : "", c->light_per_particle ? " lpp" : "",
-             c->density_matched ? " tau/2" : "");
+             c->density_matched ? " tau/2" : "", lod);
 }
 
 static bool is_grid_point(const result *r)
@@ -537,7 +529,7 @@ static bool is_grid_point(const result *r)
     const config *c = &r->c;
     return c->format == SBFX_FORMAT_RGBA16F && !c->analytic_blackbody && !c->analytic_phase &&
            c->detail == SBFX_DETAIL_R16F && c->opacity != SBFX_OPACITY_FLOOR && !c->light_per_particle &&
-           !c->density_matched;
+           !c->density_matched && !c->lod;
 }
 
 /* ---- output -------------------------------------------------------------------------- */
@@ -556,17 +548,18 @@ static void write_csv(const bench *b)
     FILE *f = open_out(b, "accuracy.csv");
     fprintf(f, "mode,scale,format,upsample,lut,detail,ms,ms_min,ms_max,wall_ms,particle_ms,particle_ms_min,"
                "particle_ms_max,particle_wall_ms,mean_abs_err,max_abs_err,psnr,edge_mean_abs_err,"
-               "edge_max_abs_err,edge_psnr,pareto,density\n");
+               "edge_max_abs_err,edge_psnr,pareto,density,lod\n");
     for (int i = 0; i < b->result_count; i++) {
         const result *r = &b->results[i];
         const config *c = &r->c;
-        fprintf(f, "%s,%s,%s,%s,%s,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.4f,%.2f,%.2f,%.4f,%.2f,%.2f,%d,%s\n",
+        fprintf(f, "%s,%s,%s,%s,%s,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.4f,%.2f,%.2f,%.4f,%.2f,%.2f,%d,%s,%d\n",
                 mode_names[c->opacity], scale_fraction(c->divisor), format_name(r->used_format),
                 upsample_name(c->upsample), lut_name(c), c->detail == SBFX_DETAIL_R32F ? "R32F" : "R16F", r->ms,
                 r->ms_min, r->ms_max, r->wall_ms, r->part_ms, r->part_min, r->part_max, r->part_wall_ms,
                 bench_error_mean(&r->err), r->err.max_abs, bench_psnr(r->err.sum_sq, r->err.count),
                 bench_error_edge_mean(&r->err), r->err.edge_max_abs,
-                bench_psnr(r->err.edge_sum_sq, r->err.edge_count), r->pareto, c->density_matched ? "matched" : "scene");
+                bench_psnr(r->err.edge_sum_sq, r->err.edge_count), r->pareto, c->density_matched ? "matched" : "scene",
+                c->lod);
     }
     fclose(f);
 }
@@ -611,7 +604,7 @@ static void mark_pareto(bench *b)
         err[i] = bench_error_mean(&b->results[i].err);
         /* a matched density is a re-tuned scene, not a quality the module offers */
         include[i] = b->results[i].ok && b->results[i].c.opacity != SBFX_OPACITY_FLOOR &&
-                     !b->results[i].c.density_matched;
+                     !b->results[i].c.density_matched && !b->results[i].c.lod;
     }
     bench_pareto(ms, err, include, b->result_count, front);
     for (int i = 0; i < b->result_count; i++) b->results[i].pareto = front[i];
@@ -790,7 +783,7 @@ static bool is_quality(const result *r)
 {
     const config *c = &r->c;
     return r->ok && c->format == SBFX_FORMAT_RGBA16F && !c->analytic_blackbody && !c->analytic_phase &&
-           c->detail == SBFX_DETAIL_R16F && c->opacity != SBFX_OPACITY_FLOOR && !c->density_matched;
+           c->detail == SBFX_DETAIL_R16F && c->opacity != SBFX_OPACITY_FLOOR && !c->density_matched && !c->lod;
 }
 
 static void quality_line(FILE *f, const char *what, const result *r)
@@ -865,6 +858,19 @@ static void open_gl(bench *b)
            b->timer.has_query ? "yes" : "no (wall clock)");
 }
 
+/* --match: any of the comma-separated parts is in the label */
+static bool label_matches(const char *label, const char *match)
+{
+    char part[64];
+    for (const char *p = match; *p;) {
+        size_t len = strcspn(p, ",");
+        snprintf(part, sizeof(part), "%.*s", (int)(len < sizeof(part) ? len : sizeof(part) - 1), p);
+        if (len > 0 && strstr(label, part)) return true;
+        p += len + (p[len] == ',');
+    }
+    return false;
+}
+
 static void run_all(bench *b)
 {
     config configs[MAX_CONFIGS];
@@ -875,7 +881,7 @@ static void run_all(bench *b)
         r->c = configs[i];
         char label[64];
         short_label(r, label, sizeof(label));
-        if (b->opt.match && !strstr(label, b->opt.match)) continue;
+        if (b->opt.match && !label_matches(label, b->opt.match)) continue;
         b->result_count++;
         double start = seconds_now();
         run_config(b, r);

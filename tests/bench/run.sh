@@ -39,6 +39,9 @@ awk -F, 'NR == 1 {
         $col["pareto"] == 1 ? "★" : ""
 }' "$OUT/accuracy.csv" >"$OUT/accuracy.md"
 
+# issue 11: the quality ladder this run's front proposes (make ladder commits it to src/)
+tools/ladder.sh "$OUT/accuracy.csv" "$OUT/ladder_default.h" || true
+
 if command -v gnuplot >/dev/null 2>&1; then
     gnuplot -e "dir='$OUT'" tests/bench/accuracy.gp
 else
@@ -67,8 +70,15 @@ if [ -x "$BUILD/bench/bench_state" ]; then
     mesa_glthread=true "$BUILD/bench/bench_state" --out "$OUT" --label glthread --append | tee -a "$OUT/state.txt"
 fi
 
+# issue 11: the frame budget — the barrage at every fixed level and at several budgets
+if [ -x "$BUILD/bench/bench_budget" ]; then
+    "$BUILD/bench/bench_budget" --out "$OUT" | tee "$OUT/budget.log"
+    if command -v gnuplot >/dev/null 2>&1; then gnuplot -e "dir='$OUT'" tests/bench/budget.gp; fi
+    cat "$OUT/budget.txt" >>"$OUT/summary.txt"
+fi
+
 echo "time      : make bench took $(($(date +%s) - start)) s" >>"$OUT/summary.txt"
 echo
 cat "$OUT/summary.txt"
 echo
-echo "bench: $OUT/accuracy.csv (.md), $OUT/accuracy.png, $OUT/summary.txt"
+echo "bench: $OUT/accuracy.csv (.md), $OUT/accuracy.png, $OUT/summary.txt, $OUT/budget.csv, $OUT/budget.png"

@@ -287,22 +287,31 @@ static sbfx_scene *scene_from(const char *path, const char *extra)
 
 typedef struct state_case {
     const char *name, *path, *extra, *effect;
+    const char *quality; /* switched to after sbfx_create (sbfx_set_quality), NULL: none */
+    float budget_ms;     /* desc.frame_budget_ms */
 } state_case;
 
 /* The built-in explosion, every post effect (heat shimmer, velocity blur, depth of field), the
  * seed's history blur, and lit smoke (a 2D-array texture on a fifth unit). */
 static const state_case cases[] = {
-    {"built-in explosion", NULL, NULL, "explosion"},
-    {"post.cfg: shimmer, velocity blur, depth of field", "scenes/post.cfg", "", "explosion"},
+    {"built-in explosion", NULL, NULL, "explosion", NULL, 0.0f},
+    {"post.cfg: shimmer, velocity blur, depth of field", "scenes/post.cfg", "", "explosion", NULL, 0.0f},
     {"explosion with history blur", "scenes/explosion.cfg", "\npost = { motion_blur = { mode = \"history\"; persistence = 0.15; }; };\n",
-     "explosion"},
-    {"lit-smoke.cfg", "scenes/lit-smoke.cfg", "", "column"},
+     "explosion", NULL, 0.0f},
+    {"lit-smoke.cfg", "scenes/lit-smoke.cfg", "", "column", NULL, 0.0f},
+    /* a level's first use makes programs, the black-body constants, a wider instance buffer and
+     * the level of detail's memory inside sbfx_set_quality; targets inside sbfx_render */
+    {"built-in explosion switched to spherical/2/bl/lpp/abb/lod64", NULL, NULL, "explosion",
+     "spherical/2/bl/lpp/abb/lod64", 0.0f},
+    /* the budget walks down at once: timer queries around the passes, levels switched in render */
+    {"built-in explosion under a budget nothing meets (0.001 ms)", NULL, NULL, "explosion", NULL, 0.001f},
 };
 
 static sbfx *case_module(host *h, const state_case *c)
 {
     sbfx_scene *scene = c->path ? scene_from(c->path, c->extra) : NULL;
-    sbfx *fx = fixture_module(&h->gl, (sbfx_desc){.scene = scene, .ignore_timeline = true, .max_particles = 512});
+    sbfx *fx = fixture_module(&h->gl, (sbfx_desc){.scene = scene, .ignore_timeline = true, .max_particles = 512,
+                                                  .frame_budget_ms = c->budget_ms});
     sbfx_scene_free(scene);
     return fx;
 }
@@ -362,6 +371,12 @@ static void both(host *h, sbfx *fx[2], sbfx_result (*call)(sbfx *, void *), void
 }
 
 static sbfx_result call_update(sbfx *fx, void *arg) { return sbfx_update(fx, *(double *)arg); }
+static sbfx_result call_set_quality(sbfx *fx, void *arg)
+{
+    sbfx_quality q;
+    sbfx_result r = sbfx_quality_parse(arg, &q, NULL, 0);
+    return r == SBFX_OK ? sbfx_set_quality(fx, &q) : r;
+}
 static sbfx_result call_trigger(sbfx *fx, void *arg) { return sbfx_trigger(fx, arg, (const float[3]){0, 0, 0}); }
 
 static sbfx_result call_push_slice(sbfx *fx, void *arg)
@@ -388,6 +403,7 @@ static void run_case(const state_case *c, int expected_queries[3])
     snap_before(&h);
     fx[1] = case_module(&h, c);
     snap_after(&h, "sbfx_create");
+    if (c->quality) both(&h, fx, call_set_quality, (void *)c->quality, "sbfx_set_quality (first use)");
     both(&h, fx, call_trigger, (void *)c->effect, "sbfx_trigger");
     double dt = 0.25;
     both(&h, fx, call_update, &dt, "sbfx_update");
@@ -396,11 +412,20 @@ static void run_case(const state_case *c, int expected_queries[3])
     q[0] = render_both(&h, fx, 0.25, "sbfx_render (first frame: targets made)");
     both(&h, fx, call_update, &dt, "sbfx_update");
     q[1] = render_both(&h, fx, 0.5, "sbfx_render (live particles)");
+    for (int i = 0; c->budget_ms > 0 && i < 8; i++) { /* measurements arrive a few frames late */
+        dt = 0.02;
+        both(&h, fx, call_update, &dt, "sbfx_update");
+        int q_level = render_both(&h, fx, 0.5 + dt * (i + 1), "sbfx_render (the budget's level)");
+        CHECK(q_level == q[1], "%d queries at another level, %d at the top", q_level, q[1]);
+    }
     dt = 10.0;
     for (int i = 0; i < 40; i++) both(&h, fx, call_update, &dt, "sbfx_update");
     sbfx_counters counters;
     sbfx_stats(fx[1], &counters);
     CHECK(counters.particles_alive == 0, "%d particles still alive", counters.particles_alive);
+    printf("#   level %s, %d changes\n", counters.quality, counters.quality_changes);
+    if (c->quality) CHECK(strcmp(counters.quality, c->quality) == 0, "level %s", counters.quality);
+    if (c->budget_ms > 0) CHECK(counters.quality_changes > 0, "the budget did not move the level");
     q[2] = render_both(&h, fx, 10.5, "sbfx_render (idle)");
     printf("#   glGet/glIs calls to save and restore: first frame %d, live particles %d, idle %d\n", q[0], q[1], q[2]);
     CHECK(q[0] == q[1], "first frame %d queries, later frames %d", q[0], q[1]);
@@ -418,11 +443,14 @@ static void run_case(const state_case *c, int expected_queries[3])
  * so the restore asks glIsProgram once): 20 for the pass state (program, vertex array, array
  * buffer, draw framebuffer, viewport, 4 blend functions, 2 equations, depth function and
  * mask, colour mask, 6 enables), 1 glIsProgram, 1 active texture, then one per (unit,
- * target) sbfx binds and one sampler binding per unit. */
+ * target) sbfx binds and one sampler binding per unit; without post effects, 2 more: the
+ * composite asks which texture the host's framebuffer draws into (its scene colour texture is
+ * read for the tone map only when it is not that one). */
 CHECK_TEST(builtin_explosion_leaves_state)
 {
-    /* units 0-3 2D (+ sampler each), unit 1 3D: 22 + 4 + 4 + 1; idle: no pass, no query */
-    int expected[3] = {31, 31, 0};
+    /* units 0-3 2D (+ sampler each), unit 1 3D: 22 + 4 + 4 + 1, + 2 attachment queries; idle: no
+     * pass, no query */
+    int expected[3] = {33, 33, 0};
     run_case(&cases[0], expected);
 }
 
@@ -442,9 +470,24 @@ CHECK_TEST(history_blur_leaves_state)
 
 CHECK_TEST(lit_smoke_leaves_state)
 {
-    /* units 0-2 2D (no black body), unit 1 3D, unit 4 2D array, 4 samplers */
-    int expected[3] = {31, 31, 0};
+    /* units 0-3 2D (3: no black body, the scene colour for the tone map), unit 1 3D, unit 4 2D
+     * array, 4 samplers, + 2 attachment queries */
+    int expected[3] = {35, 35, 0};
     run_case(&cases[3], expected);
+}
+
+CHECK_TEST(quality_first_use_leaves_state)
+{
+    /* as the built-in explosion: the new level binds the same units */
+    int expected[3] = {33, 33, 0};
+    run_case(&cases[4], expected);
+}
+
+CHECK_TEST(frame_budget_leaves_state)
+{
+    /* timer queries are not host state: the same save and restore as without a budget */
+    int expected[3] = {33, 33, 0};
+    run_case(&cases[5], expected);
 }
 
 /* ---- the snapshot can fail -------------------------------------------------------------------- */

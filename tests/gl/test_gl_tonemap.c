@@ -1,13 +1,26 @@
 /* The particles' light on the display (sbfx_tone_map): the composite's output against the CPU
- * tone map (src/reference_frame.c) applied to the particle target the GPU made; `none` is the
- * old composite; the hue-preserving default clips no channel over a picture within [0, 1] and
- * keeps each pixel's chromaticity; exposure scales. */
+ * tone map (ref/reference_frame.c) applied to the particle target the GPU made; `none` is the
+ * old composite; the hue-preserving default keeps each pixel's chromaticity and, where it may
+ * read the host's scene colour, leaves room for it so that no channel clips; a scene colour
+ * texture that is the framebuffer being drawn is not read (a feedback loop); exposure scales. */
 #include "gl_fixture.h"
 #include "reference_frame.h"
 
 #define SIZE 48
 
 static const float background[3] = {0.35f, 0.5f, 0.7f}; /* a sky: bright blue */
+static const float black[3] = {0, 0, 0};
+
+/* What the frame says about the host's scene colour. */
+typedef enum scene_colour { SCENE_NOT_GIVEN, SCENE_GIVEN, SCENE_DRAWN_INTO } scene_colour;
+
+typedef struct tone_case {
+    sbfx_tone_map op;
+    float exposure;
+    const float *back;
+    scene_colour scene;
+    const char *name;
+} tone_case;
 
 static void clear_out(gl_fixture *f, const float rgb[3])
 {
@@ -17,12 +30,25 @@ static void clear_out(gl_fixture *f, const float rgb[3])
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+/* An RGBA8 scene colour texture of the background, as a host's scene pass leaves it. */
+static GLuint scene_texture(const float rgb[3])
+{
+    static uint8_t texels[SIZE * SIZE * 4];
+    for (int i = 0; i < SIZE * SIZE; i++)
+        for (int k = 0; k < 4; k++) texels[4 * i + k] = (uint8_t)lrintf((k < 3 ? rgb[k] : 1.0f) * 255.0f);
+    GLuint t;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, SIZE, SIZE, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return t;
+}
+
 /* Hot fire in front of dust lit by a strong light: light far above 1 in most covered pixels. */
-static void render(gl_fixture *f, sbfx_tone_map op, float exposure, const float back[3], float **target,
-                   uint8_t *out)
+static void render(gl_fixture *f, const tone_case *c, float **target, uint8_t *out)
 {
     sbfx *fx = fixture_module(f, (sbfx_desc){.target_divisor = 1, .target_format = SBFX_FORMAT_RGBA32F,
-                                             .ignore_timeline = true, .tone_map = op, .exposure = exposure});
+                                             .ignore_timeline = true, .tone_map = c->op, .exposure = c->exposure});
     const float dir[3] = {0, -0.3f, -1}, color[3] = {6, 5, 4}, ambient[3] = {0.3f, 0.3f, 0.3f};
     sbfx_set_light(fx, dir, color, ambient);
     sbfx_view_particle p[3] = {
@@ -30,13 +56,18 @@ static void render(gl_fixture *f, sbfx_tone_map op, float exposure, const float 
         {.center = {-0.5f, 0, -4}, .radius = 1.0f, .detail = {0.2f, 0.4f, 0.1f}, .intensity = 1, .medium = SBFX_FIRE},
         {.center = {-0.9f, -0.6f, -3.5f}, .radius = 0.5f, .detail = {0.3f, 0.7f, 0.2f}, .intensity = 0.3f,
          .medium = SBFX_FIRE}};
-    clear_out(f, back);
-    CHECK(sbfx_render_view_particles(fx, &f->frame, p, 3) == SBFX_OK, "%s", sbfx_last_error(fx));
+    clear_out(f, c->back);
+    sbfx_frame frame = f->frame;
+    GLuint scene = c->scene == SCENE_GIVEN ? scene_texture(c->back) : 0;
+    frame.scene_color_texture = c->scene == SCENE_DRAWN_INTO ? f->out_texture : scene;
+    CHECK(sbfx_render_view_particles(fx, &frame, p, 3) == SBFX_OK, "%s", sbfx_last_error(fx));
+    CHECK(glGetError() == GL_NO_ERROR);
     int w, h;
     *target = fixture_read_target(fx, &w, &h);
     glBindFramebuffer(GL_FRAMEBUFFER, f->out_fbo);
     glReadPixels(0, 0, SIZE, SIZE, GL_RGBA, GL_UNSIGNED_BYTE, out);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (scene) glDeleteTextures(1, &scene);
     sbfx_destroy(fx);
 }
 
@@ -46,16 +77,18 @@ typedef struct outcome {
     double worst_ratio;       /* largest change of a channel ratio (g/r, b/r) over a black picture */
 } outcome;
 
-static outcome compare(sbfx_tone_map op, float exposure, const float back[3], const float *target,
-                       const uint8_t *out)
+static outcome compare(const tone_case *c, const float *target, const uint8_t *out)
 {
     outcome o = {0};
+    sbfx_tone_map op = c->op ? c->op : SBFX_TONE_MAP_HUE_PRESERVING; /* zero in the desc: the defaults */
+    double exposure = c->exposure > 0 ? c->exposure : 1.0, back[3];
+    for (int k = 0; k < 3; k++) back[k] = lrint(c->back[k] * 255.0) / 255.0; /* what the picture holds */
     for (int i = 0; i < SIZE * SIZE; i++) {
         const float *px = &target[4 * i];
-        double c[3] = {px[0], px[1], px[2]}, mapped[3];
+        double light[3] = {px[0], px[1], px[2]}, mapped[3];
         if (px[3] > 1.0f - 1.0f / 255.0f) continue;
         o.covered++;
-        sbfx_rf_tone_map(op, exposure, c, px[3], mapped);
+        sbfx_rf_tone_map(op, exposure, light, px[3], c->scene == SCENE_GIVEN ? back : NULL, mapped);
         bool clipped = false;
         for (int k = 0; k < 3; k++) {
             double want = fmin(fmax(back[k] * px[3] + mapped[k], 0.0), 1.0) * 255.0;
@@ -63,27 +96,27 @@ static outcome compare(sbfx_tone_map op, float exposure, const float back[3], co
             clipped = clipped || out[4 * i + k] == 255;
         }
         o.clipped += clipped;
-        if (back[0] == 0.0f && c[0] > 0.05 && out[4 * i] > 60) /* 8-bit rounding: 0.5 / 60 */
+        if (c->back[0] == 0.0f && light[0] > 0.05 && out[4 * i] > 60) /* 8-bit rounding: 0.5 / 60 */
             for (int k = 1; k < 3; k++)
-                o.worst_ratio = fmax(o.worst_ratio, fabs((double)out[4 * i + k] / out[4 * i] - c[k] / c[0]));
+                o.worst_ratio = fmax(o.worst_ratio, fabs((double)out[4 * i + k] / out[4 * i] - light[k] / light[0]));
     }
     return o;
 }
 
-static outcome run(gl_fixture *f, sbfx_tone_map op, float exposure, const float back[3], const char *name)
+static outcome run(gl_fixture *f, tone_case c)
 {
+    static const char *const scene_names[] = {"not given", "given", "drawn into"};
     float *target;
     uint8_t out[SIZE * SIZE * 4];
-    render(f, op, exposure, back, &target, out);
-    /* zero in the desc: the defaults */
-    outcome o = compare(op ? op : SBFX_TONE_MAP_HUE_PRESERVING, exposure > 0 ? exposure : 1.0f, back, target, out);
-    printf("# %-15s exposure %.2f over %.2f %.2f %.2f: %d of %d covered pixels clipped, GPU vs CPU %.1f levels, "
-           "channel ratios moved %.3f\n", name, exposure, back[0], back[1], back[2], o.clipped, o.covered,
-           o.worst_level, o.worst_ratio);
+    render(f, &c, &target, out);
+    outcome o = compare(&c, target, out);
+    printf("# %-15s exposure %.2f over %.2f %.2f %.2f, scene colour %s: %d of %d covered pixels clipped, "
+           "GPU vs CPU %.1f levels, channel ratios moved %.3f\n", c.name, c.exposure, c.back[0], c.back[1], c.back[2],
+           scene_names[c.scene], o.clipped, o.covered, o.worst_level, o.worst_ratio);
     free(target);
-    CHECK(o.covered > SIZE * SIZE / 8, "%s: the particles cover %d pixels", name, o.covered);
+    CHECK(o.covered > SIZE * SIZE / 8, "%s: the particles cover %d pixels", c.name, o.covered);
     /* 1 level of rounding, 1 of float vs double near a rounding edge */
-    CHECK(o.worst_level <= 2.0, "%s: GPU %.1f levels off the CPU tone map", name, o.worst_level);
+    CHECK(o.worst_level <= 2.0, "%s: GPU %.1f levels off the CPU tone map", c.name, o.worst_level);
     return o;
 }
 
@@ -91,22 +124,44 @@ CHECK_TEST(none_is_the_plain_composite)
 {
     gl_fixture f;
     fixture_open_far(&f, SIZE, SIZE);
-    outcome o = run(&f, SBFX_TONE_MAP_NONE, 1.0f, background, "none");
+    outcome o = run(&f, (tone_case){SBFX_TONE_MAP_NONE, 1.0f, background, SCENE_GIVEN, "none"});
     CHECK(o.clipped > o.covered / 10, "the case must clip without tone mapping: %d of %d", o.clipped, o.covered);
     fixture_close(&f);
 }
 
-CHECK_TEST(hue_preserving_clips_nothing_and_keeps_ratios)
+CHECK_TEST(hue_preserving_clips_nothing_over_a_known_scene)
 {
     gl_fixture f;
     fixture_open_far(&f, SIZE, SIZE);
-    outcome o = run(&f, SBFX_TONE_MAP_DEFAULT, 0.0f, background, "hue-preserving");
+    outcome o = run(&f, (tone_case){SBFX_TONE_MAP_DEFAULT, 0.0f, background, SCENE_GIVEN, "hue-preserving"});
     CHECK(o.clipped == 0, "%d of %d pixels clipped", o.clipped, o.covered);
-    const float black[3] = {0, 0, 0};
-    o = run(&f, SBFX_TONE_MAP_HUE_PRESERVING, 1.0f, black, "hue-preserving");
+    o = run(&f, (tone_case){SBFX_TONE_MAP_PER_CHANNEL, 1.0f, background, SCENE_GIVEN, "per-channel"});
+    CHECK(o.clipped == 0, "%d of %d pixels clipped", o.clipped, o.covered);
+    /* unknown picture: the light alone is kept below 1, the sky behind it may still clip */
+    outcome blind = run(&f, (tone_case){SBFX_TONE_MAP_DEFAULT, 1.0f, background, SCENE_NOT_GIVEN, "hue-preserving"});
+    CHECK(blind.clipped > 0, "over a bright sky the blind mapping should clip somewhere");
+    fixture_close(&f);
+}
+
+CHECK_TEST(hue_preserving_keeps_channel_ratios)
+{
+    gl_fixture f;
+    fixture_open_far(&f, SIZE, SIZE);
+    outcome o = run(&f, (tone_case){SBFX_TONE_MAP_HUE_PRESERVING, 1.0f, black, SCENE_GIVEN, "hue-preserving"});
+    CHECK(o.clipped == 0, "%d of %d pixels clipped over black", o.clipped, o.covered);
     CHECK(o.worst_ratio < 0.02, "a channel ratio moved by %g", o.worst_ratio); /* 8-bit rounding */
-    outcome per_channel = run(&f, SBFX_TONE_MAP_PER_CHANNEL, 1.0f, black, "per-channel");
+    outcome per_channel = run(&f, (tone_case){SBFX_TONE_MAP_PER_CHANNEL, 1.0f, black, SCENE_GIVEN, "per-channel"});
     CHECK(per_channel.worst_ratio > 0.1, "per channel should bend hues: %g", per_channel.worst_ratio);
+    fixture_close(&f);
+}
+
+/* A host that composites into the framebuffer holding its scene colour texture: sbfx must not
+ * sample what it draws; the mapping is the one for an unknown picture. */
+CHECK_TEST(scene_colour_being_drawn_is_not_read)
+{
+    gl_fixture f;
+    fixture_open_far(&f, SIZE, SIZE);
+    run(&f, (tone_case){SBFX_TONE_MAP_HUE_PRESERVING, 1.0f, background, SCENE_DRAWN_INTO, "hue-preserving"});
     fixture_close(&f);
 }
 
@@ -114,9 +169,8 @@ CHECK_TEST(exposure_scales_the_light)
 {
     gl_fixture f;
     fixture_open_far(&f, SIZE, SIZE);
-    const float black[3] = {0, 0, 0};
-    run(&f, SBFX_TONE_MAP_NONE, 0.25f, black, "none");
-    run(&f, SBFX_TONE_MAP_HUE_PRESERVING, 4.0f, background, "hue-preserving");
+    run(&f, (tone_case){SBFX_TONE_MAP_NONE, 0.25f, black, SCENE_NOT_GIVEN, "none"});
+    run(&f, (tone_case){SBFX_TONE_MAP_HUE_PRESERVING, 4.0f, background, SCENE_GIVEN, "hue-preserving"});
     fixture_close(&f);
 }
 

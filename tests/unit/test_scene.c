@@ -160,4 +160,26 @@ CHECK_TEST(tone_map_and_exposure_keys)
     expect_error("render = { tonemap = \"none\"; };\n" MEDIA EFFECT(EMITTER), 1, "did you mean 'tone_map'");
 }
 
+/* render.budget_ms and render.ladder (issue 11): a positive time, known level names. */
+CHECK_TEST(budget_and_ladder_errors_name_line_and_token)
+{
+    expect_error(MEDIA EFFECT(EMITTER) "\nrender = { budget_ms = 0; };\n", 4, "'budget_ms' = 0");
+    expect_error(MEDIA EFFECT(EMITTER) "\nrender = { budget_ms = -4.0; };\n", 4, "'budget_ms' = -4");
+    expect_error(MEDIA EFFECT(EMITTER) "\nrender = {\n budget_ms = \"fast\"; };\n", 5, "'budget_ms' must be a number");
+    expect_error(MEDIA EFFECT(EMITTER) "\nrender = {\n\n ladder = [ \"exact/4/nd\", \"exact/4/zz\" ]; };\n", 6,
+                 "'ladder'[1]: quality \"exact/4/zz\": unknown upsample 'zz'");
+    expect_error(MEDIA EFFECT(EMITTER) "\nrender = { ladder = [ \"exact/4/nd/turbo\" ]; };\n", 4, "'turbo'");
+    expect_error(MEDIA EFFECT(EMITTER) "\nrender = { ladder = [ 4 ]; };\n", 4, "'ladder'[0] must be a string");
+    expect_error(MEDIA EFFECT(EMITTER) "\nrender = { ladder = 4; };\n", 4, "'ladder' must be an array");
+}
+
+CHECK_TEST(budget_and_ladder_parse)
+{
+    char err[256];
+    sbfx_scene *scene = NULL;
+    const char *text = MEDIA EFFECT(EMITTER) "render = { budget_ms = 12.5; ladder = [ \"exact/4/nd\", \"spherical/8/bl/lod64\" ]; };\n";
+    CHECK(sbfx_scene_parse(text, "ok.cfg", &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
+    sbfx_scene_free(scene);
+}
+
 int main(int argc, char **argv) { return check_main_args(argc, argv); }

@@ -51,7 +51,8 @@ static const scene_plan plans[] = {
 
 typedef struct stats {
     long particle_pixels, clipped, fire_pixels;
-    double *duv; /* one per fire pixel */
+    double *duv;           /* one per fire pixel */
+    double luminance_sum;  /* of the fire pixels as displayed: how bright the fire looks */
 } stats;
 
 typedef struct bench {
@@ -220,6 +221,7 @@ static void measure_fire(const bench *b, stats st[OPERATORS + 1])
             for (int k = 0; k < 3; k++) rgb[k] = o < OPERATORS ? displayed(px[k]) : px[k]; /* the last: unclamped */
             if (luminance(rgb) <= MIN_LUMINANCE) continue;
             srgb_to_uv(rgb, uv);
+            st[o].luminance_sum += luminance(rgb);
             st[o].duv[st[o].fire_pixels++] = locus_distance(b, uv);
         }
     }
@@ -239,13 +241,14 @@ static void report(const char *scene, const char *name, stats *s, FILE *csv, FIL
     long n = s->fire_pixels;
     double mean = n ? sum / n : NAN, median = n ? s->duv[n / 2] : NAN, p95 = n ? s->duv[(long)(0.95 * (n - 1))] : NAN;
     double share = s->particle_pixels ? (double)s->clipped / s->particle_pixels : NAN;
-    fprintf(csv, "%s,%s,%ld,%ld,%.4f,%ld,%.5f,%.5f,%.5f\n", scene, name, s->particle_pixels, s->clipped, share, n, mean,
-            median, p95);
+    double fire_y = n ? s->luminance_sum / n : NAN;
+    fprintf(csv, "%s,%s,%ld,%ld,%.4f,%ld,%.5f,%.5f,%.5f,%.4f\n", scene, name, s->particle_pixels, s->clipped, share, n,
+            mean, median, p95, fire_y);
     char clipped[48] = "light before display:     ";
     if (strcmp(name, "unclamped") != 0) snprintf(clipped, sizeof(clipped), "clipped %5.1f %% of %7ld,", 100.0 * share,
                                                  s->particle_pixels);
     fprintf(txt, "  %-9s %-14s %s fire pixels %5ld: du'v' to the Planckian locus mean %.4f, median %.4f, 95th "
-                 "percentile %.4f\n", scene, name, clipped, n, mean, median, p95);
+                 "percentile %.4f; mean luminance %.3f\n", scene, name, clipped, n, mean, median, p95, fire_y);
 }
 
 static void run_scene(bench *b, const scene_plan *plan, FILE *csv, FILE *txt)
@@ -311,7 +314,7 @@ int main(int argc, char **argv)
     snprintf(path, sizeof(path), "%s/tonemap.txt", out);
     FILE *txt = fopen(path, "w");
     if (!csv || !txt) die(out, strerror(errno));
-    fprintf(csv, "scene,tone_map,particle_pixels,clipped,clipped_share,fire_pixels,duv_mean,duv_median,duv_p95\n");
+    fprintf(csv, "scene,tone_map,particle_pixels,clipped,clipped_share,fire_pixels,duv_mean,duv_median,duv_p95,fire_luminance\n");
     fprintf(txt, "display: particle pixels with a clipped channel, and the displayed fire pixels' distance from the "
                  "black-body locus (CIE 1976 u'v'), %dx%d, each scene from its camera\n", b->width, b->height);
     for (size_t i = 0; i < sizeof(plans) / sizeof(plans[0]); i++) run_scene(b, &plans[i], csv, txt);
