@@ -30,6 +30,9 @@ struct display_ops {
     /* After the last frame: waits until it is on screen, writes what is left (contact sheet,
      * screenshot). */
     int (*finish)(struct display *d, char *err, size_t n);
+    /* After a GPU reset: a new GL context in place of the lost one, current, with the
+     * backend's own GL objects (d->framebuffer) made again in it. */
+    int (*reset_context)(struct display *d, char *err, size_t n);
     /* Puts the screen back as it was, releases everything; safe after a failed create. */
     void (*destroy)(struct display *d);
 };
@@ -38,6 +41,9 @@ struct display_counts {
     uint64_t presented;   /* frames handed to the display */
     uint64_t flips;       /* page flips completed (drm) */
     uint64_t missed;      /* vblanks that passed with no new frame between two flips (drm) */
+    uint64_t unplugs;     /* the connector went away: scan-out paused (drm, display_link.h) */
+    uint64_t replugs;     /* it came back: mode set again, scan-out resumed */
+    uint64_t paused;      /* frames rendered but not shown while it was away */
 };
 
 struct display {
@@ -48,6 +54,7 @@ struct display {
     int fd;                     /* poll for POLLIN while busy; -1 when never busy */
     bool busy;
     double refresh_hz;          /* 0 when not paced by a display */
+    bool robust_context;        /* the context has GPU reset notification (gl_reset.h) */
     char description[192];      /* for the banner: "card0 (vkms) Virtual-1 1024x768@60 atomic" */
     struct display_counts counts;
 };

@@ -1,7 +1,9 @@
 /* The DRM/KMS display: drm_device (discovery) + gbm_egl (surface, context) + drm_kms (atomic or
  * legacy) + drm_fb (framebuffers cached per bo). One page flip is in flight at a time: present()
  * swaps, locks the new front bo and queues its flip; the flip event (dispatch) releases the bo
- * that left the screen. The first frame sets the mode. */
+ * that left the screen. The first frame sets the mode. Once a second the connector's state is
+ * read (display_link.h): while it is unplugged, frames are rendered but not shown (the loop is
+ * paced at 10 Hz then), and when it is back the mode is set again. */
 #include "display.h"
 
 #include <errno.h>
@@ -9,12 +11,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "board.h"
 #include "drm_device.h"
 #include "drm_fb.h"
 #include "drm_kms.h"
 #include "drm_writeback.h"
+#include "display_link.h"
 #include "egl_headless.h"
 #include "gbm_egl.h"
 
@@ -31,6 +35,7 @@ struct display_drm {
     bool mode_set;
     unsigned last_sequence;   /* vblank counter of the last flip */
     drmEventContext events;
+    struct display_link link;
 };
 
 static struct display_drm *to_drm(struct display *d)
@@ -84,6 +89,7 @@ static int show(struct display_drm *k, struct gbm_bo *bo, uint32_t fb_id, char *
         int rc = k->kms->modeset(&k->drm, fb_id, err, n);
         if (rc) return rc;
         k->mode_set = true;
+        if (k->shown) gbm_surface_release_buffer(k->ge.surface, k->shown); /* after a replug */
         k->shown = bo; /* on screen now: no event */
         return 0;
     }
@@ -94,11 +100,53 @@ static int show(struct display_drm *k, struct gbm_bo *bo, uint32_t fb_id, char *
     return 0;
 }
 
+static int64_t now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
+}
+
+/* Once a second: is the connector still there. Unplugged: scan-out pauses (logged once); back:
+ * the next frame sets the mode again (logged once). */
+static void check_link(struct display_drm *k)
+{
+    if (!link_check_due(&k->link, now_ns())) return;
+    int connected = drm_device_connector_connected(&k->drm);
+    if (connected < 0) return; /* the ioctl failed: the flips will say why */
+    switch (link_update(&k->link, connected)) {
+    case LINK_PAUSE:
+        k->base.counts.unplugs++;
+        fprintf(stderr, "sbfx-play: DRM %s: %s disconnected; scan-out paused, rendering goes on\n",
+                k->drm.path, k->drm.connector_name);
+        break;
+    case LINK_RESUME:
+        k->base.counts.replugs++;
+        k->mode_set = false;
+        k->last_sequence = 0;
+        fprintf(stderr, "sbfx-play: DRM %s: %s connected again; setting the mode, scan-out resumes\n",
+                k->drm.path, k->drm.connector_name);
+        break;
+    case LINK_NONE: break;
+    }
+}
+
+/* A frame while the connector is away: not shown; the loop slows to 10 Hz. */
+static int skip_frame(struct display *d)
+{
+    struct timespec pace = {0, LINK_PAUSED_FRAME_NS};
+    nanosleep(&pace, NULL);
+    d->counts.paused++;
+    return 0;
+}
+
 static int drm_present(struct display *d, int index, char *err, size_t n)
 {
     struct display_drm *k = to_drm(d);
     int rc = wait_flip(k, err, n); /* the loop normally waited already */
     if (rc) return rc;
+    check_link(k);
+    if (k->link.disconnected) return skip_frame(d);
     if (!eglSwapBuffers(k->ge.display, k->ge.egl_surface)) {
         snprintf(err, n, "eglSwapBuffers: %s", egl_headless_error_string(eglGetError()));
         return -EIO;
@@ -143,10 +191,20 @@ static void drm_destroy(struct display *d)
     free(k);
 }
 
+/* The GBM surface, its buffers on screen and the KMS state stay: only the context is new. */
+static int drm_reset_context(struct display *d, char *err, size_t n)
+{
+    struct display_drm *k = to_drm(d);
+    int rc = gbm_egl_recreate_context(&k->ge, err, n);
+    d->robust_context = k->ge.robust;
+    return rc;
+}
+
 static const struct display_ops drm_ops = {
     .present = drm_present,
     .dispatch = drm_dispatch,
     .finish = drm_finish,
+    .reset_context = drm_reset_context,
     .destroy = drm_destroy,
 };
 
@@ -191,6 +249,7 @@ static int drm_setup(struct display_drm *k, char *err, size_t n)
     d->height = m->vdisplay;
     d->fd = k->drm.fd;
     d->refresh_hz = drm_mode_refresh(m);
+    d->robust_context = k->ge.robust;
     snprintf(d->description, sizeof(d->description), "DRM %s (%s) %s %dx%d@%.2f %s", k->drm.path,
              k->drm.driver, k->drm.connector_name, d->width, d->height, d->refresh_hz, k->kms->name);
     return 0;

@@ -106,17 +106,29 @@ static void headless_destroy(struct display *d)
     free(h);
 }
 
+static int headless_reset_context(struct display *d, char *err, size_t n)
+{
+    struct display_headless *h = to_headless(d);
+    glDeleteFramebuffers(1, &d->framebuffer); /* no-ops in a context really lost */
+    glDeleteRenderbuffers(1, &h->renderbuffer);
+    d->framebuffer = h->renderbuffer = 0;
+    int rc = egl_headless_recreate_context(&h->egl, err, n);
+    d->robust_context = h->egl.robust;
+    return rc ? rc : create_output(h, err, n);
+}
+
 static const struct display_ops headless_ops = {
     .present = headless_present,
     .dispatch = headless_dispatch,
     .finish = headless_finish,
+    .reset_context = headless_reset_context,
     .destroy = headless_destroy,
 };
 
 static int headless_setup(struct display_headless *h, char *err, size_t n)
 {
     const struct display_headless_desc *desc = &h->desc;
-    int rc = egl_headless_open(&h->egl, err, n);
+    int rc = egl_headless_open_robust(&h->egl, err, n);
     if (rc == 0) rc = create_output(h, err, n);
     if (rc) return rc;
     h->pixels = malloc((size_t)desc->width * desc->height * 4);
@@ -128,6 +140,7 @@ static int headless_setup(struct display_headless *h, char *err, size_t n)
         rc = contact_sheet_init(&h->sheet, desc->frames, desc->width, desc->height,
                                 CONTACT_CELL_WIDTH, err, n);
     snprintf(h->base.description, sizeof(h->base.description), "EGL %s", h->egl.platform);
+    h->base.robust_context = h->egl.robust;
     return rc;
 }
 

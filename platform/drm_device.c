@@ -266,3 +266,17 @@ void drm_device_close(struct drm_device *d)
     if (d->fd >= 0) close(d->fd);
     d->fd = -1;
 }
+
+int drm_device_connector_connected(const struct drm_device *d)
+{
+    /* count_modes 1 (not 0): the kernel then reports the current state instead of probing
+     * the connector again (libdrm's drmModeGetConnectorCurrent does the same, with mallocs) */
+    struct drm_mode_modeinfo mode;
+    struct drm_mode_get_connector c;
+    memset(&c, 0, sizeof(c));
+    c.connector_id = d->connector_id;
+    c.count_modes = 1;
+    c.modes_ptr = (uint64_t)(uintptr_t)&mode;
+    if (drmIoctl(d->fd, DRM_IOCTL_MODE_GETCONNECTOR, &c) != 0) return -errno;
+    return c.connection == DRM_MODE_CONNECTED;
+}

@@ -53,6 +53,10 @@ int drm_device_open(struct drm_device *d, const struct drm_device_desc *desc, ch
 /* Puts the CRTC back as drm_device_open found it (its mode and framebuffer, or off). */
 int drm_device_restore(struct drm_device *d, char *err, size_t n);
 void drm_device_close(struct drm_device *d);
+/* The connector's current state, without probing it (what the kernel last saw: a hotplug, or a
+ * state forced through sysfs); one ioctl on stack buffers, nothing allocated. 1 connected,
+ * 0 not, or a negative errno. */
+int drm_device_connector_connected(const struct drm_device *d);
 /* Vertical refresh of a mode in Hz. */
 double drm_mode_refresh(const drmModeModeInfo *mode);
 

@@ -1,6 +1,7 @@
 /* Headless GLES 3.0 context: EGL surfaceless on Mesa, with the fallbacks older or other
  * drivers need. See egl_headless.h for the contract. */
 #include "egl_headless.h"
+#include "gl_reset.h"
 
 #include <EGL/eglext.h>
 #include <GLES3/gl3.h>
@@ -173,6 +174,11 @@ static int create_context(struct egl_headless *egl, char *err, size_t n)
                  "OpenGL ES support: %s", last_egl_error(), HINT_INSTALL);
         return -ENOTSUP;
     }
+    EGLint robust[GL_RESET_ATTRIBS_MAX];
+    egl->robust = egl->robust && gl_reset_context_attribs(egl->display, true, robust);
+    if (egl->robust) egl->context = eglCreateContext(egl->display, egl->config, EGL_NO_CONTEXT, robust);
+    if (egl->context != EGL_NO_CONTEXT) return 0;
+    egl->robust = false; /* offered but refused for this config: a plain context then */
     const EGLint attribs[] = {EGL_CONTEXT_CLIENT_VERSION, 3, EGL_NONE};
     egl->context = eglCreateContext(egl->display, egl->config, EGL_NO_CONTEXT, attribs);
     if (egl->context == EGL_NO_CONTEXT) {
@@ -199,10 +205,11 @@ static int check_gles3(char *err, size_t n)
     return 0;
 }
 
-int egl_headless_open(struct egl_headless *out, char *err, size_t n)
+static int open_context(struct egl_headless *out, bool robust, char *err, size_t n)
 {
     struct egl_headless egl = {
         .display = EGL_NO_DISPLAY, .context = EGL_NO_CONTEXT, .surface = EGL_NO_SURFACE,
+        .robust = robust,
     };
     int rc = open_display(&egl, err, n);
     if (rc) return rc;
@@ -237,6 +244,30 @@ err_display:
     eglTerminate(egl.display);
     eglReleaseThread();
     return rc;
+}
+
+int egl_headless_recreate_context(struct egl_headless *egl, char *err, size_t n)
+{
+    eglMakeCurrent(egl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (egl->context != EGL_NO_CONTEXT) eglDestroyContext(egl->display, egl->context);
+    egl->context = EGL_NO_CONTEXT;
+    int rc = create_context(egl, err, n);
+    if (rc) return rc;
+    if (!eglMakeCurrent(egl->display, egl->surface, egl->surface, egl->context)) {
+        snprintf(err, n, "eglMakeCurrent of the new context failed: %s", last_egl_error());
+        return -EIO;
+    }
+    return check_gles3(err, n);
+}
+
+int egl_headless_open(struct egl_headless *out, char *err, size_t n)
+{
+    return open_context(out, false, err, n);
+}
+
+int egl_headless_open_robust(struct egl_headless *out, char *err, size_t n)
+{
+    return open_context(out, true, err, n);
 }
 
 void egl_headless_close(struct egl_headless *egl)

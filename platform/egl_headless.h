@@ -16,6 +16,7 @@
 #define SBFX_EGL_HEADLESS_H
 
 #include <EGL/egl.h>
+#include <stdbool.h>
 #include <stddef.h>
 
 struct egl_headless {
@@ -25,9 +26,17 @@ struct egl_headless {
     EGLConfig config;     /* EGL_NO_CONFIG_KHR (NULL) with a config-less context */
     const char *platform; /* "surfaceless" or "default": how the display was found */
     int egl_major, egl_minor;
+    bool robust;          /* asked for (open_robust), then: the context has reset notification
+                             (gl_reset.h) */
 };
 
 int egl_headless_open(struct egl_headless *out, char *err, size_t n);
+/* The same with GPU reset notification asked for where EGL offers it (the player; tests and
+ * benches keep the plain context). */
+int egl_headless_open_robust(struct egl_headless *out, char *err, size_t n);
+/* A new context in place of the current one (after a GPU reset: the old one is lost with
+ * everything in it), made current. */
+int egl_headless_recreate_context(struct egl_headless *egl, char *err, size_t n);
 /* Releases the context and the display; safe on a zeroed or already-closed struct. */
 void egl_headless_close(struct egl_headless *egl);
 

@@ -1,5 +1,6 @@
 /* GBM + EGL on a DRM device. */
 #include "gbm_egl.h"
+#include "gl_reset.h"
 
 #include <EGL/eglext.h>
 #include <GLES3/gl3.h>
@@ -80,20 +81,26 @@ static int choose_config(struct gbm_egl *ge, char *err, size_t n)
     return -ENOTSUP;
 }
 
-static int create_context(struct gbm_egl *ge, char *err, size_t n)
+/* An OpenGL ES 3 context, robust where offered (a plain one if the robust one is refused). */
+static int new_context(struct gbm_egl *ge, char *err, size_t n)
 {
-    static const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_NONE};
+    EGLint attribs[GL_RESET_ATTRIBS_MAX];
+    ge->robust = gl_reset_context_attribs(ge->display, true, attribs);
     ge->context = eglCreateContext(ge->display, ge->config, EGL_NO_CONTEXT, attribs);
+    if (ge->context == EGL_NO_CONTEXT && ge->robust) {
+        ge->robust = false;
+        gl_reset_context_attribs(ge->display, false, attribs);
+        ge->context = eglCreateContext(ge->display, ge->config, EGL_NO_CONTEXT, attribs);
+    }
     if (ge->context == EGL_NO_CONTEXT) {
         snprintf(err, n, "eglCreateContext(OpenGL ES 3): %s", egl_error());
         return -ENOTSUP;
     }
-    ge->egl_surface = eglCreateWindowSurface(ge->display, ge->config,
-                                             (EGLNativeWindowType)ge->surface, NULL);
-    if (ge->egl_surface == EGL_NO_SURFACE) {
-        snprintf(err, n, "eglCreateWindowSurface on the GBM surface: %s", egl_error());
-        return -EIO;
-    }
+    return 0;
+}
+
+static int make_current(struct gbm_egl *ge, char *err, size_t n)
+{
     if (!eglMakeCurrent(ge->display, ge->egl_surface, ge->egl_surface, ge->context)) {
         snprintf(err, n, "eglMakeCurrent: %s", egl_error());
         return -EIO;
@@ -105,6 +112,28 @@ static int create_context(struct gbm_egl *ge, char *err, size_t n)
         return -ENOTSUP;
     }
     return 0;
+}
+
+static int create_context(struct gbm_egl *ge, char *err, size_t n)
+{
+    int rc = new_context(ge, err, n);
+    if (rc) return rc;
+    ge->egl_surface = eglCreateWindowSurface(ge->display, ge->config,
+                                             (EGLNativeWindowType)ge->surface, NULL);
+    if (ge->egl_surface == EGL_NO_SURFACE) {
+        snprintf(err, n, "eglCreateWindowSurface on the GBM surface: %s", egl_error());
+        return -EIO;
+    }
+    return make_current(ge, err, n);
+}
+
+int gbm_egl_recreate_context(struct gbm_egl *ge, char *err, size_t n)
+{
+    eglMakeCurrent(ge->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (ge->context != EGL_NO_CONTEXT) eglDestroyContext(ge->display, ge->context);
+    ge->context = EGL_NO_CONTEXT;
+    int rc = new_context(ge, err, n);
+    return rc ? rc : make_current(ge, err, n);
 }
 
 int gbm_egl_open(struct gbm_egl *ge, int drm_fd, int width, int height, char *err, size_t n)

@@ -38,6 +38,10 @@ const char *gpio_line_chip_name(const struct gpio_line *line);
 /* Reads up to max (at most GPIO_KERNEL_FIFO) waiting events: their count, 0 when none wait,
  * or a negative errno (-ENODEV when the chip went away). */
 int gpio_line_read(struct gpio_line *line, struct gpio_event *events, int max);
+/* 0 while the line's chip is there, -ENODEV once it went away (a chip removed from under a
+ * requested line does not always make its event reads fail: the uAPI v1 event descriptor of
+ * Linux 6.1 just stays quiet). One ioctl on the chip, nothing allocated. */
+int gpio_line_check(struct gpio_line *line);
 void gpio_line_close(struct gpio_line *line);
 
 #endif

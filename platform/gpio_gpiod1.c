@@ -146,6 +146,15 @@ int gpio_line_read(struct gpio_line *line, struct gpio_event *events, int max)
     return count;
 }
 
+int gpio_line_check(struct gpio_line *line)
+{
+    if (!line || !line->line) return -EINVAL;
+    /* GPIO_GET_LINEINFO_IOCTL on the chip's descriptor: the kernel fails every chip ioctl with
+     * ENODEV once the chip is gone */
+    if (gpiod_line_update(line->line) == 0) return 0;
+    return errno == ENODEV || errno == ENXIO ? -ENODEV : -errno;
+}
+
 void gpio_line_close(struct gpio_line *line)
 {
     if (!line) return;

@@ -75,14 +75,55 @@ int gpio_triggers_pollfds(const struct gpio_triggers *t, struct pollfd *fds, int
     return used;
 }
 
-static void lose_line(struct gpio_trigger_line *l, int rc, gpio_log_fn log, void *user)
+static void lose_line(struct gpio_trigger_line *l, int rc, int64_t now_ns,
+                      struct gpio_trigger_counts *counts, gpio_log_fn log, void *user)
 {
     char msg[256];
-    snprintf(msg, sizeof(msg), "GPIO %s line %d: reading events failed (%s); the line is ignored "
-             "from now on", l->spec.chip, l->spec.line, strerror(-rc));
+    snprintf(msg, sizeof(msg), "GPIO %s line %d: %s (%s); its trigger is off, requesting it again "
+             "with back-off", l->spec.chip, l->spec.line,
+             rc == -ENODEV ? "the chip went away" : "reading events failed", strerror(-rc));
     if (log) log(msg, user);
     gpio_line_close(l->gpio);
     l->gpio = NULL;
+    l->retry_ms = GPIO_RETRY_MIN_MS;
+    l->retry_at_ns = now_ns + (int64_t)l->retry_ms * 1000000;
+    counts->losses++;
+}
+
+/* One attempt to request a lost line again; quiet unless it worked. */
+static void retry_line(struct gpio_trigger_line *l, int64_t now_ns,
+                       struct gpio_trigger_counts *counts, gpio_log_fn log, void *user)
+{
+    char why[384];
+    counts->retries++;
+    if (gpio_line_open(&l->gpio, l->spec.chip, l->spec.line, l->spec.edge, CONSUMER, why,
+                       sizeof(why)) != 0) {
+        l->gpio = NULL;
+        l->retry_ms = l->retry_ms * 2 < GPIO_RETRY_MAX_MS ? l->retry_ms * 2 : GPIO_RETRY_MAX_MS;
+        l->retry_at_ns = now_ns + (int64_t)l->retry_ms * 1000000;
+        return;
+    }
+    counts->returns++;
+    char msg[256];
+    snprintf(msg, sizeof(msg), "GPIO %s line %d is back (%s): its trigger is on again",
+             l->spec.chip, l->spec.line, gpio_line_chip_name(l->gpio));
+    if (log) log(msg, user);
+}
+
+/* Once a second: is every live line's chip still there; is a lost line due for a retry. */
+static void check_lines(struct gpio_triggers *t, int64_t now_ns, gpio_log_fn log, void *user)
+{
+    bool check = now_ns >= t->next_check_ns;
+    if (check) t->next_check_ns = now_ns + (int64_t)GPIO_CHECK_INTERVAL_MS * 1000000;
+    for (int i = 0; i < t->count; i++) {
+        struct gpio_trigger_line *l = &t->lines[i];
+        if (!l->gpio) {
+            if (now_ns >= l->retry_at_ns) retry_line(l, now_ns, &t->counts, log, user);
+            continue;
+        }
+        int rc = check ? gpio_line_check(l->gpio) : 0;
+        if (rc == -ENODEV) lose_line(l, rc, now_ns, &t->counts, log, user);
+    }
 }
 
 static int fire(struct gpio_triggers *t, struct gpio_trigger_line *l, sbfx *fx)
@@ -124,10 +165,11 @@ int gpio_triggers_service(struct gpio_triggers *t, sbfx *fx, int64_t now_ns, gpi
         struct gpio_trigger_line *l = &t->lines[i];
         for (int batch = 0; l->gpio && batch < 64; batch++) {
             int rc = service_batch(t, l, fx, now_ns, &fired);
-            if (rc < 0) lose_line(l, rc, log, user);
+            if (rc < 0) lose_line(l, rc, now_ns, &t->counts, log, user);
             if (rc <= 0) break;
         }
     }
+    check_lines(t, now_ns, log, user);
     return fired;
 }
 

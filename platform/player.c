@@ -80,7 +80,12 @@ static int schedule_triggers(struct player *p, char *err, size_t n)
     const struct player_options *opt = p->opt;
     for (int i = 0; i < opt->trigger_count; i++) {
         const struct player_trigger *t = &opt->triggers[i];
-        sbfx_result r = sbfx_schedule(p->fx, t->effect, t->seconds, t->position);
+        double at = t->seconds;
+        if (p->recovering) { /* a new module after a GPU reset: its time 0 is the player's now */
+            if (at <= p->fx_time_lost) continue; /* fired before the reset */
+            at = at > p->sim_time ? at - p->sim_time : 0.0;
+        }
+        sbfx_result r = sbfx_schedule(p->fx, t->effect, at, t->position);
         if (r != SBFX_OK) {
             snprintf(err, n, "--trigger %s@%g: %s: %s", t->effect, t->seconds, sbfx_result_string(r),
                      sbfx_last_error(p->fx));
@@ -102,12 +107,12 @@ static int load_scene(const char *path, sbfx_scene **scene, char *err, size_t n)
     return 0;
 }
 
-static int create_fx(struct player *p, char *err, size_t n)
+int player_create_fx(struct player *p, char *err, size_t n)
 {
     const struct player_options *opt = p->opt;
     sbfx_scene *scene = NULL;
     int rc = load_scene(opt->scene_path, &scene, err, n);
-    if (rc == 0) rc = player_collect_scene_gpio(p, scene, err, n);
+    if (rc == 0 && !p->recovering) rc = player_collect_scene_gpio(p, scene, err, n);
     sbfx_scene_camera_get(scene, &p->camera); /* the default orbit without a camera group */
     if (rc) {
         sbfx_scene_free(scene);
@@ -121,11 +126,11 @@ static int create_fx(struct player *p, char *err, size_t n)
         .tone_map = opt->tone_map,
         .exposure = opt->exposure,
         .seed = opt->seed,
-        .start_time = opt->start_time,
+        .start_time = p->recovering ? p->fx_clock_lost : opt->start_time,
         .frame_budget_ms = opt->budget_ms,
         .max_particles = p->board.max_particles,
         .scene = scene,
-        .ignore_timeline = opt->no_timeline,
+        .ignore_timeline = opt->no_timeline || p->recovering, /* not replayed after a reset */
         .log = on_sbfx_log,
         .log_user = (void *)opt,
     };
@@ -135,6 +140,7 @@ static int create_fx(struct player *p, char *err, size_t n)
         snprintf(err, n, "sbfx_create failed: %s", sbfx_result_string(r));
         return -EIO;
     }
+    p->fx_created_at = p->recovering ? p->sim_time : 0.0;
     return schedule_triggers(p, err, n);
 }
 
@@ -191,7 +197,8 @@ static int setup(struct player *p, char *err, size_t n)
     struct display *d = p->display;
     if ((rc = test_scene_create(&p->scene, d->width, d->height, err, n)) != 0) return rc;
     p->scene_made = true;
-    if ((rc = create_fx(p, err, n)) != 0) return rc;
+    player_reset_setup(p);
+    if ((rc = player_create_fx(p, err, n)) != 0) return rc;
     return player_open_inputs(p, err, n);
 }
 
@@ -214,14 +221,20 @@ static void write_platform_stats(const struct player *p, FILE *f)
     const sbfx_counters *c = &p->last;
     const struct display_counts *d = &p->display->counts;
     fprintf(f, ", \"frames\": %lld, \"flips\": %llu, \"missed_vblanks\": %llu, \"triggers_fired\": %d, "
-            "\"triggers_refused\": %d", (long long)p->frames_done, (unsigned long long)d->flips,
-            (unsigned long long)d->missed, c->triggers_fired, c->triggers_refused);
+            "\"triggers_refused\": %d, \"display_unplugs\": %llu, \"display_replugs\": %llu, "
+            "\"display_paused_frames\": %llu", (long long)p->frames_done, (unsigned long long)d->flips,
+            (unsigned long long)d->missed, c->triggers_fired, c->triggers_refused,
+            (unsigned long long)d->unplugs, (unsigned long long)d->replugs,
+            (unsigned long long)d->paused);
     if (p->gpio_on) {
         const struct gpio_trigger_counts *g = &p->gpio.counts;
         fprintf(f, ", \"gpio_edges\": %llu, \"gpio_fired\": %llu, \"gpio_filtered\": %llu, "
-                "\"gpio_refused\": %llu, \"gpio_overflows\": %llu", (unsigned long long)g->edges,
+                "\"gpio_refused\": %llu, \"gpio_overflows\": %llu, \"gpio_losses\": %llu, "
+                "\"gpio_returns\": %llu, \"gpio_retries\": %llu", (unsigned long long)g->edges,
                 (unsigned long long)g->fired, (unsigned long long)g->filtered,
-                (unsigned long long)g->refused, (unsigned long long)g->overflows);
+                (unsigned long long)g->refused, (unsigned long long)g->overflows,
+                (unsigned long long)g->losses, (unsigned long long)g->returns,
+                (unsigned long long)g->retries);
     }
     if (p->live_on) {
         const struct live_detail_counts *v = &p->live.counts;
@@ -251,6 +264,8 @@ static int write_stats(const struct player *p, const char *path, char *err, size
     fprintf(f, ", \"budget_ms\": %g, \"gpu_ms\": %.3f, \"frames_over_budget\": %d, \"quality_changes\": %d, "
             "\"quality\": \"%s\"", (double)c->budget_ms, (double)c->gpu_ms, c->frames_over_budget,
             c->quality_changes, c->quality);
+    fprintf(f, ", \"gpu_resets\": %llu, \"gpu_reset_notification\": %d",
+            (unsigned long long)p->gpu_resets, p->reset.status ? 1 : 0);
     if (p->display->fd >= 0 || p->gpio_on || p->live_on) write_platform_stats(p, f);
     fprintf(f, "}\n");
     bool failed = ferror(f) != 0;

@@ -1,7 +1,8 @@
 /* sbfx-play's state, shared by its files (private to the player):
  *   player.c         main, setup and teardown, results
  *   player_inputs.c  board profile, GPIO trigger lines, the V4L2 detail source
- *   player_loop.c    the frame loop: poll, inputs, simulate, render, present, stats line */
+ *   player_loop.c    the frame loop: poll, inputs, simulate, render, present, stats line
+ *   player_reset.c   GPU resets: a new context, its GL objects and sbfx, and the run goes on */
 #ifndef SBFX_PLAYER_H
 #define SBFX_PLAYER_H
 
@@ -11,6 +12,7 @@
 
 #include "board.h"
 #include "display.h"
+#include "gl_reset.h"
 #include "gpio_triggers.h"
 #include "live_detail.h"
 #include "player_args.h"
@@ -55,16 +57,37 @@ struct player {
     struct live_detail live;
     bool live_on;
     struct second_stats second;
+    /* GPU resets (player_reset.c) */
+    struct gl_reset reset;
+    uint64_t gpu_resets;
+    bool recovering;          /* sbfx is being made again after a reset */
+    double fx_time_lost;      /* the lost module's time: --trigger entries up to it had fired */
+    double fx_clock_lost;     /* its absolute clock (sbfx_time): the new module starts there */
+    double fx_created_at;     /* the player's time when the current module was made */
 };
 
 int64_t player_now_ns(void);
 void player_log(const char *message, void *user); /* "sbfx-play: message" on stderr */
+
+/* player.c */
+/* Makes sbfx (again, while p->recovering: the scene's GPIO lines are kept, its timeline is not
+ * replayed, --trigger entries still ahead are scheduled relative to now). */
+int player_create_fx(struct player *p, char *err, size_t n);
+
+/* player_reset.c */
+/* Before each frame: asks the context whether the GPU was reset (SBFX_PLAY_INJECT_GPU_RESET=N
+ * makes frame N answer "guilty" once) and, if so, makes everything that lived in it again. */
+int player_check_gpu_reset(struct player *p, int frame, char *err, size_t n);
+/* After the display is made: reset notification and the injected reset, if asked for. */
+void player_reset_setup(struct player *p);
 
 /* player_inputs.c */
 int player_load_board(struct player *p, char *err, size_t n);
 /* Collects the scene's GPIO triggers (before the scene is freed). */
 int player_collect_scene_gpio(struct player *p, const sbfx_scene *scene, char *err, size_t n);
 int player_open_inputs(struct player *p, char *err, size_t n);
+/* The camera again, into a new sbfx (after a GPU reset). */
+int player_open_video(struct player *p, char *err, size_t n);
 void player_close_inputs(struct player *p);
 /* Reads the GPIO events that wait and fires what passes; never blocks. */
 void player_service_gpio(struct player *p);

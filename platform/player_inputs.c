@@ -80,7 +80,7 @@ static const char *video_device(const struct player *p)
     return NULL;
 }
 
-static int open_video(struct player *p, char *err, size_t n)
+int player_open_video(struct player *p, char *err, size_t n)
 {
     const char *device = video_device(p);
     if (!device) {
@@ -104,7 +104,7 @@ int player_open_inputs(struct player *p, char *err, size_t n)
         rc = gpio_triggers_open(&p->gpio, p->gpio_specs, p->gpio_spec_count, p->fx, err, n);
         p->gpio_on = rc == 0;
     }
-    if (rc == 0) rc = open_video(p, err, n);
+    if (rc == 0) rc = player_open_video(p, err, n);
     return rc;
 }
 

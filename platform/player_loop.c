@@ -175,12 +175,14 @@ static double frame_time(struct player *p, int64_t index, int64_t now)
 
 static int play_frame(struct player *p, int64_t index, char *err, size_t n)
 {
+    int rc = player_check_gpu_reset(p, index, err, n);
+    if (rc) return rc;
     int64_t start = player_now_ns();
     double t = frame_time(p, index, start);
     p->last_frame_ns = start;
     sbfx_frame frame;
     memset(&frame, 0, sizeof(frame));
-    int rc = draw_scene(p, t, &frame, err, n);
+    rc = draw_scene(p, t, &frame, err, n);
     if (rc) return rc;
     int64_t fx_start = player_now_ns();
     rc = run_fx(p, t, &frame, err, n);

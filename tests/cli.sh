@@ -280,6 +280,58 @@ test_platform_arguments() {
     fi
 }
 
+# same_frames DIR_A DIR_B FIRST LAST: the PNGs of frames FIRST..LAST are byte-identical.
+same_frames() {
+    local i f
+    for ((i = $3; i <= $4; i++)); do
+        printf -v f 'frame-%04d.png' "$i"
+        cmp -s "$1/$f" "$2/$f" || return 1
+    done
+}
+
+# A GPU reset injected before frame 5 (SBFX_PLAY_INJECT_GPU_RESET, platform/gl_reset.h): the run
+# goes on with a new context, GL objects and sbfx. Frames 0-4 are those of a run without the
+# reset; from frame 5 the explosion in flight is gone (lost with the old module) and the frames
+# are exactly the scene of a run without timeline at the same times (the player's clock went
+# on); a --trigger due after the reset fires on the new module.
+test_gpu_reset_run() {
+    local common=(--headless --size 160x90 --frames 12 --fps 12 --quiet)
+    play "${common[@]}" --out "$tmp/reset-normal"
+    local normal=$rc
+    play "${common[@]}" --out "$tmp/reset-scene" --no-timeline
+    local scene=$rc
+    SBFX_PLAY_INJECT_GPU_RESET=5 play "${common[@]}" --out "$tmp/reset" --stats "$tmp/reset.json"
+    local resets
+    resets=$(json_number "$tmp/reset.json" gpu_resets)
+    if [ "$rc" -ne 0 ] || [ "$normal" -ne 0 ] || [ "$scene" -ne 0 ]; then
+        fail gpu-reset-recovers "exit $rc (reference runs $normal, $scene): $(first_error_line)"
+    elif [ "$(grep -c 'GPU reset before frame 5' "$tmp/err")" -ne 1 ] || ! grep -q 'recovered at' "$tmp/err" ||
+        [ "${resets:-0}" -ne 1 ] || [ ! -f "$tmp/reset/frame-0011.png" ]; then
+        fail gpu-reset-recovers "gpu_resets=$resets, 12 frames: $(ls "$tmp/reset" | wc -l); log: $(head -c 300 "$tmp/err")"
+    else
+        ok gpu-reset-recovers
+    fi
+    if ! same_frames "$tmp/reset" "$tmp/reset-normal" 0 4; then
+        fail gpu-reset-frames "frames 0-4 (before the reset) differ from a run without it"
+    elif same_frames "$tmp/reset" "$tmp/reset-normal" 5 5; then
+        fail gpu-reset-frames "frame 5 still shows the explosion of the lost module"
+    elif ! same_frames "$tmp/reset" "$tmp/reset-scene" 5 11; then
+        fail gpu-reset-frames "frames 5-11 after the reset are not the scene at the same times"
+    else
+        ok gpu-reset-frames
+    fi
+    SBFX_PLAY_INJECT_GPU_RESET=3 play "${common[@]}" --out "$tmp/reset-trigger" --no-timeline \
+        --trigger explosion@0.5 --stats "$tmp/reset-trigger.json"
+    local fired
+    fired=$(json_number "$tmp/reset-trigger.json" particles_simulated)
+    if [ "$rc" -eq 0 ] && [ "${fired:-0}" -gt 0 ] && same_frames "$tmp/reset-trigger" "$tmp/reset-scene" 0 5 &&
+        ! same_frames "$tmp/reset-trigger" "$tmp/reset-scene" 11 11; then
+        ok gpu-reset-trigger-after
+    else
+        fail gpu-reset-trigger-after "exit $rc, particles_simulated=$fired in the last frame (expected the --trigger at 0.5 s to fire on the module made at frame 3)"
+    fi
+}
+
 if [ ! -x "$PLAYER" ]; then
     fail player "$PLAYER is not built"
     exit 1
@@ -318,4 +370,5 @@ test_scene_run
 test_trigger_run
 test_start_time
 test_platform_arguments
+test_gpu_reset_run
 [ "$failures" -eq 0 ]

@@ -3,21 +3,33 @@
 # host's / as the root filesystem): loads vkms, vivid and gpio-sim and runs sbfx-play against
 # them. Prints "ok - vm/NAME", "not ok - vm/NAME: why", "skip - vm/NAME: why" and "# ..." notes,
 # and writes the result lines to /vmout/results.txt for the host.
+#
+# Each test group runs under its own time limit (run_test): a group that hangs fails with the
+# step it was at (step) and the tail of the newest player log, its processes are killed, and the
+# next group runs (harness-limit checks that with a group that hangs on purpose). Everything that tells what happened is written as it happens into the host's
+# writable share (/vmout = build/vm/out on the host), so it is there even when the whole VM has
+# to be killed: the player logs (logs/NAME.out, .err, .json), the kernel log (logs/dmesg.txt,
+# followed), the steps with their uptime (steps.txt) and the kernel's code symbols (kallsyms.txt,
+# for run.sh's backtrace of a wedged VM).
 set -u
 SRC=${SBFX_SRC:?}
 B=${SBFX_BUILD:?}
 cd "$SRC" || exit 1
 OUT=/vmout
 RESULTS=$OUT/results.txt
+L=$OUT/logs
 T=/tmp/vm
 PLAYER=$B/sbfx-play
 PNGDIFF=$B/tests/vm/pngdiff
 DRM_STATE=$B/tests/vm/drm_state
 V4L2_CTRL=$B/tests/vm/v4l2_ctrl
+VBLANK_STRESS=$B/tests/vm/vblank_stress
 CARD=/dev/dri/card0
 MODE=640x480
+GPIO_LABEL=sbfx-vm # the gpio-sim bank's label: how a chip that comes back is found again
 : >"$RESULTS"
-mkdir -p "$T"
+mkdir -p "$T" "$L"
+: >"$OUT/steps.txt"
 # llvmpipe's shader cache (tmpfs, this boot only): only the first player run pays for compiling
 # the shaders under TCG (~7 s)
 export HOME=/tmp MESA_SHADER_CACHE_DIR=/tmp/mesa-cache
@@ -30,6 +42,78 @@ ok() { result "ok - vm/$1"; }
 fail() { result "not ok - vm/$1: $2"; }
 skip() { result "skip - vm/$1: $2"; }
 note() { printf '# %s\n' "$*"; }
+
+# ---- one test at a time, each under its own limit --------------------------------------------
+
+uptime_s() { local u; read -r u _ </proc/uptime; printf '%s' "$u"; }
+
+# step TEXT: what the running test is doing now (named in its failure if it hangs).
+step() {
+    printf '%s\n' "$*" >"$T/step"
+    printf '%s %s: %s\n' "$(uptime_s)" "$CURRENT_TEST" "$*" >>"$OUT/steps.txt"
+}
+
+# pause SECONDS: sleeps without starting a process (a FIFO nobody writes; under TCG every sleep
+# process costs tens of ms).
+mkfifo "$T/idle" && exec 6<>"$T/idle"
+pause() { read -r -t "$1" -u 6; }
+
+# newest_log: the player log written last (the one a hung test was running).
+newest_log() { ls -t "$L"/*.err 2>/dev/null | head -n 1; }
+
+# kill_tree SIGNAL PID: PID and every process under it, the children first (a subshell, its
+# players, their helpers), found through their parent ids.
+kill_tree() {
+    local child
+    for child in $(ps -o pid= --ppid "$2" 2>/dev/null); do kill_tree "$1" "$child"; done
+    kill "-$1" "$2" 2>/dev/null
+}
+
+# run_test NAME SECONDS FUNCTION [ARGS...]: FUNCTION in a child shell; past SECONDS it and what it
+# started are killed and NAME fails with its step and the tail of the newest player log; blocked
+# tasks' kernel backtraces go to the kernel log first (sysrq w: a player stuck in a driver shows
+# where).
+CURRENT_TEST=setup
+run_test() {
+    local name=$1 limit=$2 t0=$SECONDS
+    shift 2
+    CURRENT_TEST=$name
+    printf '%s\n' "$name" >"$OUT/current-test.txt"
+    step "start (limit $limit s)"
+    "$@" &
+    local pid=$! i
+    for ((i = 0; i < limit * 5; i++)); do
+        kill -0 "$pid" 2>/dev/null || break
+        pause 0.2
+    done
+    if kill -0 "$pid" 2>/dev/null; then
+        local at log
+        at=$(cat "$T/step" 2>/dev/null)
+        log=$(newest_log)
+        echo w >/proc/sysrq-trigger 2>/dev/null
+        kill_tree TERM "$pid"
+        for ((i = 0; i < 25; i++)); do kill -0 "$pid" 2>/dev/null || break; pause 0.2; done
+        kill_tree KILL "$pid"
+        fail "$name" "timed out after $limit s at step '$at'; ${log:-no player log}: $(tail -n 3 "$log" 2>/dev/null | grep -v -e vkms -e kmsro | tr '\n' ' ' | cut -c 1-300)"
+        ps -eo pid,stat,wchan:32,args 2>/dev/null | grep -e sbfx -e vblank_stress | grep -v grep | sed 's/^/# still there: /'
+    fi
+    wait "$pid" 2>/dev/null
+    step "end after $((SECONDS - t0)) s"
+    CURRENT_TEST=none
+}
+
+# The kernel's side, kept as it happens: dmesg followed into the share; hung tasks reported after
+# 20 s (Debian: 120); the kernel's code symbols, modules included (run.sh names a wedged VM's CPUs
+# with them: Debian's System.map is a stub).
+watch_kernel() {
+    sysctl -q -w kernel.hung_task_timeout_secs=20 kernel.sysrq=1 kernel.kptr_restrict=0 2>/dev/null
+    dmesg --follow >"$L/dmesg.txt" 2>&1 &
+    DMESG_PID=$!
+}
+
+kernel_symbols() {
+    grep -i ' t ' /proc/kallsyms >"$OUT/kallsyms.txt" 2>/dev/null
+}
 
 # json_number FILE KEY: the value of "KEY": N in a --stats file.
 json_number() { sed -n "s/.*\"$2\"[[:space:]]*:[[:space:]]*\([0-9][0-9]*\).*/\1/p" "$1" 2>/dev/null; }
@@ -49,9 +133,9 @@ wait_for() {
 kiosk() {
     local name=$1
     shift
-    "$PLAYER" --display drm --device "$CARD" --mode "$MODE" "$@" >"$T/$name.out" 2>"$T/$name.err" &
+    "$PLAYER" --display drm --device "$CARD" --mode "$MODE" "$@" >"$L/$name.out" 2>"$L/$name.err" &
     kiosk_pid=$!
-    wait_for "$T/$name.out" "until stopped" 90
+    wait_for "$L/$name.out" "until stopped" 90
 }
 
 # stop_kiosk: SIGTERM, and the exit status in $kiosk_rc (137 and a note if it had to be
@@ -80,14 +164,14 @@ first_line() { head -n 1 "$1" 2>/dev/null | cut -c 1-200; }
 
 setup_modules() {
     local t0=$SECONDS why=""
-    modprobe vkms 2>>"$T/modprobe.err" || why="$why vkms"
-    modprobe vivid node_types=0x1 2>>"$T/modprobe.err" || why="$why vivid"
-    modprobe gpio-sim 2>>"$T/modprobe.err" || why="$why gpio-sim"
+    modprobe vkms 2>>"$L/modprobe.err" || why="$why vkms"
+    modprobe vivid node_types=0x1 2>>"$L/modprobe.err" || why="$why vivid"
+    modprobe gpio-sim 2>>"$L/modprobe.err" || why="$why gpio-sim"
     mountpoint -q /sys/kernel/config || mount -t configfs configfs /sys/kernel/config
     udevadm settle 2>/dev/null
     for ((i = 0; i < 50; i++)); do [ -e "$CARD" ] && [ -e /dev/video0 ] && break; sleep 0.1; done
     if [ -n "$why" ]; then
-        fail modules "modprobe failed:$why: $(head -c 300 "$T/modprobe.err")"
+        fail modules "modprobe failed:$why: $(head -c 300 "$L/modprobe.err")"
     elif [ ! -e "$CARD" ] || [ ! -e /dev/video0 ]; then
         fail modules "no $CARD or /dev/video0 after loading vkms and vivid"
     else
@@ -99,7 +183,8 @@ setup_modules() {
 # A gpio-sim chip with 8 lines; sets GPIO_CHIP (gpiochipN) and GPIO_PULL (line 0's pull file).
 setup_gpio_sim() {
     local cfg=/sys/kernel/config/gpio-sim/sbfx
-    mkdir -p "$cfg/bank0" && echo 8 >"$cfg/bank0/num_lines" && echo 1 >"$cfg/live" || {
+    mkdir -p "$cfg/bank0" && echo 8 >"$cfg/bank0/num_lines" && echo "$GPIO_LABEL" >"$cfg/bank0/label" &&
+        echo 1 >"$cfg/live" || {
         fail gpio-sim "configuring gpio-sim through configfs failed"
         return 1
     }
@@ -112,6 +197,8 @@ setup_gpio_sim() {
         return 1
     }
     note "gpio-sim: $GPIO_CHIP ($GPIO_DEV)"
+    # run_test runs this in a child: the names go back to the tier through a file
+    declare -p GPIO_CHIP GPIO_DEV GPIO_SYS GPIO_PULL >"$T/gpio.env"
 }
 
 # ---- DRM/KMS on vkms -------------------------------------------------------------------------
@@ -127,20 +214,20 @@ test_drm_atomic() {
     local holder=$!
     exec 8>"$T/hold"
     play --display drm --device "$CARD" --mode "$MODE" --fps 12 --frames 8 \
-        --screenshot "$T/shot.png" --stats "$T/atomic.json" >"$T/atomic.out" 2>"$T/atomic.err"
+        --screenshot "$T/shot.png" --stats "$L/atomic.json" >"$L/atomic.out" 2>"$L/atomic.err"
     local rc=$?
     exec 8>&-
     wait "$holder"
     local flips
-    flips=$(json_number "$T/atomic.json" flips)
+    flips=$(json_number "$L/atomic.json" flips)
     if [ "$rc" -ne 0 ]; then
-        fail drm-atomic-flips "sbfx-play --display drm exited with $rc: $(grep -v -e vkms -e kmsro "$T/atomic.err" | head -n 2 | tr '\n' ' ')"
+        fail drm-atomic-flips "sbfx-play --display drm exited with $rc: $(grep -v -e vkms -e kmsro "$L/atomic.err" | head -n 2 | tr '\n' ' ')"
     elif [ "${flips:-0}" -ne 7 ]; then
         fail drm-atomic-flips "8 frames (1 modeset + 7 flips) gave flips=$flips"
     else
         ok drm-atomic-flips
     fi
-    note "$(grep -m1 'frames in' "$T/atomic.out")"
+    note "$(grep -m1 'frames in' "$L/atomic.out")"
     if cmp -s "$T/crtc-before.txt" "$T/crtc-after.txt"; then
         ok drm-restore-crtc
     else
@@ -153,12 +240,12 @@ test_drm_atomic() {
 test_screenshot_matches_headless() {
     local t0=$SECONDS
     if [ ! -s "$T/shot.png" ]; then
-        fail drm-writeback-matches-headless "no writeback screenshot: $(grep -m1 -i writeback "$T/atomic.err")"
+        fail drm-writeback-matches-headless "no writeback screenshot: $(grep -m1 -i writeback "$L/atomic.err")"
         return
     fi
     play --headless --size "$MODE" --fps 12 --frames 8 --out "$T/headless" --quiet \
-        >"$T/headless.out" 2>"$T/headless.err" || {
-        fail drm-writeback-matches-headless "the headless run failed: $(first_line "$T/headless.err")"
+        >"$L/headless.out" 2>"$L/headless.err" || {
+        fail drm-writeback-matches-headless "the headless run failed: $(first_line "$L/headless.err")"
         return
     }
     local diff max
@@ -174,14 +261,43 @@ test_screenshot_matches_headless() {
     note "writeback vs headless frame 7: $diff ($((SECONDS - t0)) s)"
 }
 
+# A GPU reset injected before frame 3 on the DRM display (SBFX_PLAY_INJECT_GPU_RESET: no GPU
+# here can be made to hang): the player makes a new context on the same GBM surface, its GL
+# objects and sbfx, the page flips go on, and the frame scanned out at the end (writeback) equals
+# the headless run with the same injected reset.
+test_drm_gpu_reset() {
+    step "sbfx-play --display drm, reset injected before frame 3"
+    SBFX_PLAY_INJECT_GPU_RESET=3 play --display drm --device "$CARD" --mode "$MODE" --fps 12 --frames 8 \
+        --screenshot "$T/reset-shot.png" --stats "$L/drmreset.json" >"$L/drmreset.out" 2>"$L/drmreset.err"
+    local rc=$? flips resets
+    flips=$(json_number "$L/drmreset.json" flips)
+    resets=$(json_number "$L/drmreset.json" gpu_resets)
+    step "the same headless"
+    SBFX_PLAY_INJECT_GPU_RESET=3 play --headless --size "$MODE" --fps 12 --frames 8 --out "$T/reset-headless" \
+        --quiet >"$L/headlessreset.out" 2>"$L/headlessreset.err"
+    local diff max
+    diff=$("$PNGDIFF" "$T/reset-shot.png" "$T/reset-headless/frame-0007.png" 2>&1)
+    max=$(printf '%s' "$diff" | sed -n 's/^max \([0-9]*\).*/\1/p')
+    note "drm gpu reset: $(grep -h -e 'GPU reset' -e recovered "$L/drmreset.err" | tr '\n' ' ')"
+    if [ "$rc" -ne 0 ]; then
+        fail drm-gpu-reset "exit $rc: $(grep -v -e vkms -e kmsro "$L/drmreset.err" | tail -n 1)"
+    elif [ "${resets:-0}" -ne 1 ] || [ "${flips:-0}" -ne 7 ] || ! grep -q "recovered at" "$L/drmreset.err"; then
+        fail drm-gpu-reset "gpu_resets=$resets flips=$flips (8 frames: 1 modeset + 7 flips)"
+    elif [ -z "$max" ] || [ "$max" -gt 2 ]; then
+        fail drm-gpu-reset "the frame scanned out after the reset differs from the headless run's: $diff"
+    else
+        ok drm-gpu-reset
+    fi
+}
+
 test_drm_legacy() {
     local t0=$SECONDS
     play --display drm --device "$CARD" --mode "$MODE" --modeset legacy --fps 12 --frames 6 \
-        --scale 8 --stats "$T/legacy.json" --quiet >"$T/legacy.out" 2>"$T/legacy.err"
+        --scale 8 --stats "$L/legacy.json" --quiet >"$L/legacy.out" 2>"$L/legacy.err"
     local rc=$? flips
-    flips=$(json_number "$T/legacy.json" flips)
+    flips=$(json_number "$L/legacy.json" flips)
     if [ "$rc" -ne 0 ]; then
-        fail drm-legacy-flips "--modeset legacy exited with $rc: $(grep -v -e vkms -e kmsro "$T/legacy.err" | head -n 1)"
+        fail drm-legacy-flips "--modeset legacy exited with $rc: $(grep -v -e vkms -e kmsro "$L/legacy.err" | head -n 1)"
     elif [ "${flips:-0}" -ne 5 ]; then
         fail drm-legacy-flips "6 frames gave flips=$flips"
     else
@@ -194,29 +310,29 @@ test_drm_legacy() {
 # flips of the kiosk are paced by vblank (no more than the refresh rate).
 test_kiosk_and_busy() {
     local t0=$SECONDS
-    if ! kiosk kiosk --scale 8 --stats "$T/kiosk.json"; then
-        fail drm-kiosk "no banner within 90 s: $(first_line "$T/kiosk.err")"
+    if ! kiosk kiosk --scale 8 --stats "$L/kiosk.json"; then
+        fail drm-kiosk "no banner within 90 s: $(first_line "$L/kiosk.err")"
         stop_kiosk
         return
     fi
-    play --display drm --device "$CARD" --frames 1 >"$T/busy.out" 2>"$T/busy.err"
+    play --display drm --device "$CARD" --frames 1 >"$L/busy.out" 2>"$L/busy.err"
     local rc=$?
-    if [ "$rc" -eq 1 ] && grep -qF "$CARD" "$T/busy.err" && grep -qF "in use" "$T/busy.err"; then
+    if [ "$rc" -eq 1 ] && grep -qF "$CARD" "$L/busy.err" && grep -qF "in use" "$L/busy.err"; then
         ok drm-busy-master
     else
-        fail drm-busy-master "second player exited $rc: $(grep -v -e vkms -e kmsro "$T/busy.err" | head -n 1)"
+        fail drm-busy-master "second player exited $rc: $(grep -v -e vkms -e kmsro "$L/busy.err" | head -n 1)"
     fi
     sleep 3
     stop_kiosk
     local frames flips missed
-    frames=$(json_number "$T/kiosk.json" frames)
-    flips=$(json_number "$T/kiosk.json" flips)
-    if [ "$kiosk_rc" -eq 0 ] && [ "${frames:-0}" -ge 2 ] && grep -q "fps, frame" "$T/kiosk.out"; then
+    frames=$(json_number "$L/kiosk.json" frames)
+    flips=$(json_number "$L/kiosk.json" flips)
+    if [ "$kiosk_rc" -eq 0 ] && [ "${frames:-0}" -ge 2 ] && grep -q "fps, frame" "$L/kiosk.out"; then
         ok drm-kiosk-sigterm
     else
-        fail drm-kiosk-sigterm "exit $kiosk_rc, frames=$frames, stats lines: $(grep -c 'fps, frame' "$T/kiosk.out")"
+        fail drm-kiosk-sigterm "exit $kiosk_rc, frames=$frames, stats lines: $(grep -c 'fps, frame' "$L/kiosk.out")"
     fi
-    note "kiosk: $(grep -m1 'frames in' "$T/kiosk.out") ($((SECONDS - t0)) s)"
+    note "kiosk: $(grep -m1 'frames in' "$L/kiosk.out") ($((SECONDS - t0)) s)"
 }
 
 # The kiosk loop allocates nothing per frame: the player's own malloc/calloc/realloc calls
@@ -234,8 +350,8 @@ test_no_allocations_per_frame() {
     for n in 4 16; do
         timeout -k 5 120 env LD_PRELOAD="$preload" "$PLAYER" --display drm --device "$CARD" --mode "$MODE" --scale 8 \
             --fps 30 --frames $n --scene "$T/camera.cfg" --video /dev/video0 \
-            --gpio "$GPIO_CHIP:2=explosion" --quiet >"$T/alloc$n.out" 2>"$T/alloc$n.err"
-        counts="$counts $(sed -n 's/^alloc-count: program \([0-9]*\),.*/\1/p' "$T/alloc$n.err")"
+            --gpio "$GPIO_CHIP:2=explosion" --quiet >"$L/alloc$n.out" 2>"$L/alloc$n.err"
+        counts="$counts $(sed -n 's/^alloc-count: program \([0-9]*\),.*/\1/p' "$L/alloc$n.err")"
     done
     read -r a b <<<"$counts"
     if [ -n "${a:-}" ] && [ "$a" = "${b:-}" ]; then
@@ -243,7 +359,7 @@ test_no_allocations_per_frame() {
     else
         fail drm-no-allocations-per-frame "allocations from the player: '$a' after 4 frames, '$b' after 16"
     fi
-    note "allocations from the player's code: $a (4 frames), $b (16 frames); all, Mesa included: $(grep -h alloc-count "$T"/alloc*.err | sed 's/.*all //' | tr '\n' ' ')"
+    note "allocations from the player's code: $a (4 frames), $b (16 frames); all, Mesa included: $(grep -h alloc-count "$L"/alloc*.err | sed 's/.*all //' | tr '\n' ' ')"
 }
 
 # ---- V4L2 detail from vivid ------------------------------------------------------------------
@@ -261,28 +377,28 @@ make_gpio_scene() {
 
 test_video_frames() {
     local t0=$SECONDS
-    if ! kiosk video --scene "$T/camera.cfg" --video /dev/video0 --scale 8 --stats "$T/video.json"; then
-        fail video-frames "no banner: $(first_line "$T/video.err")"
+    if ! kiosk video --scene "$T/camera.cfg" --video /dev/video0 --scale 8 --stats "$L/video.json"; then
+        fail video-frames "no banner: $(first_line "$L/video.err")"
         stop_kiosk
         return
     fi
     sleep 4
     stop_kiosk
     local frames distinct
-    frames=$(json_number "$T/video.json" video_frames)
-    distinct=$(json_number "$T/video.json" video_distinct)
+    frames=$(json_number "$L/video.json" video_frames)
+    distinct=$(json_number "$L/video.json" video_distinct)
     if [ "$kiosk_rc" -ne 0 ]; then
-        fail video-frames "exit $kiosk_rc: $(grep -v -e vkms -e kmsro "$T/video.err" | head -n 1)"
+        fail video-frames "exit $kiosk_rc: $(grep -v -e vkms -e kmsro "$L/video.err" | head -n 1)"
     elif [ "${frames:-0}" -lt 3 ] || [ "${distinct:-0}" -lt 2 ]; then
         fail video-frames "video_frames=$frames video_distinct=$distinct"
     else
         ok video-frames
     fi
-    note "$(grep -m1 'feeds the detail volume' "$T/video.err"); frames $frames, distinct $distinct ($((SECONDS - t0)) s)"
+    note "$(grep -m1 'feeds the detail volume' "$L/video.err"); frames $frames, distinct $distinct ($((SECONDS - t0)) s)"
 }
 
 # stats_lines NAME: how many once-a-second stats lines the kiosk NAME printed so far.
-stats_lines() { grep -c 'fps, frame' "$T/$1.out"; }
+stats_lines() { grep -c 'fps, frame' "$L/$1.out"; }
 
 # wait_stats NAME COUNT SECONDS: until the kiosk printed COUNT stats lines.
 wait_stats() {
@@ -302,30 +418,30 @@ wait_stats() {
 # on with procedural detail (the stats lines keep coming), the camera is picked up again.
 test_video_outages() {
     local t0=$SECONDS
-    if ! kiosk unplug --scene "$T/camera.cfg" --video /dev/video0 --scale 8 --stats "$T/unplug.json"; then
-        fail video-timeout "no banner: $(first_line "$T/unplug.err")"
+    if ! kiosk unplug --scene "$T/camera.cfg" --video /dev/video0 --scale 8 --stats "$L/unplug.json"; then
+        fail video-timeout "no banner: $(first_line "$L/unplug.err")"
         stop_kiosk
         return
     fi
-    wait_for "$T/unplug.err" "feeds the detail volume" 30
-    "$V4L2_CTRL" /dev/video0 "Percentage of Dropped Buffers" 100 2>>"$T/unplug.ctl"
+    wait_for "$L/unplug.err" "feeds the detail volume" 30
+    "$V4L2_CTRL" /dev/video0 "Percentage of Dropped Buffers" 100 2>>"$L/unplug.ctl"
     local lost=no back=no
-    wait_for "$T/unplug.err" "no frame for 2000 ms" 30 && lost=yes
+    wait_for "$L/unplug.err" "no frame for 2000 ms" 30 && lost=yes
     local at_loss
     at_loss=$(stats_lines unplug)
     wait_stats unplug $((at_loss + 3)) 30
-    "$V4L2_CTRL" /dev/video0 "Percentage of Dropped Buffers" 0 2>>"$T/unplug.ctl"
-    wait_for "$T/unplug.err" "is back" 30 && back=yes
-    if [ "$lost" = yes ] && [ "$back" = yes ] && [ "$(grep -c 'takes over' "$T/unplug.err")" -eq 1 ] &&
+    "$V4L2_CTRL" /dev/video0 "Percentage of Dropped Buffers" 0 2>>"$L/unplug.ctl"
+    wait_for "$L/unplug.err" "is back" 30 && back=yes
+    if [ "$lost" = yes ] && [ "$back" = yes ] && [ "$(grep -c 'takes over' "$L/unplug.err")" -eq 1 ] &&
         [ "$(stats_lines unplug)" -ge $((at_loss + 3)) ]; then
         ok video-timeout
     else
-        fail video-timeout "lost=$lost back=$back, 'takes over' logged $(grep -c 'takes over' "$T/unplug.err") times, stats lines $at_loss -> $(stats_lines unplug) $(head -c 200 "$T/unplug.ctl" 2>/dev/null)"
+        fail video-timeout "lost=$lost back=$back, 'takes over' logged $(grep -c 'takes over' "$L/unplug.err") times, stats lines $at_loss -> $(stats_lines unplug) $(head -c 200 "$L/unplug.ctl" 2>/dev/null)"
     fi
     echo vivid.0 >/sys/bus/platform/drivers/vivid/unbind
-    wait_for "$T/unplug.err" "No such device" 15
+    wait_for "$L/unplug.err" "No such device" 15
     local unloaded=yes
-    rmmod vivid 2>"$T/rmmod.err" || unloaded="no ($(cat "$T/rmmod.err"))"
+    rmmod vivid 2>"$L/rmmod.err" || unloaded="no ($(cat "$L/rmmod.err"))"
     note "vivid unbound; module unloaded: $unloaded"
     at_loss=$(stats_lines unplug)
     wait_stats unplug $((at_loss + 3)) 30
@@ -333,17 +449,17 @@ test_video_outages() {
     after=$(stats_lines unplug)
     modprobe vivid node_types=0x1 multiplanar=2 2>/dev/null
     [ -e /dev/video0 ] || echo vivid.0 >/sys/bus/platform/drivers/vivid/bind 2>/dev/null
-    wait_for "$T/unplug.err" "mplane" 30
+    wait_for "$L/unplug.err" "mplane" 30
     sleep 1
     stop_kiosk
     local losses reopens takeovers said frames
-    losses=$(json_number "$T/unplug.json" video_losses)
-    reopens=$(json_number "$T/unplug.json" video_reopens)
-    takeovers=$(json_number "$T/unplug.json" video_takeovers)
-    frames=$(json_number "$T/unplug.json" video_frames)
-    said=$(grep -c "procedural detail takes over" "$T/unplug.err")
+    losses=$(json_number "$L/unplug.json" video_losses)
+    reopens=$(json_number "$L/unplug.json" video_reopens)
+    takeovers=$(json_number "$L/unplug.json" video_takeovers)
+    frames=$(json_number "$L/unplug.json" video_frames)
+    said=$(grep -c "procedural detail takes over" "$L/unplug.err")
     if [ "$kiosk_rc" -ne 0 ]; then
-        fail video-unplug "exit $kiosk_rc: $(grep -v -e vkms -e kmsro "$T/unplug.err" | tail -n 1)"
+        fail video-unplug "exit $kiosk_rc: $(grep -v -e vkms -e kmsro "$L/unplug.err" | tail -n 1)"
     elif [ "$said" -ne 2 ] || [ "${losses:-0}" -ne 2 ] || [ "${takeovers:-0}" -ne 2 ]; then
         fail video-unplug "2 outages: loss logged $said times, video_losses=$losses video_takeovers=$takeovers"
     elif [ "$after" -lt $((at_loss + 3)) ]; then
@@ -351,12 +467,12 @@ test_video_outages() {
     else
         ok video-unplug
     fi
-    if [ "${reopens:-0}" -eq 2 ] && grep -q "is back: .* mplane" "$T/unplug.err"; then
+    if [ "${reopens:-0}" -eq 2 ] && grep -q "is back: .* mplane" "$L/unplug.err"; then
         ok video-reopen-multiplanar
     else
-        fail video-reopen-multiplanar "video_reopens=$reopens; $(grep 'is back' "$T/unplug.err" | tail -n 1)"
+        fail video-reopen-multiplanar "video_reopens=$reopens; $(grep 'is back' "$L/unplug.err" | tail -n 1)"
     fi
-    grep -e "takes over" -e "is back" "$T/unplug.err" | sed 's/^/# /'
+    grep -e "takes over" -e "is back" "$L/unplug.err" | sed 's/^/# /'
     note "camera frames $frames ($((SECONDS - t0)) s)"
 }
 
@@ -400,8 +516,8 @@ test_gpio() {
     make_gpio_scene
     printf 'board = "vm";\ngpio = { debounce_ms = 30; min_interval_ms = 1500; };\n' >"$T/vm-board.cfg"
     if ! kiosk gpio --board "$T/vm-board.cfg" --scene "$T/gpio-scene.cfg" --scale 8 \
-        --gpio "$GPIO_CHIP:0=explosion@0,0,0" --stats "$T/gpio.json"; then
-        fail gpio-presses "no banner: $(first_line "$T/gpio.err")"
+        --gpio "$GPIO_CHIP:0=explosion@0,0,0" --stats "$L/gpio.json"; then
+        fail gpio-presses "no banner: $(first_line "$L/gpio.err")"
         stop_kiosk
         return
     fi
@@ -419,66 +535,269 @@ test_gpio() {
     sleep 1
     stop_kiosk
     local fired edges filtered
-    fired=$(json_number "$T/gpio.json" gpio_fired)
-    edges=$(json_number "$T/gpio.json" gpio_edges)
-    filtered=$(json_number "$T/gpio.json" gpio_filtered)
+    fired=$(json_number "$L/gpio.json" gpio_fired)
+    edges=$(json_number "$L/gpio.json" gpio_edges)
+    filtered=$(json_number "$L/gpio.json" gpio_filtered)
     note "gpio: 4 presses, 1000 edges in $storm_ms ms, 1 press on the scene's line: gpio_edges=$edges (the kernel FIFO drops the rest) gpio_filtered=$filtered gpio_fired=$fired"
     if [ "$kiosk_rc" -ne 0 ]; then
-        fail gpio-presses "exit $kiosk_rc: $(grep -v -e vkms -e kmsro "$T/gpio.err" | head -n 1)"
+        fail gpio-presses "exit $kiosk_rc: $(grep -v -e vkms -e kmsro "$L/gpio.err" | head -n 1)"
     elif [ "${fired:-0}" -ne 6 ]; then
         fail gpio-presses "4 clean presses, a storm and a press on the scene's line fired $fired effects (expected 6)"
     else
         ok gpio-presses
     fi
     local triggers
-    triggers=$(json_number "$T/gpio.json" triggers_fired)
+    triggers=$(json_number "$L/gpio.json" triggers_fired)
     if [ "${triggers:-0}" -eq "${fired:-x}" ]; then ok gpio-effects-started; else
         fail gpio-effects-started "sbfx triggers_fired=$triggers, gpio_fired=$fired"; fi
     note "gpio test: $((SECONDS - t0)) s"
 }
 
-test_drm_errors() {
-    play --display drm --device "$CARD" --connector HDMI-A-1 --frames 1 >"$T/conn.out" 2>"$T/conn.err"
+# gpio_sim_paths: the chip's sysfs folder again (GPIO_SYS, GPIO_CHIP) after it was re-created.
+gpio_sim_paths() {
+    local cfg=/sys/kernel/config/gpio-sim/sbfx
+    GPIO_CHIP=$(cat "$cfg/bank0/chip_name")
+    GPIO_SYS=/sys/devices/platform/$(cat "$cfg/dev_name")/$GPIO_CHIP
+}
+
+# The kiosk's GPIO chip removed while it runs (gpio-sim's device taken down through configfs, as
+# an I/O board unplugged), then created again: the loss is logged once, the frames go on (the
+# stats lines keep coming), the line is requested again (found by its chip's label) and a press
+# on it fires an effect again.
+test_gpio_loss() {
+    local cfg=/sys/kernel/config/gpio-sim/sbfx
+    step "kiosk with --gpio $GPIO_LABEL:3"
+    if ! kiosk gpioloss --scale 8 --gpio "$GPIO_LABEL:3=explosion" --stats "$L/gpioloss.json"; then
+        fail gpio-loss "no banner: $(first_line "$L/gpioloss.err")"
+        stop_kiosk
+        return
+    fi
+    step "press on line 3 before the loss"
+    local lines
+    lines=$(stats_lines gpioloss)
+    press 3
+    # an edge still in the kernel's FIFO when the chip goes is lost with it: let the kiosk read
+    # it first (two stats lines: at least one whole frame, whose GPIO service reads it)
+    wait_stats gpioloss $((lines + 2)) 30
+    step "gpio-sim device removed (live = 0)"
+    echo 0 >"$cfg/live"
+    local lost=no back=no at_loss after
+    wait_for "$L/gpioloss.err" "the chip went away" 15 && lost=yes
+    at_loss=$(stats_lines gpioloss)
+    step "frames without the chip"
+    wait_stats gpioloss $((at_loss + 3)) 30
+    after=$(stats_lines gpioloss)
+    step "gpio-sim device created again (live = 1)"
+    echo 1 >"$cfg/live"
+    gpio_sim_paths
+    wait_for "$L/gpioloss.err" "is back" 20 && back=yes
+    step "press on line 3 after the return ($GPIO_CHIP)"
+    lines=$(stats_lines gpioloss)
+    press 3
+    wait_stats gpioloss $((lines + 2)) 30
+    step "stopping the kiosk"
+    stop_kiosk
+    local losses returns fired said
+    losses=$(json_number "$L/gpioloss.json" gpio_losses)
+    returns=$(json_number "$L/gpioloss.json" gpio_returns)
+    fired=$(json_number "$L/gpioloss.json" gpio_fired)
+    said=$(grep -c "went away" "$L/gpioloss.err")
+    note "gpio loss: lost=$lost back=$back, stats lines $at_loss -> $after without the chip," \
+        "gpio_losses=$losses gpio_returns=$returns gpio_retries=$(json_number "$L/gpioloss.json" gpio_retries) gpio_fired=$fired"
+    grep -e "went away" -e "is back" "$L/gpioloss.err" | sed 's/^/# /'
+    if [ "$kiosk_rc" -ne 0 ]; then
+        fail gpio-loss "exit $kiosk_rc: $(grep -v -e vkms -e kmsro "$L/gpioloss.err" | tail -n 1)"
+    elif [ "$lost" != yes ] || [ "$said" -ne 1 ] || [ "${losses:-0}" -ne 1 ]; then
+        fail gpio-loss "chip removed: loss logged $said times, gpio_losses=$losses"
+    elif [ "$after" -lt $((at_loss + 3)) ]; then
+        fail gpio-loss "rendering stopped without the chip ($at_loss stats lines, then $after)"
+    else
+        ok gpio-loss
+    fi
+    if [ "$back" = yes ] && [ "${returns:-0}" -eq 1 ] && [ "${fired:-0}" -eq 2 ]; then
+        ok gpio-return
+    else
+        fail gpio-return "back=$back gpio_returns=$returns; a press before and one after fired $fired (expected 2)"
+    fi
+}
+
+# flips_so_far NAME: the flips the kiosk NAME counted in its stats lines so far.
+flips_so_far() { sed -n 's/.*, flips \([0-9]*\),.*/\1/p' "$L/$1.out" | awk '{s += $1} END {print s + 0}'; }
+
+# The display unplugged and plugged back while the kiosk runs. vkms (6.1) cannot hot-unplug its
+# one connector and its device cannot be unbound (no driver to unbind; the module is in use), so
+# this is the DRM core's forced connector state on the real driver: "off" written to the
+# connector's sysfs status makes the kernel report it disconnected (what a cable pulled does to
+# a real connector's state), "detect" gives it back. The player pauses scan-out (logged once,
+# no flips, frames still rendered at 10 Hz, stats lines keep coming), then sets the mode again
+# and flips resume.
+test_display_unplug() {
+    local status
+    status=$(ls -d /sys/class/drm/card0-Virtual-*/status 2>/dev/null | head -n 1)
+    if [ ! -w "$status" ]; then
+        skip display-unplug "no writable connector status in /sys/class/drm"
+        return
+    fi
+    step "kiosk on $CARD"
+    if ! kiosk unplugdisp --scale 8 --stats "$L/unplugdisp.json"; then
+        fail display-unplug "no banner: $(first_line "$L/unplugdisp.err")"
+        stop_kiosk
+        return
+    fi
+    wait_stats unplugdisp 2 30
+    step "connector forced off ($status)"
+    echo off >"$status"
+    local paused=no resumed=no at_pause flips_at_pause lines_after flips_paused
+    wait_for "$L/unplugdisp.err" "disconnected; scan-out paused" 15 && paused=yes
+    pause 1.5 # the stats line of the second the pause began may still count flips
+    at_pause=$(stats_lines unplugdisp)
+    flips_at_pause=$(flips_so_far unplugdisp)
+    step "frames while disconnected"
+    wait_stats unplugdisp $((at_pause + 3)) 30
+    lines_after=$(stats_lines unplugdisp)
+    flips_paused=$(($(flips_so_far unplugdisp) - flips_at_pause))
+    step "connector back (detect)"
+    echo detect >"$status"
+    wait_for "$L/unplugdisp.err" "connected again" 15 && resumed=yes
+    local at_resume
+    at_resume=$(flips_so_far unplugdisp)
+    wait_stats unplugdisp $((lines_after + 3)) 30
+    step "stopping the kiosk"
+    stop_kiosk
+    local unplugs replugs flips_after
+    unplugs=$(json_number "$L/unplugdisp.json" display_unplugs)
+    replugs=$(json_number "$L/unplugdisp.json" display_replugs)
+    flips_after=$(($(flips_so_far unplugdisp) - at_resume))
+    note "display unplug: paused=$paused resumed=$resumed; stats lines $at_pause -> $lines_after while" \
+        "disconnected with $flips_paused flips; $flips_after flips after; display_unplugs=$unplugs" \
+        "display_replugs=$replugs display_paused_frames=$(json_number "$L/unplugdisp.json" display_paused_frames)"
+    if [ "$kiosk_rc" -ne 0 ]; then
+        fail display-unplug "exit $kiosk_rc: $(grep -v -e vkms -e kmsro "$L/unplugdisp.err" | tail -n 1)"
+    elif [ "$paused" != yes ] || [ "$(grep -c 'scan-out paused' "$L/unplugdisp.err")" -ne 1 ] ||
+        [ "${unplugs:-0}" -ne 1 ]; then
+        fail display-unplug "forced off: paused=$paused, display_unplugs=$unplugs"
+    elif [ "$lines_after" -lt $((at_pause + 3)) ] || [ "$flips_paused" -ne 0 ]; then
+        fail display-unplug "while disconnected: stats lines $at_pause -> $lines_after, flips $flips_paused (expected none)"
+    else
+        ok display-unplug
+    fi
+    if [ "$resumed" = yes ] && [ "${replugs:-0}" -eq 1 ] && [ "$flips_after" -gt 0 ]; then
+        ok display-replug
+    else
+        fail display-replug "resumed=$resumed display_replugs=$replugs, $flips_after flips after"
+    fi
+}
+
+# The CRTC switched on and off 1000 times (VBLANK_CYCLES on the host) with a page flip in between
+# (tests/vm/vblank_stress.c):
+# every cycle disables the vblank timer while it may be firing, which deadlocks Debian 6.1's
+# vkms without tests/vm/patches/vkms-vblank-cancel-deadlock.patch (the VM then stops dead: no
+# process can run, and run.sh reports the wedged CPUs).
+VBLANK_CYCLES=${SBFX_VBLANK_CYCLES:-1000}
+test_vblank_off_stress() {
+    step "vblank_stress $CARD $VBLANK_CYCLES: CRTC on, a page flip, CRTC off"
+    local t0=$SECONDS
+    "$VBLANK_STRESS" "$CARD" "$VBLANK_CYCLES" >"$L/vblank-stress.out" 2>"$L/vblank-stress.err"
     local rc=$?
-    if [ "$rc" -eq 1 ] && grep -qF "$CARD" "$T/conn.err" && grep -qF "no connector 'HDMI-A-1'" "$T/conn.err"; then
+    if [ "$rc" -eq 0 ] && grep -q "cycles $VBLANK_CYCLES, flips $VBLANK_CYCLES" "$L/vblank-stress.out"; then
+        ok drm-vblank-off-stress
+    else
+        fail drm-vblank-off-stress "exit $rc: $(cat "$L/vblank-stress.out" "$L/vblank-stress.err" | tr '\n' ' ')"
+    fi
+    note "vblank stress: $(cat "$L/vblank-stress.out") in $((SECONDS - t0)) s"
+}
+
+test_drm_errors() {
+    play --display drm --device "$CARD" --connector HDMI-A-1 --frames 1 >"$L/conn.out" 2>"$L/conn.err"
+    local rc=$?
+    if [ "$rc" -eq 1 ] && grep -qF "$CARD" "$L/conn.err" && grep -qF "no connector 'HDMI-A-1'" "$L/conn.err"; then
         ok drm-missing-connector
     else
-        fail drm-missing-connector "exit $rc: $(first_line "$T/conn.err")"
+        fail drm-missing-connector "exit $rc: $(first_line "$L/conn.err")"
     fi
-    play --display drm --device "$CARD" --mode 123x45 --frames 1 >"$T/mode.out" 2>"$T/mode.err"
+    play --display drm --device "$CARD" --mode 123x45 --frames 1 >"$L/mode.out" 2>"$L/mode.err"
     rc=$?
-    if [ "$rc" -eq 1 ] && grep -qF "offers no such mode" "$T/mode.err"; then
+    if [ "$rc" -eq 1 ] && grep -qF "offers no such mode" "$L/mode.err"; then
         ok drm-missing-mode
     else
-        fail drm-missing-mode "exit $rc: $(first_line "$T/mode.err")"
+        fail drm-missing-mode "exit $rc: $(first_line "$L/mode.err")"
     fi
 }
 
 test_gpio_errors() {
     play --display drm --device "$CARD" --frames 1 --gpio "$GPIO_CHIP:99=explosion" \
-        >"$T/gl.out" 2>"$T/gl.err"
+        >"$L/gl.out" 2>"$L/gl.err"
     local rc=$?
-    if [ "$rc" -eq 1 ] && grep -qF "$GPIO_CHIP" "$T/gl.err" && grep -qF "no line 99" "$T/gl.err"; then
+    if [ "$rc" -eq 1 ] && grep -qF "$GPIO_CHIP" "$L/gl.err" && grep -qF "no line 99" "$L/gl.err"; then
         ok gpio-missing-line
     else
-        fail gpio-missing-line "exit $rc: $(grep -v -e vkms -e kmsro "$T/gl.err" | head -n 1)"
+        fail gpio-missing-line "exit $rc: $(grep -v -e vkms -e kmsro "$L/gl.err" | head -n 1)"
     fi
 }
 
-note "guest up after $(cut -d' ' -f1 /proc/uptime) s"
-setup_modules
+# The per-test limit itself: a group that hangs (blocked on a FIFO nobody writes, with a child
+# process in its group, like a kiosk) must fail with its step and its log's tail, its processes
+# killed, within its limit; the tier then goes on.
+hang_forever() {
+    step "blocked on a FIFO nobody writes"
+    echo "selftest: about to block" >"$L/selftest.err"
+    sleep 1000 &
+    echo "$!" >"$T/selftest-child"
+    mkfifo "$T/selftest-fifo"
+    read -r <"$T/selftest-fifo"
+}
+
+test_harness_limit() {
+    local t0=$SECONDS line child
+    RESULTS=$T/selftest.txt run_test selftest-hang 3 hang_forever >/dev/null
+    CURRENT_TEST=harness-limit
+    line=$(cat "$T/selftest.txt" 2>/dev/null)
+    child=$(cat "$T/selftest-child" 2>/dev/null)
+    if [[ "$line" != "not ok - vm/selftest-hang: timed out after 3 s at step 'blocked on a FIFO nobody writes'"* ]] ||
+        [[ "$line" != *"selftest: about to block"* ]]; then
+        fail harness-limit "a hung group gave: '$line'"
+    elif [ -n "$child" ] && [ -e "/proc/$child" ] && [ "$(ps -o stat= -p "$child")" != Z ]; then
+        fail harness-limit "the hung group's child $child is still running"
+    elif [ $((SECONDS - t0)) -gt 15 ]; then
+        fail harness-limit "the hung group took $((SECONDS - t0)) s to be stopped (limit 3 s)"
+    else
+        ok harness-limit
+    fi
+}
+
+# ---- the tier --------------------------------------------------------------------------------
+
+# SBFX_VM_TESTS (VM_TESTS on the host): only the groups named there (space separated); setup
+# always runs.
+selected() { [ -z "${SBFX_VM_TESTS:-}" ] || [[ " $SBFX_VM_TESTS " == *" $1 "* ]]; }
+group() {
+    selected "$1" || return 0
+    run_test "$@"
+}
+
+note "guest up after $(uptime_s) s"
+watch_kernel
+group harness-limit 30 test_harness_limit
+run_test modules 60 setup_modules
+kernel_symbols
 make_scenes
-test_drm_atomic
-test_screenshot_matches_headless
-test_drm_legacy
-test_drm_errors
-test_kiosk_and_busy
-test_video_frames
-test_video_outages
-if setup_gpio_sim; then
-    test_gpio
-    test_gpio_errors
-    test_no_allocations_per_frame
+group drm-atomic 120 test_drm_atomic
+group drm-writeback 90 test_screenshot_matches_headless
+group drm-gpu-reset 90 test_drm_gpu_reset
+group drm-legacy 60 test_drm_legacy
+group drm-errors 60 test_drm_errors
+group drm-kiosk 90 test_kiosk_and_busy
+group video-frames 60 test_video_frames
+group video-outages 150 test_video_outages
+run_test gpio-sim 30 setup_gpio_sim
+if [ -s "$T/gpio.env" ]; then
+    . "$T/gpio.env"
+    group gpio 90 test_gpio
+    group gpio-errors 60 test_gpio_errors
+    group drm-no-allocations 120 test_no_allocations_per_frame
+    group gpio-loss 120 test_gpio_loss
 fi
-mkdir -p "$OUT/logs" && cp "$T"/*.out "$T"/*.err "$T"/*.json "$OUT/logs/" 2>/dev/null
-note "guest done after $(cut -d' ' -f1 /proc/uptime) s (player logs: build/vm/out/logs/)"
+group display-unplug 120 test_display_unplug
+group drm-vblank-off-stress $((90 + VBLANK_CYCLES / 10)) test_vblank_off_stress
+kill "$DMESG_PID" 2>/dev/null
+note "guest done after $(uptime_s) s (logs: build/vm/out/logs/, steps: build/vm/out/steps.txt)"

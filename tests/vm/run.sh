@@ -11,10 +11,14 @@
 #   src/     the few source files of vkms, gpio-sim and irq_sim, patched (tests/vm/patches/)
 #   mods/    vkms.ko and gpio-sim.ko built out of tree (Debian's kernel has neither)
 #   modules/ the guest's /lib/modules/VERSION: Debian's tree + updates/ (the two above)
-#   initrd.gz, kernel.log (ttyS0), guest.log (ttyS1), out/ (the guest's writable share)
+#   initrd.gz, kernel.log (ttyS0), guest.log (ttyS1), monitor.log (qemu's monitor),
+#   out/ (the guest's writable share: results.txt, steps.txt, logs/ with the player logs and
+#   dmesg.txt, written while the guest runs, so they survive a VM that has to be killed)
 #
-# Environment: BUILD (build), VM_DIR (build/vm), VM_TIMEOUT (seconds for the VM, 420: a guard
-# against hangs; the tests take about two minutes on two cores),
+# Environment: BUILD (build), VM_DIR (build/vm), VM_TIMEOUT (seconds for the VM, 900: the outer
+# guard; each test group has its own limit inside the guest, see guest.sh; the tests take about
+# three minutes on two cores), VM_TESTS (only these test groups, e.g. "gpio gpio-loss"),
+# VBLANK_CYCLES (drm-vblank-off-stress's CRTC on/off cycles, 1000),
 # VM_SMP (2), VM_MEM (1536M), KERNEL_ABI (e.g. 6.1.0-56-amd64; default: what linux-image-amd64
 # depends on, remembered in $VM_DIR/kernel-abi).
 set -u
@@ -23,7 +27,7 @@ ROOT=$PWD
 BUILD=${BUILD:-build}
 case $BUILD in /*) ;; *) BUILD=$ROOT/$BUILD ;; esac
 VM_DIR=${VM_DIR:-$ROOT/build/vm}
-VM_TIMEOUT=${VM_TIMEOUT:-420}
+VM_TIMEOUT=${VM_TIMEOUT:-900}
 VM_SMP=${VM_SMP:-2}
 VM_MEM=${VM_MEM:-1536M}
 INITRD_MODULES="virtio_ring virtio virtio_pci_modern_dev virtio_pci_legacy_dev virtio_pci netfs fscache 9pnet 9pnet_virtio 9p overlay"
@@ -156,7 +160,7 @@ initramfs() {
 prepare() {
     command -v qemu-system-x86_64 >/dev/null || die "qemu-system-x86_64 missing (tools/deps.sh vm)"
     local tool
-    for tool in sbfx-play tests/vm/pngdiff tests/vm/drm_state tests/vm/v4l2_ctrl tests/vm/alloc_count.so; do
+    for tool in sbfx-play tests/vm/pngdiff tests/vm/drm_state tests/vm/v4l2_ctrl tests/vm/alloc_count.so tests/vm/vblank_stress; do
         [ -f "$BUILD/$tool" ] || die "$BUILD/$tool is not built (make test-vm builds it)"
     done
     local abi
@@ -182,19 +186,99 @@ prepare() {
 
 # ---- the VM ------------------------------------------------------------------------------
 
-boot() {
+# The monitor of a VM that ran past its time: every CPU's registers and the kernel addresses on
+# its stack, named from the guest's /proc/kallsyms (kallsyms.txt, written by guest.sh after
+# loading the modules; Debian's System.map is a stub). A VM where no
+# process runs any more (a deadlock in a driver with interrupts off) tells nothing itself: this
+# is the only way to see where its CPUs are.
+monitor_dump() {
+    local cpu off log=$VM_DIR/monitor.log
+    : >"$VM_DIR/wedged.txt"
+    for ((cpu = 0; cpu < VM_SMP; cpu++)); do
+        off=$(($(stat -c %s "$log") + 1))
+        printf 'cpu %d\ninfo registers\nx /96gx $sp\n' "$cpu" >&7
+        sleep 2
+        tail -c "+$off" "$log" >"$VM_DIR/monitor-cpu$cpu.txt"
+        {
+            printf 'CPU %d: %s\n' "$cpu" "$(grep -m1 -oE 'RFL=[0-9a-f]+' "$VM_DIR/monitor-cpu$cpu.txt" |
+                awk '{v = substr($0, 5); printf "%s (interrupts %s)", $0, (index("2367abef", substr(v, length(v) - 2, 1)) ? "on" : "off")}')"
+            grep -oE '(RIP=|0x)ffffffff[89a-f][0-9a-f]{7}' "$VM_DIR/monitor-cpu$cpu.txt" |
+                sed 's/^RIP=//; s/^0x//' | symbolize | awk '$2 !~ /^\?/ && !seen[$2]++ {print "  " $2}' | head -n 24
+        } >>"$VM_DIR/wedged.txt"
+    done
+}
+
+# symbolize: kernel text addresses (16 hex digits) on stdin -> "address symbol+offset" in the
+# same order, the symbols and the addresses sorted together as strings (same width: the same
+# order as numbers).
+symbolize() {
+    { awk '{print $1, $2, $3 $4}' "$VM_DIR/out/kallsyms.txt" 2>/dev/null; awk '{print $1, "Q", NR}'; } |
+        sort -s -k1,1 | awk '
+        $2 == "Q" { if (sym != "") printf "%d %s %s %s\n", $3, $1, sym, base; next }
+        { sym = $3; base = $1 }' | sort -n |
+        while read -r _ addr sym base; do
+            printf '%s %s+0x%x\n' "$addr" "$sym" $((0x$addr - 0x$base))
+        done
+}
+
+wedged_report() {
+    echo "# vm: the guest's CPUs when it was stopped (qemu's monitor: the instruction pointer, then"
+    echo "# the kernel code addresses on the stack, innermost first; $VM_DIR/monitor-cpu*.txt):"
+    sed 's/^/#   /' "$VM_DIR/wedged.txt"
+}
+
+# The logs the guest wrote into the share while it ran: what it was doing, the newest player
+# log, the kernel's messages.
+log_tails() {
     local out=$VM_DIR/out
+    echo "# vm: last steps ($out/steps.txt):"
+    tail -n 6 "$out/steps.txt" 2>/dev/null | sed 's/^/#   /'
+    local newest
+    newest=$(ls -t "$out"/logs/*.err 2>/dev/null | head -n 1)
+    if [ -n "$newest" ]; then
+        echo "# vm: newest player log ($newest):"
+        grep -v -e 'failed to open vkms' -e 'failed to load driver' -e kmsro "$newest" | tail -n 8 | sed 's/^/#   /'
+    fi
+    echo "# vm: kernel log ($out/logs/dmesg.txt, $VM_DIR/kernel.log):"
+    tail -n 12 "$out/logs/dmesg.txt" 2>/dev/null | sed 's/^/#   /'
+}
+
+boot() {
+    local out=$VM_DIR/out mon=$VM_DIR/monitor
     rm -rf "$out" && mkdir -p "$out"
-    say "booting $ABI (TCG, $VM_SMP CPUs) for tests/vm/guest.sh"
-    timeout -k 10 "$VM_TIMEOUT" qemu-system-x86_64 -machine q35 -accel tcg,thread=multi,tb-size=256 \
+    rm -f "$mon.in" "$mon.out" "$VM_DIR/qemu.pid" "$VM_DIR/guest.log" "$VM_DIR"/monitor-cpu*.txt &&
+        mkfifo "$mon.in" "$mon.out" && : >"$VM_DIR/guest.log"
+    say "booting $ABI (TCG, $VM_SMP CPUs) for tests/vm/guest.sh${VM_TESTS:+ (only: $VM_TESTS)}"
+    local tests=${VM_TESTS:-}
+    qemu-system-x86_64 -machine q35 -accel tcg,thread=multi,tb-size=256 \
         -cpu qemu64 -m "$VM_MEM" -smp "$VM_SMP" -nodefaults -display none -no-reboot \
-        -kernel "$KERNEL" -initrd "$VM_DIR/initrd.gz" \
-        -append "console=ttyS0 quiet loglevel=4 panic=-1 SBFX_GUEST=$ROOT/tests/vm/guest.sh SBFX_SRC=$ROOT SBFX_BUILD=$BUILD" \
-        -serial "file:$VM_DIR/kernel.log" -serial stdio \
+        -kernel "$KERNEL" -initrd "$VM_DIR/initrd.gz" -pidfile "$VM_DIR/qemu.pid" \
+        -append "console=ttyS0 quiet loglevel=4 panic=-1 SBFX_GUEST=$ROOT/tests/vm/guest.sh SBFX_SRC=$ROOT SBFX_BUILD=$BUILD${tests:+ SBFX_VM_TESTS=${tests// /,}}${VBLANK_CYCLES:+ SBFX_VBLANK_CYCLES=$VBLANK_CYCLES}" \
+        -serial "file:$VM_DIR/kernel.log" -serial stdio -monitor "pipe:$mon" \
         -virtfs local,path=/,mount_tag=hostroot,security_model=none,readonly=on,multidevs=remap \
         -virtfs "local,path=$VM_DIR/modules,mount_tag=modules,security_model=none,readonly=on" \
-        -virtfs "local,path=$out,mount_tag=vmout,security_model=none" </dev/null | tee "$VM_DIR/guest.log"
-    VM_STATUS=${PIPESTATUS[0]}
+        -virtfs "local,path=$out,mount_tag=vmout,security_model=none" </dev/null >"$VM_DIR/guest.log" 2>&1 &
+    local qemu=$!
+    exec 7<>"$mon.in"
+    cat "$mon.out" >"$VM_DIR/monitor.log" &
+    local reader=$!
+    tail -n +1 -f --pid="$qemu" "$VM_DIR/guest.log" &
+    local tailer=$! deadline=$((SECONDS + VM_TIMEOUT))
+    while kill -0 "$qemu" 2>/dev/null && [ "$SECONDS" -lt "$deadline" ]; do sleep 1; done
+    VM_STATUS=0
+    if kill -0 "$qemu" 2>/dev/null; then
+        VM_STATUS=124
+        monitor_dump
+        kill "$qemu" 2>/dev/null
+        sleep 2
+        kill -KILL "$qemu" 2>/dev/null
+    fi
+    wait "$qemu" 2>/dev/null
+    local rc=$?
+    [ "$VM_STATUS" -eq 124 ] || VM_STATUS=$rc
+    exec 7>&-
+    kill "$reader" 2>/dev/null
+    wait "$tailer" "$reader" 2>/dev/null
 }
 
 summarize() {
@@ -206,7 +290,9 @@ summarize() {
         skipped=$(grep -c '^skip - ' "$results")
     fi
     if [ "$VM_STATUS" -eq 124 ] || [ "$VM_STATUS" -eq 137 ]; then
-        echo "not ok - vm/timeout: the VM ran past $VM_TIMEOUT s (kernel log: $VM_DIR/kernel.log)"
+        echo "not ok - vm/timeout: the VM ran past $VM_TIMEOUT s in test '$(cat "$VM_DIR/out/current-test.txt" 2>/dev/null)' (logs: $VM_DIR/out/)"
+        log_tails
+        wedged_report
         failed=$((failed + 1))
     elif [ ! -f "$VM_DIR/out/exit-status" ]; then
         echo "not ok - vm/boot: the guest did not finish (exit $VM_STATUS); kernel log tail:"
