@@ -26,14 +26,14 @@ eval "\"$BIN\" --out \"$OUT\" ${BENCH_ARGS:-}"
 # The table as markdown (for README "What accuracy costs").
 awk -F, 'NR == 1 {
     for (i = 1; i <= NF; i++) col[$i] = i
-    print "| mode | scale | target | upsample | LUT | detail | density | ms (min–max) | particle pass ms | mean err | max err | PSNR dB | edge mean | edge PSNR dB | Pareto |"
-    print "| --- | ---: | --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |"
+    print "| mode | scale | target | upsample | LUT | detail | density | particles | ms (min–max) | particle pass ms | mean err | max err | PSNR dB | edge mean | edge PSNR dB | Pareto |"
+    print "| --- | ---: | --- | --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |"
     next
 }
 {
-    printf "| %s | %s | %s | %s | %s | %s | %s | %.1f (%.1f–%.1f) | %.1f | %.3f | %.0f | %.1f | %.2f | %.1f | %s |\n",
+    printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.1f (%.1f–%.1f) | %.1f | %.3f | %.0f | %.1f | %.2f | %.1f | %s |\n",
         $col["mode"], $col["scale"], $col["format"], $col["upsample"], $col["lut"], $col["detail"],
-        $col["density"] == "matched" ? "τ/2" : "scene",
+        $col["density"] == "matched" ? "τ/2" : "scene", ("lod" in col && $col["lod"] > 0) ? "lod" $col["lod"] : "all",
         $col["ms"], $col["ms_min"], $col["ms_max"], $col["particle_ms"], $col["mean_abs_err"],
         $col["max_abs_err"], $col["psnr"], $col["edge_mean_abs_err"], $col["edge_psnr"],
         $col["pareto"] == 1 ? "★" : ""
