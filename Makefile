@@ -1,15 +1,20 @@
-# sbfx — build, test, demo, bench, install.
+# sbfx — build, test, demo, bench, install. `make help` prints the "#   make" lines below.
 #   make [all]        library (build/libsbfx.a, .so), build/sbfx-play, build/sbfx-probe, build/sbfx-soak
+#   make help         this list of targets
 #   make demo         render the built-in explosion headless into build/demo/
-#   make gallery      one contact sheet per example scene into docs/gallery/ (README "Gallery")
-#   make test         unit + GL (surfaceless Mesa) tests, shader validation, then ASan+UBSan
+#   make gallery      one contact sheet per example scene into docs/gallery/ (docs/scene-format.md)
+#   make test         unit + GL (surfaceless Mesa) tests, shader validation, docs, then ASan+UBSan
 #   make bench        timings into build/bench/
 #   make ladder       src/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
-#   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR); make uninstall
+#   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR, MANDIR)
+#   make uninstall    remove what make install put there (same PREFIX, DESTDIR)
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
 #   make test-vm      real-kernel tests in a qemu VM (vkms, vivid, gpio-sim; tests/vm/)
 #   make soak         SOAK_HOURS (10) simulated hours of the kiosk loop: build/soak/soak.csv, .png
+#   make fuzz         FUZZ_SECONDS (60) of libFuzzer on the scene parser (clang)
+#   make clean        remove build/
+#   make V=1 ...      print every command line (quiet by default: "  CC      build/obj/src/sim.o")
 # Every build first checks the Debian packages it needs (tools/deps.sh $(DEPS): as root it
 # installs what is missing, otherwise it names the apt-get line and stops).
 PREFIX ?= /usr/local
@@ -18,6 +23,14 @@ LIBDIR ?= $(PREFIX)/lib
 INCLUDEDIR ?= $(PREFIX)/include
 BINDIR ?= $(PREFIX)/bin
 BUILD ?= build
+MANDIR ?= $(PREFIX)/share/man
+# Quiet builds, as the kernel's kbuild: recipe lines are not echoed, and tools/quiet-shell.sh,
+# make's shell, prints one short line per compile, link or archive. make V=1: the command lines.
+V ?= 0
+ifneq ($(V),1)
+.SILENT:
+SHELL := $(CURDIR)/tools/quiet-shell.sh
+endif
 CC ?= cc
 PKG_CONFIG ?= pkg-config
 # The library's version: the minor grows when a function is added to src/sbfx.h, the major
@@ -78,9 +91,12 @@ PLATFORM_COMMON_OBJ := $(PLATFORM_COMMON:%=$(BUILD)/obj/platform/%.o)
 UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/unit/%,$(wildcard tests/unit/*.c))
 GL_TESTS := $(patsubst tests/gl/%.c,$(BUILD)/tests/gl/%,$(wildcard tests/gl/*.c))
 
-.PHONY: all deps lib test test-unit test-gl test-asan demo gallery bench ladder install uninstall clean
+.PHONY: all deps lib test test-unit test-gl test-asan demo gallery bench ladder install uninstall clean help
 all: lib $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(BUILD)/sbfx-soak $(BUILD)/sbfx.pc
 lib: $(BUILD)/libsbfx.a $(SO_LINKS) $(BUILD)/libsbfx_ref.a
+
+help:
+	@sed -n 's/^#   make /make /p' $(firstword $(MAKEFILE_LIST))
 
 # Every compile waits for this step (order-only: it never makes anything out of date).
 # DEPS=none skips it (a toolchain and sysroot that do not come from Debian packages).
@@ -134,12 +150,15 @@ $(BUILD)/libsbfx.so: $(BUILD)/$(SONAME)
 	ln -sf $(<F) $@
 
 # sbfx-play: the player, its displays (headless, DRM/KMS), camera and GPIO inputs (platform/)
-PLAYER_SRC := $(addprefix player/,player player_args player_usage player_inputs player_loop player_reset board) \
+PLAYER_SRC := $(addprefix player/,player player_args player_usage player_stats player_inputs player_loop \
+	player_reset board) \
 	$(addprefix video/,luma live_detail v4l2_source) \
 	$(addprefix gpio/,gpio_gpiod1 gpio_triggers trigger_filter) \
 	$(addprefix display/,display_headless display_drm display_link) \
 	$(addprefix drm/,drm_device drm_fb drm_atomic drm_legacy drm_writeback gbm_egl)
 PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o)
+# --version prints the Makefile's VERSION (the library's)
+$(BUILD)/obj/platform/player/player_usage.o: PLATFORM_CFLAGS += -DSBFX_VERSION='"$(VERSION)"'
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
@@ -152,7 +171,7 @@ $(BUILD)/obj/tools/%.o: tools/%.c | deps
 $(BUILD)/sbfx-probe: $(BUILD)/obj/tools/probe/probe.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
-# sbfx-soak: the kiosk loop for simulated hours, flatness checked (README "Kiosk months");
+# sbfx-soak: the kiosk loop for simulated hours, flatness checked (docs/kiosk-and-devices.md "Kiosk months");
 # a test tool, not installed. `make soak` runs it for SOAK_HOURS and plots the record
 # with gnuplot (tests/soak/soak.gp); tests/soak.sh runs a short one inside `make test`.
 $(BUILD)/sbfx-soak: $(BUILD)/obj/tools/soak/soak.o $(BUILD)/obj/tools/soak/soak_check.o $(PLATFORM_COMMON_OBJ) \
@@ -229,7 +248,7 @@ bench: all
 	@tests/bench/run.sh $(BUILD)
 
 # The header, both libraries (the .so as libsbfx.so.VERSION with its soname and development
-# links), sbfx.pc and the two programs; ldconfig when it is the live system. Not the CPU
+# links), sbfx.pc, the two programs and sbfx-play's man page; ldconfig when it is the live system. Not the CPU
 # reference (libsbfx_ref.a): tests only.
 install: all
 	install -d $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(INCLUDEDIR) $(DESTDIR)$(BINDIR)
@@ -240,13 +259,15 @@ install: all
 	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libsbfx.so
 	$(call pc_from_template,$(DESTDIR)$(LIBDIR)/pkgconfig/sbfx.pc)
 	install -m 755 $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(DESTDIR)$(BINDIR)/
+	install -d $(DESTDIR)$(MANDIR)/man1
+	install -m 644 platform/player/sbfx-play.1 $(DESTDIR)$(MANDIR)/man1/
 	@if [ -z "$(DESTDIR)" ] && [ "$$(id -u)" -eq 0 ]; then ldconfig; fi
 
 uninstall:
 	rm -f $(DESTDIR)$(INCLUDEDIR)/sbfx.h $(DESTDIR)$(LIBDIR)/libsbfx.a \
 		$(DESTDIR)$(LIBDIR)/libsbfx.so.$(VERSION) $(DESTDIR)$(LIBDIR)/$(SONAME) \
 		$(DESTDIR)$(LIBDIR)/libsbfx.so $(DESTDIR)$(LIBDIR)/pkgconfig/sbfx.pc \
-		$(DESTDIR)$(BINDIR)/sbfx-play $(DESTDIR)$(BINDIR)/sbfx-probe
+		$(DESTDIR)$(BINDIR)/sbfx-play $(DESTDIR)$(BINDIR)/sbfx-probe $(DESTDIR)$(MANDIR)/man1/sbfx-play.1
 
 clean:
 	rm -rf build
@@ -360,7 +381,7 @@ $(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(BUILD)/o
 test-platform: $(PLATFORM_TESTS)
 
 # The real-kernel tier: boots Debian's kernel under qemu with vkms, vivid and gpio-sim and runs
-# sbfx-play against them (tests/vm/run.sh, README "Real-kernel tests"). Downloads from Debian's
+# sbfx-play against them (tests/vm/run.sh, docs/testing.md "Real-kernel tests"). Downloads from Debian's
 # archive, cached in build/vm/.
 VM_TOOLS := $(BUILD)/tests/vm/pngdiff $(BUILD)/tests/vm/drm_state $(BUILD)/tests/vm/v4l2_ctrl \
 	$(BUILD)/tests/vm/alloc_count.so $(BUILD)/tests/vm/vblank_stress

@@ -1,9 +1,9 @@
-/* CPU reference of the particle opacity (DESIGN §2.1), all four modes, in double precision.
+/* CPU reference of the particle opacity (docs/design.md §2.1), all four modes, in double precision.
  *
  * View space: camera at the origin looking down -z; depths (opaque_depth Zs, near n, the
  * centre depth zc = -center[2]) are positive distances along -z.
  *
- * Conventions shared by every mode (the "bad particle is skipped" rule of DESIGN §2.2):
+ * Conventions shared by every mode (the "bad particle is skipped" rule of docs/design.md §2.2):
  *  - a NaN anywhere in the particle or the pixel, an infinite centre, radius, tau, ray, near or
  *    soft_scale, radius < SMALLEST_RADIUS, or tau <= 0 gives optical depth 0 and opacity 0;
  *  - opaque_depth may be +inf (nothing opaque, the depth texture's far clear value); -inf means
@@ -53,7 +53,7 @@ static int inputs_valid(const sbfx_ref_particle *p, const sbfx_ref_pixel *px)
 }
 
 /* Half-length of the chord at distance d from the centre: sqrt(r-d)*sqrt(r+d) is the
- * cancellation-free sqrt(r^2 - d^2) of DESIGN §2.1, and the two square roots cannot overflow or
+ * cancellation-free sqrt(r^2 - d^2) of docs/design.md §2.1, and the two square roots cannot overflow or
  * underflow the way the product (r-d)(r+d) can for extreme radii. Requires 0 <= d < r. */
 static double half_chord(double r, double d)
 {

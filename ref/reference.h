@@ -10,7 +10,7 @@
 #include "sbfx.h"
 #include "tables.h"
 
-/* ---- opacity (DESIGN §2.1) ------------------------------------------------------------ */
+/* ---- opacity (docs/design.md §2.1) ----------------------------------------------------------- */
 
 /* One spherical particle in view space (camera at origin, looking down -z, so center[2] < 0
  * for a particle in front of the camera). tau is the extinction at the centre. */

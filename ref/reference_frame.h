@@ -1,4 +1,4 @@
-/* CPU reference renderer of whole particle frames (DESIGN §2, §4), in double precision,
+/* CPU reference renderer of whole particle frames (docs/design.md §2, §4), in double precision,
  * usable without GL (pure libc + reference.h).
  *
  * It evaluates, per full-resolution pixel, what particle.frag evaluates per particle-target

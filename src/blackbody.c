@@ -1,4 +1,4 @@
-/* Black-body colour of fire (DESIGN §2.3): Planck's law integrated against the CIE 1931 2°
+/* Black-body colour of fire (docs/design.md §2.3): Planck's law integrated against the CIE 1931 2°
  * colour-matching functions, XYZ -> linear sRGB, normalised, tabulated over temperature.
  *
  * The CMFs come from colord-data's CGATS file, read with lcms2's IT8 parser in a private lcms2

@@ -1,4 +1,4 @@
-/* The frame budget (DESIGN §6): the levels the module declares at load, the ladder the budget
+/* The frame budget (docs/design.md §6): the levels the module declares at load, the ladder the budget
  * walks below the top quality, and each frame: the governor's level applied before the passes,
  * sbfx's GPU time measured around them (gpu_timer.c) or, where GL_EXT_disjoint_timer_query is
  * missing, reported by the host (sbfx_report_frame_time), fed back to the governor. */
@@ -42,8 +42,8 @@ static bool cheaper_than_top(const sbfx_quality *top, const sbfx_quality *q)
 }
 
 /* Where the top stands on the given ladder: after the level equal to it, else after the level
- * that differs from it in target format only (the format moves the error least: README "What
- * accuracy costs"); -1 when neither is there. */
+ * that differs from it in target format only (the format moves the error least:
+ * docs/accuracy-and-benchmarks.md); -1 when neither is there. */
 static int after_top(const sbfx_quality *top, const sbfx_quality *given, int count)
 {
     for (int pass = 0; pass < 2; pass++)

@@ -1,4 +1,4 @@
-/* Procedural detail volume (DESIGN §2.4): tileable, looping, animated fBm of 3D gradient noise.
+/* Procedural detail volume (docs/design.md §2.4): tileable, looping, animated fBm of 3D gradient noise.
  *
  * Axes x, y (size texels) and t (frames) are all periodic: octave k has a lattice of
  * cells[axis] cells per axis, texel x maps to lattice coordinate x * cells / size, and lattice

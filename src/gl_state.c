@@ -1,4 +1,4 @@
-/* The host contract (DESIGN §5): sbfx is a guest in the host's GL context. Every entry point
+/* The host contract (docs/design.md §5): sbfx is a guest in the host's GL context. Every entry point
  * that changes GL state saves exactly the pieces it changes in one block, does its work and
  * puts them back, the way Dear ImGui's GLES3 backend does (sampler bindings included). The
  * host's own textures (scene colour and depth) are read through sbfx's sampler objects, so

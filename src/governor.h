@@ -1,4 +1,4 @@
-/* The frame-budget governor (DESIGN §6): which rung of a quality ladder to render next, from
+/* The frame-budget governor (docs/design.md §6): which rung of a quality ladder to render next, from
  * GPU times that arrive a few frames late. Pure logic: no GL, no clock, no allocation, no
  * randomness — the same measurements give the same levels (tests/unit/test_governor.c drives
  * it with a synthetic cost model).

@@ -1,4 +1,4 @@
-/* sbfx's own GPU time per frame without stalling the pipeline (DESIGN §6, issue 11 item 2):
+/* sbfx's own GPU time per frame without stalling the pipeline (docs/design.md §6, issue 11 item 2):
  * GL_EXT_disjoint_timer_query through the ES 3.0 core query entry points (glBeginQuery etc.
  * accept GL_TIME_ELAPSED_EXT where the extension is listed; no EGL, no GetProcAddress), as a
  * ring of GPU_TIMER_RING query objects read a few frames late.

@@ -9,7 +9,7 @@
 
 #define ARRAY_SIZE(a) (sizeof(a) / sizeof((a)[0]))
 
-/* Lookup tables (reference.h has their coordinates; README "What accuracy costs" the sizes'
+/* Lookup tables (reference.h has their coordinates; docs/accuracy-and-benchmarks.md the sizes'
  * measured error). Float32 entries fetched with texelFetch and interpolated in the shader:
  * half floats would spend half the error budget on rounding (2^-11), float textures are not
  * filterable in core ES 3.0, and the filter's fixed-point weights would add their own error. */
@@ -18,7 +18,7 @@
 #define SBFX_DEFAULT_MAX_KELVIN 6000.0    /* blackbody_max_kelvin: luminance 1 at this T */
 #define SBFX_BLACKBODY_MIN_KELVIN 500.0   /* cooler fire: under 1e-19 of the unit's light */
 #define SBFX_BLACKBODY_MARGIN 1.25        /* the range reaches this factor beyond the scene's */
-#define SBFX_TABLE_TOLERANCE 1e-3         /* DESIGN §4: relative to the double function */
+#define SBFX_TABLE_TOLERANCE 1e-3         /* docs/design.md §4: relative to the double function */
 #define SBFX_TABLE_GPU_ALLOWANCE 1e-4     /* of it, what the shader's float arithmetic may use
                                              (llvmpipe: 6e-6 black body, 5e-7 phase) */
 

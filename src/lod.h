@@ -1,9 +1,9 @@
-/* The quality ladder's last resort (DESIGN §6, issue 11 item 2): particle level of detail that
+/* The quality ladder's last resort (docs/design.md §6, issue 11 item 2): particle level of detail that
  * draws at most N particles (the `lodN` flag of a level name) at any load, merging the least
  * visible nearby particles of one medium while conserving their integrated optical depth and
  * their light. No GL, no allocation (work memory sized at load), deterministic.
  *
- * The math. Every opacity model's optical depth through a particle (DESIGN §2.1) is
+ * The math. Every opacity model's optical depth through a particle (docs/design.md §2.1) is
  * τ_medium · intensity · r · f(d / r, ...) — the profile (1 − d/r) times a chord ∝ r — so its
  * integral over the area it covers, seen from distance D (solid angle dΩ = dA / D²), is
  *
@@ -27,7 +27,7 @@
  *
  * What a merge does not keep: the overlap of the two (optically thick parts saturate
  * differently) and the spread (one sphere at the centroid instead of two): the error that the
- * bench measures against the CPU reference for each lodN level (README "Frame budgets").
+ * bench measures against the CPU reference for each lodN level (docs/quality-and-budgets.md "Frame budgets").
  *
  * Which particles: the centres are ordered along a Morton (Z-order) curve over their bounding
  * box, medium first (radix sort), and consecutive particles of one medium are paired; a pair's

@@ -292,7 +292,7 @@ struct sbfx {
     void *lod_work;              /* first level that needs it (at load for declared ones) */
 };
 
-/* projection.c: what a frame's projection says (DESIGN §5). View distance from window depth d:
+/* projection.c: what a frame's projection says (docs/design.md §5). View distance from window depth d:
  * p14 / (scale (d - window_far) + offset); d = window_far (the clear value) is no surface. */
 typedef struct sbfx_depth_model {
     float projection[4];     /* p0, p5, p8, p9 */
@@ -305,7 +305,7 @@ bool sbfx_depth_model_from(sbfx *fx, const sbfx_frame *f, sbfx_depth_model *out)
 /* The shaders' vec4 u_depth_model: scale, window_far, offset, p14. */
 void sbfx_depth_model_uniform(const sbfx_depth_model *m, float out[4]);
 
-/* gl_state.c: the host's GL state around every entry point (DESIGN §5) */
+/* gl_state.c: the host's GL state around every entry point (docs/design.md §5) */
 #define SBFX_GL_MAX_UNITS 8
 #define SBFX_GL_PIXEL_STORE 6
 enum {
@@ -366,7 +366,7 @@ GLuint sbfx_post_composite_texture(const sbfx *fx);
 sbfx_result sbfx_fire(sbfx *fx, int effect, const float position[3]);
 
 /* The clock's phase in a cycle of |period| seconds, in [0, 1), reduced in double precision
- * (DESIGN §7): what every periodic value starts from. */
+ * (docs/design.md §7): what every periodic value starts from. */
 double sbfx_clock_phase(const sbfx *fx, double period);
 #define SBFX_MAX_START_TIME 1e10
 #define SBFX_DETAIL_LOOP_SECONDS 4.0 /* the detail animation's loop */

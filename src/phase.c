@@ -1,4 +1,4 @@
-/* Phase function of dust and smoke (DESIGN §2.3): the Cornette–Shanks shaped function that the
+/* Phase function of dust and smoke (docs/design.md §2.3): the Cornette–Shanks shaped function that the
  * seed prints (and calls Henyey–Greenstein), its table and the bilinear lookup the GPU does.
  *
  * Convention, chosen on purpose: cos_theta is the cosine between the direction the light
@@ -11,7 +11,7 @@
  * the light and the light travels along -w'. The scattering cosine is then c = (-w').w, and
  * 1 + g^2 - 2 g c = 1 + g^2 + 2 g (w'.w): the seed's denominator. Read with w' pointing toward
  * the light, the seed's formula peaks forward for g > 0; read with w' as the light's direction of
- * travel it would peak backward, which is the trap DESIGN §2.3 warns about. Callers pass
+ * travel it would peak backward, which is the trap docs/design.md §2.3 warns about. Callers pass
  * c = dot(direction the light travels in, direction from the particle toward the camera), so a
  * particle back-lit by a light shining toward the camera gets c = 1 and, for g > 0, the peak.
  *

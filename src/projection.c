@@ -1,4 +1,4 @@
-/* What sbfx reads from a frame's projection (DESIGN §5): any OpenGL perspective — finite far,
+/* What sbfx reads from a frame's projection (docs/design.md §5): any OpenGL perspective — finite far,
  * infinite far (p10 = -1, p14 = -2n), off-axis (p8, p9), reversed-Z (p14 > 0: near -> 1,
  * far -> 0) — and how the host's depth texture turns into view distance.
  *

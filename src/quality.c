@@ -1,4 +1,4 @@
-/* Run-time quality (DESIGN §6): what a level needs on the GPU, and switching between levels
+/* Run-time quality (docs/design.md §6): what a level needs on the GPU, and switching between levels
  * without re-creating the module (level names: quality_name.c). The current level's choices live in
  * fx->desc (its quality fields) and in the current copies of fx->gl (particle programs,
  * composite, targets), so the passes read them as they always did. */

@@ -1,6 +1,6 @@
-/* Quality levels as values and names (DESIGN §6): defaults, validation, and the level name
- * grammar <opacity>/<divisor>/<upsample>[/<flag>...] (README "Run-time quality and the frame
- * budget"). No GL: the scene parser (and its fuzzer) reads ladders with it. */
+/* Quality levels as values and names (docs/design.md §6): defaults, validation, and the level name
+ * grammar <opacity>/<divisor>/<upsample>[/<flag>...] (docs/quality-and-budgets.md, "Level
+ * names"). No GL: the scene parser (and its fuzzer) reads ladders with it. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -48,7 +48,7 @@ typedef void (*sbfx_log_fn)(sbfx_log_level level, const char *message, void *use
 /* Accuracy knobs. Zero in a desc always means "the default" (marked). */
 typedef enum sbfx_opacity_mode {
     SBFX_OPACITY_DEFAULT = 0, /* = EXACT: as cheap as SPHERICAL and ten times closer to the
-                                 reference (README "What accuracy costs", the defaults) */
+                                 reference (docs/accuracy-and-benchmarks.md, the defaults) */
     SBFX_OPACITY_PLANAR,      /* classic billboard: radial profile, emulated depth test */
     SBFX_OPACITY_SOFT,        /* planar faded by an S-curve of the depth difference (RTR) */
     SBFX_OPACITY_SPHERICAL,   /* the seed: parallel rays, (1 - d/r) * clipped chord; twice the
@@ -85,8 +85,8 @@ typedef enum sbfx_detail_format {
  * room the picture leaves, room_k = 1 - T dst_k, so dst * T + C never clips where the host's
  * picture does not. dst is read from frame.scene_color_texture (black when there is none, or when
  * it is the texture out_framebuffer draws into). The curve is the identity up to 0.6 and a
- * logarithmic shoulder above that reaches 1 at 64, the particles' radiance ceiling (README
- * "Colour on the display"). */
+ * logarithmic shoulder above that reaches 1 at 64, the particles' radiance ceiling
+ * (docs/colour.md). */
 typedef enum sbfx_tone_map {
     SBFX_TONE_MAP_DEFAULT = 0,     /* = HUE_PRESERVING */
     SBFX_TONE_MAP_NONE,            /* light added as computed: each channel clips on its own */
@@ -99,7 +99,7 @@ typedef enum sbfx_tone_map {
  * it (heat shimmer). */
 typedef enum sbfx_medium { SBFX_DUST, SBFX_SMOKE, SBFX_FIRE, SBFX_HEAT, SBFX_MEDIUM_COUNT } sbfx_medium;
 
-/* A parsed scene file (libconfig syntax; README "Scene files"): render settings, lights,
+/* A parsed scene file (libconfig syntax; docs/scene-format.md): render settings, lights,
  * media, effects made of steps, and triggers. Loading either succeeds whole or leaves nothing
  * behind; errors name the file and line. */
 typedef struct sbfx_scene sbfx_scene;
@@ -176,8 +176,8 @@ typedef struct sbfx_desc {
     bool ignore_timeline;            /* do not fire the scene's timeline triggers */
     sbfx_log_fn log;                 /* NULL: messages go nowhere, sbfx_last_error() still works */
     void *log_user;
-    /* Frame budget (README "Frame budgets"): with frame_budget_ms > 0 sbfx measures its own GPU
-     * time per frame and walks a quality ladder to stay within it. The quality this desc (and
+    /* Frame budget (docs/quality-and-budgets.md): with frame_budget_ms > 0 sbfx measures its own
+     * GPU time per frame and walks a quality ladder to stay within it. The quality this desc (and
      * the scene) gives is the ladder's top: the budget never raises it. 0 = no budget. */
     int lod_particles;               /* at most this many particles drawn, the least visible
                                         merged (level of detail); 0 = all */
@@ -192,7 +192,7 @@ typedef struct sbfx_desc {
 /* How the host's clip-space depth became the window depth its depth texture holds (with the
  * default glDepthRangef(0, 1)). Zero is OpenGL's default; a host that calls
  * glClipControlEXT(GL_LOWER_LEFT, GL_ZERO_TO_ONE) says so here. Together with the projection
- * matrix this fixes how depth reads back as distance (README "Projections and depth"). */
+ * matrix this fixes how depth reads back as distance (docs/embedding.md "Projections and depth"). */
 typedef enum sbfx_clip_depth_mode {
     SBFX_CLIP_DEPTH_NEGATIVE_ONE_TO_ONE = 0, /* window depth = (ndc_z + 1) / 2 */
     SBFX_CLIP_DEPTH_ZERO_TO_ONE,             /* window depth = ndc_z (GL_EXT_clip_control) */
@@ -236,8 +236,8 @@ typedef struct sbfx_counters {
     uint64_t heap_allocs_after_load; /* sbfx heap allocations since sbfx_create returned */
     sbfx_target_format target_format; /* the format actually in use */
     int gl_state_queries;     /* glGet* / glIs* calls the last sbfx_render made to save and
-                                 restore the host's GL state (0 when it ran no pass); README
-                                 "What sbfx does to your GL state" */
+                                 restore the host's GL state (0 when it ran no pass);
+                                 docs/embedding.md "What sbfx does to your GL state" */
     char quality[64];         /* the current quality level's name (sbfx_quality_name) */
     float budget_ms;          /* desc.frame_budget_ms (0: none) */
     float gpu_ms;             /* smoothed GPU time of sbfx's work per frame (budget only) */
@@ -278,7 +278,7 @@ SBFX_API sbfx_result sbfx_update(sbfx *fx, double dt);
 SBFX_API sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);
 SBFX_API void sbfx_stats(const sbfx *fx, sbfx_counters *out);
 
-/* Run-time quality (README "Run-time quality"): what sbfx_desc's accuracy knobs choose at
+/* Run-time quality (docs/quality-and-budgets.md): what sbfx_desc's accuracy knobs choose at
  * create, changeable between frames without losing the simulation. Zero fields mean the
  * default, as in sbfx_desc. */
 typedef struct sbfx_quality {

@@ -1,5 +1,5 @@
 /* Scene files: libconfig syntax, validated key by key. Every error names the file and line;
- * nothing is kept from a file that fails. The format is documented in README.md. */
+ * nothing is kept from a file that fails. The format is documented in docs/scene-format.md. */
 #include <libconfig.h>
 #include <math.h>
 #include <stdarg.h>

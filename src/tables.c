@@ -1,4 +1,4 @@
-/* The black-body and phase tables of the loaded scene (DESIGN §2.3, §4): ranges from what the
+/* The black-body and phase tables of the loaded scene (docs/design.md §2.3, §4): ranges from what the
  * scene can produce, the tables built in double (blackbody.c, phase.c) and stored as float,
  * checked against their functions at load, and uploaded. A medium whose table would miss the
  * tolerance (SBFX_TABLE_TOLERANCE, less what the shader's float arithmetic may add) evaluates

@@ -12,7 +12,7 @@
 #include <stdint.h>
 #include "sbfx.h"
 
-/* ---- black body (DESIGN §2.3) --------------------------------------------------------- */
+/* ---- black body (docs/design.md §2.3) -------------------------------------------------------- */
 
 #define SBFX_CMF_MAX_BANDS 512
 #define SBFX_CMF_DEFAULT_PATH "/usr/share/colord/cmf/CIE1931-2deg-XYZ.cmf"
@@ -57,7 +57,7 @@ void sbfx_blackbody_table_lookup(const float *table, int size, double lo, double
 double sbfx_blackbody_table_error(const sbfx_cmf *cmf, double norm, const float *table, int size,
                                   double lo, double hi);
 
-/* ---- phase function (DESIGN §2.3) ----------------------------------------------------- */
+/* ---- phase function (docs/design.md §2.3) ---------------------------------------------------- */
 
 /* Cornette–Shanks shaped phase function, normalised to 1 over the sphere (1/sr).
  * cos_theta is the cosine of the scattering angle between the light's direction of travel and
@@ -94,7 +94,7 @@ sbfx_tone_curve sbfx_tone_curve_default(void);
 /* v for v <= knee, then the logarithmic shoulder, 1 at and above white; 0 for v <= 0, NaN. */
 double sbfx_tone_curve_apply(const sbfx_tone_curve *c, double v);
 
-/* ---- detail volume (DESIGN §2.4) ------------------------------------------------------ */
+/* ---- detail volume (docs/design.md §2.4) ----------------------------------------------------- */
 
 /* Tileable (in x, y and t) animated fBm, size x size x frames floats in [0,1], x fastest.
  * Deterministic from seed. */

@@ -1,4 +1,4 @@
-/* The reduced-resolution particle target and the downsampled opaque depth (DESIGN §2.5).
+/* The reduced-resolution particle target and the downsampled opaque depth (docs/design.md §2.5).
  * Made on the first render and again only when the output size changes.
  * The particle framebuffer's attachments: 0 light + transmittance; 1 heat-shimmer offsets
  * (scenes with heat); 2 premultiplied screen velocity and view distance (scenes with velocity

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The command-line contract of sbfx-play (flags in platform/player/player_args.c, README.md):
+# The command-line contract of sbfx-play (flags in platform/player/player_args.c, docs/player.md):
 # --help, clear errors with exit status 1 for bad arguments, and short headless runs that
 # write PNG frames, a contact sheet and a --stats JSON object.
 # Usage: tests/cli.sh [PLAYER] (default build/sbfx-play). Prints "ok - cli/x" lines for
@@ -56,7 +56,7 @@ test_help() {
     play --help
     local missing="" flag
     for flag in --headless --size --frames --fps --start-time --out --contact-sheet --stats --trigger \
-        --no-timeline --scale --opacity --format --upsample --tone-map --exposure --budget-ms --seed --scene --quiet --help \
+        --no-timeline --scale --opacity --format --upsample --tone-map --exposure --budget-ms --seed --scene --quiet --help --version \
         --display --device --connector --mode --modeset --screenshot --board --video --gpio; do
         grep -qF -- "$flag" "$tmp/out" || missing="$missing $flag"
     done
@@ -212,7 +212,7 @@ test_trigger_run() {
         --frames 1 --out "$tmp/unknown" --quiet
 }
 
-# --start-time (README "Kiosk months"): a clock started a year in (a whole number of the 4 s
+# --start-time (docs/kiosk-and-devices.md "Kiosk months"): a clock started a year in (a whole number of the 4 s
 # detail loop and of lit-smoke's 4 s orbit) gives the frames a start at 0 gives; a start of 1 s
 # does not (the flag reaches the module); bad values name the flag.
 test_start_time() {
@@ -241,7 +241,7 @@ test_start_time() {
     fi
 }
 
-# The platform flags (README "Kiosk displays, cameras and GPIO"): bad values, missing devices
+# The platform flags (docs/kiosk-and-devices.md): bad values, missing devices
 # and files exit 1 naming them; a missing camera is not fatal. Never opens a real display: the
 # DRM device named here does not exist.
 test_platform_arguments() {
@@ -361,7 +361,90 @@ test_budget_run() {
     fi
 }
 
+# --version: the Makefile's VERSION.
+test_version() {
+    local want
+    want=$(sed -n 's/^VERSION := //p' Makefile)
+    play --version
+    if [ "$rc" -eq 0 ] && grep -qx "sbfx-play $want (libsbfx $want)" "$tmp/out"; then
+        ok version
+    else
+        fail version "--version: rc $rc, '$(head -n 1 "$tmp/out")', expected 'sbfx-play $want (libsbfx $want)'"
+    fi
+}
+
+# The --stats keys --help lists (one table in platform/player/player_stats.c makes both): its
+# every-run group must be exactly the keys of a headless run's JSON, in order; the man page
+# must list every key --help lists, and every flag.
+MAN_PAGE=platform/player/sbfx-play.1
+help_keys() { sed -n '/^--stats keys/,/^$/p' "$1" | sed -n 's/^    \([a-z_0-9]*\) .*/\1/p'; }
+help_keys_every_run() {
+    sed -n '/^--stats keys/,/^$/p' "$1" | awk '/^  [^ ]/ { g++ } g == 1 && /^    [a-z]/ { print $1 }'
+}
+man_keys() { sed -n '/^\.SH STATS KEYS/,/^\.SH /p' "$MAN_PAGE" | sed -n 's/^\.B \([a-z_0-9]*\)$/\1/p'; }
+help_flags() { grep -o -- '^  --[a-z-]*' "$1" | sed 's/^  //' | sort -u; }
+man_flags() {
+    sed -n '/^\.SH OPTIONS/,/^\.SH STATS/p' "$MAN_PAGE" | grep -o '^\.B[IR]* \\-\\-[a-z\\-]*' |
+        sed 's/^\.B[IR]* //; s/\\-/-/g' | sort -u
+}
+
+test_help_stats_keys() {
+    play --help
+    cp "$tmp/out" "$tmp/help"
+    play --size 64x36 --frames 2 --out "$tmp/keys" --stats "$tmp/keys.json" --quiet
+    local json help
+    json=$(grep -o '"[a-z_0-9]*":' "$tmp/keys.json" | tr -d '":' | tr '\n' ' ')
+    help=$(help_keys_every_run "$tmp/help" | tr '\n' ' ')
+    if [ "$rc" -ne 0 ] || [ -z "$json" ]; then
+        fail help-stats-keys "the run for its --stats failed (rc $rc)"
+    elif [ "$json" != "$help" ]; then
+        fail help-stats-keys "--help lists '$help', the JSON has '$json'"
+    elif ! grep -q '^Examples:' "$tmp/help"; then
+        fail help-stats-keys "--help has no examples"
+    else
+        ok "help-stats-keys ($(help_keys "$tmp/help" | wc -l) keys, $(echo "$json" | wc -w) in a headless run)"
+    fi
+}
+
+test_man_page() {
+    if [ ! -f "$MAN_PAGE" ]; then
+        fail man-page "$MAN_PAGE is missing"
+        return
+    fi
+    local hk mk hf mf warnings
+    hk=$(help_keys "$tmp/help" | tr '\n' ' ')
+    mk=$(man_keys | tr '\n' ' ')
+    hf=$(help_flags "$tmp/help" | tr '\n' ' ')
+    mf=$(man_flags | tr '\n' ' ')
+    if [ "$hk" != "$mk" ]; then
+        fail man-page-stats-keys "$MAN_PAGE lists '$mk', --help '$hk'"
+    else
+        ok man-page-stats-keys
+    fi
+    if [ "$hf" != "$mf" ]; then
+        fail man-page-flags "$MAN_PAGE documents '$mf', --help '$hf'"
+    else
+        ok man-page-flags
+    fi
+    if command -v man >/dev/null 2>&1 && man --help 2>&1 | grep -q -- --warnings; then
+        warnings=$(LC_ALL=C.UTF-8 MANROFFSEQ='' man --warnings -l "$MAN_PAGE" 2>&1 >/dev/null)
+    elif command -v groff >/dev/null 2>&1; then
+        warnings=$(groff -man -ww -z "$MAN_PAGE" 2>&1)
+    else
+        echo "skip - $SUITE/man-page-lint: neither man (man-db) nor groff is installed"
+        return
+    fi
+    if [ -n "$warnings" ]; then
+        fail man-page-lint "$(echo "$warnings" | head -n 3 | tr '\n' ' ')"
+    else
+        ok man-page-lint
+    fi
+}
+
 test_help
+test_version
+test_help_stats_keys
+test_man_page
 test_bad_arguments
 test_budget_run
 test_headless_run

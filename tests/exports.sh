@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What libsbfx.so shows the world (issue 10, DESIGN §5 "Library surface"): exactly the
+# What libsbfx.so shows the world (issue 10, docs/design.md §5 "Library surface"): exactly the
 # functions src/sbfx.h declares, under a versioned soname with the usual links, needing only
 # what src/ may use (GLESv2, lcms2, libconfig, libc, libm).
 #

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # make install as a packager does it (PREFIX=/usr into a temporary DESTDIR), then the host
-# example of README.md ("Embedding sbfx in your renderer", taken from the file so the docs
-# cannot rot) built as a user does it, with pkg-config against the installed copy: once against
-# the installed libsbfx.so, once against libsbfx.a with pkg-config --static. Both must run
-# headless and see the explosion over their own scene.
+# example examples/bare-egl/host.c (the code docs/hosts/bare-egl.md, docs/embedding.md and the README show;
+# tests/docs.sh checks that they show this file) built as a user does it, with pkg-config
+# against the installed copy: once against the installed libsbfx.so, once against libsbfx.a
+# with pkg-config --static. Both must run headless and see the explosion over their own scene.
 # Usage: tests/install.sh [BUILD] (default build). Prints ok/not ok lines (tests/check.h style).
 set -u
 cd "$(dirname "$0")/.." || exit 1
@@ -26,15 +26,6 @@ tail_of() { tail -n "${2:-5}" "$1" | tr '\n' ' ' | sed 's/ $//'; }
 # pkg-config for the staged copy: sbfx.pc says prefix=/usr, the sysroot puts it under $root
 pkg_sbfx() {
     PKG_CONFIG_PATH=$lib/pkgconfig PKG_CONFIG_SYSROOT_DIR=$root pkg-config "$@" sbfx
-}
-
-# The first ```c block after the README heading.
-readme_example() {
-    awk '/^## Embedding sbfx in your renderer/ { section = 1; next }
-         section && /^## / { exit }
-         section && !inside && /^```c$/ { inside = 1; next }
-         inside && /^```$/ { exit }
-         inside { print }' README.md
 }
 
 # build_and_run NAME LINK-FLAGS...: compiles host.c, runs it; ok/not ok lines for both.
@@ -64,7 +55,7 @@ fi
 
 # what is installed, and nothing of the reference or of the private headers
 want="usr/include/sbfx.h usr/lib/libsbfx.a usr/lib/libsbfx.so.$VERSION usr/lib/pkgconfig/sbfx.pc
-usr/bin/sbfx-play usr/bin/sbfx-probe"
+usr/bin/sbfx-play usr/bin/sbfx-probe usr/share/man/man1/sbfx-play.1"
 absent=""
 for f in $want; do [ -f "$root/$f" ] || absent="$absent $f"; done
 stray=$(cd "$root" && find . \( -name '*ref*' -o -name 'internal.h' -o -name 'tables.h' \) | tr '\n' ' ')
@@ -89,12 +80,12 @@ else
     not_ok pkg-config "pkg-config --cflags --libs sbfx gives '$flags'"
 fi
 
-readme_example >"$tmp/host.c"
-if [ "$(wc -l <"$tmp/host.c")" -lt 20 ]; then
-    not_ok readme-example "no \`\`\`c block under \"## Embedding sbfx in your renderer\" in README.md"
+EXAMPLE=examples/bare-egl/host.c
+if ! cp "$EXAMPLE" "$tmp/host.c" 2>/dev/null; then
+    not_ok example "$EXAMPLE is missing"
     exit 1
 fi
-ok "readme-example ($(wc -l <"$tmp/host.c") lines)"
+ok "example ($EXAMPLE, $(wc -l <"$tmp/host.c") lines)"
 
 # shellcheck disable=SC2046
 if build_and_run shared $(pkg_sbfx --libs); then

@@ -7,9 +7,10 @@
 #      tests/shader_variants.txt ("FILE -DNAME ..." : the defines of one variant)
 #   3. a check that every file in shaders_es/ begins with "#version 300 es"
 #   4. the sbfx-play command-line tests (tests/cli.sh), the probe's (tests/probe.sh), what
-#      libsbfx.so exports (tests/exports.sh), make install and the README's host example
+#      libsbfx.so exports (tests/exports.sh), make install and the host example (examples/bare-egl/)
 #      built against the installed copy (tests/install.sh), a short soak and its leak
-#      detection (tests/soak.sh; make soak runs hours)
+#      detection (tests/soak.sh; make soak runs hours), the documentation's links and
+#      examples (tests/docs.sh)
 #   5. the same binaries (and the CLI tests) from build/asan/, suite names prefixed "asan:";
 #      leak detection stays on for unit tests and is off where Mesa is loaded
 # Test lines are "ok - x", "not ok - x[: reason]", "skip - x[: reason]" (see tests/check.h).
@@ -167,6 +168,7 @@ run_cli "" "$BUILD/sbfx-play"
 run_suite "" probe tests/probe.sh "$BUILD/sbfx-probe"
 run_suite "" exports tests/exports.sh "$BUILD"
 run_suite "" install tests/install.sh "$BUILD"
+run_suite "" docs tests/docs.sh
 run_suite "" soak tests/soak.sh "$BUILD"
 
 if [ -d "$ASAN_BUILD" ]; then

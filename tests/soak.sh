@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The short soak of `make test` (README "Kiosk months"; `make soak` runs hours):
+# The short soak of `make test` (docs/kiosk-and-devices.md "Kiosk months"; `make soak` runs hours):
 #   soak/flat          9 simulated minutes of the five default scenes, triggers every 0.2 s:
 #                      exit 0, "flat after warm-up", a CSV with a header and every sample
 #   soak/catches-*     the same check must fail (exit 2) and name what grew when the soak

@@ -414,7 +414,7 @@ void test_scene_destroy(struct test_scene *scene)
 void test_scene_camera(const sbfx_scene_camera *camera, double seconds, float aspect, float view[16],
                        float projection[16])
 {
-    /* the angle reduced in double (DESIGN §7): an orbit an hour in is where it is at t mod 360 */
+    /* the angle reduced in double (docs/design.md §7): an orbit an hour in is where it is at t mod 360 */
     double degrees = fmod(camera->azimuth + camera->orbit * seconds, 360.0);
     double angle = degrees * M_PI / 180.0;
     const float *t = camera->target;

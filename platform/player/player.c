@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 
 #include "player/player.h"
+#include "player/player_stats.h"
 
 static void on_sbfx_log(sbfx_log_level level, const char *message, void *user)
 {
@@ -215,60 +216,18 @@ static void teardown(struct player *p)
 
 /* ---- results -------------------------------------------------------------------------- */
 
-/* Counters of the kiosk parts, only when they are in use (the headless JSON stays as it was). */
-static void write_platform_stats(const struct player *p, FILE *f)
-{
-    const sbfx_counters *c = &p->last;
-    const struct display_counts *d = &p->display->counts;
-    fprintf(f, ", \"frames\": %lld, \"flips\": %llu, \"missed_vblanks\": %llu, \"triggers_fired\": %d, "
-            "\"triggers_refused\": %d, \"display_unplugs\": %llu, \"display_replugs\": %llu, "
-            "\"display_paused_frames\": %llu", (long long)p->frames_done, (unsigned long long)d->flips,
-            (unsigned long long)d->missed, c->triggers_fired, c->triggers_refused,
-            (unsigned long long)d->unplugs, (unsigned long long)d->replugs,
-            (unsigned long long)d->paused);
-    if (p->gpio_on) {
-        const struct gpio_trigger_counts *g = &p->gpio.counts;
-        fprintf(f, ", \"gpio_edges\": %llu, \"gpio_fired\": %llu, \"gpio_filtered\": %llu, "
-                "\"gpio_refused\": %llu, \"gpio_overflows\": %llu, \"gpio_losses\": %llu, "
-                "\"gpio_returns\": %llu, \"gpio_retries\": %llu", (unsigned long long)g->edges,
-                (unsigned long long)g->fired, (unsigned long long)g->filtered,
-                (unsigned long long)g->refused, (unsigned long long)g->overflows,
-                (unsigned long long)g->losses, (unsigned long long)g->returns,
-                (unsigned long long)g->retries);
-    }
-    if (p->live_on) {
-        const struct live_detail_counts *v = &p->live.counts;
-        fprintf(f, ", \"video_frames\": %llu, \"video_distinct\": %llu, \"video_losses\": %llu, "
-                "\"video_reopens\": %llu, \"video_takeovers\": %llu", (unsigned long long)v->frames,
-                (unsigned long long)v->distinct, (unsigned long long)v->losses,
-                (unsigned long long)v->reopens, (unsigned long long)v->takeovers);
-    }
-}
-
+/* The --stats file: one JSON object, from the table in player_stats.c. */
 static int write_stats(const struct player *p, const char *path, char *err, size_t n)
 {
-    const sbfx_counters *c = &p->last;
+    struct player_stats_record record;
+    player_stats_collect(p, &record);
     FILE *f = fopen(path, "w");
     if (!f) {
         int rc = -errno;
         snprintf(err, n, "--stats: cannot create %s: %s", path, strerror(errno));
         return rc;
     }
-    fprintf(f,
-            "{\"programs\": %d, \"textures\": %d, \"framebuffers\": %d, \"gpu_bytes\": %zu, "
-            "\"passes\": %d, \"draw_calls\": %d, \"particles_simulated\": %d, "
-            "\"heap_allocs_after_load\": %llu",
-            c->programs, c->textures, c->framebuffers, c->gpu_bytes, c->passes, c->draw_calls,
-            p->frame_simulated, (unsigned long long)c->heap_allocs_after_load);
-    /* the level's name comes from sbfx_quality_name: letters, digits and '/' only */
-    fprintf(f, ", \"budget_ms\": %g, \"gpu_ms\": %.3f, \"frames_over_budget\": %d, \"quality_changes\": %d, "
-            "\"quality\": \"%s\"", (double)c->budget_ms, (double)c->gpu_ms, c->frames_over_budget,
-            c->quality_changes, c->quality);
-    fprintf(f, ", \"gpu_resets\": %llu, \"gpu_reset_notification\": %d",
-            (unsigned long long)p->gpu_resets, p->reset.status ? 1 : 0);
-    if (p->display->fd >= 0 || p->gpio_on || p->live_on) write_platform_stats(p, f);
-    fprintf(f, "}\n");
-    bool failed = ferror(f) != 0;
+    bool failed = player_stats_write(&record, f) != 0;
     if (fclose(f) != 0 || failed) {
         snprintf(err, n, "--stats: writing %s failed: %s", path, strerror(errno));
         return -EIO;
@@ -370,6 +329,10 @@ int main(int argc, char **argv)
     }
     if (opt.help) {
         player_usage(stdout);
+        return 0;
+    }
+    if (opt.version) {
+        player_version(stdout);
         return 0;
     }
     return play(&opt) == 0 ? 0 : 1;

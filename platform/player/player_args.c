@@ -362,6 +362,12 @@ static int set_help(struct player_options *opt, const char *value, char *err, si
     return 0;
 }
 
+static int set_version(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    opt->version = true;
+    return 0;
+}
+
 /* ---- the table ------------------------------------------------------------------------ */
 
 struct flag {
@@ -400,7 +406,8 @@ static const struct flag flags[] = {
     {"--seed", "N (0..4294967295)", set_seed},
     {"--scene", "FILE", set_scene},
     {"--quiet", NULL, set_quiet},
-    {"--help", NULL, set_help},
+    {"--version", NULL, set_version},
+    {"--help", NULL, set_help}, /* last: -h finds it there */
 };
 
 static const struct flag *find_flag(const char *arg, size_t len)
@@ -464,7 +471,7 @@ static int check_display(const struct player_options *opt, char *err, size_t n)
 int player_parse_args(struct player_options *opt, int argc, char **argv, char *err, size_t n)
 {
     int rc = parse_flags(opt, argc, argv, err, n);
-    if (rc || opt->help) return rc;
+    if (rc || opt->help || opt->version) return rc;
     return check_display(opt, err, n);
 }
 
@@ -484,7 +491,7 @@ static int parse_flags(struct player_options *opt, int argc, char **argv, char *
         int rc = flag_value(f, eq, argc, argv, &i, &value, err, n);
         if (rc == 0) rc = f->apply(opt, value, err, n);
         if (rc) return rc;
-        if (opt->help) return 0;
+        if (opt->help || opt->version) return 0;
     }
     return 0;
 }

@@ -1,5 +1,6 @@
 /* Command line of sbfx-play. The flag names are a contract relied on from outside (scripts,
- * CI, docs): change them only together with README.md and tests/cli.sh. */
+ * CI, docs): change them only together with docs/player.md, the man page
+ * (sbfx-play.1) and tests/cli.sh. */
 #ifndef SBFX_PLAYER_ARGS_H
 #define SBFX_PLAYER_ARGS_H
 
@@ -57,7 +58,8 @@ struct player_options {
     const char *scene_path;   /* NULL: the built-in timeline */
     bool quiet;
     bool help;
-    /* display and devices (README "Kiosk displays, cameras and GPIO") */
+    bool version;             /* --version */
+    /* display and devices (docs/kiosk-and-devices.md) */
     enum player_display display;
     bool headless_flag;       /* --headless was given */
     bool display_set;         /* --display was given */
@@ -75,12 +77,15 @@ struct player_options {
 
 void player_options_defaults(struct player_options *opt);
 /* Fills opt from argv (opt must hold the defaults). 0, or -EINVAL with a message in err that
- * names the flag and the values it accepts. Stops at --help (opt->help set). */
+ * names the flag and the values it accepts. Stops at --help or --version (opt->help,
+ * opt->version set). */
 int player_parse_args(struct player_options *opt, int argc, char **argv, char *err, size_t n);
 /* Parses one EFFECT@SECONDS[:X,Y,Z]; the position defaults to the origin. */
 int player_parse_trigger(const char *text, struct player_trigger *out, char *err, size_t n);
 /* Parses one CHIP:LINE=EFFECT[@X,Y,Z]. */
 int player_parse_gpio(const char *text, struct player_gpio *out, char *err, size_t n);
 void player_usage(FILE *f);
+/* --version: "sbfx-play VERSION" (the Makefile's VERSION, the library's too). */
+void player_version(FILE *f);
 
 #endif

@@ -1,5 +1,11 @@
-/* sbfx-play --help. */
+/* sbfx-play --help and --version. The flags' text is here; the --stats keys come from their
+ * table in player_stats.c. SBFX_VERSION is the Makefile's VERSION. */
 #include "player/player_args.h"
+#include "player/player_stats.h"
+
+#ifndef SBFX_VERSION
+#error "SBFX_VERSION (the Makefile's VERSION) is not defined"
+#endif
 
 static const char usage_text[] =
     "Usage: sbfx-play [options]\n"
@@ -48,11 +54,7 @@ static const char usage_text[] =
     "  --out DIR              folder for frame-0000.png, frame-0001.png, ...; created if\n"
     "                         missing (default sbfx-frames)\n"
     "  --contact-sheet        also write DIR/contact-sheet.png: all frames, shrunk, in a grid\n"
-    "  --stats FILE           after the run, write one JSON object with the counters of\n"
-    "                         sbfx_stats() after the last frame: programs, textures,\n"
-    "                         framebuffers, gpu_bytes, passes, draw_calls,\n"
-    "                         particles_simulated, heap_allocs_after_load (passes,\n"
-    "                         draw_calls and particles_simulated are the last frame's)\n"
+    "  --stats FILE           after the run, write one JSON object: the keys below\n"
     "  --quiet                print only warnings and errors (drm: no stats line)\n"
     "Effects:\n"
     "  --trigger EFFECT@SECONDS[:X,Y,Z]\n"
@@ -63,7 +65,7 @@ static const char usage_text[] =
     "  --no-timeline          ignore the scene's timeline (without --scene: one explosion\n"
     "                         at t=0 at the origin): the run stays idle unless --trigger\n"
     "                         is given\n"
-    "  --scene FILE           a scene file (see scenes/ and README \"Scene files\"): its\n"
+    "  --scene FILE           a scene file (see scenes/ and docs/scene-format.md): its\n"
     "                         render settings, lights, media, effects and timeline; the\n"
     "                         quality flags below override its render settings\n"
     "  --seed N               random seed of spawns and detail windows, 0..4294967295\n"
@@ -85,10 +87,24 @@ static const char usage_text[] =
     "  --exposure X           scale of the particles' light, 0.01..100 (default 1)\n"
     "  --budget-ms MS         frame budget of sbfx's GPU work, 0 < MS <= 10000: sbfx walks\n"
     "                         down a quality ladder when over it; the quality flags above\n"
-    "                         give the top level, never exceeded (README \"Frame budgets\")\n"
+    "                         give the top level, never exceeded (docs/quality-and-budgets.md \"Frame budgets\")\n"
+    "  --version              print the version and exit\n"
     "  --help                 print this text and exit\n"
     "\n"
     "Values go after a space or an '=' (--size 640x360, --size=640x360).\n"
+    "\n"
+    "Examples:\n"
+    "  sbfx-play --scene scenes/barrage.cfg --frames 48 --fps 24 --out /tmp/barrage --contact-sheet\n"
+    "      a scene headless: 48 PNGs, 2 simulated seconds, and a contact sheet of them\n"
+    "  sbfx-play --no-timeline --trigger explosion@0.5:2,0,-1 --stats /tmp/stats.json\n"
+    "      one explosion at 0.5 s beside the origin; what the run cost, as JSON\n"
+    "  sbfx-play --opacity spherical --scale 8 --upsample bilinear --out /tmp/cheap\n"
+    "      the seed's spherical billboards at 1/8 resolution (quality flags)\n"
+    "  sbfx-play --budget-ms 8 --scene scenes/barrage.cfg --stats /tmp/budget.json\n"
+    "      within 8 ms of sbfx GPU time per frame: the quality ladder (quality, gpu_ms)\n"
+    "  sbfx-play --display drm --board boards/rpi4.cfg --scene scenes/explosion.cfg\n"
+    "      a kiosk: full screen through DRM/KMS, the board's camera and GPIO buttons\n"
+    "\n"
     "Timeline: frame i shows simulated time i/F. Frame 0 is rendered before any update, so\n"
     "it shows the scene alone (effects start at the first simulation step); before frame\n"
     "i > 0 the simulation advances by 1/F in fixed steps, and triggers fire at the first\n"
@@ -109,4 +125,12 @@ static const char usage_text[] =
 void player_usage(FILE *f)
 {
     fputs(usage_text, f);
+    fputc('\n', f);
+    player_stats_usage(f);
+    fputs("\nMore: man sbfx-play, docs/player.md, docs/kiosk-and-devices.md.\n", f);
+}
+
+void player_version(FILE *f)
+{
+    fprintf(f, "sbfx-play " SBFX_VERSION " (libsbfx " SBFX_VERSION ")\n");
 }

@@ -1,4 +1,4 @@
-/* Camera luma -> one slice of sbfx's detail volume (DESIGN §2.4).
+/* Camera luma -> one slice of sbfx's detail volume (docs/design.md §2.4).
  *
  * A frame's 8-bit luma (plane 0 of GREY, NV12, NV21, YUV420, YVU420, NV16, NV61; every other
  * byte of YUYV, YVYU, UYVY, VYUY) is centre-cropped to a square, box-filtered down to

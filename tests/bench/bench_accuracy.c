@@ -1,4 +1,4 @@
-/* make bench: what accuracy costs (issue #4, DESIGN §4).
+/* make bench: what accuracy costs (issue #4, docs/design.md §4).
  *
  * Renders three frames of the built-in explosion (t = 0.45 s with the flash's point light still
  * on, 1.2 s, 2.0 s) over the opaque test scene in every accuracy configuration that matters,
@@ -18,7 +18,7 @@
  * same reference of all of them: their error is what the level of detail costs.
  *
  * Writes DIR/accuracy.csv, DIR/points.dat and DIR/pareto.dat (for tests/bench/accuracy.gp),
- * DIR/summary.txt (the verdicts of DESIGN §4) and a few PNGs (reference and GPU frames). */
+ * DIR/summary.txt (the verdicts of docs/design.md §4) and a few PNGs (reference and GPU frames). */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -74,7 +74,7 @@ typedef struct config {
     sbfx_detail_format detail;
     bool light_per_particle; /* in-scattering once per particle (desc.light_per_particle) */
     bool density_matched; /* every medium's density halved: the exact model's optical depth
-                             through a particle's centre in the cheaper models (DESIGN §2.1) */
+                             through a particle's centre in the cheaper models (docs/design.md §2.1) */
     bool keep; /* keep the GPU images (LUT comparisons) */
     int lod; /* at most this many particles drawn (src/lod.h), 0: all */
 } config;
@@ -603,7 +603,7 @@ static void mark_pareto(bench *b)
     for (int i = 0; i < b->result_count; i++) b->results[i].pareto = front[i];
 }
 
-/* ---- the verdicts of DESIGN §4 ------------------------------------------------------- */
+/* ---- the verdicts of docs/design.md §4 ------------------------------------------------------- */
 
 static const result *find(const bench *b, sbfx_opacity_mode m, int divisor, sbfx_upsample u, int lut,
                           sbfx_detail_format detail)
@@ -816,7 +816,7 @@ static void summary_defaults(const bench *b, FILE *f)
 static void write_summary(const bench *b)
 {
     FILE *f = open_out(b, "summary.txt");
-    fprintf(f, "== What accuracy costs: verdicts (DESIGN §4) ==\n");
+    fprintf(f, "== What accuracy costs: verdicts (docs/design.md §4) ==\n");
     summary_machine(b, f);
     summary_floor(b, f);
     summary_speedup(b, f);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# make bench: what accuracy costs (issue #4, DESIGN §4).
+# make bench: what accuracy costs (issue #4, docs/design.md §4).
 #   tests/bench/run.sh [BUILD]      (make bench builds $BUILD/bench/bench_accuracy first)
 # Writes $BUILD/bench/accuracy.csv, accuracy.md (the same as a markdown table), accuracy.png
 # (gnuplot), summary.txt, reference and GPU frames as PNG, then runs the other bench programs
@@ -23,7 +23,7 @@ start=$(date +%s)
 # shellcheck disable=SC2086 # BENCH_ARGS is a list of options
 eval "\"$BIN\" --out \"$OUT\" ${BENCH_ARGS:-}"
 
-# The table as markdown (for README "What accuracy costs").
+# The table as markdown (for docs/accuracy-and-benchmarks.md).
 awk -F, 'NR == 1 {
     for (i = 1; i <= NF; i++) col[$i] = i
     print "| mode | scale | target | upsample | LUT | detail | density | particles | ms (min–max) | particle pass ms | mean err | max err | PSNR dB | edge mean | edge PSNR dB | Pareto |"

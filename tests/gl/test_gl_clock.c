@@ -1,4 +1,4 @@
-/* A clock that can start anywhere (issue 13, DESIGN §7): a module whose clock starts a year in
+/* A clock that can start anywhere (issue 13, docs/design.md §7): a module whose clock starts a year in
  * (desc.start_time = 31536000 s, a whole number of the 4 s detail loop and of the example
  * orbits) renders the frames a module starting at 0 renders, within one 8-bit level, for the
  * explosion and the lit-smoke scenes over the player's test scene; a start that is not such a

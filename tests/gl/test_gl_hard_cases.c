@@ -1,4 +1,4 @@
-/* Every hard case of DESIGN §2.2 through the CPU reference (ref/reference_frame.c) and the GPU
+/* Every hard case of docs/design.md §2.2 through the CPU reference (ref/reference_frame.c) and the GPU
  * (sbfx_render_view_particles, particle target read back at full resolution), in every opacity
  * mode: both must be finite, agree within the tolerances below, and show what the case is about
  * (alpha 0 where nothing may be seen, alpha -> 1 where everything is, ...). Then a scan of

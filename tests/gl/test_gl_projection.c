@@ -1,4 +1,4 @@
-/* Every OpenGL perspective (issue 10, DESIGN §5): the same explosion over the same opaque scene
+/* Every OpenGL perspective (issue 10, docs/design.md §5): the same explosion over the same opaque scene
  * rendered with a finite far plane (1e5, 24-bit depth), an infinite far plane (24-bit depth)
  * and reversed-Z (GL_EXT_clip_control ZERO_TO_ONE, DEPTH_COMPONENT32F cleared to 0, GREATER)
  * gives the same picture within one 8-bit level; an off-axis frustum gives the matching half of

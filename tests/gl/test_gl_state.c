@@ -1,4 +1,4 @@
-/* The host contract (DESIGN §5, issue 10): every entry point leaves every GL state a host can
+/* The host contract (docs/design.md §5, issue 10): every entry point leaves every GL state a host can
  * rely on as the host left it, and sbfx's pictures do not depend on that state.
  *
  * A "hostile" host sets everything in gl_snapshot.h to a value other than GL's default —

@@ -1,4 +1,4 @@
-/* The lookup tables on the GPU against their double-precision functions (DESIGN §4: within 1e-3
+/* The lookup tables on the GPU against their double-precision functions (docs/design.md §4: within 1e-3
  * relative over the range the scene can produce; the phase function for every |g| <= 0.95).
  * Values come from particle.frag's own blackbody() and phase() (sbfx_fetch_luts), at both ends
  * of every table, at its steepest point and densely in between; ranges come from the scene. */

@@ -1,5 +1,5 @@
 /* Unit tests of the black-body reference (src/blackbody.c): CMF loading, Planck's law, XYZ ->
- * linear sRGB, the normalised table and its lookup (DESIGN §2.3, hard cases of §2.2). No GL. */
+ * linear sRGB, the normalised table and its lookup (docs/design.md §2.3, hard cases of §2.2). No GL. */
 #include <errno.h>
 #include <sys/stat.h>
 #include "check.h"

@@ -1,4 +1,4 @@
-/* The clock's periodic values stay exact however far it is from 0 (issue 13, DESIGN §7): the
+/* The clock's periodic values stay exact however far it is from 0 (issue 13, docs/design.md §7): the
  * detail animation's phase and orbiting lights a year in move as they do at 0. No GL: the
  * module's clock state is set directly. */
 #include <stdlib.h>

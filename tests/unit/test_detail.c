@@ -1,4 +1,4 @@
-/* Unit tests of the procedural detail volume (src/detail_gen.c, DESIGN §2.4) and of the shared
+/* Unit tests of the procedural detail volume (src/detail_gen.c, docs/design.md §2.4) and of the shared
  * RNG (src/rng.c). No GL. */
 #include <stdint.h>
 #include "check.h"

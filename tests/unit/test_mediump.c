@@ -1,4 +1,4 @@
-/* The Mali case (DESIGN §2.2, issue #4): particle.frag declares its light and colour mediump —
+/* The Mali case (docs/design.md §2.2, issue #4): particle.frag declares its light and colour mediump —
  * phase(), in_scattered() (and its running sum), emitted() and the `light` accumulator — which a
  * Mali-class GPU runs at IEEE half precision. The CPU reference (ref/reference_frame.c) emulates
  * that by rounding to _Float16 (nearest even) at exactly those points, and these tests bound how

@@ -1,4 +1,4 @@
-/* Unit tests of the CPU opacity reference (ref/opacity_ref.c), DESIGN §2.1 and the opacity
+/* Unit tests of the CPU opacity reference (ref/opacity_ref.c), docs/design.md §2.1 and the opacity
  * hard cases of §2.2. No GL. */
 #include <float.h>
 #include "check.h"
@@ -433,7 +433,7 @@ CHECK_TEST(exact_quadrature_and_closed_form_agree_at_switch)
 
 CHECK_TEST(far_small_particle_relative_form)
 {
-    /* zc = 1e4, r = 0.05 (DESIGN §2.2). Spherical: d and the clipped chord are known exactly;
+    /* zc = 1e4, r = 0.05 (docs/design.md §2.2). Spherical: d and the clipped chord are known exactly;
      * exact: long-double analytic value. */
     double zc = 1e4, r = 0.05, tau = 0.4, off = 0.03;
     sbfx_ref_particle p = particle(0, 0, -zc, r, tau);
@@ -465,7 +465,7 @@ CHECK_TEST(far_small_particle_relative_form)
     check_sane(p, px, "far");
 }
 
-/* ---- hard cases of DESIGN §2.2 ----------------------------------------------------------- */
+/* ---- hard cases of docs/design.md §2.2 ------------------------------------------------------- */
 
 CHECK_TEST(d_to_r_from_below)
 {

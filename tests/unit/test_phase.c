@@ -1,5 +1,5 @@
 /* Unit tests of the phase function reference (src/phase.c): normalisation, the forward-peak
- * convention, the per-medium table in its warped coordinate and its lookup (DESIGN §2.3,
+ * convention, the per-medium table in its warped coordinate and its lookup (docs/design.md §2.3,
  * g = ±0.99 and 0 of §2.2). */
 #include "check.h"
 #include "reference.h"
@@ -187,7 +187,7 @@ static double lookup_normalisation(const float *table, double g)
     return 2 * PI * sum * 2.0 / n;
 }
 
-/* Within 1e-3 relative at every angle for |g| <= 0.95 (DESIGN §4); at 0.99 the module falls
+/* Within 1e-3 relative at every angle for |g| <= 0.95 (docs/design.md §4); at 0.99 the module falls
  * back to the analytic function, so the table's error there only has to be what is printed. */
 CHECK_TEST(table_lookup_error_bounded)
 {

@@ -1,5 +1,5 @@
-/* sbfx-soak: the kiosk loop for simulated hours, compressed into minutes (README "Kiosk
- * months"). Headless (EGL surfaceless), small frames; one module per scene on one context, all
+/* sbfx-soak: the kiosk loop for simulated hours, compressed into minutes (docs/kiosk-and-devices.md,
+ * "Kiosk months"). Headless (EGL surfaceless), small frames; one module per scene on one context, all
  * drawn over the test scene every --render-every frames (8); an effect is triggered every
  * fraction of a second, cycling through every effect of every scene (the defaults: barrage,
  * post with velocity blur and depth of field, campfire with heat shimmer, lit-smoke with its

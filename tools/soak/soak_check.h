@@ -1,4 +1,4 @@
-/* sbfx-soak's records and its flatness check (README "Kiosk months").
+/* sbfx-soak's records and its flatness check (docs/kiosk-and-devices.md "Kiosk months").
  *
  * A soak run samples the process and the modules every N frames. After the warm-up (the first
  * `warmup` fraction of the samples: Mesa compiles and caches on first use), what sbfx holds

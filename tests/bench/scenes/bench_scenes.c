@@ -1,6 +1,6 @@
 /* make bench, scenes and post effects (issues #3 and #6):
  *   - simulation throughput: particle updates per second on one core, barrage scene
- *     (DESIGN §4 asks >= 1 M/s on x86), and heap allocations during the run;
+ *     (docs/design.md §4 asks >= 1 M/s on x86), and heap allocations during the run;
  *   - load time and GPU bytes of every example scene;
  *   - post effects: ms per frame for none, shimmer, blur-history, blur-velocity, dof at full
  *     and half output resolution (glFinish-bracketed, median of the timed frames).

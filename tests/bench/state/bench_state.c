@@ -5,7 +5,7 @@
  *   - the far field: a 5 cm particle at 30 m ... 10 km with an opaque surface 1 cm behind its
  *     centre (near 0.1), the host depth drawn as each set-up draws it (standard 24-bit with a
  *     finite or infinite far plane, standard float, reversed-Z float with GL_EXT_clip_control):
- *     |GPU - CPU reference| of the alpha, and the set-up's depth resolution there (DESIGN §5).
+ *     |GPU - CPU reference| of the alpha, and the set-up's depth resolution there (docs/design.md §5).
  * Writes OUT/state.csv and OUT/farfield.csv (appends with --append; --label names the run,
  * e.g. "glthread" when Mesa's threaded dispatch is on: mesa_glthread=true) and prints both.
  * Timings are measured, never asserted. */
@@ -141,7 +141,7 @@ static const depth_setup setups[] = {
     {"reversed-Z float far=inf", GL_DEPTH_COMPONENT32F, true, true},
 };
 
-/* What the set-up resolves at distance z (one step of its depth value), DESIGN §5. */
+/* What the set-up resolves at distance z (one step of its depth value), docs/design.md §5. */
 static double resolution(const depth_setup *s, double z, double near)
 {
     if (s->reversed) return z * pow(2.0, -24); /* float n / z: 24-bit mantissa, relative */

@@ -13,7 +13,7 @@
  *     the blasts' flashes, the brightest light here, lie in front) and the displayed luminance
  *     is above 0.05;
  *   - their chromaticity distance: the displayed colour (clamped, 8-bit) read as linear sRGB
- *     (the module's convention: README "Colour on the display"), to CIE 1976 u'v', the shortest
+ *     (the module's convention: docs/colour.md), to CIE 1976 u'v', the shortest
  *     distance to the Planckian locus (CIE 1931 2° CMFs, 500..25000 K); mean, median, 95th
  *     percentile. The row "unclamped" is the same for the light before any display, the best a
  *     display could show (the fire's light mixed with what lies in front of it and behind).

@@ -1,0 +1,145 @@
+/* sbfx-play --stats: the keys, their JSON and their --help text from one table. */
+#include "player/player_stats.h"
+
+#include <errno.h>
+#include <stddef.h>
+#include "player/player.h"
+
+enum stats_group { GROUP_EVERY_RUN, GROUP_KIOSK, GROUP_GPIO, GROUP_VIDEO, GROUP_COUNT };
+enum stats_kind { KIND_INT, KIND_G, KIND_MS3, KIND_STRING };
+
+struct stats_key {
+    const char *name;
+    enum stats_kind kind;
+    enum stats_group group;
+    size_t offset; /* of the field in struct player_stats_record */
+    const char *meaning;
+};
+
+#define KEY(field, kind, group, meaning) \
+    {#field, kind, group, offsetof(struct player_stats_record, field), meaning}
+
+/* In the order the JSON object has them. */
+static const struct stats_key stats_keys[] = {
+    KEY(programs, KIND_INT, GROUP_EVERY_RUN, "GL programs sbfx holds"),
+    KEY(textures, KIND_INT, GROUP_EVERY_RUN, "GL textures sbfx holds"),
+    KEY(framebuffers, KIND_INT, GROUP_EVERY_RUN, "GL framebuffers sbfx holds"),
+    KEY(gpu_bytes, KIND_INT, GROUP_EVERY_RUN, "bytes of GPU memory sbfx holds"),
+    KEY(passes, KIND_INT, GROUP_EVERY_RUN, "render passes of the last frame"),
+    KEY(draw_calls, KIND_INT, GROUP_EVERY_RUN, "draw calls of the last frame"),
+    KEY(particles_simulated, KIND_INT, GROUP_EVERY_RUN, "particles the last frame's updates advanced"),
+    KEY(heap_allocs_after_load, KIND_INT, GROUP_EVERY_RUN, "heap allocations after sbfx_create (0)"),
+    KEY(budget_ms, KIND_G, GROUP_EVERY_RUN, "the frame budget (0: none)"),
+    KEY(gpu_ms, KIND_MS3, GROUP_EVERY_RUN, "the budget governor's GPU time of the current level"),
+    KEY(frames_over_budget, KIND_INT, GROUP_EVERY_RUN, "measured frames over the budget"),
+    KEY(quality_changes, KIND_INT, GROUP_EVERY_RUN, "quality level changes"),
+    KEY(quality, KIND_STRING, GROUP_EVERY_RUN, "the current quality level's name (a string)"),
+    KEY(gpu_resets, KIND_INT, GROUP_EVERY_RUN, "GPU resets the player recovered from"),
+    KEY(gpu_reset_notification, KIND_INT, GROUP_EVERY_RUN, "1 when the context reports GPU resets"),
+    KEY(frames, KIND_INT, GROUP_KIOSK, "frames rendered"),
+    KEY(flips, KIND_INT, GROUP_KIOSK, "page flips"),
+    KEY(missed_vblanks, KIND_INT, GROUP_KIOSK, "vblanks a flip missed"),
+    KEY(triggers_fired, KIND_INT, GROUP_KIOSK, "effects started"),
+    KEY(triggers_refused, KIND_INT, GROUP_KIOSK, "triggers refused (particle pool full)"),
+    KEY(display_unplugs, KIND_INT, GROUP_KIOSK, "times the display went away"),
+    KEY(display_replugs, KIND_INT, GROUP_KIOSK, "times it came back"),
+    KEY(display_paused_frames, KIND_INT, GROUP_KIOSK, "frames rendered but not shown meanwhile"),
+    KEY(gpio_edges, KIND_INT, GROUP_GPIO, "edges read from the GPIO lines"),
+    KEY(gpio_fired, KIND_INT, GROUP_GPIO, "edges that fired their effect"),
+    KEY(gpio_filtered, KIND_INT, GROUP_GPIO, "edges the debounce or rate limit dropped"),
+    KEY(gpio_refused, KIND_INT, GROUP_GPIO, "edges whose trigger sbfx refused"),
+    KEY(gpio_overflows, KIND_INT, GROUP_GPIO, "reads that found the kernel's event FIFO full"),
+    KEY(gpio_losses, KIND_INT, GROUP_GPIO, "lines lost (their chip went away)"),
+    KEY(gpio_returns, KIND_INT, GROUP_GPIO, "lost lines requested again"),
+    KEY(gpio_retries, KIND_INT, GROUP_GPIO, "attempts to request a lost line"),
+    KEY(video_frames, KIND_INT, GROUP_VIDEO, "camera slices pushed to the detail volume"),
+    KEY(video_distinct, KIND_INT, GROUP_VIDEO, "slices that differed from the slice before"),
+    KEY(video_losses, KIND_INT, GROUP_VIDEO, "outages: the camera went away, failed or fell silent"),
+    KEY(video_reopens, KIND_INT, GROUP_VIDEO, "outages that ended with frames again"),
+    KEY(video_takeovers, KIND_INT, GROUP_VIDEO, "procedural volumes pushed back meanwhile"),
+};
+
+static const char *const group_titles[GROUP_COUNT] = {
+    [GROUP_EVERY_RUN] = "every run (sbfx_stats() after the last frame, and GPU resets)",
+    [GROUP_KIOSK] = "with a DRM display, GPIO lines or a camera",
+    [GROUP_GPIO] = "with GPIO lines",
+    [GROUP_VIDEO] = "with a camera",
+};
+
+void player_stats_collect(const struct player *p, struct player_stats_record *r)
+{
+    const sbfx_counters *c = &p->last;
+    const struct display_counts *d = &p->display->counts;
+    const struct gpio_trigger_counts *g = &p->gpio.counts;
+    const struct live_detail_counts *v = &p->live.counts;
+    *r = (struct player_stats_record){
+        .programs = c->programs, .textures = c->textures, .framebuffers = c->framebuffers,
+        .gpu_bytes = (long long)c->gpu_bytes, .passes = c->passes, .draw_calls = c->draw_calls,
+        .particles_simulated = p->frame_simulated,
+        .heap_allocs_after_load = (long long)c->heap_allocs_after_load,
+        .budget_ms = c->budget_ms, .gpu_ms = c->gpu_ms,
+        .frames_over_budget = c->frames_over_budget, .quality_changes = c->quality_changes,
+        .gpu_resets = (long long)p->gpu_resets, .gpu_reset_notification = p->reset.status ? 1 : 0,
+        .frames = p->frames_done, .flips = (long long)d->flips, .missed_vblanks = (long long)d->missed,
+        .triggers_fired = c->triggers_fired, .triggers_refused = c->triggers_refused,
+        .display_unplugs = (long long)d->unplugs, .display_replugs = (long long)d->replugs,
+        .display_paused_frames = (long long)d->paused,
+        .gpio_edges = (long long)g->edges, .gpio_fired = (long long)g->fired,
+        .gpio_filtered = (long long)g->filtered, .gpio_refused = (long long)g->refused,
+        .gpio_overflows = (long long)g->overflows, .gpio_losses = (long long)g->losses,
+        .gpio_returns = (long long)g->returns, .gpio_retries = (long long)g->retries,
+        .video_frames = (long long)v->frames, .video_distinct = (long long)v->distinct,
+        .video_losses = (long long)v->losses, .video_reopens = (long long)v->reopens,
+        .video_takeovers = (long long)v->takeovers,
+        .kiosk_on = p->display->fd >= 0 || p->gpio_on || p->live_on,
+        .gpio_on = p->gpio_on, .video_on = p->live_on,
+    };
+    snprintf(r->quality, sizeof(r->quality), "%s", c->quality);
+}
+
+static bool group_written(const struct player_stats_record *r, enum stats_group group)
+{
+    switch (group) {
+    case GROUP_KIOSK: return r->kiosk_on;
+    case GROUP_GPIO: return r->kiosk_on && r->gpio_on;
+    case GROUP_VIDEO: return r->kiosk_on && r->video_on;
+    default: return true;
+    }
+}
+
+static void write_value(const struct player_stats_record *r, const struct stats_key *k, FILE *f)
+{
+    const char *field = (const char *)r + k->offset;
+    switch (k->kind) {
+    case KIND_INT: fprintf(f, "%lld", *(const long long *)(const void *)field); break;
+    case KIND_G: fprintf(f, "%g", *(const double *)(const void *)field); break;
+    case KIND_MS3: fprintf(f, "%.3f", *(const double *)(const void *)field); break;
+    /* the level's name comes from sbfx_quality_name: letters, digits and '/' only */
+    case KIND_STRING: fprintf(f, "\"%s\"", field); break;
+    }
+}
+
+int player_stats_write(const struct player_stats_record *r, FILE *f)
+{
+    const char *sep = "{";
+    for (size_t i = 0; i < sizeof(stats_keys) / sizeof(stats_keys[0]); i++) {
+        const struct stats_key *k = &stats_keys[i];
+        if (!group_written(r, k->group)) continue;
+        fprintf(f, "%s\"%s\": ", sep, k->name);
+        write_value(r, k, f);
+        sep = ", ";
+    }
+    fprintf(f, "}\n");
+    return ferror(f) ? -EIO : 0;
+}
+
+void player_stats_usage(FILE *f)
+{
+    fprintf(f, "--stats keys (one JSON object; numbers unless said):\n");
+    for (int g = 0; g < GROUP_COUNT; g++) {
+        fprintf(f, "  %s:\n", group_titles[g]);
+        for (size_t i = 0; i < sizeof(stats_keys) / sizeof(stats_keys[0]); i++)
+            if (stats_keys[i].group == (enum stats_group)g)
+                fprintf(f, "    %-24s %s\n", stats_keys[i].name, stats_keys[i].meaning);
+    }
+}

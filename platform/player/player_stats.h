@@ -1,0 +1,40 @@
+/* What `sbfx-play --stats FILE` writes, from one table: the JSON object of a run and the key list
+ * of --help (and of the man page, sbfx-play.1, which tests/cli.sh checks against --help) come
+ * from the same rows, so they cannot drift apart.
+ *
+ *   player_stats_collect  the numbers of a finished run, from the player, into one record
+ *   player_stats_write    the record as one JSON object: every run's keys, then those of the
+ *                         parts in use (a DRM display, GPIO lines or a camera: the kiosk's
+ *                         counters; GPIO lines: gpio_*; a camera: video_*)
+ *   player_stats_usage    the key list for --help, grouped as the JSON is */
+#ifndef SBFX_PLAYER_STATS_H
+#define SBFX_PLAYER_STATS_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+struct player;
+
+/* A run's numbers, one field per key (integers as long long: counters of 64 bits print the
+ * same; the player's own counters never reach 2^63). */
+struct player_stats_record {
+    long long programs, textures, framebuffers, gpu_bytes, passes, draw_calls;
+    long long particles_simulated, heap_allocs_after_load;
+    double budget_ms, gpu_ms;
+    long long frames_over_budget, quality_changes;
+    char quality[64];
+    long long gpu_resets, gpu_reset_notification;
+    long long frames, flips, missed_vblanks, triggers_fired, triggers_refused;
+    long long display_unplugs, display_replugs, display_paused_frames;
+    long long gpio_edges, gpio_fired, gpio_filtered, gpio_refused, gpio_overflows;
+    long long gpio_losses, gpio_returns, gpio_retries;
+    long long video_frames, video_distinct, video_losses, video_reopens, video_takeovers;
+    bool kiosk_on, gpio_on, video_on; /* which groups of keys the run writes */
+};
+
+void player_stats_collect(const struct player *p, struct player_stats_record *r);
+/* 0, or -EIO when writing failed (errno says why). */
+int player_stats_write(const struct player_stats_record *r, FILE *f);
+void player_stats_usage(FILE *f);
+
+#endif

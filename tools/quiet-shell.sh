@@ -1,0 +1,40 @@
+#!/bin/sh
+# make's SHELL for quiet builds (the Makefile sets it unless V=1, with .SILENT): before a recipe
+# line that compiles, links, archives, links a file or installs, one short line in the kernel's
+# kbuild style ("  CC      build/obj/src/sim.o"); then the line itself runs with /bin/sh,
+# unchanged. Other lines (tests, scripts, $(shell ...) queries) print only what they print.
+# Called by make as: tools/quiet-shell.sh -c 'RECIPE LINE'
+[ "$1" = -c ] && shift
+line=$1
+set -f
+# shellcheck disable=SC2086 # the recipe line's words, to find the program and its -o
+set -- $line
+[ "$1" = ccache ] && shift
+tag=""
+case "${1##*/}" in
+    cc | gcc | clang | c99 | *-gcc | *-cc | gcc-[0-9]* | clang-[0-9]*)
+        case " $line " in
+            *" -c "*) tag=CC ;;
+            *) tag=LD ;;
+        esac
+        ;;
+    ar | *-ar | gcc-ar*) tag=AR ;;
+    ln) tag=LN ;;
+    install) case " $line " in *" -d "*) ;; *) tag=INSTALL ;; esac ;;
+    embed_shaders) tag=GEN ;;
+esac
+if [ -n "$tag" ]; then
+    out=""
+    prev=""
+    for word; do
+        [ "$prev" = -o ] && out=$word
+        prev=$word
+    done
+    case "$tag" in
+        AR) out=$3 ;;
+        GEN) out=$2 ;;
+        LN | INSTALL) out=$word ;;
+    esac
+    printf '  %-7s %s\n' "$tag" "$out"
+fi
+exec /bin/sh -c "$line"
