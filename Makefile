@@ -171,8 +171,8 @@ $(BUILD)/obj/tools/%.o: tools/%.c | deps
 $(BUILD)/sbfx-probe: $(BUILD)/obj/tools/probe/probe.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
-# sbfx-soak: the kiosk loop for simulated hours, flatness checked (docs/kiosk-and-devices.md "Kiosk months");
-# a test tool, not installed. `make soak` runs it for SOAK_HOURS and plots the record
+# sbfx-soak: the kiosk loop for simulated hours, flatness checked (docs/kiosk-and-devices.md,
+# "Kiosk months"); a test tool, not installed. `make soak` runs it for SOAK_HOURS and plots the record
 # with gnuplot (tests/soak/soak.gp); tests/soak.sh runs a short one inside `make test`.
 $(BUILD)/sbfx-soak: $(BUILD)/obj/tools/soak/soak.o $(BUILD)/obj/tools/soak/soak_check.o $(PLATFORM_COMMON_OBJ) \
 		$(BUILD)/libsbfx.a
@@ -248,8 +248,8 @@ bench: all
 	@tests/bench/run.sh $(BUILD)
 
 # The header, both libraries (the .so as libsbfx.so.VERSION with its soname and development
-# links), sbfx.pc, the two programs and sbfx-play's man page; ldconfig when it is the live system. Not the CPU
-# reference (libsbfx_ref.a): tests only.
+# links), sbfx.pc, the two programs and sbfx-play's man page; ldconfig when it is the live
+# system. Not the CPU reference (libsbfx_ref.a): tests only.
 install: all
 	install -d $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(INCLUDEDIR) $(DESTDIR)$(BINDIR)
 	install -m 644 src/sbfx.h $(DESTDIR)$(INCLUDEDIR)/
@@ -381,8 +381,8 @@ $(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(BUILD)/o
 test-platform: $(PLATFORM_TESTS)
 
 # The real-kernel tier: boots Debian's kernel under qemu with vkms, vivid and gpio-sim and runs
-# sbfx-play against them (tests/vm/run.sh, docs/testing.md "Real-kernel tests"). Downloads from Debian's
-# archive, cached in build/vm/.
+# sbfx-play against them (tests/vm/run.sh, docs/testing.md "Real-kernel tests"). Downloads from
+# Debian's archive, cached in build/vm/.
 VM_TOOLS := $(BUILD)/tests/vm/pngdiff $(BUILD)/tests/vm/drm_state $(BUILD)/tests/vm/v4l2_ctrl \
 	$(BUILD)/tests/vm/alloc_count.so $(BUILD)/tests/vm/vblank_stress
 $(BUILD)/tests/vm/pngdiff: tests/vm/pngdiff.c $(BUILD)/obj/platform/image/png_io.o
