@@ -217,9 +217,11 @@ test:
 	@$(MAKE) --no-print-directory BUILD=build/asan SANITIZE=1 all test-unit test-gl test-platform
 	@tests/run.sh
 
+# The build's lines are left out (QUIET_LINES=0: tools/quiet-shell.sh); warnings still show.
 demo:
 	@tools/deps.sh build
-	@$(MAKE) --no-print-directory all
+	@echo "demo: building $(BUILD)/sbfx-play and the library (make V=1 demo shows the commands)"
+	@QUIET_LINES=0 $(MAKE) --no-print-directory all
 	@$(BUILD)/sbfx-play --headless --scene scenes/explosion.cfg --size 960x540 --frames 36 --out $(BUILD)/demo --contact-sheet
 
 # Each example scene through sbfx-play from its own camera (its `camera` group, else the default

@@ -3,6 +3,7 @@
 # line that compiles, links, archives, links a file or installs, one short line in the kernel's
 # kbuild style ("  CC      build/obj/src/sim.o"); then the line itself runs with /bin/sh,
 # unchanged. Other lines (tests, scripts, $(shell ...) queries) print only what they print.
+# QUIET_LINES=0 in the environment leaves out the short lines too (make demo's build).
 # Called by make as: tools/quiet-shell.sh -c 'RECIPE LINE'
 [ "$1" = -c ] && shift
 line=$1
@@ -23,6 +24,7 @@ case "${1##*/}" in
     install) case " $line " in *" -d "*) ;; *) tag=INSTALL ;; esac ;;
     embed_shaders) tag=GEN ;;
 esac
+[ "${QUIET_LINES:-1}" = 0 ] && tag=""
 if [ -n "$tag" ]; then
     out=""
     prev=""
