@@ -421,6 +421,13 @@ test_man_page() {
     else
         ok man-page-stats-keys
     fi
+    local k undocumented=""
+    for k in $hk; do grep -q "^    $k " docs/player.md || undocumented="$undocumented $k"; done
+    if [ -n "$undocumented" ]; then
+        fail docs-stats-keys "docs/player.md does not list:$undocumented"
+    else
+        ok docs-stats-keys
+    fi
     if [ "$hf" != "$mf" ]; then
         fail man-page-flags "$MAN_PAGE documents '$mf', --help '$hf'"
     else
