@@ -1,6 +1,6 @@
 #!/bin/sh
 # Builds libgpiod 2.x from Debian 13 (trixie)'s source package, for the GPIO backend's second
-# build (platform/gpio_gpiod2.c; docs/gpio.md). Usage: tools/libgpiod2.sh [DIR] (build/libgpiod2).
+# build (platform/gpio/gpio_gpiod2.c; docs/gpio.md). Usage: tools/libgpiod2.sh [DIR] (build/libgpiod2).
 # Prints the pkg-config folder to use (PKG_CONFIG_PATH=...) on its last line.
 #
 # Debian 13's sources come from the archive this machine's apt already uses (its URI is read from
