@@ -164,9 +164,11 @@ static void check_fifo(void)
         result(false, "kernel-fifo", "%s", err);
         return;
     }
-    for (int i = 0; i < 20; i++) {
+    for (int i = 0; i < 20; i++) { /* 20 ms apart, so that gpio-sim does not merge them */
         pull(5, true);
+        usleep(20000);
         pull(5, false);
+        usleep(20000);
     }
     usleep(200000);
     int first = gpio_line_read(l, ev, GPIO_KERNEL_FIFO), more = 0, got;
