@@ -852,6 +852,16 @@ test_gpio_backend() {
     grep -e '^ok - ' -e '^not ok - ' "$L/gpio-backend$SFX.out" | while IFS= read -r line; do result "$line"; done
     grep '^#' "$L/gpio-backend$SFX.err" | head -n 5
     [ "$rc" -le 1 ] || fail "gpio-backend$SFX" "$tool exited with $rc: $(head -n 2 "$L/gpio-backend$SFX.err" | tr '\n' ' ')"
+    # make test's backend checks too (tests/platform/test_gpio_backend.c), here with chips to list
+    local unit=$B/tests/platform/test_gpio_backend
+    [ -n "$SFX" ] && unit=$B/gpiod2/tests/platform/test_gpio_backend
+    step "$unit"
+    timeout -k 5 30 "$unit" >"$L/gpio-backend-unit$SFX.out" 2>&1
+    rc=$?
+    sed -nE "s#^(ok|not ok|skip) - test_gpio_backend/#\1 - vm/gpio-backend$SFX/unit-#p" "$L/gpio-backend-unit$SFX.out" |
+        while IFS= read -r line; do result "$line"; done
+    grep -q '^ok - ' "$L/gpio-backend-unit$SFX.out" && [ "$rc" -le 1 ] ||
+        fail "gpio-backend$SFX/unit" "$unit exited with $rc: $(head -n 2 "$L/gpio-backend-unit$SFX.out" | tr '\n' ' ')"
 }
 
 # with_gpiod2 FUNCTION: a GPIO test group with the player built against libgpiod 2.x.
