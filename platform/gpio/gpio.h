@@ -11,7 +11,9 @@
  *   -ENOENT  no such chip (the message lists the chips there are)
  *   -ERANGE  the chip has no such line (the message gives the chip's line count)
  *   -EBUSY   the line is used by another consumer (named)
- *   others   what the kernel said, with the call that failed */
+ *   -ENOTTY  the path is a character device but not a GPIO chip (with either libgpiod)
+ *   others   what the kernel said, with the call that failed
+ * The trigger code takes -ENOENT and -ERANGE for "not there yet" and retries them. */
 #ifndef SBFX_GPIO_H
 #define SBFX_GPIO_H
 
