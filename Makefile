@@ -35,7 +35,7 @@ CC ?= cc
 PKG_CONFIG ?= pkg-config
 # The library's version: the minor grows when a function is added to src/sbfx.h, the major
 # (the soname's number) when a signature or a public struct's layout changes.
-VERSION := 1.0.0
+VERSION := 1.1.0
 SOVERSION := $(firstword $(subst ., ,$(VERSION)))
 # tools/deps.sh's package set for this build (a board's .mk names its own)
 DEPS := build
@@ -153,12 +153,24 @@ $(BUILD)/libsbfx.so: $(BUILD)/$(SONAME)
 PLAYER_SRC := $(addprefix player/,player player_args player_usage player_stats player_inputs player_loop \
 	player_reset board) \
 	$(addprefix video/,luma live_detail v4l2_source) \
-	$(addprefix gpio/,gpio_gpiod1 gpio_triggers trigger_filter) \
+	$(addprefix gpio/,gpio_backend effect_names gpio_triggers trigger_filter) \
 	$(addprefix display/,display_headless display_drm display_link) \
 	$(addprefix drm/,drm_device drm_fb drm_atomic drm_legacy drm_writeback gbm_egl)
 PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o)
 # --version prints the Makefile's VERSION (the library's)
 $(BUILD)/obj/platform/player/player_usage.o: PLATFORM_CFLAGS += -DSBFX_VERSION='"$(VERSION)"'
+# The GPIO backend (docs/gpio.md): platform/gpio/gpio_gpiod2.c when pkg-config's libgpiod is 2.x
+# or later, else gpio_gpiod1.c (1.6). gpiod-version holds the version the object was built for, so
+# a different libgpiod (PKG_CONFIG_PATH) rebuilds it.
+GPIOD_VERSION = $(call pkg_config,GPIOD_VERSION_,--modversion libgpiod)
+GPIOD_BACKEND = gpio_gpiod$(if $(filter 0 1,$(firstword $(subst ., ,$(GPIOD_VERSION)))),1,2)
+$(BUILD)/gen/gpiod-version: FORCE | deps
+	@mkdir -p $(@D)
+	@[ "$$(cat $@ 2>/dev/null)" = "$(GPIOD_VERSION)" ] || echo "$(GPIOD_VERSION)" > $@
+$(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/gpio/gpio_gpiod2.c \
+		$(BUILD)/gen/gpiod-version | deps
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
@@ -372,10 +384,16 @@ $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h
 	$(CC) $(PLATFORM_CFLAGS) -Itests -Itools $(LDSAN) -o $@ $< $(PLATFORM_TEST_OBJ) $(PLATFORM_LIBS)
 # GPIO lines lost and requested again: gpio_triggers.c against a fake gpio.h backend (in the test)
 $(BUILD)/tests/platform/test_gpio_recovery: tests/platform/test_gpio_recovery.c \
-		$(BUILD)/obj/platform/gpio/gpio_triggers.o $(BUILD)/obj/platform/gpio/trigger_filter.o tests/check.h
+		$(BUILD)/obj/platform/gpio/gpio_triggers.o $(BUILD)/obj/platform/gpio/trigger_filter.o \
+		$(BUILD)/obj/platform/gpio/effect_names.o tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio/gpio_triggers.o \
-		$(BUILD)/obj/platform/gpio/trigger_filter.o $(PLATFORM_LIBS)
+		$(BUILD)/obj/platform/gpio/trigger_filter.o $(BUILD)/obj/platform/gpio/effect_names.o $(PLATFORM_LIBS)
+# the GPIO backend this build chose, where no chip is needed (errors, calls on no line)
+$(BUILD)/tests/platform/test_gpio_backend: tests/platform/test_gpio_backend.c \
+		$(BUILD)/obj/platform/gpio/gpio_backend.o tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio/gpio_backend.o $(PLATFORM_LIBS)
 $(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(BUILD)/obj/platform/egl/gl_reset.o tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/egl/gl_reset.o $(PLATFORM_LIBS)
@@ -386,7 +404,12 @@ test-platform: $(PLATFORM_TESTS)
 # sbfx-play against them (tests/vm/run.sh, docs/testing.md "Real-kernel tests"). Downloads from
 # Debian's archive, cached in build/vm/.
 VM_TOOLS := $(BUILD)/tests/vm/pngdiff $(BUILD)/tests/vm/drm_state $(BUILD)/tests/vm/v4l2_ctrl \
-	$(BUILD)/tests/vm/alloc_count.so $(BUILD)/tests/vm/vblank_stress
+	$(BUILD)/tests/vm/alloc_count.so $(BUILD)/tests/vm/vblank_stress $(BUILD)/tests/vm/gpio_backend \
+	$(BUILD)/tests/platform/test_gpio_backend
+# the GPIO backend this build chose, against gpio-sim (built again against libgpiod 2 below)
+$(BUILD)/tests/vm/gpio_backend: tests/vm/gpio_backend.c $(BUILD)/obj/platform/gpio/gpio_backend.o
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -o $@ $^ $(PLATFORM_LIBS)
 $(BUILD)/tests/vm/pngdiff: tests/vm/pngdiff.c $(BUILD)/obj/platform/image/png_io.o
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -o $@ $^ $(PLATFORM_LIBS)
@@ -405,7 +428,17 @@ $(BUILD)/tests/vm/drm_state: tests/vm/drm_state.c
 test-vm:
 	@tools/deps.sh vm
 	@$(MAKE) --no-print-directory all $(VM_TOOLS)
+	@$(MAKE) --no-print-directory gpiod2
 	@BUILD=$(BUILD) tests/vm/run.sh
+
+# sbfx-play and the backend check a second time, against libgpiod 2.x built from Debian 13's
+# source package (tools/libgpiod2.sh, cached in build/libgpiod2), into $(BUILD)/gpiod2/: the VM
+# tier runs its GPIO groups with both builds (docs/gpio.md).
+.PHONY: gpiod2
+gpiod2:
+	@pc=$$(tools/libgpiod2.sh build/libgpiod2) && PKG_CONFIG_PATH=$$pc $(MAKE) --no-print-directory \
+		BUILD=$(BUILD)/gpiod2 $(BUILD)/gpiod2/sbfx-play $(BUILD)/gpiod2/tests/vm/gpio_backend \
+		$(BUILD)/gpiod2/tests/platform/test_gpio_backend
 
 # Cross build for a board (boards/rk3588.mk: Debian's aarch64 toolchain and arm64 multiarch
 # -dev packages, which its deps step installs or names) into build/rk3588/, and a check that

@@ -1,6 +1,7 @@
 /* GPIO input lines that deliver edge events: the contract the trigger code uses, so that the
- * libgpiod backend can change (gpio_gpiod1.c: libgpiod 1.6, Debian 12; a gpio_gpiod2.c for the
- * 2.x API would fill the same functions) without touching its users.
+ * libgpiod backend can change without touching its users: gpio_gpiod1.c for libgpiod 1.6
+ * (Debian 12), gpio_gpiod2.c for 2.x (Debian 13), the build picks one from pkg-config's
+ * libgpiod version (docs/gpio.md).
  *
  * A line is requested for edge events (rising, falling or both) under a consumer name; its file
  * descriptor is polled by the caller's loop (POLLIN: events are waiting) and gpio_line_read()
@@ -10,7 +11,9 @@
  *   -ENOENT  no such chip (the message lists the chips there are)
  *   -ERANGE  the chip has no such line (the message gives the chip's line count)
  *   -EBUSY   the line is used by another consumer (named)
- *   others   what the kernel said, with the call that failed */
+ *   -ENOTTY  the path is a character device but not a GPIO chip (with either libgpiod)
+ *   others   what the kernel said, with the call that failed
+ * The trigger code takes -ENOENT and -ERANGE for "not there yet" and retries them. */
 #ifndef SBFX_GPIO_H
 #define SBFX_GPIO_H
 

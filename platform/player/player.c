@@ -11,6 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "gpio/effect_names.h"
 #include "player/player.h"
 #include "player/player_stats.h"
 
@@ -88,8 +89,11 @@ static int schedule_triggers(struct player *p, char *err, size_t n)
         }
         sbfx_result r = sbfx_schedule(p->fx, t->effect, at, t->position);
         if (r != SBFX_OK) {
-            snprintf(err, n, "--trigger %s@%g: %s: %s", t->effect, t->seconds, sbfx_result_string(r),
-                     sbfx_last_error(p->fx));
+            char names[256] = "";
+            if (r == SBFX_ERR_UNKNOWN_EFFECT) effect_names(p->fx, names, sizeof(names));
+            snprintf(err, n, "--trigger %s@%g: %s: %s%s%s%s", t->effect, t->seconds,
+                     sbfx_result_string(r), sbfx_last_error(p->fx), names[0] ? " (the scene's effects: " : "",
+                     names, names[0] ? ")" : "");
             return -EINVAL;
         }
     }

@@ -27,7 +27,7 @@ struct player_stats_record {
     long long frames, flips, missed_vblanks, triggers_fired, triggers_refused;
     long long display_unplugs, display_replugs, display_paused_frames;
     long long gpio_edges, gpio_fired, gpio_filtered, gpio_refused, gpio_overflows;
-    long long gpio_losses, gpio_returns, gpio_retries;
+    long long gpio_losses, gpio_returns, gpio_retries, gpio_absent, gpio_appeared;
     long long video_frames, video_distinct, video_losses, video_reopens, video_takeovers;
     bool kiosk_on, gpio_on, video_on; /* which groups of keys the run writes */
 };
