@@ -32,7 +32,7 @@ include boards/$(BOARD).mk
 BUILD := build/$(BOARD)
 endif
 
-SRC_PKGS := glesv2 lcms2 libconfig
+SRC_PKGS := glesv2 libconfig
 PLATFORM_PKGS := egl glesv2 libpng libdrm gbm libgpiod
 
 # pkg-config is asked when a recipe first needs the answer, not when make reads this file: on a
@@ -63,7 +63,7 @@ LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined)
 # is exported from the .so; the rest is hidden, and what no public function reaches is dropped.
 SRC := $(wildcard src/*.c)
 SHADERS := $(sort $(wildcard shaders_es/*.vert shaders_es/*.frag))
-LIB_OBJ := $(SRC:src/%.c=$(BUILD)/obj/src/%.o) $(BUILD)/obj/gen/shaders_es.o
+LIB_OBJ := $(SRC:src/%.c=$(BUILD)/obj/src/%.o) $(BUILD)/obj/gen/shaders_es.o $(BUILD)/obj/gen/cie1931_2deg.o
 LIB_CFLAGS := -fvisibility=hidden -ffunction-sections -fdata-sections
 SONAME := libsbfx.so.$(SOVERSION)
 SO_LINKS := $(BUILD)/$(SONAME) $(BUILD)/libsbfx.so
@@ -98,6 +98,24 @@ $(BUILD)/gen/shaders_es.c: $(SHADERS) $(BUILD)/tools/embed_shaders
 	$(BUILD)/tools/embed_shaders $@ $(SHADERS)
 
 $(BUILD)/obj/gen/shaders_es.o: $(BUILD)/gen/shaders_es.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(SRC_CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
+
+# The CIE 1931 2° colour-matching functions compiled in (src/tables.h): generated from
+# colord-data's file through lcms2 by a build-time program, so the library reads no file and
+# does not link lcms2 (docs/distributions.md). The host's lcms2, also in a cross build.
+CIE_CMF ?= /usr/share/colord/cmf/CIE1931-2deg-XYZ.cmf
+HOST_PKG_CONFIG ?= pkg-config
+$(BUILD)/tools/gen_cmf: tools/gen_cmf.c | deps
+	@mkdir -p $(@D)
+	$(HOSTCC) -std=c11 -O1 $(WARN) $(shell $(HOST_PKG_CONFIG) --cflags lcms2) -o $@ $< \
+		$(shell $(HOST_PKG_CONFIG) --libs lcms2) -lm
+
+$(BUILD)/gen/cie1931_2deg.c: $(wildcard $(CIE_CMF)) $(BUILD)/tools/gen_cmf
+	@mkdir -p $(@D)
+	$(BUILD)/tools/gen_cmf $(CIE_CMF) $@
+
+$(BUILD)/obj/gen/cie1931_2deg.o: $(BUILD)/gen/cie1931_2deg.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(SRC_CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
 
