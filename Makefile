@@ -5,7 +5,8 @@
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, then ASan+UBSan
 #   make bench        timings into build/bench/
 #   make ladder       src/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
-#   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR); make uninstall
+#   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR, DATADIR); make uninstall;
+#                     also scenes, boards and the kiosk's unit and udev rule (dist/)
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
 #   make test-vm      real-kernel tests in a qemu VM (vkms, vivid, gpio-sim; tests/vm/)
@@ -17,6 +18,7 @@ DESTDIR ?=
 LIBDIR ?= $(PREFIX)/lib
 INCLUDEDIR ?= $(PREFIX)/include
 BINDIR ?= $(PREFIX)/bin
+DATADIR ?= $(PREFIX)/share
 BUILD ?= build
 CC ?= cc
 PKG_CONFIG ?= pkg-config
@@ -414,3 +416,39 @@ cross-check:
 
 .PHONY: FORCE
 FORCE:
+
+# ---- the kiosk's deployment (issue 20; docs/kiosk-deploy.md) --------------------------------
+# make install also installs the example scenes and board profiles under $(DATADIR)/sbfx, the
+# hardened unit dist/systemd/sbfx-kiosk.service.in with its paths filled in, the udev rule that
+# gives /dev/gpiochip* to the group gpio and the sysusers.d file that makes that group. udev
+# reads rules only from /usr/lib/udev/rules.d and /etc/udev/rules.d, so a PREFIX other than
+# /usr puts the rule under /etc. On the live system (no DESTDIR, as root) the group is made
+# and systemd and udev reload.
+SYSTEMDUNITDIR ?= $(PREFIX)/lib/systemd/system
+SYSUSERSDIR ?= $(PREFIX)/lib/sysusers.d
+UDEVRULESDIR ?= $(if $(filter /usr,$(PREFIX)),/usr/lib/udev/rules.d,/etc/udev/rules.d)
+KIOSK_UNIT := sbfx-kiosk.service
+KIOSK_UDEV_RULE := 60-sbfx-gpio.rules
+.PHONY: install-kiosk uninstall-kiosk
+install: install-kiosk
+uninstall: uninstall-kiosk
+install-kiosk:
+	install -d $(DESTDIR)$(DATADIR)/sbfx/scenes $(DESTDIR)$(DATADIR)/sbfx/boards \
+		$(DESTDIR)$(SYSTEMDUNITDIR) $(DESTDIR)$(UDEVRULESDIR) $(DESTDIR)$(SYSUSERSDIR)
+	install -m 644 scenes/*.cfg $(DESTDIR)$(DATADIR)/sbfx/scenes/
+	install -m 644 boards/*.cfg $(DESTDIR)$(DATADIR)/sbfx/boards/
+	sed -e 's|@BINDIR@|$(BINDIR)|g' -e 's|@DATADIR@|$(DATADIR)|g' dist/systemd/$(KIOSK_UNIT).in \
+		> $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT)
+	chmod 644 $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT)
+	install -m 644 dist/udev/$(KIOSK_UDEV_RULE) $(DESTDIR)$(UDEVRULESDIR)/
+	install -m 644 dist/sysusers/sbfx.conf $(DESTDIR)$(SYSUSERSDIR)/
+	@if [ -z "$(DESTDIR)" ] && [ "$$(id -u)" -eq 0 ]; then \
+		if command -v systemd-sysusers >/dev/null; then systemd-sysusers $(SYSUSERSDIR)/sbfx.conf; fi; \
+		if [ -d /run/systemd/system ]; then systemctl daemon-reload; fi; \
+		if command -v udevadm >/dev/null && [ -d /run/udev ]; then udevadm control --reload && \
+			udevadm trigger --subsystem-match=gpio; fi; \
+	fi
+uninstall-kiosk:
+	rm -rf $(DESTDIR)$(DATADIR)/sbfx
+	rm -f $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT) $(DESTDIR)$(UDEVRULESDIR)/$(KIOSK_UDEV_RULE) \
+		$(DESTDIR)$(SYSUSERSDIR)/sbfx.conf
