@@ -24,7 +24,7 @@ CC ?= cc
 PKG_CONFIG ?= pkg-config
 # The library's version: the minor grows when a function is added to src/sbfx.h, the major
 # (the soname's number) when a signature or a public struct's layout changes.
-VERSION := 1.0.0
+VERSION := 1.1.0
 SOVERSION := $(firstword $(subst ., ,$(VERSION)))
 # tools/deps.sh's package set for this build (a board's .mk names its own)
 DEPS := build
@@ -156,10 +156,22 @@ $(BUILD)/libsbfx.so: $(BUILD)/$(SONAME)
 # sbfx-play: the player, its displays (headless, DRM/KMS), camera and GPIO inputs (platform/)
 PLAYER_SRC := $(addprefix player/,player player_args player_usage player_inputs player_loop player_reset board) \
 	$(addprefix video/,luma live_detail v4l2_source) \
-	$(addprefix gpio/,gpio_gpiod1 gpio_triggers trigger_filter) \
+	$(addprefix gpio/,gpio_backend effect_names gpio_triggers trigger_filter) \
 	$(addprefix display/,display_headless display_drm display_link) \
 	$(addprefix drm/,drm_device drm_fb drm_atomic drm_legacy drm_writeback gbm_egl)
 PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o)
+# The GPIO backend (docs/gpio.md): platform/gpio/gpio_gpiod2.c when pkg-config's libgpiod is 2.x
+# or later, else gpio_gpiod1.c (1.6). gpiod-version holds the version the object was built for, so
+# a different libgpiod (PKG_CONFIG_PATH) rebuilds it.
+GPIOD_VERSION = $(call pkg_config,GPIOD_VERSION_,--modversion libgpiod)
+GPIOD_BACKEND = gpio_gpiod$(if $(filter 0 1,$(firstword $(subst ., ,$(GPIOD_VERSION)))),1,2)
+$(BUILD)/gen/gpiod-version: FORCE | deps
+	@mkdir -p $(@D)
+	@[ "$$(cat $@ 2>/dev/null)" = "$(GPIOD_VERSION)" ] || echo "$(GPIOD_VERSION)" > $@
+$(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/gpio/gpio_gpiod2.c \
+		$(BUILD)/gen/gpiod-version | deps
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
@@ -369,10 +381,11 @@ $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h
 	$(CC) $(PLATFORM_CFLAGS) -Itests -Itools $(LDSAN) -o $@ $< $(PLATFORM_TEST_OBJ) $(PLATFORM_LIBS)
 # GPIO lines lost and requested again: gpio_triggers.c against a fake gpio.h backend (in the test)
 $(BUILD)/tests/platform/test_gpio_recovery: tests/platform/test_gpio_recovery.c \
-		$(BUILD)/obj/platform/gpio/gpio_triggers.o $(BUILD)/obj/platform/gpio/trigger_filter.o tests/check.h
+		$(BUILD)/obj/platform/gpio/gpio_triggers.o $(BUILD)/obj/platform/gpio/trigger_filter.o \
+		$(BUILD)/obj/platform/gpio/effect_names.o tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio/gpio_triggers.o \
-		$(BUILD)/obj/platform/gpio/trigger_filter.o $(PLATFORM_LIBS)
+		$(BUILD)/obj/platform/gpio/trigger_filter.o $(BUILD)/obj/platform/gpio/effect_names.o $(PLATFORM_LIBS)
 $(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(BUILD)/obj/platform/egl/gl_reset.o tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/egl/gl_reset.o $(PLATFORM_LIBS)

@@ -286,6 +286,11 @@ bool sbfx_has_effect(const sbfx *fx, const char *effect)
     return fx && effect && find_effect(fx, effect) >= 0;
 }
 
+const char *sbfx_effect_name(const sbfx *fx, int index)
+{
+    return fx && index >= 0 && index < fx->effect_count ? fx->effects[index].name : NULL;
+}
+
 static bool position_valid(const float p[3])
 {
     return p && isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);

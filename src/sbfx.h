@@ -264,6 +264,9 @@ SBFX_API sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds,
 /* True when the module has an effect of that name (the scene's, or the built-in "explosion"):
  * lets a host check at start the names it will trigger later (GPIO lines, remote commands). */
 SBFX_API bool sbfx_has_effect(const sbfx *fx, const char *effect);
+/* The name of the module's effect number index (0, 1, ...), NULL past the last: lets a host name
+ * the effects there are when it is given one that is not (an error message). */
+SBFX_API const char *sbfx_effect_name(const sbfx *fx, int index);
 /* The simulation clock in seconds: desc.start_time + sbfx_elapsed(). Absolute, so a kiosk can
  * persist it and restart where it was (desc.start_time); hosts that animate from it should reduce
  * periodic values in double precision (fmod) before making floats of them. */

@@ -1,6 +1,7 @@
 /* GPIO input lines that deliver edge events: the contract the trigger code uses, so that the
- * libgpiod backend can change (gpio_gpiod1.c: libgpiod 1.6, Debian 12; a gpio_gpiod2.c for the
- * 2.x API would fill the same functions) without touching its users.
+ * libgpiod backend can change without touching its users: gpio_gpiod1.c for libgpiod 1.6
+ * (Debian 12), gpio_gpiod2.c for 2.x (Debian 13), the build picks one from pkg-config's
+ * libgpiod version (docs/gpio.md).
  *
  * A line is requested for edge events (rising, falling or both) under a consumer name; its file
  * descriptor is polled by the caller's loop (POLLIN: events are waiting) and gpio_line_read()

@@ -1,6 +1,8 @@
 /* GPIO lines -> debounce and rate limit -> sbfx_trigger. */
 #include "gpio/gpio_triggers.h"
 
+#include "gpio/effect_names.h"
+
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
@@ -12,8 +14,10 @@ static int check_spec(const struct gpio_trigger_spec *s, const struct gpio_trigg
                       const sbfx *fx, char *err, size_t n)
 {
     if (!sbfx_has_effect(fx, s->effect)) {
-        snprintf(err, n, "%s: GPIO %s line %d fires '%s', but the scene has no effect of that name",
-                 s->origin, s->chip, s->line, s->effect);
+        char names[256];
+        snprintf(err, n, "%s: GPIO %s line %d fires '%s', but the scene has no effect of that name "
+                 "(its effects: %s)", s->origin, s->chip, s->line, s->effect,
+                 effect_names(fx, names, sizeof(names)));
         return -EINVAL;
     }
     for (int i = 0; i < t->count; i++) {
@@ -27,8 +31,22 @@ static int check_spec(const struct gpio_trigger_spec *s, const struct gpio_trigg
     return 0;
 }
 
+/* A chip or line that is not there (yet): logged, and requested with back-off like a lost one. */
+static void absent_at_start(struct gpio_triggers *t, struct gpio_trigger_line *l, const char *why,
+                            int64_t now_ns, gpio_log_fn log, void *user)
+{
+    char msg[512];
+    snprintf(msg, sizeof(msg), "%s: %s; its trigger is off until it appears (requested again with "
+             "back-off)", l->spec.origin, why);
+    if (log) log(msg, user);
+    l->gpio = NULL;
+    l->retry_ms = GPIO_RETRY_MIN_MS;
+    l->retry_at_ns = now_ns + (int64_t)l->retry_ms * 1000000;
+    t->counts.absent++;
+}
+
 static int open_one(struct gpio_triggers *t, const struct gpio_trigger_spec *s, const sbfx *fx,
-                    char *err, size_t n)
+                    int64_t now_ns, gpio_log_fn log, void *user, char *err, size_t n)
 {
     int rc = check_spec(s, t, fx, err, n);
     if (rc) return rc;
@@ -37,9 +55,13 @@ static int open_one(struct gpio_triggers *t, const struct gpio_trigger_spec *s, 
     l->spec = *s;
     char why[384];
     rc = gpio_line_open(&l->gpio, s->chip, s->line, s->edge, CONSUMER, why, sizeof(why));
-    if (rc) {
+    if (rc == -ENOENT || rc == -ERANGE) {
+        absent_at_start(t, l, why, now_ns, log, user);
+    } else if (rc) {
         snprintf(err, n, "%s: %s", s->origin, why);
         return rc;
+    } else {
+        l->seen = true;
     }
     trigger_filter_init(&l->filter, s->debounce_ms, s->min_interval_ms);
     t->count++;
@@ -47,7 +69,8 @@ static int open_one(struct gpio_triggers *t, const struct gpio_trigger_spec *s, 
 }
 
 int gpio_triggers_open(struct gpio_triggers *t, const struct gpio_trigger_spec *specs, int count,
-                       const sbfx *fx, char *err, size_t n)
+                       const sbfx *fx, int64_t now_ns, gpio_log_fn log, void *user, char *err,
+                       size_t n)
 {
     memset(t, 0, sizeof(*t));
     if (count > GPIO_TRIGGERS_MAX) {
@@ -55,7 +78,7 @@ int gpio_triggers_open(struct gpio_triggers *t, const struct gpio_trigger_spec *
         return -EINVAL;
     }
     for (int i = 0; i < count; i++) {
-        int rc = open_one(t, &specs[i], fx, err, n);
+        int rc = open_one(t, &specs[i], fx, now_ns, log, user, err, n);
         if (rc) {
             gpio_triggers_close(t);
             return rc;
@@ -103,10 +126,17 @@ static void retry_line(struct gpio_trigger_line *l, int64_t now_ns,
         l->retry_at_ns = now_ns + (int64_t)l->retry_ms * 1000000;
         return;
     }
-    counts->returns++;
     char msg[256];
-    snprintf(msg, sizeof(msg), "GPIO %s line %d is back (%s): its trigger is on again",
-             l->spec.chip, l->spec.line, gpio_line_chip_name(l->gpio));
+    if (l->seen) {
+        counts->returns++;
+        snprintf(msg, sizeof(msg), "GPIO %s line %d is back (%s): its trigger is on again",
+                 l->spec.chip, l->spec.line, gpio_line_chip_name(l->gpio));
+    } else {
+        counts->appeared++;
+        snprintf(msg, sizeof(msg), "GPIO %s line %d appeared (%s): its trigger is on",
+                 l->spec.chip, l->spec.line, gpio_line_chip_name(l->gpio));
+    }
+    l->seen = true;
     if (log) log(msg, user);
 }
 

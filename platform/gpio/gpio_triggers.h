@@ -2,8 +2,11 @@
  * (trigger_filter.h) and a passing edge calls sbfx_trigger(effect, position).
  *
  * The lines come from the scene (sbfx_scene_gpio_triggers), the board profile and --gpio; the
- * player merges them into specs. Everything is requested at start: a missing chip or line, a
- * line in use or an effect the module does not have is an error naming them. While running,
+ * player merges them into specs. Everything is requested at start: a line in use or an effect
+ * the module does not have is an error naming them (the effects there are, too); a chip or a line
+ * that is not there is logged and requested again with the back-off below, rendering goes on and
+ * the trigger arms when it appears (an I/O board late at boot, a board profile tried on a PC;
+ * docs/gpio.md). While running,
  * reads never block and allocate nothing. A chip that disappears (an I/O board unplugged, its
  * driver unbound) is noticed by a failed read or by the check once a second, logged once per line,
  * and its lines go quiet while the rest keep working; each lost line is requested again with
@@ -45,6 +48,7 @@ struct gpio_trigger_line {
     struct trigger_filter filter;
     int64_t retry_at_ns;         /* while gone: the next attempt to request it again */
     int retry_ms;                /* the back-off after that attempt */
+    bool seen;                   /* requested at least once (a loss, not an absence at start) */
 };
 
 struct gpio_trigger_counts {
@@ -55,7 +59,9 @@ struct gpio_trigger_counts {
     uint64_t overflows; /* reads that found the kernel's FIFO full (edges may be lost) */
     uint64_t losses;    /* lines whose chip went away */
     uint64_t returns;   /* lost lines requested again */
-    uint64_t retries;   /* attempts to request a lost line (the successful ones included) */
+    uint64_t retries;   /* attempts to request a lost or absent line (the successful ones included) */
+    uint64_t absent;    /* lines whose chip or line was not there at start */
+    uint64_t appeared;  /* lines absent at start that were requested once they appeared */
 };
 
 struct gpio_triggers {
@@ -67,9 +73,12 @@ struct gpio_triggers {
 
 typedef void (*gpio_log_fn)(const char *message, void *user);
 
-/* Requests every line; on failure nothing stays requested. fx checks the effect names. */
+/* Requests every line; on failure nothing stays requested. fx checks the effect names. A line
+ * whose chip or line is absent (-ENOENT, -ERANGE) is logged through log and left to
+ * gpio_triggers_service's retries (first at now_ns + GPIO_RETRY_MIN_MS); not a failure. */
 int gpio_triggers_open(struct gpio_triggers *t, const struct gpio_trigger_spec *specs, int count,
-                       const sbfx *fx, char *err, size_t n);
+                       const sbfx *fx, int64_t now_ns, gpio_log_fn log, void *user, char *err,
+                       size_t n);
 /* Fills up to max pollfds (POLLIN) for the live lines; returns how many. */
 int gpio_triggers_pollfds(const struct gpio_triggers *t, struct pollfd *fds, int max);
 /* Reads whatever waits on every line and fires what passes; checks the chips once a second and

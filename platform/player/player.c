@@ -11,6 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "gpio/effect_names.h"
 #include "player/player.h"
 
 static void on_sbfx_log(sbfx_log_level level, const char *message, void *user)
@@ -87,8 +88,11 @@ static int schedule_triggers(struct player *p, char *err, size_t n)
         }
         sbfx_result r = sbfx_schedule(p->fx, t->effect, at, t->position);
         if (r != SBFX_OK) {
-            snprintf(err, n, "--trigger %s@%g: %s: %s", t->effect, t->seconds, sbfx_result_string(r),
-                     sbfx_last_error(p->fx));
+            char names[256] = "";
+            if (r == SBFX_ERR_UNKNOWN_EFFECT) effect_names(p->fx, names, sizeof(names));
+            snprintf(err, n, "--trigger %s@%g: %s: %s%s%s%s", t->effect, t->seconds,
+                     sbfx_result_string(r), sbfx_last_error(p->fx), names[0] ? " (the scene's effects: " : "",
+                     names, names[0] ? ")" : "");
             return -EINVAL;
         }
     }
@@ -235,6 +239,8 @@ static void write_platform_stats(const struct player *p, FILE *f)
                 (unsigned long long)g->refused, (unsigned long long)g->overflows,
                 (unsigned long long)g->losses, (unsigned long long)g->returns,
                 (unsigned long long)g->retries);
+        fprintf(f, ", \"gpio_absent\": %llu, \"gpio_appeared\": %llu", (unsigned long long)g->absent,
+                (unsigned long long)g->appeared);
     }
     if (p->live_on) {
         const struct live_detail_counts *v = &p->live.counts;

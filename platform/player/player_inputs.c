@@ -101,7 +101,8 @@ int player_open_inputs(struct player *p, char *err, size_t n)
 {
     int rc = collect_gpio(p, err, n);
     if (rc == 0 && p->gpio_spec_count > 0) {
-        rc = gpio_triggers_open(&p->gpio, p->gpio_specs, p->gpio_spec_count, p->fx, err, n);
+        rc = gpio_triggers_open(&p->gpio, p->gpio_specs, p->gpio_spec_count, p->fx, player_now_ns(),
+                                player_log, p, err, n);
         p->gpio_on = rc == 0;
     }
     if (rc == 0) rc = player_open_video(p, err, n);

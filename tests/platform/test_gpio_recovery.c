@@ -1,7 +1,9 @@
 /* GPIO trigger lines whose chip goes away and comes back (platform/gpio/gpio_triggers.c) against a
  * fake gpio.h backend defined here: the loss is logged once, the other line keeps firing, the
  * lost line is requested again with back-off (no attempt per frame, no log per attempt) and
- * fires again once it is back. sbfx_has_effect and sbfx_trigger are stubs counting triggers. */
+ * fires again once it is back; a chip or line absent at start is logged once and armed when it
+ * appears; a busy line and an unknown effect name are errors (the latter naming the effects).
+ * sbfx_has_effect, sbfx_effect_name and sbfx_trigger are stubs (effects "x" and "boom"). */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,7 +24,7 @@ struct gpio_line {
 
 static bool chip_present[2] = {true, true};
 static struct gpio_line *opened[2][8];
-static int open_calls, check_calls, triggers, logs, loss_logs, back_logs;
+static int open_calls, check_calls, triggers, logs, loss_logs, back_logs, absent_logs, appeared_logs;
 
 static int chip_index(const char *chip)
 {
@@ -39,6 +41,14 @@ int gpio_line_open(struct gpio_line **out, const char *chip, int line, sbfx_edge
     if (c < 0 || !chip_present[c]) {
         snprintf(err, n, "GPIO chip '%s': cannot open it", chip);
         return -ENOENT;
+    }
+    if (line < 0 || line >= 8) {
+        snprintf(err, n, "GPIO %s: no line %d (the chip has 8 lines, 0..7)", chip, line);
+        return -ERANGE;
+    }
+    if (line == 7) {
+        snprintf(err, n, "GPIO %s line 7 is in use by 'other'", chip);
+        return -EBUSY;
     }
     struct gpio_line *l = calloc(1, sizeof(*l));
     l->chip = chip[0];
@@ -77,10 +87,18 @@ void gpio_line_close(struct gpio_line *line)
 
 /* ---- sbfx stubs ------------------------------------------------------------------------ */
 
+static const char *effects[] = {"x", "boom"};
+
 bool sbfx_has_effect(const sbfx *fx, const char *name)
 {
-    (void)fx, (void)name;
-    return true;
+    (void)fx;
+    return strcmp(name, effects[0]) == 0 || strcmp(name, effects[1]) == 0;
+}
+
+const char *sbfx_effect_name(const sbfx *fx, int index)
+{
+    (void)fx;
+    return index >= 0 && index < 2 ? effects[index] : NULL;
 }
 
 sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float position[3])
@@ -96,6 +114,8 @@ static void on_log(const char *message, void *user)
     logs++;
     if (strstr(message, "went away")) loss_logs++;
     if (strstr(message, "is back")) back_logs++;
+    if (strstr(message, "until it appears")) absent_logs++;
+    if (strstr(message, " appeared (")) appeared_logs++;
 }
 
 /* ---- the timeline ---------------------------------------------------------------------- */
@@ -121,7 +141,7 @@ static void open_two(struct gpio_triggers *t)
         {.chip = "b", .line = 1, .debounce_ms = 30, .min_interval_ms = 250, .effect = "x", .origin = "test"},
     };
     char err[256];
-    CHECK(gpio_triggers_open(t, specs, 2, NULL, err, sizeof(err)) == 0, "%s", err);
+    CHECK(gpio_triggers_open(t, specs, 2, NULL, 0, on_log, NULL, err, sizeof(err)) == 0, "%s", err);
 }
 
 CHECK_TEST(chip_lost_logged_once_other_line_fires_line_back)
@@ -166,6 +186,57 @@ CHECK_TEST(live_chips_checked_once_a_second)
     CHECK(open_calls == calls && t.counts.losses == 0 && logs == 0, "nothing lost, nothing logged");
     CHECK(check_calls == 2 * 5, "%d chip checks for 2 lines in 5 s (expected 10)", check_calls);
     gpio_triggers_close(&t);
+}
+
+/* Chip a is not there when the player starts (an I/O board late at boot): the run goes on, the
+ * absence is logged once, the line is requested with back-off and fires once the chip is there. */
+CHECK_TEST(chip_absent_at_start_arms_when_it_appears)
+{
+    static struct gpio_triggers t;
+    chip_present[0] = false;
+    open_two(&t);
+    CHECK(t.count == 2 && t.counts.absent == 1 && absent_logs == 1 && logs == 1,
+          "lines %d, absent %llu, logged %d (%d 'until it appears')", t.count,
+          (unsigned long long)t.counts.absent, logs, absent_logs);
+    int calls = open_calls;
+    press('b', 1, 100 * MS);
+    frames(&t, 0, 9000 * MS);
+    int attempts = open_calls - calls;
+    CHECK(attempts >= 3 && attempts <= 6, "%d attempts in 9 s (back-off 0.5, 1, 2, 4, 8 s)", attempts);
+    CHECK(triggers == 1 && logs == 1, "the present line fired %d; %d log lines", triggers, logs);
+
+    chip_present[0] = true; /* the chip appears at 9 s */
+    frames(&t, 9000 * MS, 18000 * MS);
+    CHECK(t.counts.appeared == 1 && appeared_logs == 1 && t.counts.returns == 0,
+          "appeared %llu (logged %d), returns %llu", (unsigned long long)t.counts.appeared,
+          appeared_logs, (unsigned long long)t.counts.returns);
+    press('a', 3, 18100 * MS);
+    frames(&t, 18000 * MS, 18500 * MS);
+    CHECK(triggers == 2, "a press once the chip appeared fired %d", triggers - 1);
+    gpio_triggers_close(&t);
+}
+
+/* A line the chip does not have (yet) is absent, not fatal; a busy line and an effect the module
+ * does not have are errors, the latter naming the effects there are. */
+CHECK_TEST(absent_line_retried_busy_line_and_unknown_effect_fail)
+{
+    static struct gpio_triggers t;
+    char err[256];
+    struct gpio_trigger_spec s = {.chip = "a", .line = 9, .debounce_ms = 30, .effect = "x", .origin = "test"};
+    CHECK(gpio_triggers_open(&t, &s, 1, NULL, 0, on_log, NULL, err, sizeof(err)) == 0, "%s", err);
+    CHECK(t.counts.absent == 1 && absent_logs == 1, "line 9 of 8: absent %llu, logged %d",
+          (unsigned long long)t.counts.absent, absent_logs);
+    gpio_triggers_close(&t);
+
+    s.line = 7;
+    int rc = gpio_triggers_open(&t, &s, 1, NULL, 0, on_log, NULL, err, sizeof(err));
+    CHECK(rc == -EBUSY && strstr(err, "in use by 'other'") && t.count == 0, "busy line: %d %s", rc, err);
+
+    s.line = 2;
+    snprintf(s.effect, sizeof(s.effect), "nosuch");
+    rc = gpio_triggers_open(&t, &s, 1, NULL, 0, on_log, NULL, err, sizeof(err));
+    CHECK(rc == -EINVAL && strstr(err, "'nosuch'") && strstr(err, "its effects: x, boom"),
+          "unknown effect: %d %s", rc, err);
 }
 
 int main(int argc, char **argv)
