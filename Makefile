@@ -10,6 +10,7 @@
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
 #   make test-vm      real-kernel tests in a qemu VM (vkms, vivid, gpio-sim; tests/vm/)
+#   make test-debian13  make test in a Debian 13 root (debootstrap; tests/debian13/run.sh), as root
 #   make soak         SOAK_HOURS (10) simulated hours of the kiosk loop: build/soak/soak.csv, .png
 # Every build first checks the Debian packages it needs (tools/deps.sh $(DEPS): as root it
 # installs what is missing, otherwise it names the apt-get line and stops).
@@ -154,7 +155,7 @@ $(BUILD)/libsbfx.so: $(BUILD)/$(SONAME)
 	ln -sf $(<F) $@
 
 # sbfx-play: the player, its displays (headless, DRM/KMS), camera and GPIO inputs (platform/)
-PLAYER_SRC := $(addprefix player/,player player_args player_usage player_inputs player_loop player_reset board) \
+PLAYER_SRC := $(addprefix player/,player player_args player_usage player_inputs player_loop player_reset board player_notify) \
 	$(addprefix video/,luma live_detail v4l2_source) \
 	$(addprefix gpio/,gpio_backend effect_names gpio_triggers trigger_filter) \
 	$(addprefix display/,display_headless display_drm display_link) \
@@ -173,7 +174,11 @@ $(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
-	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
+	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS)
+# READY=1 and the watchdog's pings for systemd (player_notify.c): libsystemd, the player only
+NOTIFY_PKG_CFLAGS = $(call pkg_config,NOTIFY_PKG_CFLAGS,--cflags libsystemd)
+NOTIFY_PKG_LIBS = $(call pkg_config,NOTIFY_PKG_LIBS,--libs libsystemd)
+$(BUILD)/obj/platform/player/player_notify.o: PLATFORM_CFLAGS += $(NOTIFY_PKG_CFLAGS)
 
 # sbfx-probe and sbfx-soak (tools/probe/, tools/soak/): tools that look inside the module through
 # src/'s private headers, so they live outside platform/, which only uses src/sbfx.h.
@@ -465,3 +470,11 @@ uninstall-kiosk:
 	rm -rf $(DESTDIR)$(DATADIR)/sbfx
 	rm -f $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT) $(DESTDIR)$(UDEVRULESDIR)/$(KIOSK_UDEV_RULE) \
 		$(DESTDIR)$(SYSUSERSDIR)/sbfx.conf
+
+# ---- Debian 13 beside Debian 12 (issue 20; docs/distributions.md) ---------------------------
+# make test in a Debian 13 root made with debootstrap (GCC 14, Mesa 25, libgpiod 2), cached in
+# build/debian13/ (tests/debian13/run.sh says how). As root.
+.PHONY: test-debian13
+test-debian13:
+	@tools/deps.sh debian13
+	@tests/debian13/run.sh
