@@ -62,7 +62,7 @@ else
     # verify with the staged binary in place of /usr/bin (systemd checks that it exists)
     mkdir -p "$tmp/verify"
     sed "s|=/usr/bin/sbfx-play|=$root/usr/bin/sbfx-play|" "$unit" >"$tmp/verify/sbfx-kiosk.service"
-    if systemd-analyze verify "$tmp/verify/sbfx-kiosk.service" >"$tmp/verify.log" 2>&1 &&
+    if systemd-analyze verify --man=no "$tmp/verify/sbfx-kiosk.service" >"$tmp/verify.log" 2>&1 &&
         [ ! -s "$tmp/verify.log" ]; then ok verify
     else not_ok verify "$(head -n 3 "$tmp/verify.log" | tr '\n' ' ')"; fi
 

@@ -11,8 +11,9 @@
 #   2. The source tree (what git tracks and what it does not ignore, not build/) is copied to
 #      /sbfx in the root; its build/ there is kept between runs, so a second run rebuilds only
 #      what changed.
-#   3. proc, sysfs and /dev are mounted into the root for the run and unmounted on every exit
-#      path (the trap), then `make -j$(nproc) test` runs in it; its exit status is the run's.
+#   3. The root bound onto itself, proc, sysfs and /dev are mounted for the run and unmounted on
+#      every exit path (the trap), then `make -j$(nproc) test` runs in it; its exit status is
+#      the run's.
 # Environment: DEBIAN13_DIR (build/debian13), MAKE_TARGET (test).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -61,6 +62,9 @@ mount_in() { # mount_in TARGET MOUNT-ARGS...
     MOUNTED+=("$target")
 }
 mount_all() {
+    # the root bound onto itself: / in the chroot is then a mount point, which `unshare -m`
+    # (tests/no_data_files.sh) needs to make its mounts private
+    mount_in / --bind "$ROOT"
     mount_in /proc -t proc proc
     mount_in /sys -t sysfs sysfs
     mount_in /dev --bind /dev
