@@ -26,7 +26,9 @@ void player_notify_init(struct player_notify *n)
 void player_notify_frame(struct player_notify *n, int64_t frames_done, int64_t now_ns)
 {
     if (!n->ready_sent) {
-        sd_notifyf(0, "READY=1\nSTATUS=frame %lld presented", (long long)frames_done);
+        char state[64]; /* sd_notifyf would allocate */
+        snprintf(state, sizeof(state), "READY=1\nSTATUS=frame %lld presented", (long long)frames_done);
+        sd_notify(0, state);
         n->ready_sent = true;
         n->last_ping_ns = now_ns;
         return;
