@@ -286,7 +286,7 @@ uninstall:
 		$(DESTDIR)$(BINDIR)/sbfx-play $(DESTDIR)$(BINDIR)/sbfx-probe
 
 clean:
-	rm -rf build
+	rm -rf --one-file-system build
 
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
 

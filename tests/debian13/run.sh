@@ -80,7 +80,7 @@ make_root() {
     uri=$(archive_uri | head -n 1)
     [ -n "$uri" ] || { say "no Debian archive in the machine's apt sources"; exit 1; }
     say "debootstrap --variant=minbase $SUITE into $ROOT (a minute or two)"
-    rm -rf "$ROOT" "$STAMP"
+    rm -rf --one-file-system "$ROOT" "$STAMP"
     mkdir -p "$DIR"
     debootstrap --variant=minbase "$SUITE" "$ROOT" "$uri" >"$DIR/debootstrap.log" 2>&1 || {
         tail -n 5 "$DIR/debootstrap.log" >&2
@@ -110,7 +110,18 @@ copy_tree() {
         tar --null -T - -cf - | tar -xf - -C "$ROOT/sbfx"
 }
 
+# Mounts a killed run (SIGKILL: no trap) left behind, deepest first: removing or remaking the
+# root over a bound /dev would remove the machine's device nodes.
+unmount_leftovers() {
+    local m
+    awk -v root="$ROOT" '$2 == root || index($2, root "/") == 1 { print length($2), $2 }' /proc/mounts |
+        sort -rn | cut -d' ' -f2- | while read -r m; do
+        umount "$m" 2>/dev/null || umount -l "$m" || say "could not unmount $m (left by an earlier run)"
+    done
+}
+
 start=$SECONDS
+unmount_leftovers
 if [ ! -f "$STAMP" ] || ! [ -x "$ROOT/usr/bin/apt-get" ]; then
     make_root
 fi
