@@ -391,6 +391,11 @@ $(BUILD)/tests/platform/test_gpio_recovery: tests/platform/test_gpio_recovery.c 
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio/gpio_triggers.o \
 		$(BUILD)/obj/platform/gpio/trigger_filter.o $(BUILD)/obj/platform/gpio/effect_names.o $(PLATFORM_LIBS)
+# the GPIO backend this build chose, where no chip is needed (errors, calls on no line)
+$(BUILD)/tests/platform/test_gpio_backend: tests/platform/test_gpio_backend.c \
+		$(BUILD)/obj/platform/gpio/gpio_backend.o tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio/gpio_backend.o $(PLATFORM_LIBS)
 $(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(BUILD)/obj/platform/egl/gl_reset.o tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/egl/gl_reset.o $(PLATFORM_LIBS)
@@ -401,7 +406,12 @@ test-platform: $(PLATFORM_TESTS)
 # sbfx-play against them (tests/vm/run.sh, README "Real-kernel tests"). Downloads from Debian's
 # archive, cached in build/vm/.
 VM_TOOLS := $(BUILD)/tests/vm/pngdiff $(BUILD)/tests/vm/drm_state $(BUILD)/tests/vm/v4l2_ctrl \
-	$(BUILD)/tests/vm/alloc_count.so $(BUILD)/tests/vm/vblank_stress
+	$(BUILD)/tests/vm/alloc_count.so $(BUILD)/tests/vm/vblank_stress $(BUILD)/tests/vm/gpio_backend \
+	$(BUILD)/tests/platform/test_gpio_backend
+# the GPIO backend this build chose, against gpio-sim (built again against libgpiod 2 below)
+$(BUILD)/tests/vm/gpio_backend: tests/vm/gpio_backend.c $(BUILD)/obj/platform/gpio/gpio_backend.o
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -o $@ $^ $(PLATFORM_LIBS)
 $(BUILD)/tests/vm/pngdiff: tests/vm/pngdiff.c $(BUILD)/obj/platform/image/png_io.o
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -o $@ $^ $(PLATFORM_LIBS)
@@ -420,7 +430,17 @@ $(BUILD)/tests/vm/drm_state: tests/vm/drm_state.c
 test-vm:
 	@tools/deps.sh vm
 	@$(MAKE) --no-print-directory all $(VM_TOOLS)
+	@$(MAKE) --no-print-directory gpiod2
 	@BUILD=$(BUILD) tests/vm/run.sh
+
+# sbfx-play and the backend check a second time, against libgpiod 2.x built from Debian 13's
+# source package (tools/libgpiod2.sh, cached in build/libgpiod2), into $(BUILD)/gpiod2/: the VM
+# tier runs its GPIO groups with both builds (docs/gpio.md).
+.PHONY: gpiod2
+gpiod2:
+	@pc=$$(tools/libgpiod2.sh build/libgpiod2) && PKG_CONFIG_PATH=$$pc $(MAKE) --no-print-directory \
+		BUILD=$(BUILD)/gpiod2 $(BUILD)/gpiod2/sbfx-play $(BUILD)/gpiod2/tests/vm/gpio_backend \
+		$(BUILD)/gpiod2/tests/platform/test_gpio_backend
 
 # Cross build for a board (boards/rk3588.mk: Debian's aarch64 toolchain and arm64 multiarch
 # -dev packages, which its deps step installs or names) into build/rk3588/, and a check that

@@ -15,9 +15,10 @@
 #   out/ (the guest's writable share: results.txt, steps.txt, logs/ with the player logs and
 #   dmesg.txt, written while the guest runs, so they survive a VM that has to be killed)
 #
-# Environment: BUILD (build), VM_DIR (build/vm), VM_TIMEOUT (seconds for the VM, 900: the outer
+# Environment: BUILD (build), VM_DIR (build/vm), VM_TIMEOUT (seconds for the VM, 1500: the outer
 # guard; each test group has its own limit inside the guest, see guest.sh; the tests take about
-# three minutes on two cores), VM_TESTS (only these test groups, e.g. "gpio gpio-loss"),
+# three minutes on two cores, more with the GPIO groups run twice (libgpiod 1.6 and 2) and
+# under load), VM_TESTS (only these test groups, e.g. "gpio gpio-loss"),
 # VBLANK_CYCLES (drm-vblank-off-stress's CRTC on/off cycles, 1000),
 # VM_SMP (2), VM_MEM (1536M), KERNEL_ABI (e.g. 6.1.0-56-amd64; default: what linux-image-amd64
 # depends on, remembered in $VM_DIR/kernel-abi).
@@ -27,7 +28,7 @@ ROOT=$PWD
 BUILD=${BUILD:-build}
 case $BUILD in /*) ;; *) BUILD=$ROOT/$BUILD ;; esac
 VM_DIR=${VM_DIR:-$ROOT/build/vm}
-VM_TIMEOUT=${VM_TIMEOUT:-900}
+VM_TIMEOUT=${VM_TIMEOUT:-1500}
 VM_SMP=${VM_SMP:-2}
 VM_MEM=${VM_MEM:-1536M}
 INITRD_MODULES="virtio_ring virtio virtio_pci_modern_dev virtio_pci_legacy_dev virtio_pci netfs fscache 9pnet 9pnet_virtio 9p overlay"
