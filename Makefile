@@ -6,11 +6,13 @@
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, docs, then ASan+UBSan
 #   make bench        timings into build/bench/
 #   make ladder       src/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
-#   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR, MANDIR)
+#   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR, MANDIR, DATADIR); also
+#                     scenes, boards and the kiosk's unit and udev rule (dist/)
 #   make uninstall    remove what make install put there (same PREFIX, DESTDIR)
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
 #   make test-vm      real-kernel tests in a qemu VM (vkms, vivid, gpio-sim; tests/vm/)
+#   make test-debian13  make test in a Debian 13 root (debootstrap; tests/debian13/run.sh), as root
 #   make soak         SOAK_HOURS (10) simulated hours of the kiosk loop: build/soak/soak.csv, .png
 #   make fuzz         FUZZ_SECONDS (60) of libFuzzer on the scene parser (clang)
 #   make clean        remove build/
@@ -22,6 +24,7 @@ DESTDIR ?=
 LIBDIR ?= $(PREFIX)/lib
 INCLUDEDIR ?= $(PREFIX)/include
 BINDIR ?= $(PREFIX)/bin
+DATADIR ?= $(PREFIX)/share
 BUILD ?= build
 MANDIR ?= $(PREFIX)/share/man
 # Quiet builds, as the kernel's kbuild: recipe lines are not echoed, and tools/quiet-shell.sh,
@@ -45,7 +48,7 @@ include boards/$(BOARD).mk
 BUILD := build/$(BOARD)
 endif
 
-SRC_PKGS := glesv2 lcms2 libconfig
+SRC_PKGS := glesv2 libconfig
 PLATFORM_PKGS := egl glesv2 libpng libdrm gbm libgpiod
 
 # pkg-config is asked when a recipe first needs the answer, not when make reads this file: on a
@@ -76,7 +79,7 @@ LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined)
 # is exported from the .so; the rest is hidden, and what no public function reaches is dropped.
 SRC := $(wildcard src/*.c)
 SHADERS := $(sort $(wildcard shaders_es/*.vert shaders_es/*.frag))
-LIB_OBJ := $(SRC:src/%.c=$(BUILD)/obj/src/%.o) $(BUILD)/obj/gen/shaders_es.o
+LIB_OBJ := $(SRC:src/%.c=$(BUILD)/obj/src/%.o) $(BUILD)/obj/gen/shaders_es.o $(BUILD)/obj/gen/cie1931_2deg.o
 LIB_CFLAGS := -fvisibility=hidden -ffunction-sections -fdata-sections
 SONAME := libsbfx.so.$(SOVERSION)
 SO_LINKS := $(BUILD)/$(SONAME) $(BUILD)/libsbfx.so
@@ -118,6 +121,24 @@ $(BUILD)/obj/gen/shaders_es.o: $(BUILD)/gen/shaders_es.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(SRC_CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
 
+# The CIE 1931 2° colour-matching functions compiled in (src/tables.h): generated from
+# colord-data's file through lcms2 by a build-time program, so the library reads no file and
+# does not link lcms2 (docs/distributions.md). The host's lcms2, also in a cross build.
+CIE_CMF ?= /usr/share/colord/cmf/CIE1931-2deg-XYZ.cmf
+HOST_PKG_CONFIG ?= pkg-config
+$(BUILD)/tools/gen_cmf: tools/gen_cmf.c | deps
+	@mkdir -p $(@D)
+	$(HOSTCC) -std=c11 -O1 $(WARN) $(shell $(HOST_PKG_CONFIG) --cflags lcms2) -o $@ $< \
+		$(shell $(HOST_PKG_CONFIG) --libs lcms2) -lm
+
+$(BUILD)/gen/cie1931_2deg.c: $(wildcard $(CIE_CMF)) $(BUILD)/tools/gen_cmf
+	@mkdir -p $(@D)
+	$(BUILD)/tools/gen_cmf $(CIE_CMF) $@
+
+$(BUILD)/obj/gen/cie1931_2deg.o: $(BUILD)/gen/cie1931_2deg.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(SRC_CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
+
 $(BUILD)/obj/src/%.o: src/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(SRC_CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
@@ -151,7 +172,7 @@ $(BUILD)/libsbfx.so: $(BUILD)/$(SONAME)
 
 # sbfx-play: the player, its displays (headless, DRM/KMS), camera and GPIO inputs (platform/)
 PLAYER_SRC := $(addprefix player/,player player_args player_usage player_stats player_inputs player_loop \
-	player_reset board) \
+	player_reset board player_notify) \
 	$(addprefix video/,luma live_detail v4l2_source) \
 	$(addprefix gpio/,gpio_backend effect_names gpio_triggers trigger_filter) \
 	$(addprefix display/,display_headless display_drm display_link) \
@@ -172,7 +193,11 @@ $(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
-	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
+	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS)
+# READY=1 and the watchdog's pings for systemd (player_notify.c): libsystemd, the player only
+NOTIFY_PKG_CFLAGS = $(call pkg_config,NOTIFY_PKG_CFLAGS,--cflags libsystemd)
+NOTIFY_PKG_LIBS = $(call pkg_config,NOTIFY_PKG_LIBS,--libs libsystemd)
+$(BUILD)/obj/platform/player/player_notify.o: PLATFORM_CFLAGS += $(NOTIFY_PKG_CFLAGS)
 
 # sbfx-probe and sbfx-soak (tools/probe/, tools/soak/): tools that look inside the module through
 # src/'s private headers, so they live outside platform/, which only uses src/sbfx.h.
@@ -284,7 +309,7 @@ uninstall:
 		$(DESTDIR)$(BINDIR)/sbfx-play $(DESTDIR)$(BINDIR)/sbfx-probe $(DESTDIR)$(MANDIR)/man1/sbfx-play.1
 
 clean:
-	rm -rf build
+	rm -rf --one-file-system build
 
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
 
@@ -452,3 +477,47 @@ cross-check:
 
 .PHONY: FORCE
 FORCE:
+
+# ---- the kiosk's deployment (issue 20; docs/kiosk-deploy.md) --------------------------------
+# make install also installs the example scenes and board profiles under $(DATADIR)/sbfx, the
+# hardened unit dist/systemd/sbfx-kiosk.service.in with its paths filled in, the udev rule that
+# gives /dev/gpiochip* to the group gpio and the sysusers.d file that makes that group. udev
+# reads rules only from /usr/lib/udev/rules.d and /etc/udev/rules.d, so a PREFIX other than
+# /usr puts the rule under /etc. On the live system (no DESTDIR, as root) the group is made
+# and systemd and udev reload.
+SYSTEMDUNITDIR ?= $(PREFIX)/lib/systemd/system
+SYSUSERSDIR ?= $(PREFIX)/lib/sysusers.d
+UDEVRULESDIR ?= $(if $(filter /usr,$(PREFIX)),/usr/lib/udev/rules.d,/etc/udev/rules.d)
+KIOSK_UNIT := sbfx-kiosk.service
+KIOSK_UDEV_RULE := 60-sbfx-gpio.rules
+.PHONY: install-kiosk uninstall-kiosk
+install: install-kiosk
+uninstall: uninstall-kiosk
+install-kiosk:
+	install -d $(DESTDIR)$(DATADIR)/sbfx/scenes $(DESTDIR)$(DATADIR)/sbfx/boards \
+		$(DESTDIR)$(SYSTEMDUNITDIR) $(DESTDIR)$(UDEVRULESDIR) $(DESTDIR)$(SYSUSERSDIR)
+	install -m 644 scenes/*.cfg $(DESTDIR)$(DATADIR)/sbfx/scenes/
+	install -m 644 boards/*.cfg $(DESTDIR)$(DATADIR)/sbfx/boards/
+	sed -e 's|@BINDIR@|$(BINDIR)|g' -e 's|@DATADIR@|$(DATADIR)|g' dist/systemd/$(KIOSK_UNIT).in \
+		> $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT)
+	chmod 644 $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT)
+	install -m 644 dist/udev/$(KIOSK_UDEV_RULE) $(DESTDIR)$(UDEVRULESDIR)/
+	install -m 644 dist/sysusers/sbfx.conf $(DESTDIR)$(SYSUSERSDIR)/
+	@if [ -z "$(DESTDIR)" ] && [ "$$(id -u)" -eq 0 ]; then \
+		if command -v systemd-sysusers >/dev/null; then systemd-sysusers $(SYSUSERSDIR)/sbfx.conf; fi; \
+		if [ -d /run/systemd/system ]; then systemctl daemon-reload; fi; \
+		if command -v udevadm >/dev/null && [ -d /run/udev ]; then udevadm control --reload && \
+			udevadm trigger --subsystem-match=gpio; fi; \
+	fi
+uninstall-kiosk:
+	rm -rf $(DESTDIR)$(DATADIR)/sbfx
+	rm -f $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT) $(DESTDIR)$(UDEVRULESDIR)/$(KIOSK_UDEV_RULE) \
+		$(DESTDIR)$(SYSUSERSDIR)/sbfx.conf
+
+# ---- Debian 13 beside Debian 12 (issue 20; docs/distributions.md) ---------------------------
+# make test in a Debian 13 root made with debootstrap (GCC 14, Mesa 25, libgpiod 2), cached in
+# build/debian13/ (tests/debian13/run.sh says how). As root.
+.PHONY: test-debian13
+test-debian13:
+	@tools/deps.sh debian13
+	@tests/debian13/run.sh

@@ -1,128 +1,10 @@
 /* Black-body colour of fire (docs/design.md §2.3): Planck's law integrated against the CIE 1931 2°
  * colour-matching functions, XYZ -> linear sRGB, normalised, tabulated over temperature.
  *
- * The CMFs come from colord-data's CGATS file, read with lcms2's IT8 parser in a private lcms2
- * context whose error handler captures lcms2's message for our error string (the global
- * handler is left alone: the host may have installed its own). */
-#include <errno.h>
-#include <lcms2.h>
+ * The CMFs are compiled in (sbfx_cie1931_2deg, generated at build time from colord-data's file
+ * by tools/gen_cmf.c): nothing here reads a file. */
 #include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
-#include <string.h>
 #include "tables.h"
-
-/* ---- loading the colour-matching functions ------------------------------------------------ */
-
-typedef struct cmf_log {
-    char text[256]; /* lcms2's last error message, "" if none */
-} cmf_log;
-
-static void cmf_log_handler(cmsContext ctx, cmsUInt32Number code, const char *text)
-{
-    (void)code;
-    cmf_log *log = cmsGetContextUserData(ctx);
-    if (log && text) snprintf(log->text, sizeof log->text, "%s", text);
-}
-
-static sbfx_result cmf_fail(char *err, size_t err_size, const char *path, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-
-/* Formats "cannot read ... from <path>: <reason>; install ..." into err. */
-static sbfx_result cmf_fail(char *err, size_t err_size, const char *path, const char *fmt, ...)
-{
-    if (!err || err_size == 0) return SBFX_ERR_MISSING_DATA;
-    char reason[320];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(reason, sizeof reason, fmt, ap);
-    va_end(ap);
-    snprintf(err, err_size,
-             "cannot read CIE 1931 colour-matching functions from %s: %s; install the Debian "
-             "package colord-data (apt-get install colord-data)",
-             path, reason);
-    return SBFX_ERR_MISSING_DATA;
-}
-
-/* Reads a numeric header property; 0 if it is absent or not finite. */
-static int cmf_property(cmsHANDLE it8, const char *name, double *value)
-{
-    if (!cmsIT8GetProperty(it8, name)) return 0;
-    *value = cmsIT8GetPropertyDbl(it8, name);
-    return isfinite(*value);
-}
-
-/* Checks the spectral header and fills bands, start and step. */
-static sbfx_result cmf_read_header(cmsHANDLE it8, sbfx_cmf *out, const char *path, char *err,
-                                   size_t err_size)
-{
-    double start, end, bands;
-    if (!cmf_property(it8, "SPECTRAL_START_NM", &start) ||
-        !cmf_property(it8, "SPECTRAL_END_NM", &end) || !cmf_property(it8, "SPECTRAL_BANDS", &bands))
-        return cmf_fail(err, err_size, path,
-                        "no SPECTRAL_START_NM / SPECTRAL_END_NM / SPECTRAL_BANDS header");
-    if (bands != floor(bands) || bands < 2 || bands > SBFX_CMF_MAX_BANDS || !(end > start) ||
-        !(start > 0))
-        return cmf_fail(err, err_size, path, "bad spectral range %g..%g nm in %g bands", start,
-                        end, bands);
-    out->bands = (int)bands;
-    out->start_nm = start;
-    out->step_nm = (end - start) / (bands - 1);
-    return SBFX_OK;
-}
-
-/* Rows 0, 1, 2 of the data are x̄, ȳ, z̄; every cell must be present and finite. */
-static sbfx_result cmf_read_data(cmsHANDLE it8, sbfx_cmf *out, const char *path, char *err,
-                                 size_t err_size)
-{
-    for (int k = 0; k < 3; k++) {
-        for (int i = 0; i < out->bands; i++) {
-            if (!cmsIT8GetDataRowCol(it8, k, i))
-                return cmf_fail(err, err_size, path, "data row %d has no value in band %d", k, i);
-            double v = cmsIT8GetDataRowColDbl(it8, k, i);
-            if (!isfinite(v))
-                return cmf_fail(err, err_size, path, "data row %d band %d is not a number", k, i);
-            out->xyz[k][i] = v;
-        }
-    }
-    return SBFX_OK;
-}
-
-sbfx_result sbfx_cmf_load(const char *path, sbfx_cmf *out, char *err, size_t err_size)
-{
-    if (err && err_size) err[0] = '\0';
-    if (!path) path = SBFX_CMF_DEFAULT_PATH;
-    if (!out) return SBFX_ERR_INVALID_ARGUMENT;
-    memset(out, 0, sizeof *out);
-    /* lcms2 only says "File not found"; the OS says why (missing, no permission, a directory,
-     * which fopen accepts and the first read refuses). */
-    FILE *f = fopen(path, "rb");
-    if (!f) return cmf_fail(err, err_size, path, "%s", strerror(errno));
-    errno = 0;
-    int first = fgetc(f);
-    int read_errno = ferror(f) ? errno : 0;
-    fclose(f);
-    if (read_errno) return cmf_fail(err, err_size, path, "%s", strerror(read_errno));
-    if (first == EOF) return cmf_fail(err, err_size, path, "the file is empty");
-
-    cmf_log log = {{0}};
-    cmsContext ctx = cmsCreateContext(NULL, &log);
-    if (!ctx) return cmf_fail(err, err_size, path, "lcms2 could not create a context");
-    cmsSetLogErrorHandlerTHR(ctx, cmf_log_handler);
-    cmsHANDLE it8 = cmsIT8LoadFromFile(ctx, path);
-    sbfx_result result;
-    if (!it8) {
-        result = cmf_fail(err, err_size, path, "not a CGATS/IT8 file (%s)",
-                          log.text[0] ? log.text : "lcms2 gave no reason");
-    } else {
-        result = cmf_read_header(it8, out, path, err, err_size);
-        if (result == SBFX_OK) result = cmf_read_data(it8, out, path, err, err_size);
-        cmsIT8Free(it8);
-    }
-    cmsDeleteContext(ctx);
-    if (result != SBFX_OK) memset(out, 0, sizeof *out);
-    return result;
-}
 
 /* ---- Planck's law ------------------------------------------------------------------------ */
 
@@ -155,7 +37,7 @@ double sbfx_planck(double lambda_m, double kelvin)
 void sbfx_blackbody_xyz(const sbfx_cmf *cmf, double kelvin, double xyz[3])
 {
     xyz[0] = xyz[1] = xyz[2] = 0.0;
-    if (!cmf || cmf->bands < 2 || cmf->bands > SBFX_CMF_MAX_BANDS) return;
+    if (!cmf || cmf->bands < 2) return;
     double step_m = cmf->step_nm * 1e-9;
     /* Trapezoid rule on the file's own band grid (the CMFs are only known there). */
     for (int i = 0; i < cmf->bands; i++) {

@@ -12,9 +12,6 @@
 
 static sbfx_result prepare_analytic_blackbody(sbfx *fx, const sbfx_cmf *cmf)
 {
-    if (cmf->bands > SBFX_ANALYTIC_MAX_BANDS)
-        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "the analytic black body takes at most %d CMF bands, "
-                         "%s has %d", SBFX_ANALYTIC_MAX_BANDS, fx->desc.cmf_path, cmf->bands);
     fx->cmf_rgb = sbfx_calloc(fx, (size_t)cmf->bands * 3, sizeof(float));
     fx->cmf_band = sbfx_calloc(fx, (size_t)cmf->bands, sizeof(float));
     if (!fx->cmf_rgb || !fx->cmf_band) return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
@@ -30,30 +27,19 @@ static sbfx_result prepare_analytic_blackbody(sbfx *fx, const sbfx_cmf *cmf)
     return SBFX_OK;
 }
 
-/* The CIE tables feed the black-body table, or the analytic black body's per-band constants. */
+/* The compiled-in CIE tables feed the black-body table, or the analytic black body's per-band
+ * constants (whose shader array, MAX_BANDS in particle.frag, must hold every band). */
 static sbfx_result make_fire_tables(sbfx *fx)
 {
-    char err[256];
-    sbfx_cmf *cmf = sbfx_calloc(fx, 1, sizeof(*cmf));
-    if (!cmf) return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
-    sbfx_result r = sbfx_cmf_load(fx->desc.cmf_path, cmf, err, sizeof(err));
-    if (r != SBFX_OK) sbfx_fail(fx, r, "%s", err);
-    if (r == SBFX_OK) r = sbfx_tables_create(fx, cmf);
-    if (r == SBFX_OK && sbfx_declared_any(fx, sbfx_quality_uses_blackbody_analytic)) r = prepare_analytic_blackbody(fx, cmf);
-    sbfx_free(fx, cmf);
+    sbfx_result r = sbfx_tables_create(fx, &sbfx_cie1931_2deg);
+    if (r == SBFX_OK && sbfx_declared_any(fx, sbfx_quality_uses_blackbody_analytic))
+        r = prepare_analytic_blackbody(fx, &sbfx_cie1931_2deg);
     return r;
 }
 
 sbfx_result sbfx_blackbody_constants_load(sbfx *fx)
 {
-    char err[256];
-    sbfx_cmf *cmf = sbfx_calloc(fx, 1, sizeof(*cmf));
-    if (!cmf) return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
-    sbfx_result r = sbfx_cmf_load(fx->desc.cmf_path, cmf, err, sizeof(err));
-    if (r != SBFX_OK) sbfx_fail(fx, r, "%s", err);
-    else r = prepare_analytic_blackbody(fx, cmf);
-    sbfx_free(fx, cmf);
-    return r;
+    return prepare_analytic_blackbody(fx, &sbfx_cie1931_2deg);
 }
 
 static sbfx_result upload_detail(sbfx *fx)

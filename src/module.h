@@ -388,7 +388,7 @@ bool sbfx_has_extension(const char *name);
 
 /* luts.c */
 sbfx_result sbfx_luts_create(sbfx *fx);
-/* The analytic black body's per-band constants (reads the CMF file again after load). */
+/* The analytic black body's per-band constants (when a quality level that uses it is chosen later). */
 sbfx_result sbfx_blackbody_constants_load(sbfx *fx);
 void sbfx_luts_destroy(sbfx *fx);
 

@@ -84,7 +84,6 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
     if (!d.opacity) d.opacity = SBFX_OPACITY_EXACT;
     if (!d.seed) d.seed = 1;
     if (!d.max_particles) d.max_particles = 2048;
-    if (!d.cmf_path) d.cmf_path = SBFX_CMF_DEFAULT_PATH;
     if (!(d.blackbody_max_kelvin > 0)) d.blackbody_max_kelvin = (float)SBFX_DEFAULT_MAX_KELVIN;
     if (!d.detail_size) d.detail_size = 64;
     if (!d.detail_frames) d.detail_frames = 32;

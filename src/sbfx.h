@@ -34,7 +34,7 @@ typedef enum sbfx_result {
     SBFX_ERR_NO_GLES3 = -2,         /* no current context, or it is not OpenGL ES 3.0+ */
     SBFX_ERR_GL = -3,               /* a GL call or framebuffer failed */
     SBFX_ERR_SHADER = -4,           /* a shader failed to compile or link */
-    SBFX_ERR_MISSING_DATA = -5,     /* a data file (CIE tables) is missing or unreadable */
+    SBFX_ERR_MISSING_DATA = -5,     /* no longer returned: the module reads no data file */
     SBFX_ERR_OUT_OF_MEMORY = -6,
     SBFX_ERR_POOL_FULL = -7,        /* a trigger found no room in the particle pool */
     SBFX_ERR_UNKNOWN_EFFECT = -8,
@@ -149,7 +149,7 @@ typedef struct sbfx_desc {
     sbfx_opacity_mode opacity;
     uint32_t seed;                   /* random seed of spawns and detail windows (1) */
     int max_particles;               /* particle pool size (2048) */
-    const char *cmf_path;            /* CIE 1931 2° CMF (colord-data's file) */
+    const char *cmf_path;            /* ignored: the CIE 1931 2° CMFs are compiled in (kept for the layout) */
     float blackbody_max_kelvin;      /* the black body's unit: luminance 1 at this temperature,
                                         before the fire's emission scale (6000 K). The table's
                                         range follows what the scene's fire can reach. */

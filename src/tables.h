@@ -1,6 +1,6 @@
 /* What the module computes on the CPU, in double precision, at load: the black-body and phase
  * tables, the detail volume, the procedural smoke textures, and the deterministic RNG of the
- * simulation. Pure libc (+ lcms2 to read the CIE tables), no GL.
+ * simulation. Pure libc, no GL, no file read (the CIE tables are compiled in).
  *
  * The table lookups (sbfx_*_table_lookup) read a table the way the GPU does; they live beside
  * the builders so that each table's grid is defined in one file. Only the tests and the CPU
@@ -14,18 +14,18 @@
 
 /* ---- black body (docs/design.md §2.3) -------------------------------------------------------- */
 
-#define SBFX_CMF_MAX_BANDS 512
-#define SBFX_CMF_DEFAULT_PATH "/usr/share/colord/cmf/CIE1931-2deg-XYZ.cmf"
-
+/* Colour-matching functions sampled at `bands` wavelengths start_nm + i * step_nm;
+ * xyz[0], xyz[1], xyz[2] are x̄, ȳ, z̄ (bands values each). */
 typedef struct sbfx_cmf {
     int bands;
     double start_nm, step_nm;
-    double xyz[3][SBFX_CMF_MAX_BANDS];
+    const double *xyz[3];
 } sbfx_cmf;
 
-/* Reads colord's CGATS file (lcms2's IT8 reader). On failure returns SBFX_ERR_MISSING_DATA
- * and writes a message naming the file and the Debian package (colord-data) into err. */
-sbfx_result sbfx_cmf_load(const char *path, sbfx_cmf *out, char *err, size_t err_size);
+/* The CIE 1931 2° observer, 360..830 nm in 5 nm bands: generated at build time from
+ * colord-data's CIE1931-2deg-XYZ.cmf through lcms2 by tools/gen_cmf.c ($(BUILD)/gen/cie1931_2deg.c),
+ * so the library needs no data file and no lcms2 at run time. */
+extern const sbfx_cmf sbfx_cie1931_2deg;
 /* Planck's spectral radiance [W sr^-1 m^-3] at wavelength lambda_m and temperature kelvin,
  * with expm1; 0 for kelvin <= 0, never inf/nan for kelvin in (0, 1e6]. */
 double sbfx_planck(double lambda_m, double kelvin);

@@ -7,7 +7,10 @@
 #      tests/shader_variants.txt ("FILE -DNAME ..." : the defines of one variant)
 #   3. a check that every file in shaders_es/ begins with "#version 300 es"
 #   4. the sbfx-play command-line tests (tests/cli.sh), the probe's (tests/probe.sh), what
-#      libsbfx.so exports (tests/exports.sh), make install and the host example (examples/bare-egl/)
+#      libsbfx.so exports (tests/exports.sh), that it reads no data file and renders fire with
+#      colord-data hidden (tests/no_data_files.sh), the CIE table generator (tests/gen_cmf.sh), the
+#      kiosk's unit, udev rule and their exposure (tests/kiosk_unit.sh), make install and the host
+#      example (examples/bare-egl/)
 #      built against the installed copy (tests/install.sh), a short soak and its leak
 #      detection (tests/soak.sh; make soak runs hours), the documentation's links and
 #      examples (tests/docs.sh)
@@ -167,6 +170,9 @@ check_version_lines
 run_cli "" "$BUILD/sbfx-play"
 run_suite "" probe tests/probe.sh "$BUILD/sbfx-probe"
 run_suite "" exports tests/exports.sh "$BUILD"
+run_suite "" no-data-files tests/no_data_files.sh "$BUILD"
+run_suite "" gen-cmf tests/gen_cmf.sh "$BUILD"
+run_suite "" kiosk-unit tests/kiosk_unit.sh "$BUILD"
 run_suite "" install tests/install.sh "$BUILD"
 run_suite "" docs tests/docs.sh
 run_suite "" soak tests/soak.sh "$BUILD"

@@ -18,6 +18,7 @@
 #include "player/player_args.h"
 #include "sbfx.h"
 #include "host/test_scene.h"
+#include "player/player_notify.h"
 
 struct frame_times {
     double sbfx_sum, sbfx_max;   /* sbfx_update + sbfx_render (+ glFinish when headless) */
@@ -57,6 +58,7 @@ struct player {
     struct live_detail live;
     bool live_on;
     struct second_stats second;
+    struct player_notify notify; /* READY=1, WATCHDOG=1 (player_notify.c) */
     /* GPU resets (player_reset.c) */
     struct gl_reset reset;
     uint64_t gpu_resets;

@@ -257,16 +257,22 @@ int player_run_frames(struct player *p, char *err, size_t n)
     bool limited = opt->display != PLAYER_DISPLAY_DRM || opt->frames_set;
     p->run_start_ns = player_now_ns();
     second_reset(p, p->run_start_ns);
+    player_notify_init(&p->notify);
     for (int64_t i = 0; !limited || i < opt->frames; i++) {
         char why[1024];
         int rc = wait_ready(p, why, sizeof(why));
-        if (rc == 0 && player_stop_requested()) break;
+        if (rc == 0 && player_stop_requested()) {
+            player_notify_stopping();
+            break;
+        }
         if (rc == 0) rc = play_frame(p, i, why, sizeof(why));
         if (rc) {
             snprintf(err, n, "frame %lld: %s", (long long)i, why);
             return rc;
         }
         p->frames_done++;
+        player_notify_frame(&p->notify, p->frames_done, player_now_ns());
+        player_notify_test_hang(&p->notify, p->frames_done);
         stats_tick(p);
     }
     return p->display->ops->finish(p->display, err, n);

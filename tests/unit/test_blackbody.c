@@ -1,18 +1,15 @@
-/* Unit tests of the black-body reference (src/blackbody.c): CMF loading, Planck's law, XYZ ->
+/* Unit tests of the black-body reference (src/blackbody.c): the compiled-in CMFs, Planck's law, XYZ ->
  * linear sRGB, the normalised table and its lookup (docs/design.md §2.3, hard cases of §2.2). No GL. */
-#include <errno.h>
-#include <sys/stat.h>
 #include "check.h"
 #include "reference.h"
 
 #define TABLE_MAX_K 6000.0 /* the module's default black-body unit (luminance 1 here) */
 
-/* Loads colord-data's CMF or skips the test (the missing-file path is tested on its own). */
+/* The CIE 1931 2° table compiled into the library (tools/gen_cmf.c made it from colord-data's
+ * file at build time; tests/gen_cmf.sh tests the generator's errors). */
 static void load_cmf(sbfx_cmf *cmf)
 {
-    char err[512];
-    if (sbfx_cmf_load(SBFX_CMF_DEFAULT_PATH, cmf, err, sizeof err) != SBFX_OK)
-        CHECK_SKIP("%s", err);
+    *cmf = sbfx_cie1931_2deg;
 }
 
 static double luminance(const double rgb[3])
@@ -25,16 +22,16 @@ static double rel_err(double a, double b)
     return fabs(a - b) / (fabs(b) > 0 ? fabs(b) : 1.0);
 }
 
-/* ---- loading ------------------------------------------------------------------------------ */
+/* ---- the compiled-in table ---------------------------------------------------------------- */
 
-CHECK_TEST(cmf_loads_colord_file)
+CHECK_TEST(cmf_compiled_in_table)
 {
     static sbfx_cmf cmf;
     load_cmf(&cmf);
     CHECK(cmf.bands == 95, "bands %d", cmf.bands);
     CHECK_NEAR(cmf.start_nm, 360.0, 1e-12);
     CHECK_NEAR(cmf.step_nm, 5.0, 1e-12);
-    /* Spot values of the CIE 1931 table (colord's copy). */
+    /* Spot values of the CIE 1931 table (as CIE 15 prints them; colord's copy). */
     CHECK_NEAR(cmf.xyz[0][0], 0.0001299, 1e-12);
     CHECK_NEAR(cmf.xyz[1][(555 - 360) / 5], 1.0, 1e-12); /* ȳ peaks at 555 nm */
     CHECK_NEAR(cmf.xyz[2][(445 - 360) / 5], 1.7826, 1e-12);
@@ -43,90 +40,6 @@ CHECK_TEST(cmf_loads_colord_file)
     double sum = 0;
     for (int i = 0; i < cmf.bands; i++) sum += cmf.xyz[1][i] * cmf.step_nm * (i == 0 || i == 94 ? 0.5 : 1);
     CHECK_NEAR(sum, 106.86, 0.05);
-}
-
-static void check_missing_message(const char *path, const char *reason)
-{
-    static sbfx_cmf cmf;
-    char err[512] = "untouched";
-    cmf.bands = 123;
-    sbfx_result r = sbfx_cmf_load(path, &cmf, err, sizeof err);
-    CHECK(r == SBFX_ERR_MISSING_DATA, "%s: result %d", path, r);
-    CHECK(strstr(err, "colord-data") != NULL, "message: %s", err);
-    CHECK(strstr(err, "apt-get install colord-data") != NULL, "message: %s", err);
-    CHECK(strstr(err, path) != NULL, "message does not name the file: %s", err);
-    CHECK(strstr(err, "CIE 1931") != NULL, "message: %s", err);
-    if (reason) CHECK(strstr(err, reason) != NULL, "no reason '%s' in: %s", reason, err);
-    CHECK(cmf.bands == 0, "output not cleared");
-    printf("# %s\n", err);
-}
-
-CHECK_TEST(cmf_missing_file_names_colord_data)
-{
-    check_missing_message("/nonexistent/sbfx/CIE1931-2deg-XYZ.cmf", strerror(ENOENT));
-    /* NULL or tiny error buffers are fine. */
-    static sbfx_cmf cmf;
-    CHECK(sbfx_cmf_load("/nonexistent/x.cmf", &cmf, NULL, 0) == SBFX_ERR_MISSING_DATA);
-    char tiny[8];
-    CHECK(sbfx_cmf_load("/nonexistent/x.cmf", &cmf, tiny, sizeof tiny) == SBFX_ERR_MISSING_DATA);
-    CHECK(strlen(tiny) == sizeof tiny - 1);
-    CHECK(sbfx_cmf_load("/nonexistent/x.cmf", NULL, NULL, 0) == SBFX_ERR_INVALID_ARGUMENT);
-}
-
-CHECK_TEST(cmf_unreadable_or_malformed_file)
-{
-    char dir[] = "/tmp/sbfx-cmf-XXXXXX";
-    CHECK(mkdtemp(dir) != NULL);
-    char path[600];
-    /* A directory, an empty file. */
-    check_missing_message(dir, strerror(EISDIR));
-    snprintf(path, sizeof path, "%s/empty.cmf", dir);
-    FILE *e = fopen(path, "w");
-    if (e) fclose(e);
-    check_missing_message(path, "empty");
-    remove(path);
-    /* Not a CGATS file at all. */
-    snprintf(path, sizeof path, "%s/garbage.cmf", dir);
-    FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
-    if (f) {
-        fputs("\x01\x02 this is not a colour-matching function table\n", f);
-        fclose(f);
-    }
-    check_missing_message(path, NULL);
-    /* A CGATS file without the spectral header. */
-    snprintf(path, sizeof path, "%s/noheader.cmf", dir);
-    f = fopen(path, "w");
-    if (f) {
-        fputs("CMF\nNUMBER_OF_FIELDS 2\nBEGIN_DATA_FORMAT\nSPEC_360 SPEC_365\nEND_DATA_FORMAT\n"
-              "NUMBER_OF_SETS 3\nBEGIN_DATA\n1 2\n3 4\n5 6\nEND_DATA\n", f);
-        fclose(f);
-    }
-    check_missing_message(path, "SPECTRAL_START_NM");
-    /* Truncated data: fewer rows than X, Y, Z. */
-    snprintf(path, sizeof path, "%s/tworows.cmf", dir);
-    f = fopen(path, "w");
-    if (f) {
-        fputs("CMF\nSPECTRAL_START_NM 360.0\nSPECTRAL_END_NM 365.0\nSPECTRAL_BANDS 2\n"
-              "NUMBER_OF_FIELDS 2\nBEGIN_DATA_FORMAT\nSPEC_360 SPEC_365\nEND_DATA_FORMAT\n"
-              "NUMBER_OF_SETS 2\nBEGIN_DATA\n1 2\n3 4\nEND_DATA\n", f);
-        fclose(f);
-    }
-    check_missing_message(path, NULL);
-    /* Unreadable file (only meaningful when not root). */
-    snprintf(path, sizeof path, "%s/noperm.cmf", dir);
-    f = fopen(path, "w");
-    if (f) fclose(f);
-    chmod(path, 0);
-    if (geteuid() != 0) check_missing_message(path, strerror(EACCES));
-    remove(path);
-    snprintf(path, sizeof path, "%s/garbage.cmf", dir);
-    remove(path);
-    snprintf(path, sizeof path, "%s/noheader.cmf", dir);
-    remove(path);
-    snprintf(path, sizeof path, "%s/tworows.cmf", dir);
-    remove(path);
-    rmdir(dir);
 }
 
 /* ---- Planck ------------------------------------------------------------------------------ */

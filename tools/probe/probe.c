@@ -168,9 +168,7 @@ static void answer_blackbody(probe *p, const char *args)
     double t;
     if (parse_doubles(args, &t, 1) != 0 || !(t >= 0.0) || !(t <= 1e7))
         return complain(p, "%s", "blackbody needs T, kelvin from 0 to 1e7");
-    char err[256];
-    if (!p->have_cmf && sbfx_cmf_load(SBFX_CMF_DEFAULT_PATH, &p->cmf, err, sizeof(err)) != SBFX_OK)
-        return complain(p, "%s", err);
+    if (!p->have_cmf) p->cmf = sbfx_cie1931_2deg;
     p->have_cmf = true;
     sbfx *fx = tables_for(p, fmin(PROBE_LO_KELVIN, t), fmax(PROBE_HI_KELVIN, t), p->tables ? p->g : 0.0);
     if (!fx) return complain(p, "%s", "cannot create the module (see the message above)");

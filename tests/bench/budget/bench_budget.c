@@ -136,7 +136,7 @@ static void open_scene(bench *b)
     char err[512];
     int w = b->opt.width, h = b->opt.height;
     if (egl_headless_open(&b->egl, err, sizeof(err)) != 0) die("EGL", err);
-    if (sbfx_cmf_load(SBFX_CMF_DEFAULT_PATH, &b->cmf, err, sizeof(err)) != SBFX_OK) die("CIE tables", err);
+    b->cmf = sbfx_cie1931_2deg;
     if (sbfx_scene_load("scenes/" SCENE_NAME ".cfg", &b->fx_scene, err, sizeof(err)) != SBFX_OK) die("scene", err);
     if (test_scene_create(&b->scene, w, h, err, sizeof(err)) != 0) die("test scene", err);
     if (bench_target_create(&b->target, w, h) != 0) die("GL", "RGBA8 target incomplete");

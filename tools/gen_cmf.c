@@ -1,0 +1,165 @@
+/* Build-time tool: the CIE 1931 2° colour-matching functions as C source (docs/design.md §2.3).
+ *
+ * Reads colord-data's CGATS file with lcms2's IT8 parser and writes a C file defining
+ * `const sbfx_cmf sbfx_cie1931_2deg` (src/tables.h) and checks at compile time that the analytic
+ * black body's shader array holds every band, so the runtime library carries the table
+ * and neither links lcms2 nor opens a file (docs/distributions.md). Every number is printed
+ * with %.17g: the doubles read back bit for bit what lcms2 parsed.
+ *
+ * Usage: gen_cmf IN.cmf OUT.c. Exits 1 with a message naming the file and the Debian package
+ * (colord-data) when the file is missing or not a CMF table; OUT.c is only written when the
+ * whole table was read. */
+#include <errno.h>
+#include <lcms2.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_BANDS 512 /* far more than any spectral table colord ships (95 for CIE 1931) */
+
+typedef struct cmf_table {
+    int bands;
+    double start_nm, step_nm;
+    double xyz[3][MAX_BANDS];
+} cmf_table;
+
+static const char *in_path;
+static char lcms_message[256]; /* lcms2's last error message, "" if none */
+
+static void lcms_log(cmsContext ctx, cmsUInt32Number code, const char *text)
+{
+    (void)ctx;
+    (void)code;
+    if (text) snprintf(lcms_message, sizeof lcms_message, "%s", text);
+}
+
+static int fail(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* Prints "gen_cmf: cannot read ... from <path>: <reason>; install ..." and returns -1. */
+static int fail(const char *fmt, ...)
+{
+    char reason[320];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(reason, sizeof reason, fmt, ap);
+    va_end(ap);
+    fprintf(stderr,
+            "gen_cmf: cannot read CIE 1931 colour-matching functions from %s: %s; install the "
+            "Debian package colord-data (apt-get install colord-data)\n",
+            in_path, reason);
+    return -1;
+}
+
+/* lcms2 only says "File not found"; the OS says why (missing, no permission, a directory). */
+static int check_readable(void)
+{
+    FILE *f = fopen(in_path, "rb");
+    if (!f) return fail("%s", strerror(errno));
+    errno = 0;
+    int first = fgetc(f);
+    int read_errno = ferror(f) ? errno : 0;
+    fclose(f);
+    if (read_errno) return fail("%s", strerror(read_errno));
+    if (first == EOF) return fail("the file is empty");
+    return 0;
+}
+
+static int property(cmsHANDLE it8, const char *name, double *value)
+{
+    if (!cmsIT8GetProperty(it8, name)) return 0;
+    *value = cmsIT8GetPropertyDbl(it8, name);
+    return isfinite(*value);
+}
+
+static int read_header(cmsHANDLE it8, cmf_table *out)
+{
+    double start, end, bands;
+    if (!property(it8, "SPECTRAL_START_NM", &start) || !property(it8, "SPECTRAL_END_NM", &end) ||
+        !property(it8, "SPECTRAL_BANDS", &bands))
+        return fail("no SPECTRAL_START_NM / SPECTRAL_END_NM / SPECTRAL_BANDS header");
+    if (bands != floor(bands) || bands < 2 || bands > MAX_BANDS || !(end > start) || !(start > 0))
+        return fail("bad spectral range %g..%g nm in %g bands", start, end, bands);
+    out->bands = (int)bands;
+    out->start_nm = start;
+    out->step_nm = (end - start) / (bands - 1);
+    return 0;
+}
+
+/* Rows 0, 1, 2 of the data are x̄, ȳ, z̄; every cell must be present and finite. */
+static int read_data(cmsHANDLE it8, cmf_table *out)
+{
+    for (int k = 0; k < 3; k++) {
+        for (int i = 0; i < out->bands; i++) {
+            if (!cmsIT8GetDataRowCol(it8, k, i))
+                return fail("data row %d has no value in band %d", k, i);
+            double v = cmsIT8GetDataRowColDbl(it8, k, i);
+            if (!isfinite(v)) return fail("data row %d band %d is not a number", k, i);
+            out->xyz[k][i] = v;
+        }
+    }
+    return 0;
+}
+
+static int read_table(cmf_table *out)
+{
+    if (check_readable() != 0) return -1;
+    cmsContext ctx = cmsCreateContext(NULL, NULL);
+    if (!ctx) return fail("lcms2 could not create a context");
+    cmsSetLogErrorHandlerTHR(ctx, lcms_log);
+    cmsHANDLE it8 = cmsIT8LoadFromFile(ctx, in_path);
+    int rc;
+    if (!it8) {
+        rc = fail("not a CGATS/IT8 file (%s)", lcms_message[0] ? lcms_message : "lcms2 gave no reason");
+    } else {
+        rc = read_header(it8, out);
+        if (rc == 0) rc = read_data(it8, out);
+        cmsIT8Free(it8);
+    }
+    cmsDeleteContext(ctx);
+    return rc;
+}
+
+static void write_row(FILE *out, const char *name, const double *row, int bands)
+{
+    fprintf(out, "static const double %s[%d] = {", name, bands);
+    for (int i = 0; i < bands; i++) fprintf(out, "%s%.17g,", i % 4 ? " " : "\n    ", row[i]);
+    fprintf(out, "\n};\n\n");
+}
+
+static int write_source(const char *out_path, const cmf_table *t)
+{
+    FILE *out = fopen(out_path, "w");
+    if (!out) {
+        fprintf(stderr, "gen_cmf: cannot write %s: %s\n", out_path, strerror(errno));
+        return -1;
+    }
+    fprintf(out, "/* generated by tools/gen_cmf.c from colord-data's CIE1931-2deg-XYZ.cmf "
+                 "(lcms2's IT8 reader) — do not edit */\n#include \"module.h\"\n\n");
+    fprintf(out, "_Static_assert(%d <= SBFX_ANALYTIC_MAX_BANDS, \"the analytic black body's shader "
+                 "array (MAX_BANDS in particle.frag) must hold every CIE band\");\n\n", t->bands);
+    static const char *const names[3] = {"cie1931_x", "cie1931_y", "cie1931_z"};
+    for (int k = 0; k < 3; k++) write_row(out, names[k], t->xyz[k], t->bands);
+    fprintf(out, "const sbfx_cmf sbfx_cie1931_2deg = {\n    .bands = %d,\n    .start_nm = %.17g,\n"
+                 "    .step_nm = %.17g,\n    .xyz = {cie1931_x, cie1931_y, cie1931_z},\n};\n",
+            t->bands, t->start_nm, t->step_nm);
+    if (fclose(out) != 0) {
+        fprintf(stderr, "gen_cmf: cannot write %s: %s\n", out_path, strerror(errno));
+        remove(out_path);
+        return -1;
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 3) {
+        fprintf(stderr, "usage: gen_cmf IN.cmf OUT.c\n");
+        return 2;
+    }
+    in_path = argv[1];
+    static cmf_table table;
+    if (read_table(&table) != 0) return 1;
+    return write_source(argv[2], &table) == 0 ? 0 : 1;
+}
