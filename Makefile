@@ -34,6 +34,8 @@ endif
 
 SRC_PKGS := glesv2 lcms2 libconfig
 PLATFORM_PKGS := egl glesv2 libpng libdrm gbm libgpiod
+# FFmpeg's libraries: detail from a recorded clip (platform/clip_detail.c, docs/detail-clips.md)
+CLIP_PKGS := libavformat libavcodec libswscale libavutil
 
 # pkg-config is asked when a recipe first needs the answer, not when make reads this file: on a
 # fresh machine the dependency step runs first and pkg-config never complains about packages
@@ -43,6 +45,8 @@ SRC_PKG_CFLAGS = $(call pkg_config,SRC_PKG_CFLAGS,--cflags $(SRC_PKGS))
 SRC_PKG_LIBS = $(call pkg_config,SRC_PKG_LIBS,--libs $(SRC_PKGS))
 PLATFORM_PKG_CFLAGS = $(call pkg_config,PLATFORM_PKG_CFLAGS,--cflags $(PLATFORM_PKGS))
 PLATFORM_PKG_LIBS = $(call pkg_config,PLATFORM_PKG_LIBS,--libs $(PLATFORM_PKGS))
+CLIP_PKG_CFLAGS = $(call pkg_config,CLIP_PKG_CFLAGS,--cflags $(CLIP_PKGS))
+CLIP_PKG_LIBS = $(call pkg_config,CLIP_PKG_LIBS,--libs $(CLIP_PKGS))
 
 WARN := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Wno-unused-parameter
 OPT ?= -O2 -g
@@ -135,10 +139,11 @@ $(BUILD)/libsbfx.so: $(BUILD)/$(SONAME)
 # sbfx-play: the player, its displays (headless, DRM/KMS), camera and GPIO inputs (platform/)
 PLAYER_SRC := player player_args player_usage player_inputs player_loop board luma live_detail \
 	v4l2_source gpio_gpiod1 gpio_triggers trigger_filter display_headless display_drm drm_device \
-	drm_fb drm_atomic drm_legacy drm_writeback gbm_egl player_reset display_link
+	drm_fb drm_atomic drm_legacy drm_writeback gbm_egl player_reset display_link clip_detail
 PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o)
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
-	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
+	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(CLIP_PKG_LIBS)
+$(BUILD)/obj/platform/clip_detail.o: PLATFORM_CFLAGS += $(CLIP_PKG_CFLAGS)
 
 $(BUILD)/obj/platform/probe.o: PLATFORM_CFLAGS += -Iref
 $(BUILD)/sbfx-probe: $(BUILD)/obj/platform/probe.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
@@ -348,6 +353,17 @@ $(BUILD)/tests/platform/test_gpio_recovery: tests/platform/test_gpio_recovery.c 
 $(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(BUILD)/obj/platform/gl_reset.o tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gl_reset.o $(PLATFORM_LIBS)
+# Clip detail: decoding, loop and seam (tests/platform), into a module's volume (tests/gl)
+$(BUILD)/tests/platform/test_clip_detail: tests/platform/test_clip_detail.c $(BUILD)/obj/platform/clip_detail.o \
+		$(BUILD)/obj/platform/luma.o $(BUILD)/libsbfx.a tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/clip_detail.o \
+		$(BUILD)/obj/platform/luma.o $(BUILD)/libsbfx.a $(PLATFORM_LIBS) $(CLIP_PKG_LIBS)
+$(BUILD)/tests/gl/test_gl_clip: tests/gl/test_gl_clip.c $(BUILD)/obj/platform/clip_detail.o \
+		$(BUILD)/obj/platform/luma.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/clip_detail.o \
+		$(BUILD)/obj/platform/luma.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS) $(CLIP_PKG_LIBS)
 .PHONY: test-platform test-vm cross-check
 test-platform: $(PLATFORM_TESTS)
 

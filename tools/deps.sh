@@ -7,14 +7,14 @@ set_of="${1:-test}"
 
 # gcc only recommends libc6-dev, which --no-install-recommends leaves out: named here
 host_tools="make gcc libc6-dev pkg-config"
-build_pkgs="$host_tools libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev liblcms2-dev libconfig-dev libdrm-dev libgbm-dev libgpiod-dev colord-data"
-test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang libclang-rt-14-dev"
+build_pkgs="$host_tools libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev liblcms2-dev libconfig-dev libdrm-dev libgbm-dev libgpiod-dev colord-data libavformat-dev libavcodec-dev libswscale-dev libavutil-dev"
+test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang libclang-rt-14-dev ffmpeg"
 # make test-vm: qemu (TCG), the guest's modprobe through the shared root, and what tests/vm/run.sh
 # needs to fetch and unpack Debian's kernel packages and build vkms and gpio-sim out of tree
 vm_pkgs="$build_pkgs qemu-system-x86 kmod xz-utils patch gcc-12 make libelf1"
 # make BOARD=<an arm64 board> and make cross-check: Debian's aarch64 toolchain and the arm64
 # multiarch -dev packages, with the host's make, pkg-config and compiler (build/tools/ runs here)
-cross_arm64_pkgs="$host_tools gcc-aarch64-linux-gnu libc6-dev:arm64 libegl-dev:arm64 libgles-dev:arm64 libdrm-dev:arm64 libgbm-dev:arm64 libgpiod-dev:arm64 libpng-dev:arm64 liblcms2-dev:arm64 libconfig-dev:arm64"
+cross_arm64_pkgs="$host_tools gcc-aarch64-linux-gnu libc6-dev:arm64 libegl-dev:arm64 libgles-dev:arm64 libdrm-dev:arm64 libgbm-dev:arm64 libgpiod-dev:arm64 libpng-dev:arm64 liblcms2-dev:arm64 libconfig-dev:arm64 libavformat-dev:arm64 libavcodec-dev:arm64 libswscale-dev:arm64 libavutil-dev:arm64"
 
 case "$set_of" in
     build) want="$build_pkgs" ;;
