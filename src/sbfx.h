@@ -323,7 +323,7 @@ SBFX_API sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texel
 /* The video clip a medium of the loaded scene names as its detail source (detail.source = a
  * file's path; relative paths are resolved against the scene file's folder), or NULL. The module
  * opens no file: the host decodes the clip and pushes its frames (one full turn of the ring).
- * platform/clip_detail.c does this with FFmpeg's libraries for sbfx-play and can be
+ * platform/video/clip_detail.c does this with FFmpeg's libraries for sbfx-play and can be
  * compiled into any host (docs/detail-clips.md). Until then the volume holds procedural detail. */
 SBFX_API const char *sbfx_detail_clip(const sbfx *fx);
 /* The procedural volume the module made at load (size * size * frames values in [0,1], x

@@ -5,7 +5,7 @@
 #include <errno.h>
 #include <unistd.h>
 
-#include "clip_detail.h"
+#include "video/clip_detail.h"
 #include "gl_fixture.h"
 #include "module.h"
 

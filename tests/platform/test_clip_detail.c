@@ -11,8 +11,8 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "clip_detail.h"
-#include "luma.h"
+#include "video/clip_detail.h"
+#include "video/luma.h"
 
 #define S 32          /* slice side */
 #define SLICES 32     /* the module's default ring */
