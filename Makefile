@@ -233,6 +233,14 @@ gallery:
 bench: all
 	@tests/bench/run.sh $(BUILD)
 
+# The seed's figures 1, 2, 4, 5, 7, 8 and 10 as pictures, rendered by sbfx-play and composed with
+# ImageMagick (tools/figures.sh): docs/figures/*.png, described in docs/figures.md.
+.PHONY: figures
+figures:
+	@tools/deps.sh test
+	@$(MAKE) --no-print-directory $(BUILD)/sbfx-play
+	@tools/figures.sh $(BUILD)
+
 # The header, both libraries (the .so as libsbfx.so.VERSION with its soname and development
 # links), sbfx.pc and the two programs; ldconfig when it is the live system. Not the CPU
 # reference (libsbfx_ref.a): tests only.

@@ -8,7 +8,7 @@ set_of="${1:-test}"
 # gcc only recommends libc6-dev, which --no-install-recommends leaves out: named here
 host_tools="make gcc libc6-dev pkg-config"
 build_pkgs="$host_tools libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev liblcms2-dev libconfig-dev libdrm-dev libgbm-dev libgpiod-dev colord-data libavformat-dev libavcodec-dev libswscale-dev libavutil-dev"
-test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang libclang-rt-14-dev ffmpeg"
+test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang libclang-rt-14-dev ffmpeg imagemagick"
 # make test-vm: qemu (TCG), the guest's modprobe through the shared root, and what tests/vm/run.sh
 # needs to fetch and unpack Debian's kernel packages and build vkms and gpio-sim out of tree
 vm_pkgs="$build_pkgs qemu-system-x86 kmod xz-utils patch gcc-12 make libelf1"
