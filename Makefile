@@ -50,6 +50,8 @@ endif
 
 SRC_PKGS := glesv2 libconfig
 PLATFORM_PKGS := egl glesv2 libpng libdrm gbm libgpiod
+# FFmpeg's libraries: detail from a recorded clip (platform/video/clip_detail.c, docs/detail-clips.md)
+CLIP_PKGS := libavformat libavcodec libswscale libavutil
 
 # pkg-config is asked when a recipe first needs the answer, not when make reads this file: on a
 # fresh machine the dependency step runs first and pkg-config never complains about packages
@@ -59,6 +61,8 @@ SRC_PKG_CFLAGS = $(call pkg_config,SRC_PKG_CFLAGS,--cflags $(SRC_PKGS))
 SRC_PKG_LIBS = $(call pkg_config,SRC_PKG_LIBS,--libs $(SRC_PKGS))
 PLATFORM_PKG_CFLAGS = $(call pkg_config,PLATFORM_PKG_CFLAGS,--cflags $(PLATFORM_PKGS))
 PLATFORM_PKG_LIBS = $(call pkg_config,PLATFORM_PKG_LIBS,--libs $(PLATFORM_PKGS))
+CLIP_PKG_CFLAGS = $(call pkg_config,CLIP_PKG_CFLAGS,--cflags $(CLIP_PKGS))
+CLIP_PKG_LIBS = $(call pkg_config,CLIP_PKG_LIBS,--libs $(CLIP_PKGS))
 
 WARN := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Wno-unused-parameter
 OPT ?= -O2 -g
@@ -173,7 +177,7 @@ $(BUILD)/libsbfx.so: $(BUILD)/$(SONAME)
 # sbfx-play: the player, its displays (headless, DRM/KMS), camera and GPIO inputs (platform/)
 PLAYER_SRC := $(addprefix player/,player player_args player_usage player_stats player_inputs player_loop \
 	player_reset board player_notify) \
-	$(addprefix video/,luma live_detail v4l2_source) \
+	$(addprefix video/,luma live_detail v4l2_source clip_detail) \
 	$(addprefix gpio/,gpio_backend effect_names gpio_triggers trigger_filter) \
 	$(addprefix display/,display_headless display_drm display_link) \
 	$(addprefix drm/,drm_device drm_fb drm_atomic drm_legacy drm_writeback gbm_egl)
@@ -193,11 +197,12 @@ $(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
-	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS)
+	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS)
 # READY=1 and the watchdog's pings for systemd (player_notify.c): libsystemd, the player only
 NOTIFY_PKG_CFLAGS = $(call pkg_config,NOTIFY_PKG_CFLAGS,--cflags libsystemd)
 NOTIFY_PKG_LIBS = $(call pkg_config,NOTIFY_PKG_LIBS,--libs libsystemd)
 $(BUILD)/obj/platform/player/player_notify.o: PLATFORM_CFLAGS += $(NOTIFY_PKG_CFLAGS)
+$(BUILD)/obj/platform/video/clip_detail.o: PLATFORM_CFLAGS += $(CLIP_PKG_CFLAGS)
 
 # sbfx-probe and sbfx-soak (tools/probe/, tools/soak/): tools that look inside the module through
 # src/'s private headers, so they live outside platform/, which only uses src/sbfx.h.
@@ -285,6 +290,14 @@ gallery:
 
 bench: all
 	@tests/bench/run.sh $(BUILD)
+
+# The seed's figures 1, 2, 4, 5, 7, 8 and 10 as pictures, rendered by sbfx-play and composed with
+# ImageMagick (tools/figures.sh): docs/figures/*.png, described in docs/figures.md.
+.PHONY: figures
+figures:
+	@tools/deps.sh test
+	@$(MAKE) --no-print-directory $(BUILD)/sbfx-play
+	@tools/figures.sh $(BUILD)
 
 # The header, both libraries (the .so as libsbfx.so.VERSION with its soname and development
 # links), sbfx.pc, the two programs and sbfx-play's man page; ldconfig when it is the live
@@ -422,6 +435,17 @@ $(BUILD)/tests/platform/test_gpio_backend: tests/platform/test_gpio_backend.c \
 $(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(BUILD)/obj/platform/egl/gl_reset.o tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/egl/gl_reset.o $(PLATFORM_LIBS)
+# Clip detail: decoding, loop and seam (tests/platform), into a module's volume (tests/gl)
+$(BUILD)/tests/platform/test_clip_detail: tests/platform/test_clip_detail.c $(BUILD)/obj/platform/video/clip_detail.o \
+		$(BUILD)/obj/platform/video/luma.o $(BUILD)/libsbfx.a tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/video/clip_detail.o \
+		$(BUILD)/obj/platform/video/luma.o $(BUILD)/libsbfx.a $(PLATFORM_LIBS) $(CLIP_PKG_LIBS)
+$(BUILD)/tests/gl/test_gl_clip: tests/gl/test_gl_clip.c $(BUILD)/obj/platform/video/clip_detail.o \
+		$(BUILD)/obj/platform/video/luma.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/video/clip_detail.o \
+		$(BUILD)/obj/platform/video/luma.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS) $(CLIP_PKG_LIBS)
 .PHONY: test-platform test-vm cross-check
 test-platform: $(PLATFORM_TESTS)
 

@@ -50,6 +50,9 @@ typedef struct sbfx_medium_params {
     float t0, t1;          /* fire: T = (t0 + t1 * detail) * (1 - cooling * (1 - intensity)) */
     float cooling;         /* fire: fraction of the temperature lost as intensity reaches 0 */
     bool live_detail;      /* detail source "v4l2": slices come from sbfx_detail_push_slice */
+    char detail_clip[256]; /* detail source a video clip (path resolved against the scene file's
+                              folder; "" none): the host decodes it and pushes its slices
+                              (sbfx_detail_clip, docs/detail-clips.md) */
     float heat_strength;   /* heat: largest screen offset of the shimmer, in UV units */
     float emission_scale;  /* fire: radiance multiplier on the normalised black-body table */
     /* lit-smoke seed (lighting = "lit"; ref/lit_ref.h): per-pixel lit instead of the phase model */

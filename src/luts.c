@@ -161,6 +161,15 @@ bool sbfx_wants_live_detail(const sbfx *fx)
     return false;
 }
 
+const char *sbfx_detail_clip(const sbfx *fx)
+{
+    if (!fx) return NULL;
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
+        if (fx->uses_medium[m] && fx->media[m].detail_clip[0] && fx->media[m].detail_strength > 0)
+            return fx->media[m].detail_clip;
+    return NULL;
+}
+
 sbfx_result sbfx_detail_procedural(const sbfx *fx, float *out, size_t count)
 {
     if (!fx || !out) return SBFX_ERR_INVALID_ARGUMENT;

@@ -323,6 +323,12 @@ SBFX_API void sbfx_detail_dimensions(const sbfx *fx, int *size, int *frames);
 /* True when a medium of the loaded scene asks for detail source "v4l2". */
 SBFX_API bool sbfx_wants_live_detail(const sbfx *fx);
 SBFX_API sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int size);
+/* The video clip a medium of the loaded scene names as its detail source (detail.source = a
+ * file's path; relative paths are resolved against the scene file's folder), or NULL. The module
+ * opens no file: the host decodes the clip and pushes its frames (one full turn of the ring).
+ * platform/video/clip_detail.c does this with FFmpeg's libraries for sbfx-play and can be
+ * compiled into any host (docs/detail-clips.md). Until then the volume holds procedural detail. */
+SBFX_API const char *sbfx_detail_clip(const sbfx *fx);
 /* The procedural volume the module made at load (size * size * frames values in [0,1], x
  * fastest, then y, then the time ring) written into the caller's `out` of `count` floats: a host
  * whose live source went away pushes it back, slice by slice, to return to procedural detail.

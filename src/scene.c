@@ -328,15 +328,53 @@ static int parse_lights(parser *p, const config_setting_t *list)
 }
 
 /* ---- media ---- */
+/* A clip path as written, or resolved against the folder of the scene's name when relative
+ * (docs/detail-clips.md): "clips/smoke.mp4" in "scenes/a.cfg" is "scenes/clips/smoke.mp4". */
+static int resolve_clip(parser *p, const config_setting_t *s, const char *clip, char *out, size_t size)
+{
+    const char *slash = strrchr(p->name, '/');
+    int folder = clip[0] != '/' && slash ? (int)(slash - p->name) + 1 : 0;
+    int len = snprintf(out, size, "%.*s%s", folder, p->name, clip);
+    if (len < 0 || (size_t)len >= size) return fail_at(p, s, "detail clip path \"%s\" is too long", clip);
+    return 0;
+}
+
+/* Every medium shares the one detail volume: at most one clip feeds it, and not beside a camera. */
+static int check_one_feed(parser *p, const config_setting_t *s, const sbfx_medium_params *m)
+{
+    for (int i = 0; i < SBFX_MEDIUM_COUNT; i++) {
+        const sbfx_medium_params *o = &p->scene->media[i];
+        if (o == m || !p->scene->has_medium[i] || (!o->live_detail && !o->detail_clip[0])) continue;
+        if ((m->live_detail && o->detail_clip[0]) || (m->detail_clip[0] && o->live_detail) ||
+            (m->detail_clip[0] && o->detail_clip[0] && strcmp(m->detail_clip, o->detail_clip) != 0))
+            return fail_at(p, s, "media name different detail sources (\"%s\" and \"%s\"); the module has one "
+                           "detail volume: name the same clip or camera in every medium",
+                           m->live_detail ? "v4l2" : m->detail_clip, o->live_detail ? "v4l2" : o->detail_clip);
+    }
+    return 0;
+}
+
+/* source: "procedural", "v4l2", or any other string: a video clip's path (docs/detail-clips.md). */
+static int parse_detail_source(parser *p, const config_setting_t *g, sbfx_medium_params *m)
+{
+    const config_setting_t *s = config_setting_get_member(g, "source");
+    if (!s) return 0;
+    const char *v = config_setting_get_string(s);
+    if (!v || !v[0]) return fail_at(p, s, "'source' must be \"procedural\", \"v4l2\" or a video file's path");
+    m->live_detail = strcmp(v, "v4l2") == 0;
+    m->detail_clip[0] = '\0';
+    if (strcmp(v, "procedural") != 0 && !m->live_detail &&
+        resolve_clip(p, s, v, m->detail_clip, sizeof(m->detail_clip)))
+        return -1;
+    return check_one_feed(p, s, m);
+}
+
 static int parse_detail(parser *p, const config_setting_t *g, sbfx_medium_params *m)
 {
     static const char *const keys[] = {"source", "strength", "window", NULL};
-    static const char *const sources[] = {"procedural", "v4l2", NULL};
-    int source = 0;
-    if (check_keys(p, g, "detail", keys) || get_choice(p, g, "source", sources, 0, &source) ||
+    if (check_keys(p, g, "detail", keys) || parse_detail_source(p, g, m) ||
         get_float(p, g, "strength", 0, 1, &m->detail_strength) || get_float(p, g, "window", 0.01, 1, &m->detail_window))
         return -1;
-    m->live_detail = source == 1;
     return 0;
 }
 

@@ -459,11 +459,34 @@ test_man_page() {
     fi
 }
 
+# A scene whose detail is a clip beside it (docs/detail-clips.md): played, and said so; a
+# missing clip stops the player with a message naming the file.
+test_clip_run() {
+    if ! command -v ffmpeg >/dev/null 2>&1; then
+        echo "skip - $SUITE/clip-run: the ffmpeg command is not installed (tools/deps.sh test)"
+        return
+    fi
+    mkdir -p "$tmp/clipscene/clips"
+    ffmpeg -hide_banner -loglevel error -nostdin -y -f lavfi -i "mandelbrot=size=64x64:rate=25" \
+        -frames:v 40 -c:v ffv1 "$tmp/clipscene/clips/m.mkv"
+    sed 's|source = "procedural"|source = "clips/m.mkv"|' scenes/smoke.cfg >"$tmp/clipscene/clip.cfg"
+    sed 's|source = "procedural"|source = "clips/none.mp4"|' scenes/smoke.cfg >"$tmp/clipscene/none.cfg"
+    play --scene "$tmp/clipscene/clip.cfg" --size 160x90 --frames 2 --out "$tmp/clip"
+    if [ "$rc" -eq 0 ] && grep -q "m.mkv: ffv1 in matroska" "$tmp/err" && is_png "$tmp/clip/frame-0001.png"; then
+        ok clip-run
+    else
+        fail clip-run "a clip scene: rc $rc: $(first_error_line)"
+    fi
+    usage_error clip-missing "$tmp/clipscene/clips/none.mp4" --scene "$tmp/clipscene/none.cfg" --size 160x90 \
+        --frames 2 --out "$tmp/clip-none"
+}
+
 test_help
 test_version
 test_help_stats_keys
 test_man_page
 test_bad_arguments
+test_clip_run
 test_budget_run
 test_headless_run
 test_idle_run

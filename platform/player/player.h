@@ -90,6 +90,9 @@ int player_collect_scene_gpio(struct player *p, const sbfx_scene *scene, char *e
 int player_open_inputs(struct player *p, char *err, size_t n);
 /* The camera again, into a new sbfx (after a GPU reset). */
 int player_open_video(struct player *p, char *err, size_t n);
+/* Decodes the scene's detail clip, if it names one, into the volume (clip_detail.h): 0, or an
+ * error naming the file. */
+int player_open_clip(struct player *p, char *err, size_t n);
 void player_close_inputs(struct player *p);
 /* Reads the GPIO events that wait and fires what passes; never blocks. */
 void player_service_gpio(struct player *p);

@@ -1,10 +1,12 @@
 /* sbfx-play's inputs: the board profile, GPIO trigger lines (scene, board, --gpio; a later
- * source replaces an earlier one's spec for the same chip and line) and the V4L2 camera. */
+ * source replaces an earlier one's spec for the same chip and line), the scene's detail clip and
+ * the V4L2 camera. */
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "player/player.h"
+#include "video/clip_detail.h"
 
 int player_load_board(struct player *p, char *err, size_t n)
 {
@@ -97,6 +99,19 @@ int player_open_video(struct player *p, char *err, size_t n)
     return rc;
 }
 
+int player_open_clip(struct player *p, char *err, size_t n)
+{
+    const char *clip = sbfx_detail_clip(p->fx);
+    if (!clip) return 0;
+    struct clip_info info;
+    int rc = clip_detail_load(p->fx, clip, &info, err, n);
+    if (rc) return rc;
+    char msg[512];
+    clip_describe(clip, &info, msg, sizeof(msg));
+    player_log(msg, p);
+    return 0;
+}
+
 int player_open_inputs(struct player *p, char *err, size_t n)
 {
     int rc = collect_gpio(p, err, n);
@@ -105,6 +120,7 @@ int player_open_inputs(struct player *p, char *err, size_t n)
                                 player_log, p, err, n);
         p->gpio_on = rc == 0;
     }
+    if (rc == 0) rc = player_open_clip(p, err, n);
     if (rc == 0) rc = player_open_video(p, err, n);
     return rc;
 }

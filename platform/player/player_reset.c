@@ -73,6 +73,10 @@ int player_check_gpu_reset(struct player *p, int frame, char *err, size_t n)
         return rc;
     }
     p->gpu_resets++;
+    if (player_open_clip(p, why, sizeof(why)) != 0) {
+        player_log(why, p);
+        player_log("the detail clip did not come back after the GPU reset: procedural detail", p);
+    }
     if (camera && player_open_video(p, why, sizeof(why)) != 0) {
         player_log(why, p);
         player_log("the camera did not come back after the GPU reset: procedural detail", p);

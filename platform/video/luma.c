@@ -135,14 +135,24 @@ static bool view_fits(const struct luma_resampler *r, const struct luma_view *v)
     return last < v->bytes;
 }
 
+int luma_box_means(struct luma_resampler *r, const struct luma_view *view)
+{
+    if (!r->values || !view_fits(r, view)) return -EINVAL;
+    sample_boxes(r, view);
+    return 0;
+}
+
+float luma_curve(float value, float mean, float spread)
+{
+    float gain = spread > FLAT_SPREAD ? OUTPUT_GAIN / spread : 0.0f;
+    return 0.5f + 0.5f * tanhf(gain * (value - mean));
+}
+
 int luma_to_slice(struct luma_resampler *r, const struct luma_view *view, uint16_t *out)
 {
-    if (!r->values || !out || !view_fits(r, view)) return -EINVAL;
-    sample_boxes(r, view);
+    if (!out || luma_box_means(r, view) != 0) return -EINVAL;
     update_stats(r);
-    float gain = r->spread > FLAT_SPREAD ? OUTPUT_GAIN / r->spread : 0.0f;
     size_t count = (size_t)r->size * r->size;
-    for (size_t i = 0; i < count; i++)
-        out[i] = luma_half_bits(0.5f + 0.5f * tanhf(gain * (r->values[i] - r->mean)));
+    for (size_t i = 0; i < count; i++) out[i] = luma_half_bits(luma_curve(r->values[i], r->mean, r->spread));
     return 0;
 }

@@ -52,6 +52,15 @@ int luma_resampler_init(struct luma_resampler *r, int size, int width, int heigh
  * 0, or -EINVAL when the view does not match the planned frame or is too short. */
 int luma_to_slice(struct luma_resampler *r, const struct luma_view *view, uint16_t *out);
 
+/* Only the box means of one frame, into r->values (0..255 luma): the first step of
+ * luma_to_slice, for sources that normalise over many frames at once (clip_detail.h).
+ * 0, or -EINVAL as luma_to_slice. */
+int luma_box_means(struct luma_resampler *r, const struct luma_view *view);
+
+/* The curve every detail source shares: 0.5 + 0.5 tanh(0.45 (value - mean) / spread), all 0.5
+ * when spread is below half a luma level (a flat picture). */
+float luma_curve(float value, float mean, float spread);
+
 /* The float -> IEEE half bits conversion used for every texel (round to nearest even). */
 uint16_t luma_half_bits(float v);
 
