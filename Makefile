@@ -316,6 +316,23 @@ $(BUILD)/bench/bench_tonemap: tests/bench/tonemap/bench_tonemap.c $(PLATFORM_COM
 
 bench: $(BUILD)/bench/bench_tonemap
 
+# ---- fire as light (issue 17 item 2; docs/look-fire.md) -------------------------------------
+# tests/look/: the fire luminance metric (fire_metric.c, plain C, for any bench to call) and the
+# renderer that feeds it; the bench writes $(BUILD)/bench/look-fire.csv, test_gl_fire_look
+# asserts the ratios.
+LOOK_OBJ := $(BUILD)/obj/look/fire_metric.o $(BUILD)/obj/look/fire_look.o
+$(BUILD)/obj/look/%.o: tests/look/%.c tests/look/fire_metric.h tests/look/fire_look.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests/look -c -o $@ $<
+$(BUILD)/bench/bench_look_fire: tests/look/bench_look_fire.c $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests/look $(LDSAN) -o $@ $< $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+$(BUILD)/tests/gl/test_gl_fire_look: tests/gl/test_gl_fire_look.c $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
+
+bench: $(BUILD)/bench/bench_look_fire
+
 # ---- scenes and post-effects bench (issues #3, #6) ------------------------------------------
 $(BUILD)/bench/bench_scenes: tests/bench/scenes/bench_scenes.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	@mkdir -p $(@D)

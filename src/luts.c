@@ -30,6 +30,15 @@ static sbfx_result prepare_analytic_blackbody(sbfx *fx, const sbfx_cmf *cmf)
     return SBFX_OK;
 }
 
+/* Fire given an emissivity emits black-body luminance in the scene's unit (docs/look-fire.md). */
+static void set_photometric_emission(sbfx *fx)
+{
+    sbfx_medium_params *m = &fx->media[SBFX_FIRE];
+    if (m->emissivity > 0.0f)
+        m->emission_scale = (float)sbfx_emission_scale_photometric(fx->tables.blackbody_norm, m->emissivity,
+                                                                   fx->desc.white_luminance);
+}
+
 /* The CIE tables feed the black-body table, or the analytic black body's per-band constants. */
 static sbfx_result make_fire_tables(sbfx *fx)
 {
@@ -39,6 +48,7 @@ static sbfx_result make_fire_tables(sbfx *fx)
     sbfx_result r = sbfx_cmf_load(fx->desc.cmf_path, cmf, err, sizeof(err));
     if (r != SBFX_OK) sbfx_fail(fx, r, "%s", err);
     if (r == SBFX_OK) r = sbfx_tables_create(fx, cmf);
+    if (r == SBFX_OK) set_photometric_emission(fx);
     if (r == SBFX_OK && sbfx_declared_any(fx, sbfx_quality_uses_blackbody_analytic)) r = prepare_analytic_blackbody(fx, cmf);
     sbfx_free(fx, cmf);
     return r;

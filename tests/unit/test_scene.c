@@ -155,7 +155,7 @@ CHECK_TEST(tone_map_and_exposure_keys)
     CHECK(sbfx_scene_parse(text, "tone.cfg", &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
     sbfx_scene_free(scene);
     expect_error("render = {\n tone_map = \"aces\"; };\n" MEDIA EFFECT(EMITTER), 2,
-                 "is not one of: none, hue-preserving, per-channel");
+                 "is not one of: none, hue-preserving, per-channel, filmic");
     expect_error("render = { exposure = 0.0; };\n" MEDIA EFFECT(EMITTER), 1, "'exposure' = 0 is out of range");
     expect_error("render = { tonemap = \"none\"; };\n" MEDIA EFFECT(EMITTER), 1, "did you mean 'tone_map'");
 }
