@@ -13,9 +13,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "egl_headless.h"
+#include "egl/egl_headless.h"
 #include "fire_look.h"
-#include "png_io.h"
+#include "image/png_io.h"
 
 typedef struct plan {
     const char *name, *path;

@@ -10,7 +10,7 @@
 #include <stdint.h>
 #include "fire_metric.h"
 #include "sbfx.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 typedef struct fire_look {
     int width, height;
