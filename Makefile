@@ -218,7 +218,7 @@ gallery:
 		cp $(BUILD)/gallery/$$s/contact-sheet.png docs/gallery/$$s.png && echo "gallery: docs/gallery/$$s.png"; \
 	done
 	@for shot in $(GALLERY_TONE_SHOTS); do s=$${shot%%:*}; fps=$${shot#*:}; \
-		for tm in none hue-preserving per-channel; do \
+		for tm in none hue-preserving per-channel filmic; do \
 			$(BUILD)/sbfx-play --headless --quiet --scene scenes/$$s.cfg --size 640x360 --frames 2 --fps $$fps \
 				--tone-map $$tm --out $(BUILD)/gallery/tone-$$s-$$tm || exit 1; \
 			cp $(BUILD)/gallery/tone-$$s-$$tm/frame-0001.png docs/gallery/tonemap-$$s-$$tm.png; \

@@ -148,4 +148,25 @@ CHECK_TEST(thick_1500_kelvin_fire_is_brighter_than_a_daylight_sky)
     CHECK(cold < sky_y && thin < sky_y && cooled < sky_y, "1400 K %.3f, thin %.3f, cooled %.3f", cold, thin, cooled);
 }
 
+/* desc.white_luminance: 0 takes the scene's or 10000; outside 1 .. 1e9 cd/m^2 is refused by name. */
+CHECK_TEST(white_luminance_is_checked)
+{
+    gl_fixture f;
+    fixture_open_far(&f, 16, 16);
+    const float bad[] = {0.5f, 2e9f, INFINITY};
+    for (int i = 0; i < 3; i++) {
+        sbfx *fx = NULL;
+        sbfx_desc desc = {.white_luminance = bad[i]};
+        CHECK(sbfx_create(&desc, &fx) == SBFX_ERR_INVALID_ARGUMENT && fx == NULL, "white_luminance %g accepted",
+              (double)bad[i]);
+    }
+    sbfx *fx = NULL;
+    CHECK(sbfx_create(&(sbfx_desc){0}, &fx) == SBFX_OK && fx, "the default");
+    if (fx) {
+        CHECK(sbfx_get_desc(fx)->white_luminance == 10000.0f, "default %g", (double)sbfx_get_desc(fx)->white_luminance);
+        sbfx_destroy(fx);
+    }
+    fixture_close(&f);
+}
+
 int main(int argc, char **argv) { return check_main_args(argc, argv); }
