@@ -53,8 +53,9 @@ typedef struct sbfx_medium_params {
     bool live_detail;      /* detail source "v4l2": slices come from sbfx_detail_push_slice */
     float heat_strength;   /* heat: largest screen offset of the shimmer, in UV units */
     float emission_scale;  /* fire: radiance multiplier on the normalised black-body table */
-    float emissivity;      /* fire: > 0 sets emission_scale at load from photometry (emissivity *
-                              L_blackbody / white_luminance); <= 0: emission_scale as given */
+    float emissivity;      /* fire: > 0 sets emission_scale once, in sbfx_create, from photometry
+                              (emissivity * L_blackbody / white_luminance; sbfx_reload keeps
+                              emission_scale as it is); <= 0: emission_scale as given */
     /* lit-smoke seed (lighting = "lit"; ref/lit_ref.h): per-pixel lit instead of the phase model */
     bool lit;
     float wrap;            /* wrap-around coefficient w (0.6 in the seed) */

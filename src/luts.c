@@ -48,7 +48,7 @@ static sbfx_result make_fire_tables(sbfx *fx)
     sbfx_result r = sbfx_cmf_load(fx->desc.cmf_path, cmf, err, sizeof(err));
     if (r != SBFX_OK) sbfx_fail(fx, r, "%s", err);
     if (r == SBFX_OK) r = sbfx_tables_create(fx, cmf);
-    if (r == SBFX_OK) set_photometric_emission(fx);
+    if (r == SBFX_OK && !fx->loaded) set_photometric_emission(fx); /* once: sbfx_reload keeps what was set */
     if (r == SBFX_OK && sbfx_declared_any(fx, sbfx_quality_uses_blackbody_analytic)) r = prepare_analytic_blackbody(fx, cmf);
     sbfx_free(fx, cmf);
     return r;
