@@ -281,7 +281,7 @@ gallery:
 		cp $(BUILD)/gallery/$$s/contact-sheet.png docs/gallery/$$s.png && echo "gallery: docs/gallery/$$s.png"; \
 	done
 	@for shot in $(GALLERY_TONE_SHOTS); do s=$${shot%%:*}; fps=$${shot#*:}; \
-		for tm in none hue-preserving per-channel; do \
+		for tm in none hue-preserving per-channel filmic; do \
 			$(BUILD)/sbfx-play --headless --quiet --scene scenes/$$s.cfg --size 640x360 --frames 2 --fps $$fps \
 				--tone-map $$tm --out $(BUILD)/gallery/tone-$$s-$$tm || exit 1; \
 			cp $(BUILD)/gallery/tone-$$s-$$tm/frame-0001.png docs/gallery/tonemap-$$s-$$tm.png; \
@@ -396,6 +396,23 @@ $(BUILD)/bench/bench_tonemap: tests/bench/tonemap/bench_tonemap.c $(PLATFORM_COM
 	$(CC) $(PLATFORM_CFLAGS) $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
 
 bench: $(BUILD)/bench/bench_tonemap
+
+# ---- fire as light (issue 17 item 2; docs/look-fire.md) -------------------------------------
+# tests/look/: the fire luminance metric (fire_metric.c, plain C, for any bench to call) and the
+# renderer that feeds it; the bench writes $(BUILD)/bench/look-fire.csv, test_gl_fire_look
+# asserts the ratios.
+LOOK_OBJ := $(BUILD)/obj/look/fire_metric.o $(BUILD)/obj/look/fire_look.o
+$(BUILD)/obj/look/%.o: tests/look/%.c tests/look/fire_metric.h tests/look/fire_look.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests/look -c -o $@ $<
+$(BUILD)/bench/bench_look_fire: tests/look/bench_look_fire.c $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests/look $(LDSAN) -o $@ $< $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+$(BUILD)/tests/gl/test_gl_fire_look: tests/gl/test_gl_fire_look.c $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
+
+bench: $(BUILD)/bench/bench_look_fire
 
 # ---- scenes and post-effects bench (issues #3, #6) ------------------------------------------
 $(BUILD)/bench/bench_scenes: tests/bench/scenes/bench_scenes.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a

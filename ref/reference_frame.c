@@ -165,13 +165,16 @@ static void blackbody(const sbfx_rf_frame *f, double kelvin, double rgb[3])
         sbfx_blackbody_rgb(f->cmf, t, f->blackbody_norm, rgb);
 }
 
-/* emitted(): black body x emission scale x (1 - albedo), capped at the radiance ceiling. */
+static double frame_exposure(const sbfx_rf_frame *f) { return f->exposure > 0.0 ? f->exposure : 1.0; }
+
+/* emitted(): black body x emission scale x (1 - albedo) x exposure, capped at the radiance
+ * ceiling. */
 static void emitted(const sbfx_rf_frame *f, const sbfx_rf_medium *m, double kelvin, double e[3])
 {
     double bb[3];
     blackbody(f, kelvin, bb);
-    /* the shader gets the scale as a float uniform: emission_scale * (1 - albedo) */
-    double scale = (double)(float)(m->emission_scale * (1.0 - m->albedo));
+    /* the shader gets the scale as a float uniform: emission_scale * (1 - albedo) * exposure */
+    double scale = (double)((float)(m->emission_scale * (1.0 - m->albedo)) * (float)frame_exposure(f));
     for (int k = 0; k < 3; k++) e[k] = mp(f, fmin(bb[k] * scale, SBFX_RF_RADIANCE_CEILING));
 }
 
@@ -199,7 +202,7 @@ void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const doub
     if (scatters) {
         double s[3];
         in_scattered(f, p->medium, p->center, ray, s);
-        for (int k = 0; k < 3; k++) light[k] = mp(f, light[k] + m->albedo * m->color[k] * s[k]);
+        for (int k = 0; k < 3; k++) light[k] = mp(f, light[k] + m->albedo * frame_exposure(f) * m->color[k] * s[k]);
     }
     if (emits) {
         double cooled = 1.0 - m->cooling * (1.0 - p->intensity), e[3];
@@ -308,16 +311,23 @@ int sbfx_rf_render_layer(const sbfx_rf_frame *f, const sbfx_rf_particle *particl
     return skipped;
 }
 
-void sbfx_rf_tone_map(sbfx_tone_map op, double exposure, const double c[3], double t, const double dst[3],
-                      double out[3])
+void sbfx_rf_tone_map(sbfx_tone_map op, const double c[3], double t, const double dst[3], double out[3])
 {
     double room[3];
     for (int k = 0; k < 3; k++) {
-        out[k] = c[k] * exposure;
+        out[k] = c[k];
         room[k] = fmax(1.0 - t * (dst ? clampd(dst[k], 0.0, 1.0) : 0.0), 1.0 / 1024.0);
     }
     if (op == SBFX_TONE_MAP_NONE) return;
-    sbfx_tone_curve curve = sbfx_tone_curve_default();
+    if (op == SBFX_TONE_MAP_DEFAULT) op = SBFX_TONE_MAP_FILMIC;
+    sbfx_tone_curve curve = sbfx_tone_curve_for(op);
+    if (op == SBFX_TONE_MAP_FILMIC) {
+        double q[3], x[3];
+        for (int k = 0; k < 3; k++) q[k] = out[k] / room[k];
+        sbfx_tone_filmic(&curve, q, x);
+        for (int k = 0; k < 3; k++) out[k] = room[k] * x[k];
+        return;
+    }
     if (op == SBFX_TONE_MAP_PER_CHANNEL) {
         for (int k = 0; k < 3; k++) out[k] = room[k] * sbfx_tone_curve_apply(&curve, out[k] / room[k]);
         return;
@@ -328,13 +338,13 @@ void sbfx_rf_tone_map(sbfx_tone_map op, double exposure, const double c[3], doub
 }
 
 void sbfx_rf_composite(const double *layer, const uint8_t *scene_rgba8, int width, int height, sbfx_tone_map op,
-                       double exposure, double *out_rgb)
+                       double *out_rgb)
 {
     size_t n = (size_t)width * (size_t)height;
     for (size_t i = 0; i < n; i++) {
         double c[3], dst[3] = {scene_rgba8[4 * i] / 255.0, scene_rgba8[4 * i + 1] / 255.0,
                                scene_rgba8[4 * i + 2] / 255.0};
-        sbfx_rf_tone_map(op, exposure, &layer[4 * i], layer[4 * i + 3], dst, c);
+        sbfx_rf_tone_map(op, &layer[4 * i], layer[4 * i + 3], dst, c);
         for (int k = 0; k < 3; k++) {
             double v = scene_rgba8[4 * i + k] / 255.0 * layer[4 * i + 3] + c[k];
             out_rgb[3 * i + k] = clampd(v, 0.0, 1.0) * 255.0;

@@ -25,7 +25,7 @@
 #include "reference.h"
 
 /* particle.frag's per-fragment radiance ceiling (RADIANCE_CEILING). */
-#define SBFX_RF_RADIANCE_CEILING 64.0
+#define SBFX_RF_RADIANCE_CEILING 16384.0
 /* The shader's light falloff floor: point lights act no closer than 0.5 m (d² >= 0.25). */
 #define SBFX_RF_MIN_LIGHT_D2 0.25
 
@@ -87,6 +87,7 @@ typedef struct sbfx_rf_frame {
     int phase_table_size;
 
     sbfx_rf_precision precision;
+    double exposure;               /* desc.exposure, applied where light is made (0: 1) */
 } sbfx_rf_frame;
 
 #define SBFX_RF_MAX_LIGHTS 8
@@ -114,18 +115,18 @@ void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const doub
 int sbfx_rf_render_layer(const sbfx_rf_frame *f, const sbfx_rf_particle *particles, int count,
                          double *layer, uint8_t *footprint);
 
-/* composite.frag's tone mapping of one layer pixel (premultiplied light c, transmittance t) over
- * the host's pixel dst (NULL: unknown, taken as black): the light times exposure is brought
- * within the room the picture leaves, room_k = 1 - t dst_k, through the tone curve (reference.h)
- * of its largest ratio c_k / room_k (the colour scaled: hue kept) or of each channel's ratio;
- * NONE only scales by exposure. */
-void sbfx_rf_tone_map(sbfx_tone_map op, double exposure, const double c[3], double t, const double dst[3],
-                      double out[3]);
+/* composite.frag's tone mapping of one layer pixel (premultiplied light c, already times the
+ * exposure: the layer is pre-exposed like the module's, transmittance t) over the host's pixel
+ * dst (NULL: unknown, taken as black): the light is brought within the room the picture leaves,
+ * room_k = 1 - t dst_k, through the tone curve (reference.h) of its largest ratio c_k / room_k
+ * (the colour scaled: hue kept), of each channel's ratio, or filmic (sbfx_tone_filmic) on the
+ * ratios; NONE leaves it as it is. */
+void sbfx_rf_tone_map(sbfx_tone_map op, const double c[3], double t, const double dst[3], double out[3]);
 
 /* out[3 * i + k] = clamp(scene_k / 255 * T + C'_k, 0, 1) * 255 for the RGBA8 scene colour
  * (rows in the same order as the layer), C' the light tone-mapped over that scene colour (the
  * GPU reads it too when frame.scene_color_texture is given and not drawn into). */
 void sbfx_rf_composite(const double *layer, const uint8_t *scene_rgba8, int width, int height, sbfx_tone_map op,
-                       double exposure, double *out_rgb);
+                       double *out_rgb);
 
 #endif

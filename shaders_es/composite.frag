@@ -10,8 +10,9 @@
 //   OWN_SCENE     post effects follow: read the scene colour texture instead of blending over
 //                 the host's framebuffer, and write an opaque image
 //   HAS_SHIMMER   (with OWN_SCENE) heat particles' screen offsets displace the scene lookup
-//   TONE_MAP_NONE | TONE_MAP_HUE_PRESERVING | TONE_MAP_PER_CHANNEL   the particles' light on the
-//                 display (sbfx_tone_map in sbfx.h; ref/reference_frame.c mirrors it)
+//   TONE_MAP_NONE | TONE_MAP_HUE_PRESERVING | TONE_MAP_PER_CHANNEL | TONE_MAP_FILMIC   the
+//                 particles' light on the display (sbfx_tone_map in sbfx.h; ref/reference_frame.c
+//                 mirrors it; docs/look-fire.md)
 precision highp float;
 precision highp sampler2D;
 
@@ -51,8 +52,7 @@ float low_distance(ivec2 q)
     return e > 0.0 ? u_near / e : NO_SURFACE;
 }
 
-// ---- tone mapping: the particle layer's light before it meets the host's picture ----
-uniform float u_exposure;
+// ---- tone mapping: the particle layer's light (pre-exposed) before it meets the host's picture ----
 uniform vec3 u_tone_curve;        // knee, steepness, 1 / ln(1 + steepness x_white) (src/tonemap.c)
 
 // The identity up to the knee, a logarithmic shoulder above it reaching 1 at the white point.
@@ -63,6 +63,34 @@ float tone_curve(float v)
     return min(k + (1.0 - k) * log(1.0 + u_tone_curve.y * (v - k) / (1.0 - k)) * u_tone_curve.z, 1.0);
 }
 
+#ifdef TONE_MAP_FILMIC
+// Filmic, a path to white for emitters (src/tonemap.c, docs/look-fire.md), on q = light / room.
+// Light the display can show (every channel of q at most 1) keeps its hue exactly: its largest
+// channel goes through the curve and the colour is scaled with it. Brighter light blends, over
+// two stops (q from 1 to 4), into the crossover: each channel takes a share of the channels'
+// mean (TONE_INSET), goes through the curve, and the share is given back, so light too bright
+// for its hue turns orange -> yellow -> white, arriving at white smoothly at 1024.
+const float TONE_INSET = 0.06;
+float tone_curve_smooth_white(float v)   // tone_curve's shoulder u as k + (1 - k)(2u - u^2)
+{
+    float k = u_tone_curve.x;
+    if (v <= k) return max(v, 0.0);
+    float u = min(log(1.0 + u_tone_curve.y * (v - k) / (1.0 - k)) * u_tone_curve.z, 1.0);
+    return k + (1.0 - k) * u * (2.0 - u);
+}
+vec3 tone_filmic(vec3 q)
+{
+    float peak = max(max(q.r, q.g), q.b);
+    if (peak <= u_tone_curve.x) return q;
+    vec3 kept = q * (tone_curve_smooth_white(peak) / peak);
+    if (peak <= 1.0) return kept;
+    vec3 y = (1.0 - TONE_INSET) * q + TONE_INSET * ((q.r + q.g + q.b) / 3.0);
+    vec3 z = vec3(tone_curve_smooth_white(y.r), tone_curve_smooth_white(y.g), tone_curve_smooth_white(y.b));
+    vec3 crossed = clamp((z - TONE_INSET * ((z.r + z.g + z.b) / 3.0)) / (1.0 - TONE_INSET), 0.0, 1.0);
+    return mix(kept, crossed, smoothstep(0.0, 1.0, 0.5 * log2(peak)));
+}
+#endif
+
 // The light C is brought within the room the host's picture leaves: over a pixel dst seen through
 // transmittance T, dst * T + C stays within [0, 1] when C_k <= room_k = 1 - T dst_k. Hue
 // preserving: C scaled by curve(r) / r, r = max_k C_k / room_k, so no channel clips on its own
@@ -70,10 +98,12 @@ float tone_curve(float v)
 // scene colour when sbfx may read it (u_scene_known), else black (room 1).
 vec4 tone_map(vec4 p, vec3 dst)
 {
-    vec3 c = p.rgb * u_exposure;
+    vec3 c = p.rgb;
 #ifndef TONE_MAP_NONE
     vec3 room = max(1.0 - p.a * dst, vec3(1.0 / 1024.0));
-#ifdef TONE_MAP_PER_CHANNEL
+#if defined(TONE_MAP_FILMIC)
+    c = room * tone_filmic(c / room);
+#elif defined(TONE_MAP_PER_CHANNEL)
     c = room * vec3(tone_curve(c.r / room.r), tone_curve(c.g / room.g), tone_curve(c.b / room.b));
 #else
     vec3 q = c / room;

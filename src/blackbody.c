@@ -72,6 +72,20 @@ void sbfx_blackbody_rgb(const sbfx_cmf *cmf, double kelvin, double norm, double 
         if (!(rgb[k] > 0.0) || !isfinite(rgb[k])) rgb[k] = 0.0;
 }
 
+double sbfx_blackbody_luminance(const sbfx_cmf *cmf, double kelvin)
+{
+    double xyz[3];
+    sbfx_blackbody_xyz(cmf, kelvin, xyz);
+    /* Y is W sr^-1 m^-2 weighted by ybar (peak 1): lumens per watt at the peak make it cd/m^2 */
+    return SBFX_LUMINOUS_EFFICACY * xyz[1];
+}
+
+double sbfx_emission_scale_photometric(double norm, double emissivity, double white_luminance)
+{
+    if (!(norm > 0.0) || !(white_luminance > 0.0) || !(emissivity > 0.0)) return 0.0;
+    return emissivity * SBFX_LUMINOUS_EFFICACY / (norm * white_luminance);
+}
+
 double sbfx_blackbody_norm(const sbfx_cmf *cmf, double kelvin)
 {
     double xyz[3];

@@ -16,6 +16,7 @@
 #define SBFX_BLACKBODY_SIZE 512           /* RGBA32F entries, uniform in 1/T */
 #define SBFX_PHASE_SIZE 256               /* R32F entries per medium, warped cos θ */
 #define SBFX_DEFAULT_MAX_KELVIN 6000.0    /* blackbody_max_kelvin: luminance 1 at this T */
+#define SBFX_DEFAULT_WHITE_LUMINANCE 1e4  /* desc.white_luminance, cd/m^2 */
 #define SBFX_BLACKBODY_MIN_KELVIN 500.0   /* cooler fire: under 1e-19 of the unit's light */
 #define SBFX_BLACKBODY_MARGIN 1.25        /* the range reaches this factor beyond the scene's */
 #define SBFX_TABLE_TOLERANCE 1e-3         /* docs/design.md §4: relative to the double function */
@@ -55,6 +56,9 @@ typedef struct sbfx_medium_params {
                               (sbfx_detail_clip, docs/detail-clips.md) */
     float heat_strength;   /* heat: largest screen offset of the shimmer, in UV units */
     float emission_scale;  /* fire: radiance multiplier on the normalised black-body table */
+    float emissivity;      /* fire: > 0 sets emission_scale once, in sbfx_create, from photometry
+                              (emissivity * L_blackbody / white_luminance; sbfx_reload keeps
+                              emission_scale as it is); <= 0: emission_scale as given */
     /* lit-smoke seed (lighting = "lit"; ref/lit_ref.h): per-pixel lit instead of the phase model */
     bool lit;
     float wrap;            /* wrap-around coefficient w (0.6 in the seed) */
@@ -110,6 +114,8 @@ sbfx_result sbfx_fetch_luts(sbfx *fx, sbfx_medium medium, float kelvin, float co
                             float *phase);
 /* The tables of the loaded scene (sbfx_tables above). */
 const sbfx_tables *sbfx_get_tables(const sbfx *fx);
+/* The desc the module runs with, defaults filled in (tests, bench, CPU reference). */
+const sbfx_desc *sbfx_get_desc(const sbfx *fx);
 /* Remakes the tables, shader programs and targets from the current media (sbfx_media): for
  * tests and tools that change media after sbfx_create. Allocates; not for the frame loop. */
 sbfx_result sbfx_reload(sbfx *fx);

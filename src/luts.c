@@ -27,11 +27,21 @@ static sbfx_result prepare_analytic_blackbody(sbfx *fx, const sbfx_cmf *cmf)
     return SBFX_OK;
 }
 
+/* Fire given an emissivity emits black-body luminance in the scene's unit (docs/look-fire.md). */
+static void set_photometric_emission(sbfx *fx)
+{
+    sbfx_medium_params *m = &fx->media[SBFX_FIRE];
+    if (m->emissivity > 0.0f)
+        m->emission_scale = (float)sbfx_emission_scale_photometric(fx->tables.blackbody_norm, m->emissivity,
+                                                                   fx->desc.white_luminance);
+}
+
 /* The compiled-in CIE tables feed the black-body table, or the analytic black body's per-band
  * constants (whose shader array, MAX_BANDS in particle.frag, must hold every band). */
 static sbfx_result make_fire_tables(sbfx *fx)
 {
     sbfx_result r = sbfx_tables_create(fx, &sbfx_cie1931_2deg);
+    if (r == SBFX_OK && !fx->loaded) set_photometric_emission(fx); /* once: sbfx_reload keeps what was set */
     if (r == SBFX_OK && sbfx_declared_any(fx, sbfx_quality_uses_blackbody_analytic))
         r = prepare_analytic_blackbody(fx, &sbfx_cie1931_2deg);
     return r;

@@ -139,7 +139,7 @@ typedef struct sbfx_pass_uniforms {
     GLint scene_depth, divisor, full_size, depth_model, near;         /* depth downsample */
     GLint particles, low_depth, low_size, depth_threshold;            /* composite */
     GLint scene_color, scene_known, distortion;                       /* composite: scene colour */
-    GLint exposure, tone_curve;                                       /* composite, tone map */
+    GLint tone_curve;                                                 /* composite, tone map */
 } sbfx_pass_uniforms;
 
 /* Run-time quality (quality.c). What a level needs on the GPU is kept per part, indexed

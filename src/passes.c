@@ -107,14 +107,16 @@ static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m, 
     glUniform1f(p->detail_window, mp->detail_window);
     glUniform1f(p->detail_strength, mp->detail_strength);
     glUniform1f(p->time, (float)sbfx_detail_time(fx));
-    glUniform3f(p->albedo_color, mp->albedo * mp->color[0], mp->albedo * mp->color[1],
-                mp->albedo * mp->color[2]);
+    /* pre-exposed (docs/look-fire.md): the exposure scales the light where it is made, so the
+     * particle target holds what the display gets and fire stays inside the radiance ceiling */
+    float exposure = fx->desc.exposure, scatter = mp->albedo * exposure;
+    glUniform3f(p->albedo_color, scatter * mp->color[0], scatter * mp->color[1], scatter * mp->color[2]);
     glUniform1i(p->light_count, lights->count);
     glUniform4fv(p->light_vector, lights->count, &lights->vector[0][0]);
     glUniform3fv(p->light_color, lights->count, &lights->color[0][0]);
     glUniform3fv(p->ambient, 1, fx->ambient);
     glUniform3f(p->temperature, mp->t0, mp->t1, mp->cooling);
-    glUniform1f(p->emission_scale, mp->emission_scale * (1.0f - mp->albedo));
+    glUniform1f(p->emission_scale, mp->emission_scale * (1.0f - mp->albedo) * exposure);
     sbfx_tables_bind(fx, p, m);
     if (fx->gl.smoke_texture[m]) set_lit_uniforms(fx, p, m);
 }
@@ -282,7 +284,6 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     glUniform4fv(u->depth_model, 1, fp->depth_model);
     glUniform1f(u->near, fp->near);
     glUniform1f(u->depth_threshold, 0.05f);
-    glUniform1f(u->exposure, fx->desc.exposure);
     glUniform3f(u->tone_curve, (float)fx->tone_curve.knee, (float)fx->tone_curve.steepness,
                 (float)fx->tone_curve.inverse_log_white);
     glBindVertexArray(gl->fullscreen_vao);

@@ -117,7 +117,6 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->scene_color = glGetUniformLocation(id, "u_scene_color");
     u->scene_known = glGetUniformLocation(id, "u_scene_known");
     u->distortion = glGetUniformLocation(id, "u_distortion");
-    u->exposure = glGetUniformLocation(id, "u_exposure");
     u->tone_curve = glGetUniformLocation(id, "u_tone_curve");
 }
 
@@ -125,6 +124,7 @@ static const char *const tone_map_defines[SBFX_TONE_MAP_COUNT] = {
     [SBFX_TONE_MAP_NONE] = "#define TONE_MAP_NONE\n",
     [SBFX_TONE_MAP_HUE_PRESERVING] = "#define TONE_MAP_HUE_PRESERVING\n",
     [SBFX_TONE_MAP_PER_CHANNEL] = "#define TONE_MAP_PER_CHANNEL\n",
+    [SBFX_TONE_MAP_FILMIC] = "#define TONE_MAP_FILMIC\n",
 };
 
 sbfx_result sbfx_composite_build(sbfx *fx, sbfx_upsample upsample)

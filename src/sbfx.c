@@ -76,6 +76,7 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
         if (!d.detail_format) d.detail_format = s->detail_format;
         if (!d.tone_map) d.tone_map = s->tone_map;
         if (!(d.exposure > 0)) d.exposure = s->exposure;
+        if (!(d.white_luminance > 0)) d.white_luminance = s->white_luminance;
         if (d.frame_budget_ms == 0) d.frame_budget_ms = s->frame_budget_ms;
         if (!d.ladder) d.ladder = s->ladder, d.ladder_count = s->ladder_count;
     }
@@ -88,8 +89,9 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
     if (!d.detail_size) d.detail_size = 64;
     if (!d.detail_frames) d.detail_frames = 32;
     if (!d.detail_format) d.detail_format = SBFX_DETAIL_R16F;
-    if (!d.tone_map) d.tone_map = SBFX_TONE_MAP_HUE_PRESERVING;
+    if (!d.tone_map) d.tone_map = SBFX_TONE_MAP_FILMIC;
     if (!(d.exposure > 0)) d.exposure = 1.0f;
+    if (!(d.white_luminance > 0)) d.white_luminance = (float)SBFX_DEFAULT_WHITE_LUMINANCE;
     if (!(d.sim_step > 0)) d.sim_step = 1.0f / 120.0f;
     return d;
 }
@@ -110,6 +112,9 @@ static sbfx_result validate_desc(sbfx *fx, const sbfx_desc *d)
     if (!(d->exposure <= 1e4f))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "exposure %g: use a scale above 0 and at most 1e4",
                          (double)d->exposure);
+    if (!(d->white_luminance >= 1.0f && d->white_luminance <= 1e9f))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "white_luminance %g cd/m^2: use 1 .. 1e9 (a daylight "
+                         "scene: about 1e4)", (double)d->white_luminance);
     if (d->max_particles < 1 || d->max_particles > (1 << 20))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "max_particles %d: use 1 .. 1048576",
                          d->max_particles);
@@ -238,7 +243,7 @@ static sbfx_result load(sbfx *fx)
     adopt_scene(fx, scene);
     sbfx_free(fx, builtin);
     sbfx_orbit_lights(fx); /* where orbiting lights are at t = 0 */
-    fx->tone_curve = sbfx_tone_curve_default();
+    fx->tone_curve = sbfx_tone_curve_for(fx->desc.tone_map);
     if ((r = check_context(fx)) != SBFX_OK) return r;
     if ((r = sbfx_pool_create(fx, fx->desc.max_particles)) != SBFX_OK) return r;
     return load_gl(fx);
@@ -415,6 +420,7 @@ void sbfx_stats(const sbfx *fx, sbfx_counters *out)
 }
 
 sbfx_medium_params *sbfx_media(sbfx *fx) { return fx->media; }
+const sbfx_desc *sbfx_get_desc(const sbfx *fx) { return &fx->desc; }
 
 void sbfx_set_light(sbfx *fx, const float direction[3], const float color[3], const float ambient[3])
 {

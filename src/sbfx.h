@@ -80,18 +80,20 @@ typedef enum sbfx_detail_format {
     SBFX_DETAIL_COUNT
 } sbfx_detail_format;
 
-/* How the particles' light meets the host's framebuffer (after desc.exposure scales it). Over a
+/* How the particles' light (already times desc.exposure) meets the host's framebuffer. Over a
  * host pixel dst seen through the particles' transmittance T, the light C is brought within the
  * room the picture leaves, room_k = 1 - T dst_k, so dst * T + C never clips where the host's
  * picture does not. dst is read from frame.scene_color_texture (black when there is none, or when
  * it is the texture out_framebuffer draws into). The curve is the identity up to 0.6 and a
- * logarithmic shoulder above that reaches 1 at 64, the particles' radiance ceiling
- * (docs/colour.md). */
+ * logarithmic shoulder above that reaches 1 at 64 (filmic: at 16384, the particles' radiance
+ * ceiling); docs/colour.md, docs/look-fire.md. */
 typedef enum sbfx_tone_map {
-    SBFX_TONE_MAP_DEFAULT = 0,     /* = HUE_PRESERVING */
+    SBFX_TONE_MAP_DEFAULT = 0,     /* = FILMIC */
     SBFX_TONE_MAP_NONE,            /* light added as computed: each channel clips on its own */
     SBFX_TONE_MAP_HUE_PRESERVING,  /* C scaled by curve(r) / r, r = max C_k / room_k: hue kept */
     SBFX_TONE_MAP_PER_CHANNEL,     /* C_k = room_k curve(C_k / room_k): bright colours turn white */
+    SBFX_TONE_MAP_FILMIC,          /* a path to white for emitters: the curve per channel between
+                                      a small cross-talk and its inverse; hue kept below 0.6 */
     SBFX_TONE_MAP_COUNT
 } sbfx_tone_map;
 
@@ -161,7 +163,8 @@ typedef struct sbfx_desc {
     bool light_per_particle;         /* phase-model in-scattering evaluated once per particle
                                         (on the CPU, at its centre) instead of per fragment */
     sbfx_tone_map tone_map;          /* the particles' light on the display (hue-preserving) */
-    float exposure;                  /* scale of the particles' light before it (1) */
+    float exposure;                  /* scale of the particles' light (1), applied where it is
+                                        made (pre-exposed in the particle target) */
     float sim_step;                  /* fixed simulation step in seconds (1/120) */
     double start_time;               /* seconds: where the simulation clock starts (0). A kiosk
                                         that keeps its clock across restarts passes the last
@@ -187,6 +190,11 @@ typedef struct sbfx_desc {
      * shader variants are built at load, so sbfx_set_quality to any of them never compiles. */
     const char *const *ladder;
     int ladder_count;
+    /* Photometric unit (docs/look-fire.md): the luminance in cd/m^2 that a linear 1.0 stands
+     * for, in the host's picture and in the lights' colours (10000: a daylight sky of linear
+     * luminance 0.69 is about 7000 cd/m^2). Fire given an emissivity emits
+     * emissivity * L_blackbody(T) / white_luminance. 0: the scene's, else 10000. */
+    float white_luminance;
 } sbfx_desc;
 
 /* How the host's clip-space depth became the window depth its depth texture holds (with the

@@ -237,8 +237,8 @@ static int parse_render(parser *p, const config_setting_t *g)
     static const char *const keys[] = {"target_scale", "target_format", "upsample", "opacity",
                                        "seed", "max_particles", "sim_rate", "blackbody_max_kelvin",
                                        "light_rate", "blackbody", "phase", "detail_format", "tone_map",
-                                       "exposure", "budget_ms", "ladder", NULL};
-    static const char *const tone_maps[] = {"none", "hue-preserving", "per-channel", NULL};
+                                       "exposure", "budget_ms", "ladder", "white_luminance", NULL};
+    static const char *const tone_maps[] = {"none", "hue-preserving", "per-channel", "filmic", NULL};
     static const char *const rates[] = {"per-pixel", "per-particle", NULL};
     static const char *const evaluations[] = {"table", "analytic", NULL};
     static const char *const detail_formats[] = {"r16f", "r32f", NULL};
@@ -261,7 +261,8 @@ static int parse_render(parser *p, const config_setting_t *g)
         get_choice(p, g, "blackbody", evaluations, 0, &blackbody) || get_choice(p, g, "phase", evaluations, 0, &phase) ||
         get_choice(p, g, "detail_format", detail_formats, SBFX_DETAIL_R16F, &detail_format) ||
         get_choice(p, g, "tone_map", tone_maps, SBFX_TONE_MAP_NONE, &tone_map) ||
-        get_float(p, g, "exposure", 0.01, 100, &d->exposure) || parse_budget(p, g) || parse_ladder(p, g))
+        get_float(p, g, "exposure", 0.01, 100, &d->exposure) ||
+        get_float(p, g, "white_luminance", 1, 1e9, &d->white_luminance) || parse_budget(p, g) || parse_ladder(p, g))
         return -1;
     d->tone_map = (sbfx_tone_map)tone_map;
     d->light_per_particle = rate_choice == 1;
@@ -409,10 +410,22 @@ static int parse_lighting(parser *p, const config_setting_t *g, sbfx_medium_para
     return 0;
 }
 
+/* Fire's light: `emissivity` (0..1, photometric: docs/look-fire.md) or the older `emission`, a
+ * bare multiplier of the black body normalised to luminance 1 at blackbody_max_kelvin. */
+static int parse_emission(parser *p, const config_setting_t *g, sbfx_medium_params *m, const char *what)
+{
+    const config_setting_t *emission = config_setting_get_member(g, "emission");
+    if (emission && config_setting_get_member(g, "emissivity"))
+        return fail_at(p, emission, "%s: give 'emissivity' (photometric, 0..1) or 'emission' (a bare scale), "
+                       "not both", what);
+    if (emission) m->emissivity = 0.0f;
+    return get_float(p, g, "emissivity", 0, 1, &m->emissivity);
+}
+
 static int parse_medium(parser *p, const config_setting_t *g, sbfx_medium which)
 {
     static const char *const keys[] = {"albedo", "density", "phase_g", "color", "temperature",
-                                       "cooling", "emission", "detail", "lighting", "wrap",
+                                       "cooling", "emission", "emissivity", "detail", "lighting", "wrap",
                                        "translucency", "dampening", "steps", "texture", "strength", NULL};
     sbfx_medium_params *m = &p->scene->media[which];
     float temperature[2] = {m->t0, m->t1};
@@ -423,7 +436,7 @@ static int parse_medium(parser *p, const config_setting_t *g, sbfx_medium which)
         get_vector(p, g, "color", 3, 0, 100, m->color) ||
         get_vector(p, g, "temperature", 2, 0, 1e5, temperature) ||
         get_float(p, g, "cooling", 0, 1, &m->cooling) || get_float(p, g, "emission", 0, 1e4, &m->emission_scale) ||
-        get_float(p, g, "strength", 0, 0.2, &m->heat_strength))
+        get_float(p, g, "strength", 0, 0.2, &m->heat_strength) || parse_emission(p, g, m, what))
         return -1;
     m->t0 = temperature[0], m->t1 = temperature[1];
     if (parse_lighting(p, g, m, what)) return -1;

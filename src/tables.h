@@ -8,6 +8,7 @@
 #ifndef SBFX_TABLES_H
 #define SBFX_TABLES_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include "sbfx.h"
@@ -34,6 +35,15 @@ void sbfx_blackbody_xyz(const sbfx_cmf *cmf, double kelvin, double xyz[3]);
 void sbfx_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
 /* Normalised linear sRGB: XYZ * norm -> sRGB, negative components clipped to 0. */
 void sbfx_blackbody_rgb(const sbfx_cmf *cmf, double kelvin, double norm, double rgb[3]);
+/* Photometry (docs/look-fire.md): the luminance in cd/m^2 of an optically thick black body
+ * (emissivity 1) at kelvin, K_m * integral of Planck x ybar, K_m = 683.002 lm/W the maximum
+ * luminous efficacy for the CIE 1931 ybar. 1500 K: 7.8e3, 2000 K: 4.7e5, 2500 K: 5.7e6. */
+#define SBFX_LUMINOUS_EFFICACY 683.002
+double sbfx_blackbody_luminance(const sbfx_cmf *cmf, double kelvin);
+/* The multiplier of the normalised table (norm = sbfx_blackbody_norm) that makes a fire of
+ * that emissivity emit emissivity * L_blackbody(T) / white_luminance: linear light in units of
+ * white_luminance cd/m^2 (0 if norm is 0: no light in the table). */
+double sbfx_emission_scale_photometric(double norm, double emissivity, double white_luminance);
 /* The normalisation: 1 / Y(kelvin), so the black body at `kelvin` has luminance 1. The module
  * uses desc.blackbody_max_kelvin (6000 K): the unit the media's `emission` multiplies. */
 double sbfx_blackbody_norm(const sbfx_cmf *cmf, double kelvin);
@@ -86,12 +96,29 @@ double sbfx_phase_table_error(const float *table, int size, double g);
 /* ---- tone curve of the particles' light (sbfx_tone_map; src/tonemap.c) ----------------- */
 
 #define SBFX_TONE_KNEE 0.6   /* light below this reaches the display unchanged */
-#define SBFX_TONE_WHITE 64.0 /* ...and this much (the radiance ceiling) reaches 1 */
+#define SBFX_TONE_WHITE 64.0 /* ...and this much reaches 1 (hue-preserving, per-channel) */
+/* filmic (docs/look-fire.md): each channel takes this share of the three channels' mean before
+ * the curve and gives it back after it, so light too bright for its hue crosses over to the
+ * other channels (red -> orange -> yellow -> white) while light below the knee is untouched */
+#define SBFX_TONE_INSET 0.06
+/* filmic's curve arrives at 1 here with slope 0 (no crease where it turns white) */
+#define SBFX_TONE_FILMIC_WHITE 1024.0
 typedef struct sbfx_tone_curve {
     double knee, white, steepness, inverse_log_white;
+    bool smooth_white; /* filmic: k + (1 - k)(2u - u^2) of the log shoulder u, flat at white */
 } sbfx_tone_curve;
 sbfx_tone_curve sbfx_tone_curve_default(void);
-/* v for v <= knee, then the logarithmic shoulder, 1 at and above white; 0 for v <= 0, NaN. */
+/* The curve the composite uses for op: white at SBFX_TONE_FILMIC_WHITE for filmic, else the
+ * default. */
+sbfx_tone_curve sbfx_tone_curve_for(sbfx_tone_map op);
+/* filmic on q = light / room (each channel relative to what the display can still add there;
+ * docs/look-fire.md): the identity below the knee; up to peak = max q = 1 the colour scaled by
+ * curve(peak) / peak (hue kept); above, blended over two stops into the crossover
+ * outset(curve(inset(q))), inset(q)_k = (1 - s) q_k + s mean(q), outset its inverse, clamped
+ * to [0, 1]: orange -> yellow -> white. */
+void sbfx_tone_filmic(const sbfx_tone_curve *c, const double q[3], double x[3]);
+/* v for v <= knee, then the logarithmic shoulder (filmic: its smooth-white form), 1 at and above
+ * white; 0 for v <= 0, NaN. */
 double sbfx_tone_curve_apply(const sbfx_tone_curve *c, double v);
 
 /* ---- detail volume (docs/design.md §2.4) ----------------------------------------------------- */

@@ -96,7 +96,7 @@ test_bad_arguments() {
     printf 'media = { smoke = { density = -2.0; }; };\n' >"$tmp/range.cfg"
     usage_error scene-range "range.cfg:1: 'density' = -2 is out of range" --scene "$tmp/range.cfg"
     usage_error scene-trigger-unknown "(the scene's effects: plume)" --scene scenes/smoke.cfg --trigger explosion@1
-    usage_error bad-tone-map "none|hue-preserving|per-channel" --tone-map aces
+    usage_error bad-tone-map "none|hue-preserving|per-channel|filmic" --tone-map aces
     usage_error bad-exposure --exposure --exposure 0
     usage_error budget-zero --budget-ms --budget-ms 0
     usage_error budget-negative --budget-ms --budget-ms -16

@@ -218,7 +218,7 @@ static int set_tone_map(struct player_options *opt, const char *value, char *err
 {
     static const struct choice choices[] = {
         {"none", SBFX_TONE_MAP_NONE}, {"hue-preserving", SBFX_TONE_MAP_HUE_PRESERVING},
-        {"per-channel", SBFX_TONE_MAP_PER_CHANNEL},
+        {"per-channel", SBFX_TONE_MAP_PER_CHANNEL}, {"filmic", SBFX_TONE_MAP_FILMIC},
     };
     int v = 0;
     int rc = parse_choice("--tone-map", value, choices, ARRAY_SIZE(choices), &v, err, n);
@@ -400,7 +400,7 @@ static const struct flag flags[] = {
     {"--opacity", "planar|soft|spherical|exact", set_opacity},
     {"--format", "auto|rgba8|rgba16f|rgba32f", set_format},
     {"--upsample", "bilinear|nearest-depth", set_upsample},
-    {"--tone-map", "none|hue-preserving|per-channel", set_tone_map},
+    {"--tone-map", "none|hue-preserving|per-channel|filmic", set_tone_map},
     {"--exposure", "X (0.01..100)", set_exposure},
     {"--budget-ms", "MS (0 < MS <= 10000)", set_budget},
     {"--seed", "N (0..4294967295)", set_seed},

@@ -56,6 +56,7 @@ int bench_reference_render(const bench_reference *r, sbfx *fx, const sbfx_frame 
                        .detail_time = sbfx_detail_time(fx), .cmf = r->cmf,
                        .blackbody_norm = sbfx_blackbody_norm(r->cmf, SBFX_DEFAULT_MAX_KELVIN)};
     fill_media(fx, &f);
+    f.exposure = sbfx_get_desc(fx)->exposure;
     f.light_count = fill_lights(fx, frame->view, lights, f.ambient);
     sbfx_rf_particle *particles = fill_particles(fx, frame->view, &count);
     double *layer = calloc((size_t)w * h * 4, sizeof(double));
@@ -65,7 +66,7 @@ int bench_reference_render(const bench_reference *r, sbfx *fx, const sbfx_frame 
         sbfx_rf_render_layer(&f, particles, count, layer, footprint ? footprint : own) < 0)
         result = -1;
     else
-        sbfx_rf_composite(layer, scene_rgba, w, h, SBFX_TONE_MAP_HUE_PRESERVING, 1.0, out_rgb);
+        sbfx_rf_composite(layer, scene_rgba, w, h, sbfx_get_desc(fx)->tone_map, out_rgb);
     free(layer);
     free(own);
     free(particles);

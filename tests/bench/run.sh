@@ -58,6 +58,10 @@ if [ -x "$BUILD/bench/bench_tonemap" ]; then
     "$BUILD/bench/bench_tonemap" --out "$OUT" >/dev/null
     cat "$OUT/tonemap.txt" >>"$OUT/summary.txt"
 fi
+# issue 17 item 2: fire's luminance against the sky behind it (look-fire.csv)
+if [ -x "$BUILD/bench/bench_look_fire" ]; then
+    "$BUILD/bench/bench_look_fire" --out "$OUT" | tee "$OUT/look-fire.txt"
+fi
 # issues #3 and #6: simulation throughput, load time and GPU bytes per scene, post effects
 if [ -x "$BUILD/bench/bench_scenes" ]; then
     "$BUILD/bench/bench_scenes" --out "$OUT" | tee "$OUT/scenes.txt"

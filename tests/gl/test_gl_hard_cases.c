@@ -350,7 +350,7 @@ CHECK_TEST(d_near_r_and_beyond)
 static void expect_tiny(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
 {
     (void)s;
-    /* optical depth <= 2 tau r with r <= 1e-3 and tau = 0.4 (fire's emission is at most 64) */
+    /* optical depth <= 2 tau r with r <= 1e-3 and tau = 0.4 */
     CHECK(max_alpha(r) <= 2 * 0.4 * 1e-3 * 1.01 + ALPHA_TOL, "%s: alpha %g", mode_names[mode], max_alpha(r));
 }
 
@@ -566,7 +566,7 @@ static void hot_fire(sbfx_medium_params *m)
 static void expect_ceiling(const hc_setup *s, sbfx_opacity_mode mode, const hc_result *r)
 {
     (void)s;
-    /* each fragment adds at most 64 alpha and keeps (1 - alpha) of what is behind: C <= 64 */
+    /* each fragment adds at most ceiling x alpha and keeps (1 - alpha) of what is behind: C <= ceiling */
     double most = max_light(r);
     CHECK(most <= SBFX_RF_RADIANCE_CEILING * (1.0 + 1.0 / 1024.0), "%s: light %g above the ceiling",
           mode_names[mode], most);

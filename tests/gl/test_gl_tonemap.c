@@ -80,15 +80,15 @@ typedef struct outcome {
 static outcome compare(const tone_case *c, const float *target, const uint8_t *out)
 {
     outcome o = {0};
-    sbfx_tone_map op = c->op ? c->op : SBFX_TONE_MAP_HUE_PRESERVING; /* zero in the desc: the defaults */
-    double exposure = c->exposure > 0 ? c->exposure : 1.0, back[3];
+    sbfx_tone_map op = c->op ? c->op : SBFX_TONE_MAP_FILMIC; /* zero in the desc: the defaults */
+    double back[3];
     for (int k = 0; k < 3; k++) back[k] = lrint(c->back[k] * 255.0) / 255.0; /* what the picture holds */
     for (int i = 0; i < SIZE * SIZE; i++) {
         const float *px = &target[4 * i];
         double light[3] = {px[0], px[1], px[2]}, mapped[3];
         if (px[3] > 1.0f - 1.0f / 255.0f) continue;
         o.covered++;
-        sbfx_rf_tone_map(op, exposure, light, px[3], c->scene == SCENE_GIVEN ? back : NULL, mapped);
+        sbfx_rf_tone_map(op, light, px[3], c->scene == SCENE_GIVEN ? back : NULL, mapped);
         bool clipped = false;
         for (int k = 0; k < 3; k++) {
             double want = fmin(fmax(back[k] * px[3] + mapped[k], 0.0), 1.0) * 255.0;
@@ -133,12 +133,16 @@ CHECK_TEST(hue_preserving_clips_nothing_over_a_known_scene)
 {
     gl_fixture f;
     fixture_open_far(&f, SIZE, SIZE);
-    outcome o = run(&f, (tone_case){SBFX_TONE_MAP_DEFAULT, 0.0f, background, SCENE_GIVEN, "hue-preserving"});
+    outcome o = run(&f, (tone_case){SBFX_TONE_MAP_DEFAULT, 0.0f, background, SCENE_GIVEN, "default (filmic)"});
+    CHECK(o.clipped == 0, "%d of %d pixels clipped", o.clipped, o.covered);
+    o = run(&f, (tone_case){SBFX_TONE_MAP_HUE_PRESERVING, 1.0f, background, SCENE_GIVEN, "hue-preserving"});
     CHECK(o.clipped == 0, "%d of %d pixels clipped", o.clipped, o.covered);
     o = run(&f, (tone_case){SBFX_TONE_MAP_PER_CHANNEL, 1.0f, background, SCENE_GIVEN, "per-channel"});
     CHECK(o.clipped == 0, "%d of %d pixels clipped", o.clipped, o.covered);
+    o = run(&f, (tone_case){SBFX_TONE_MAP_FILMIC, 1.0f, background, SCENE_GIVEN, "filmic"});
+    CHECK(o.clipped == 0, "%d of %d pixels clipped", o.clipped, o.covered);
     /* unknown picture: the light alone is kept below 1, the sky behind it may still clip */
-    outcome blind = run(&f, (tone_case){SBFX_TONE_MAP_DEFAULT, 1.0f, background, SCENE_NOT_GIVEN, "hue-preserving"});
+    outcome blind = run(&f, (tone_case){SBFX_TONE_MAP_DEFAULT, 1.0f, background, SCENE_NOT_GIVEN, "default (filmic)"});
     CHECK(blind.clipped > 0, "over a bright sky the blind mapping should clip somewhere");
     fixture_close(&f);
 }
@@ -171,6 +175,25 @@ CHECK_TEST(exposure_scales_the_light)
     fixture_open_far(&f, SIZE, SIZE);
     run(&f, (tone_case){SBFX_TONE_MAP_NONE, 0.25f, black, SCENE_NOT_GIVEN, "none"});
     run(&f, (tone_case){SBFX_TONE_MAP_HUE_PRESERVING, 4.0f, background, SCENE_GIVEN, "hue-preserving"});
+    /* pre-exposed (docs/look-fire.md): the particle target itself holds the light times the
+     * exposure, scattered and emitted alike; its transmittance does not change */
+    float *one, *quarter;
+    static uint8_t out[SIZE * SIZE * 4];
+    render(&f, &(tone_case){SBFX_TONE_MAP_NONE, 1.0f, black, SCENE_NOT_GIVEN, "none"}, &one, out);
+    render(&f, &(tone_case){SBFX_TONE_MAP_NONE, 0.25f, black, SCENE_NOT_GIVEN, "none"}, &quarter, out);
+    double worst = 0;
+    int lit = 0;
+    for (int i = 0; i < SIZE * SIZE; i++) {
+        CHECK(quarter[4 * i + 3] == one[4 * i + 3], "transmittance changed at %d", i);
+        for (int k = 0; k < 3; k++)
+            if (one[4 * i + k] > 1e-3f) {
+                lit++;
+                worst = fmax(worst, fabs(quarter[4 * i + k] / one[4 * i + k] - 0.25));
+            }
+    }
+    printf("# exposure 0.25: target light / light at exposure 1 within %.2g of 0.25 in %d channels\n", worst, lit);
+    CHECK(lit > SIZE * SIZE / 4 && worst < 1e-4, "%d lit channels, ratio off by %g", lit, worst);
+    free(one), free(quarter);
     fixture_close(&f);
 }
 
@@ -192,6 +215,44 @@ CHECK_TEST(tone_curve_shape)
     printf("# tone curve: knee %.2f, steepness %.4f; 1 -> %.3f, 2 -> %.3f, 10 -> %.3f, 30 -> %.3f\n", c.knee,
            c.steepness, sbfx_tone_curve_apply(&c, 1), sbfx_tone_curve_apply(&c, 2), sbfx_tone_curve_apply(&c, 10),
            sbfx_tone_curve_apply(&c, 30));
+}
+
+static void srgb_to_uv(const double rgb[3], double uv[2])
+{
+    double x = 0.4124 * rgb[0] + 0.3576 * rgb[1] + 0.1805 * rgb[2], y = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+    double z = 0.0193 * rgb[0] + 0.1192 * rgb[1] + 0.9505 * rgb[2], d = x + 15 * y + 3 * z;
+    uv[0] = 4 * x / d, uv[1] = 9 * y / d;
+}
+
+/* filmic (docs/look-fire.md): black-body mid-tones (light a display could show as it is: every
+ * channel at most 1, luminance from 0.05) keep its chromaticity within 0.005 in u'v' (round 2's Planckian-locus bound), and
+ * brighter light goes to white: luminance rising with the light, all channels 1 at the end. */
+CHECK_TEST(filmic_keeps_mid_tone_hue_and_goes_to_white)
+{
+    const sbfx_cmf *cmf = &sbfx_cie1931_2deg;
+    sbfx_tone_curve c = sbfx_tone_curve_for(SBFX_TONE_MAP_FILMIC);
+    double worst = 0;
+    for (double kelvin = 1200; kelvin <= 6500; kelvin += 100) {
+        double bb[3], before = -1, in_uv[2];
+        sbfx_blackbody_rgb(cmf, kelvin, sbfx_blackbody_norm(cmf, kelvin), bb); /* luminance 1 */
+        srgb_to_uv(bb, in_uv);
+        for (double scale = 0.01; scale < 1e5; scale *= 1.05) {
+            double q[3] = {bb[0] * scale, bb[1] * scale, bb[2] * scale}, x[3], uv[2];
+            sbfx_tone_filmic(&c, q, x);
+            double y = 0.2126 * x[0] + 0.7152 * x[1] + 0.0722 * x[2];
+            CHECK(y >= before - 1e-12, "%g K: luminance falls at scale %g", kelvin, scale);
+            before = y;
+            if (y < 0.05 || fmax(q[0], fmax(q[1], q[2])) > 1.0) continue; /* mid-tones: displayable as they are */
+            srgb_to_uv(x, uv);
+            worst = fmax(worst, hypot(uv[0] - in_uv[0], uv[1] - in_uv[1]));
+        }
+        double q[3] = {bb[0] * 1e6, bb[1] * 1e6, bb[2] * 1e6}, x[3];
+        sbfx_tone_filmic(&c, q, x);
+        CHECK(x[0] == 1.0 && x[1] == 1.0 && x[2] == 1.0, "%g K far above white: %g %g %g", kelvin, x[0], x[1], x[2]);
+    }
+    printf("# filmic: mid-tone black-body light (channels <= 1, luminance >= 0.05, 1200 .. 6500 K) moves at most "
+           "%.4f in u'v'\n", worst);
+    CHECK(worst <= 0.005, "mid-tones moved %.4f in u'v'", worst);
 }
 
 int main(int argc, char **argv) { return check_main_args(argc, argv); }

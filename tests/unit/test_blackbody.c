@@ -220,6 +220,47 @@ CHECK_TEST(blackbody_norm_is_inverse_y_of_max)
     CHECK(sbfx_blackbody_norm(NULL, 6000.0) == 0.0);
 }
 
+/* ---- photometry (docs/look-fire.md) ------------------------------------------------------ */
+
+/* The test's own integration, independent of src/blackbody.c: Planck's law written out in long
+ * double, ybar interpolated linearly between the file's 5 nm bands, Simpson's rule at 0.05 nm. */
+static double independent_luminance(const sbfx_cmf *cmf, double kelvin)
+{
+    const long double h = 6.62607015e-34L, c = 299792458.0L, k = 1.380649e-23L;
+    double end_nm = cmf->start_nm + cmf->step_nm * (cmf->bands - 1), step = 0.05, sum = 0;
+    int n = (int)lround((end_nm - cmf->start_nm) / step);
+    for (int i = 0; i <= n; i++) {
+        double nm = cmf->start_nm + step * i, pos = (nm - cmf->start_nm) / cmf->step_nm;
+        int j = (int)pos < cmf->bands - 1 ? (int)pos : cmf->bands - 2;
+        double ybar = cmf->xyz[1][j] + (cmf->xyz[1][j + 1] - cmf->xyz[1][j]) * (pos - j);
+        long double lambda = nm * 1e-9L;
+        long double planck = 2 * h * c * c / powl(lambda, 5) / expm1l(h * c / (lambda * k * kelvin));
+        double weight = (i == 0 || i == n) ? 1 : (i % 2 ? 4 : 2);
+        sum += weight * ybar * (double)planck;
+    }
+    return 683.002 * sum * step * 1e-9 / 3.0;
+}
+
+/* DESIGN §8: an optically thick black body at 1500 K has about 7.8e3 cd/m^2 (a clear daylight
+ * sky is about 1e4), 2000 K about 4.7e5, 2500 K about 5.7e6. */
+CHECK_TEST(blackbody_luminance_in_candela)
+{
+    static sbfx_cmf cmf;
+    load_cmf(&cmf);
+    const double kelvin[] = {1000, 1500, 2000, 2500, 3000, 6000}, expected[] = {0, 7.8e3, 4.7e5, 5.7e6, 0, 0};
+    for (int i = 0; i < 6; i++) {
+        double got = sbfx_blackbody_luminance(&cmf, kelvin[i]), want = independent_luminance(&cmf, kelvin[i]);
+        printf("# %5.0f K: %.4g cd/m^2 (Simpson at 0.05 nm: %.4g)\n", kelvin[i], got, want);
+        /* 5 nm trapezoid against a fine integration of the same data */
+        CHECK(rel_err(got, want) < 2e-3, "%g K: %g vs %g", kelvin[i], got, want);
+        if (expected[i] > 0) CHECK(rel_err(got, expected[i]) < 0.03, "%g K: %g cd/m^2", kelvin[i], got);
+    }
+    CHECK(sbfx_blackbody_luminance(&cmf, 1500) < sbfx_blackbody_luminance(&cmf, 2000));
+    CHECK(sbfx_blackbody_luminance(&cmf, 0) == 0.0 && sbfx_blackbody_luminance(&cmf, NAN) == 0.0);
+    double hot = sbfx_blackbody_luminance(&cmf, 1e5);
+    CHECK(isfinite(hot) && hot > 1e11, "1e5 K: %g", hot);
+}
+
 /* Entries: chromaticity (rgb / Y, unclipped) and ln(Y / T) at T uniform in 1/T. */
 CHECK_TEST(table_entries)
 {

@@ -201,7 +201,7 @@ CHECK_TEST(mediump_emulation_rounds)
 }
 
 /* The module's own media (g = 0) and the explosion's lights (sun 1.6, flash 6 seen from 0.5 m
- * at the closest) stay far below half's 65504; emission is capped at 64 by the shader. The
+ * at the closest) stay far below half's 65504; emission is capped at 16384 by the shader. The
  * phase function's peak is what could overflow: the g at which the flash alone would. */
 CHECK_TEST(mediump_range_of_default_lights)
 {

@@ -4,6 +4,7 @@
 #include <string.h>
 #include "check.h"
 #include "sbfx.h"
+#include "scene.h"
 
 #define MEDIA "media = { smoke = { albedo = 0.2; density = 0.4; }; };\n"
 #define EFFECT(body) "effects = { puff = { steps = ( " body " ); }; };\n"
@@ -155,9 +156,35 @@ CHECK_TEST(tone_map_and_exposure_keys)
     CHECK(sbfx_scene_parse(text, "tone.cfg", &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
     sbfx_scene_free(scene);
     expect_error("render = {\n tone_map = \"aces\"; };\n" MEDIA EFFECT(EMITTER), 2,
-                 "is not one of: none, hue-preserving, per-channel");
+                 "is not one of: none, hue-preserving, per-channel, filmic");
     expect_error("render = { exposure = 0.0; };\n" MEDIA EFFECT(EMITTER), 1, "'exposure' = 0 is out of range");
     expect_error("render = { tonemap = \"none\"; };\n" MEDIA EFFECT(EMITTER), 1, "did you mean 'tone_map'");
+}
+
+/* Fire's photometric units (docs/look-fire.md): media.fire.emissivity (0..1) and
+ * render.white_luminance (cd/m^2 of a linear 1.0); the older bare `emission` scale still parses,
+ * but not beside an emissivity. */
+#define FIRE_EFFECT "effects = { f = { steps = ( { type = \"emitter\"; medium = \"fire\"; count = 10; } ); }; };\n"
+CHECK_TEST(fire_units_keys)
+{
+    char err[256];
+    sbfx_scene *scene = NULL;
+    const char *text = "render = { white_luminance = 5000.0; };\nmedia = { fire = { emissivity = 0.5; }; };\n" FIRE_EFFECT;
+    CHECK(sbfx_scene_parse(text, "fire.cfg", &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
+    if (scene) {
+        CHECK(scene->render.white_luminance == 5000.0f && scene->media[SBFX_FIRE].emissivity == 0.5f);
+        sbfx_scene_free(scene);
+    }
+    CHECK(sbfx_scene_parse("media = { fire = { emission = 150.0; }; };\n" FIRE_EFFECT, "old.cfg", &scene, err,
+                           sizeof(err)) == SBFX_OK, "%s", err);
+    if (scene) {
+        CHECK(scene->media[SBFX_FIRE].emissivity == 0.0f && scene->media[SBFX_FIRE].emission_scale == 150.0f);
+        sbfx_scene_free(scene);
+    }
+    expect_error("media = { fire = { emissivity = 0.5;\n emission = 150.0; }; };\n" FIRE_EFFECT, 2,
+                 "give 'emissivity' (photometric, 0..1) or 'emission' (a bare scale), not both");
+    expect_error("media = { fire = { emissivity = 1.5; }; };\n" FIRE_EFFECT, 1, "'emissivity' = 1.5 is out of range");
+    expect_error("render = { white_luminance = 0.0; };\n" FIRE_EFFECT, 1, "'white_luminance' = 0 is out of range");
 }
 
 /* render.budget_ms and render.ladder (issue 11): a positive time, known level names. */

@@ -16,7 +16,13 @@
  *     (the module's convention: docs/colour.md), to CIE 1976 u'v', the shortest
  *     distance to the Planckian locus (CIE 1931 2° CMFs, 500..25000 K); mean, median, 95th
  *     percentile. The row "unclamped" is the same for the light before any display, the best a
- *     display could show (the fire's light mixed with what lies in front of it and behind).
+ *     display could show (the fire's light mixed with what lies in front of it and behind);
+ *   - mid-tones: the fire pixels whose light the display can show as it is (`none` over the
+ *     scene, unclamped, at most 1 in every channel), where a tone map should keep the hue: their
+ *     distance to the locus as sRGB can show it (below about 1900 K the black body lies outside
+ *     the gamut; the module clips its negative blue, sbfx_blackbody_rgb, and so does this
+ *     locus), median and 95th percentile, and how far the display moved them from the light's own
+ *     chromaticity (95th percentile) (issue 17, docs/look-fire.md).
  *
  *   bench_tonemap [--out DIR] [--size WxH]     writes DIR/tonemap.csv and DIR/tonemap.txt */
 #include <errno.h>
@@ -32,11 +38,11 @@
 #define LOCUS_POINTS 4096
 #define FIRE_SHARE (1.0 / 3.0)
 #define MIN_LUMINANCE 0.05
-#define OPERATORS 3
+#define OPERATORS 4
 
 static const sbfx_tone_map operators[OPERATORS] = {SBFX_TONE_MAP_NONE, SBFX_TONE_MAP_HUE_PRESERVING,
-                                                   SBFX_TONE_MAP_PER_CHANNEL};
-static const char *const operator_names[OPERATORS] = {"none", "hue-preserving", "per-channel"};
+                                                   SBFX_TONE_MAP_PER_CHANNEL, SBFX_TONE_MAP_FILMIC};
+static const char *const operator_names[OPERATORS] = {"none", "hue-preserving", "per-channel", "filmic"};
 
 typedef struct scene_plan {
     const char *name;
@@ -52,12 +58,16 @@ static const scene_plan plans[] = {
 typedef struct stats {
     long particle_pixels, clipped, fire_pixels;
     double *duv;           /* one per fire pixel */
+    double *duv_mid;       /* one per mid-tone fire pixel: to the shown locus */
+    double *shift_mid;     /* ... and from the light's own chromaticity (what the display changed) */
+    long mid_pixels;
     double luminance_sum;  /* of the fire pixels as displayed: how bright the fire looks */
 } stats;
 
 typedef struct bench {
     int width, height;
     double locus[LOCUS_POINTS][2];
+    double shown_locus[LOCUS_POINTS][2]; /* the black body as sRGB shows it: negative channels clipped */
     GLuint out_fbo, out_texture;
     struct test_scene scene;
     float *over_scene[OPERATORS + 1]; /* per operator, then the scene alone */
@@ -105,14 +115,17 @@ static void make_locus(bench *b)
         double w = 1.0 / 25000.0 + (1.0 / 500.0 - 1.0 / 25000.0) * i / (LOCUS_POINTS - 1), xyz[3];
         sbfx_blackbody_xyz(&cmf, 1.0 / w, xyz);
         xyz_to_uv(xyz, b->locus[i]);
+        double rgb[3];
+        sbfx_blackbody_rgb(&cmf, 1.0 / w, sbfx_blackbody_norm(&cmf, 1.0 / w), rgb);
+        srgb_to_uv(rgb, b->shown_locus[i]);
     }
 }
 
-static double locus_distance(const bench *b, const double uv[2])
+static double locus_distance_to(const double (*locus)[2], const double uv[2])
 {
     double best = INFINITY;
     for (int i = 0; i + 1 < LOCUS_POINTS; i++) { /* to each segment of the polyline */
-        const double *p = b->locus[i], *q = b->locus[i + 1];
+        const double *p = locus[i], *q = locus[i + 1];
         double dx = q[0] - p[0], dy = q[1] - p[1], len2 = dx * dx + dy * dy;
         double t = len2 > 0 ? ((uv[0] - p[0]) * dx + (uv[1] - p[1]) * dy) / len2 : 0.0;
         t = t < 0 ? 0 : t > 1 ? 1 : t;
@@ -121,6 +134,8 @@ static double locus_distance(const bench *b, const double uv[2])
     }
     return sqrt(best);
 }
+
+static double locus_distance(const bench *b, const double uv[2]) { return locus_distance_to(b->locus, uv); }
 
 /* ---- rendering -------------------------------------------------------------------------- */
 
@@ -213,6 +228,7 @@ static void measure_fire(const bench *b, stats st[OPERATORS + 1])
         double light[3], fire[3];
         for (int k = 0; k < 3; k++) light[k] = shown[4 * i + k], fire[k] = with_fire[4 * i + k] - no_fire[4 * i + k];
         if (!(luminance(fire) >= FIRE_SHARE * luminance(light))) continue;
+        bool mid = fmax(light[0], fmax(light[1], light[2])) <= 1.0;
         for (int o = 0; o <= OPERATORS; o++) {
             const float *px = b->over_scene[o < OPERATORS ? o : 0] + 4 * i;
             double rgb[3], uv[2];
@@ -221,6 +237,13 @@ static void measure_fire(const bench *b, stats st[OPERATORS + 1])
             srgb_to_uv(rgb, uv);
             st[o].luminance_sum += luminance(rgb);
             st[o].duv[st[o].fire_pixels++] = locus_distance(b, uv);
+            if (mid) {
+                double own[3], own_uv[2];
+                for (int k = 0; k < 3; k++) own[k] = shown[4 * i + k];
+                srgb_to_uv(own, own_uv);
+                st[o].shift_mid[st[o].mid_pixels] = hypot(uv[0] - own_uv[0], uv[1] - own_uv[1]);
+                st[o].duv_mid[st[o].mid_pixels++] = locus_distance_to(b->shown_locus, uv);
+            }
         }
     }
 }
@@ -234,19 +257,25 @@ static int compare_doubles(const void *a, const void *b)
 static void report(const char *scene, const char *name, stats *s, FILE *csv, FILE *txt)
 {
     qsort(s->duv, (size_t)s->fire_pixels, sizeof(double), compare_doubles);
+    qsort(s->duv_mid, (size_t)s->mid_pixels, sizeof(double), compare_doubles);
+    qsort(s->shift_mid, (size_t)s->mid_pixels, sizeof(double), compare_doubles);
+    long m = s->mid_pixels;
+    double mid_median = m ? s->duv_mid[m / 2] : NAN, mid_p95 = m ? s->duv_mid[(long)(0.95 * (m - 1))] : NAN;
+    double shift_p95 = m ? s->shift_mid[(long)(0.95 * (m - 1))] : NAN;
     double sum = 0;
     for (long i = 0; i < s->fire_pixels; i++) sum += s->duv[i];
     long n = s->fire_pixels;
     double mean = n ? sum / n : NAN, median = n ? s->duv[n / 2] : NAN, p95 = n ? s->duv[(long)(0.95 * (n - 1))] : NAN;
     double share = s->particle_pixels ? (double)s->clipped / s->particle_pixels : NAN;
     double fire_y = n ? s->luminance_sum / n : NAN;
-    fprintf(csv, "%s,%s,%ld,%ld,%.4f,%ld,%.5f,%.5f,%.5f,%.4f\n", scene, name, s->particle_pixels, s->clipped, share, n,
-            mean, median, p95, fire_y);
+    fprintf(csv, "%s,%s,%ld,%ld,%.4f,%ld,%.5f,%.5f,%.5f,%.4f,%ld,%.5f,%.5f,%.5f\n", scene, name, s->particle_pixels,
+            s->clipped, share, n, mean, median, p95, fire_y, m, mid_median, mid_p95, shift_p95);
     char clipped[48] = "light before display:     ";
     if (strcmp(name, "unclamped") != 0) snprintf(clipped, sizeof(clipped), "clipped %5.1f %% of %7ld,", 100.0 * share,
                                                  s->particle_pixels);
     fprintf(txt, "  %-9s %-14s %s fire pixels %5ld: du'v' to the Planckian locus mean %.4f, median %.4f, 95th "
-                 "percentile %.4f; mean luminance %.3f\n", scene, name, clipped, n, mean, median, p95, fire_y);
+                 "percentile %.4f; mean luminance %.3f; mid-tones %ld, to the shown locus: median %.4f, 95th percentile %.4f, moved by the display (95th) %.4f\n",
+            scene, name, clipped, n, mean, median, p95, fire_y, m, mid_median, mid_p95, shift_p95);
 }
 
 static void run_scene(bench *b, const scene_plan *plan, FILE *csv, FILE *txt)
@@ -264,7 +293,9 @@ static void run_scene(bench *b, const scene_plan *plan, FILE *csv, FILE *txt)
     sbfx_scene_free(scene);
     stats st[OPERATORS + 1];
     size_t capacity = (size_t)b->width * b->height * plan->frames;
-    for (int o = 0; o <= OPERATORS; o++) st[o] = (stats){.duv = xcalloc(capacity, sizeof(double))};
+    for (int o = 0; o <= OPERATORS; o++)
+        st[o] = (stats){.duv = xcalloc(capacity, sizeof(double)), .duv_mid = xcalloc(capacity, sizeof(double)),
+                        .shift_mid = xcalloc(capacity, sizeof(double))};
     for (int f = 0; f < plan->frames; f++) {
         double t = plan->times[f];
         sbfx_frame frame = {.scene_color_texture = b->scene.color_texture, .scene_depth_texture = b->scene.depth_texture,
@@ -283,6 +314,8 @@ static void run_scene(bench *b, const scene_plan *plan, FILE *csv, FILE *txt)
     for (int o = 0; o <= OPERATORS; o++) {
         report(plan->name, o < OPERATORS ? operator_names[o] : "unclamped", &st[o], csv, txt);
         free(st[o].duv);
+        free(st[o].duv_mid);
+        free(st[o].shift_mid);
         sbfx_destroy(fx[o]);
     }
 }
@@ -312,7 +345,8 @@ int main(int argc, char **argv)
     snprintf(path, sizeof(path), "%s/tonemap.txt", out);
     FILE *txt = fopen(path, "w");
     if (!csv || !txt) die(out, strerror(errno));
-    fprintf(csv, "scene,tone_map,particle_pixels,clipped,clipped_share,fire_pixels,duv_mean,duv_median,duv_p95,fire_luminance\n");
+    fprintf(csv, "scene,tone_map,particle_pixels,clipped,clipped_share,fire_pixels,duv_mean,duv_median,duv_p95,fire_luminance,"
+                 "mid_pixels,duv_mid_median,duv_mid_p95,duv_mid_shift_p95\n");
     fprintf(txt, "display: particle pixels with a clipped channel, and the displayed fire pixels' distance from the "
                  "black-body locus (CIE 1976 u'v'), %dx%d, each scene from its camera\n", b->width, b->height);
     for (size_t i = 0; i < sizeof(plans) / sizeof(plans[0]); i++) run_scene(b, &plans[i], csv, txt);

@@ -1,0 +1,31 @@
+/* Does fire read as light? (issue 17 item 2, DESIGN §8; docs/look-fire.md)
+ *
+ * Luminance Y of the sRGB output, linearised (IEC 61966-2-1 decode), Rec. 709 weights. Fire
+ * pixels: where the output differs from a background-only render of the same view by more than
+ * 4 levels in some channel (and, if a mask is given, where the mask is non-zero: e.g. where the
+ * fire's own emission changes the picture, for effects that also hold smoke and dust). For each
+ * fire pixel the ratio Y(output) / Y(background) — how much brighter than the sky behind it the
+ * fire shows; the median and the 90th percentile of those ratios. Pure C, no GL: the bench's
+ * look.csv writer and the tests call it with images they read back. */
+#ifndef SBFX_FIRE_METRIC_H
+#define SBFX_FIRE_METRIC_H
+
+#include <stdint.h>
+
+#define FIRE_METRIC_LEVELS 4   /* a pixel the effect changes by more than this many levels */
+
+typedef struct fire_ratios {
+    double median, p90;  /* of Y(out) / Y(background) over the fire pixels; NAN if none */
+    long pixels;         /* fire pixels counted */
+} fire_ratios;
+
+/* Y of an 8-bit sRGB-encoded pixel (rgb), linearised. */
+double fire_metric_luminance(const uint8_t *rgb);
+
+/* out, background: width*height RGBA8 pixels in the same row order; mask: NULL or width*height
+ * bytes. Fills *r; returns 0, or -1 when there is no fire pixel or no memory (r then has NAN
+ * ratios and its pixel count). */
+int fire_metric_ratios(const uint8_t *out, const uint8_t *background, const uint8_t *mask, int width, int height,
+                       fire_ratios *r);
+
+#endif
