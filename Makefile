@@ -388,3 +388,11 @@ cross-check:
 
 .PHONY: FORCE
 FORCE:
+
+# ---- the look (issue 17): the β metric (tests/look/look_metrics.c, docs/look.md) ----------
+$(BUILD)/obj/look/%.o: tests/look/%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests/look -c -o $@ $<
+$(BUILD)/tests/unit/test_look_metrics: tests/unit/test_look_metrics.c $(BUILD)/obj/look/look_metrics.o tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(SRC_CFLAGS) -Itests -Itests/look $(LDSAN) -o $@ $< $(BUILD)/obj/look/look_metrics.o -lm
