@@ -396,3 +396,8 @@ $(BUILD)/obj/look/%.o: tests/look/%.c | deps
 $(BUILD)/tests/unit/test_look_metrics: tests/unit/test_look_metrics.c $(BUILD)/obj/look/look_metrics.o tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(SRC_CFLAGS) -Itests -Itests/look $(LDSAN) -o $@ $< $(BUILD)/obj/look/look_metrics.o -lm
+LOOK_OBJ := $(BUILD)/obj/look/look_metrics.o $(BUILD)/obj/look/look_render.o
+$(BUILD)/bench/bench_look: $(BUILD)/obj/look/bench_look.o $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
+	@mkdir -p $(@D)
+	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
+bench: $(BUILD)/bench/bench_look
