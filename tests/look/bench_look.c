@@ -5,7 +5,7 @@
  * (tests/look/look_metrics.h) is the one every row of that shot is measured over, so the band
  * energies of the other scales and of the detail-off render compare the same pixels.
  *
- *   bench_look [--out DIR] [--size WxH] [--quick] [--png] [--scene NAME]...
+ *   bench_look [--out DIR] [--size WxH] [--quick] [--png] [--scales N] [--scene NAME]...
  *
  * Writes DIR/look.csv: one row per (scene, view, t, scale, detail) with the columns of
  * `columns[]` below (add a field to look_row and a line there to add a column), and with --png
@@ -79,7 +79,7 @@ typedef struct plan {
 
 static const view views[] = {{"default", 0.0f}, {"az+100", 100.0f}, {"az-140", -140.0f}};
 static const plan plans[] = {
-    {"explosion", {1.5, 2.2}}, {"smoke", {3.0, 4.5}}, {"dust-storm", {2.5, 4.0}}, {"campfire", {2.0, 3.5}},
+    {"explosion", {2.2, 1.5}}, {"smoke", {3.0, 4.5}}, {"dust-storm", {2.5, 4.0}}, {"campfire", {2.0, 3.5}},
     {"barrage", {1.5, 2.5}},   {"lit-smoke", {3.0, 5.0}}, {"post", {1.5, 2.2}},
 };
 
@@ -87,6 +87,7 @@ typedef struct options {
     const char *out;
     int width, height;
     bool quick, png;
+    int scales; /* the first this many of 1, 2, 4, 8 (--scales N; --quick: 3) */
     const char *only[8];
     int only_count;
 } options;
@@ -99,16 +100,19 @@ static void die(const char *what, const char *why)
 
 static options parse(int argc, char **argv)
 {
-    options o = {"build/bench", 960, 540, false, false, {0}, 0};
+    options o = {"build/bench", 960, 540, false, false, 4, {0}, 0};
     for (int i = 1; i < argc; i++) {
         bool more = i + 1 < argc;
         if (!strcmp(argv[i], "--out") && more) o.out = argv[++i];
         else if (!strcmp(argv[i], "--size") && more && sscanf(argv[++i], "%dx%d", &o.width, &o.height) == 2) {}
         else if (!strcmp(argv[i], "--quick")) o.quick = true;
         else if (!strcmp(argv[i], "--png")) o.png = true;
+        else if (!strcmp(argv[i], "--scales") && more) o.scales = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--scene") && more && o.only_count < 8) o.only[o.only_count++] = argv[++i];
-        else die("usage", "bench_look [--out DIR] [--size WxH] [--quick] [--png] [--scene NAME]...");
+        else die("usage", "bench_look [--out DIR] [--size WxH] [--quick] [--png] [--scales 1..4] [--scene NAME]...");
     }
+    if (o.quick && o.scales > 3) o.scales = 3;
+    if (o.scales < 1 || o.scales > 4) die("options", "--scales 1..4");
     if (o.width < 64 || o.height < 64 || o.width > 4096 || o.height > 4096) die("options", "--size 64x64..4096x4096");
     return o;
 }
@@ -141,11 +145,11 @@ static void run_shot(const options *o, look_renderer *r, FILE *csv, const plan *
     char path[256], err[512];
     snprintf(path, sizeof path, "scenes/%s.cfg", p->scene);
     look_spectrum ref = {0};
-    int nscales = o->quick ? 3 : 4;
+    int nscales = o->scales;
     for (int detail = 1; detail >= 0; detail--)
         for (int s = 0; s < nscales; s++) {
-            if (!detail && s > 0 && s != 2) continue; /* detail off: full and the default 1/4 */
-            look_shot shot = {path, t, v->azimuth_offset, scales[s], !detail, NULL};
+            if (!detail && s > 0) continue; /* detail off: full resolution */
+            look_shot shot = {path, t, v->azimuth_offset, scales[s], !detail, NULL, false, 1};
             if (look_render(r, &shot, err, sizeof err) != 0) die(p->scene, err);
             if (detail && s == 0) look_effect_mask(r->out_rgba, r->background_rgba, r->width, r->height, mask);
             look_luminance(r->out_rgba, n, y);
@@ -168,6 +172,26 @@ static void run_shot(const options *o, look_renderer *r, FILE *csv, const plan *
     free(y);
 }
 
+/* What the detail costs: the default target (scale 4) and full resolution, the explosion at its
+ * first time, sbfx_render's wall time (median of 7, after one warm-up) with the detail and with
+ * programs built without it (strengths 0, reloaded). llvmpipe: CPU time, not a GPU's. */
+static void run_cost(look_renderer *r, FILE *f)
+{
+    static const int scales[] = {4, 1};
+    char err[512];
+    for (int s = 0; s < 2; s++) {
+        double ms[2];
+        for (int unloaded = 0; unloaded < 2; unloaded++) {
+            look_shot shot = {"scenes/explosion.cfg", plans[0].times[0], 0.0f, scales[s], false, NULL, unloaded != 0, 8};
+            if (look_render(r, &shot, err, sizeof err) != 0) die("cost", err);
+            ms[unloaded] = r->particle_ms;
+        }
+        fprintf(f, "detail cost: explosion t=%.2f scale %d: sbfx_render %.1f ms with detail, %.1f ms without: "
+                   "the detail's share %.0f %%\n", plans[0].times[0], scales[s], ms[0], ms[1],
+                100.0 * (ms[0] - ms[1]) / ms[0]);
+    }
+}
+
 int main(int argc, char **argv)
 {
     options o = parse(argc, argv);
@@ -188,6 +212,12 @@ int main(int argc, char **argv)
             for (int k = 0; k < (o.quick ? 1 : 2); k++) run_shot(&o, &r, csv, &plans[p], &views[v], plans[p].times[k]);
     }
     fclose(csv);
+    snprintf(path, sizeof path, "%s/look.txt", o.out);
+    FILE *txt = fopen(path, "w");
+    if (!txt) die(path, "cannot write");
+    if (!o.only_count || wanted(&o, "explosion")) run_cost(&r, txt);
+    fclose(txt);
+    snprintf(path, sizeof path, "%s/look.csv", o.out);
     look_renderer_close(&r);
     egl_headless_close(&egl);
     printf("bench_look: %s\n", path);

@@ -20,6 +20,8 @@ typedef struct look_shot {
     int divisor;             /* particle target divisor, 1 2 4 8; 0: the scene's (else 4) */
     bool detail_off;         /* every medium's detail strength set to 0 after load */
     const sbfx_desc *base;   /* optional: other desc fields (scene, divisor, log are set here) */
+    bool detail_unloaded;    /* strengths 0 and sbfx_reload: programs without the detail at all */
+    int reps;                /* sbfx_render this many times (0: once); particle_ms = the median */
 } look_shot;
 
 typedef struct look_renderer {
@@ -27,7 +29,7 @@ typedef struct look_renderer {
     struct test_scene scene;
     GLuint out_fbo, out_renderbuffer;
     uint8_t *out_rgba, *background_rgba; /* width x height x 4 */
-    double particle_ms;                  /* wall time of the last shot's sbfx_render (glFinish) */
+    double particle_ms;                  /* wall time of the last shot's sbfx_render (glFinish), median */
 } look_renderer;
 
 /* 0, or -1 with a message in err. */

@@ -6,6 +6,8 @@
 #include <stdint.h>
 #include "check.h"
 #include "look_metrics.h"
+#include "reference.h" /* sbfx_detail_generate */
+#include <time.h>
 
 #define N 512
 
@@ -152,6 +154,53 @@ CHECK_TEST(mask_keeps_changed_pixels_over_smooth_background)
     free(bg);
     free(out);
     free(mask);
+}
+
+/* The detail volume itself (src/detail_gen.c) has turbulent statistics: a frame of the module's
+ * default 128 x 128 x 32 volume, tiled 4 x 4 (it is periodic), measures beta near the octave
+ * gain's 2 + 7/6 (warp and tanh move it a little), far from smooth fBm's (gain 1/2: 4); its
+ * mean and spread stay those the perturbation was tuned for. Prints the generation time. */
+static double volume_frame_beta(void (*generate)(int, int, uint32_t, float *), double *ms, double *sd)
+{
+    enum { S = 128, F = 32, T = 4 };
+    float *v = malloc(sizeof(float) * S * S * F);
+    double *img = malloc(sizeof(double) * (S * T) * (S * T));
+    uint8_t *mask = malloc((size_t)(S * T) * (S * T));
+    if (!v || !img || !mask) CHECK_SKIP("out of memory");
+    struct timespec a, b;
+    clock_gettime(CLOCK_MONOTONIC, &a);
+    generate(S, F, 1, v);
+    clock_gettime(CLOCK_MONOTONIC, &b);
+    *ms = (b.tv_sec - a.tv_sec) * 1e3 + (b.tv_nsec - a.tv_nsec) * 1e-6;
+    double sum = 0, sum2 = 0;
+    for (size_t i = 0; i < (size_t)S * S * F; i++) sum += v[i], sum2 += (double)v[i] * v[i];
+    double mean = sum / (S * S * F);
+    *sd = sqrt(sum2 / (S * S * F) - mean * mean);
+    double beta = 0;
+    for (int frame = 0; frame < F; frame += F / 4) { /* four frames, averaged */
+        for (int y = 0; y < S * T; y++)
+            for (int x = 0; x < S * T; x++) img[y * S * T + x] = v[((size_t)frame * S + y % S) * S + x % S];
+        memset(mask, 1, (size_t)(S * T) * (S * T));
+        look_spectrum s;
+        CHECK(look_measure(img, mask, S * T, S * T, &s) == 0);
+        beta += s.beta / 4;
+    }
+    free(v);
+    free(img);
+    free(mask);
+    return beta;
+}
+
+CHECK_TEST(detail_volume_is_turbulent)
+{
+    double ms, sd, smooth_ms, smooth_sd;
+    double beta = volume_frame_beta(sbfx_detail_generate, &ms, &sd);
+    double smooth = volume_frame_beta(sbfx_detail_generate_smooth, &smooth_ms, &smooth_sd);
+    printf("# detail volume 128x128x32: frame beta %.3f, std %.3f, generated in %.0f ms (smooth fBm of the "
+           "smoke textures: beta %.3f, %.0f ms)\n", beta, sd, ms, smooth, smooth_ms);
+    CHECK(beta > 2.8 && beta < 3.6, "beta %g", beta);
+    CHECK(smooth - beta > 0.5, "smooth %g vs turbulent %g", smooth, beta);
+    CHECK(sd > 0.15 && sd < 0.23, "std %g", sd);
 }
 
 int main(void) { return check_main(); }
