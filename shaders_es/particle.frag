@@ -450,13 +450,13 @@ void main()
 #endif
     mediump vec3 light = vec3(0.0);
     float shade = 1.0;
-#if defined(MEDIUM_SCATTERS) && defined(HAS_DETAIL)
-    shade = detail_light_scale(detail, u_detail_strength);
+#if defined(MEDIUM_SCATTERS) && defined(HAS_DETAIL) && !defined(LIGHTING_LIT)
+    shade = detail_light_scale(detail, u_detail_strength);   // lit smoke shades by its own maps
 #endif
 #if defined(MEDIUM_SCATTERS) && defined(LIGHT_PER_PARTICLE)
     light += u_albedo_color * (shade * v_light);
 #elif defined(MEDIUM_SCATTERS) && defined(LIGHTING_LIT)
-    light += u_albedo_color * (shade * lit_scattered(ray, c, r, tau_scale));
+    light += u_albedo_color * lit_scattered(ray, c, r, tau_scale);
 #elif defined(MEDIUM_SCATTERS)
     light += u_albedo_color * (shade * in_scattered(ray, c));
 #endif
