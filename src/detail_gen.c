@@ -26,12 +26,14 @@
 #define OCTAVE_GAIN 0.6674199270850172 /* 2^(-7/12): band energy 2^(-7/6) per octave */
 #define WARP_OCTAVES 2  /* the warp field: the two coarsest octaves */
 #define WARP_TEXELS_PER_SIZE 0.08 /* warp amplitude, in volume widths per unit of q */
+#define SMOOTH_OCTAVES 5 /* the smooth fBm: the first generator's octaves */
 #define OUTPUT_GAIN 0.45 /* tanh gain on the standardised sum: output std ≈ 0.19 */
 
 typedef struct octave {
     int cells[3];      /* lattice period per axis (x, y, t) */
     double offset[3];  /* random lattice shift, so lattice points do not sit on texels */
     uint32_t salt;     /* decorrelates the octaves' gradients */
+    bool nested_hash;  /* the first generator's hash (the smooth fBm keeps its textures) */
     double amplitude;
 } octave;
 
@@ -58,8 +60,10 @@ static double lattice_dot(const octave *o, int ix, int iy, int it, double fx, do
 {
     /* one mix of a linear combination of the wrapped indices (odd multipliers): a quarter of
      * the hashing of nested mixes, which dominates the volume's load time */
-    uint32_t h = mix32(o->salt + (uint32_t)wrap(ix, o->cells[0]) * 0x9E3779B1u +
-                       (uint32_t)wrap(iy, o->cells[1]) * 0x85EBCA77u + (uint32_t)wrap(it, o->cells[2]) * 0xC2B2AE3Du);
+    uint32_t wx = (uint32_t)wrap(ix, o->cells[0]), wy = (uint32_t)wrap(iy, o->cells[1]),
+             wt = (uint32_t)wrap(it, o->cells[2]);
+    uint32_t h = o->nested_hash ? mix32(o->salt ^ mix32(wx ^ mix32(wy ^ mix32(wt))))
+                                : mix32(o->salt + wx * 0x9E3779B1u + wy * 0x85EBCA77u + wt * 0xC2B2AE3Du);
     switch (h % 12) {
     case 0: return fx + fy;
     case 1: return -fx + fy;
@@ -132,6 +136,7 @@ static int plan_octaves(int size, int frames, uint32_t seed, double gain, octave
         o[n].cells[2] = min_int(BASE_CELLS_T << k, cap_t);
         for (int a = 0; a < 3; a++) o[n].offset[a] = sbfx_rng_uniform(&rng);
         o[n].salt = sbfx_rng_u32(&rng);
+        o[n].nested_hash = false;
         o[n].amplitude = amplitude;
         amplitude *= gain;
         n++;
@@ -170,6 +175,8 @@ static void generate(int size, int frames, uint32_t seed, double gain, bool turb
     int nw = plan_octaves(size, frames, seed ^ 0x77a12f3du, gain, wx);
     plan_octaves(size, frames, seed ^ 0x1b873593u, gain, wy);
     nw = !turbulent ? 0 : nw < WARP_OCTAVES ? nw : WARP_OCTAVES;
+    if (!turbulent && n > SMOOTH_OCTAVES) n = SMOOTH_OCTAVES;
+    for (int k = 0; k < n; k++) o[k].nested_hash = !turbulent;
     size_t count = (size_t)size * (size_t)size * (size_t)frames, idx = 0;
     double sum = 0.0, sum2 = 0.0;
     for (int t = 0; t < frames; t++)
