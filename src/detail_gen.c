@@ -54,16 +54,19 @@ static int wrap(int i, int period)
     return m < 0 ? m + period : m;
 }
 
-/* Dot product of the lattice point's pseudo-random gradient (one of the 12 cube-edge directions
- * of improved Perlin noise) with the offset (fx, fy, ft) from that point. */
-static double lattice_dot(const octave *o, int ix, int iy, int it, double fx, double fy, double ft)
+/* The lattice point's hash from its wrapped indices: one mix of a linear combination (odd
+ * multipliers), a quarter of the hashing of the first generator's nested mixes, which dominated
+ * the volume's load time; the smooth fBm keeps the nested one. */
+static uint32_t lattice_hash(const octave *o, uint32_t wx, uint32_t wy, uint32_t wt)
 {
-    /* one mix of a linear combination of the wrapped indices (odd multipliers): a quarter of
-     * the hashing of nested mixes, which dominates the volume's load time */
-    uint32_t wx = (uint32_t)wrap(ix, o->cells[0]), wy = (uint32_t)wrap(iy, o->cells[1]),
-             wt = (uint32_t)wrap(it, o->cells[2]);
-    uint32_t h = o->nested_hash ? mix32(o->salt ^ mix32(wx ^ mix32(wy ^ mix32(wt))))
-                                : mix32(o->salt + wx * 0x9E3779B1u + wy * 0x85EBCA77u + wt * 0xC2B2AE3Du);
+    if (o->nested_hash) return mix32(o->salt ^ mix32(wx ^ mix32(wy ^ mix32(wt))));
+    return mix32(o->salt + wx * 0x9E3779B1u + wy * 0x85EBCA77u + wt * 0xC2B2AE3Du);
+}
+
+/* Dot product of the pseudo-random gradient of hash h (one of the 12 cube-edge directions of
+ * improved Perlin noise) with the offset (fx, fy, ft) from its lattice point. */
+static double lattice_dot(uint32_t h, double fx, double fy, double ft)
+{
     switch (h % 12) {
     case 0: return fx + fy;
     case 1: return -fx + fy;
@@ -102,12 +105,17 @@ static double gradient_noise(const octave *o, const double p[3])
         f[k] = p[k] - fl;
         s[k] = fade(f[k]);
     }
+    uint32_t w[3][2]; /* wrapped lattice indices of the cell's two corners per axis */
+    for (int k = 0; k < 3; k++) {
+        w[k][0] = (uint32_t)wrap(i[k], o->cells[k]);
+        w[k][1] = (uint32_t)wrap(i[k] + 1, o->cells[k]);
+    }
     double c[2][2][2];
     for (int dz = 0; dz < 2; dz++)
         for (int dy = 0; dy < 2; dy++)
             for (int dx = 0; dx < 2; dx++)
-                c[dz][dy][dx] = lattice_dot(o, i[0] + dx, i[1] + dy, i[2] + dz, f[0] - dx,
-                                            f[1] - dy, f[2] - dz);
+                c[dz][dy][dx] = lattice_dot(lattice_hash(o, w[0][dx], w[1][dy], w[2][dz]), f[0] - dx, f[1] - dy,
+                                            f[2] - dz);
     double y0 = lerp(lerp(c[0][0][0], c[0][0][1], s[0]), lerp(c[0][1][0], c[0][1][1], s[0]), s[1]);
     double y1 = lerp(lerp(c[1][0][0], c[1][0][1], s[0]), lerp(c[1][1][0], c[1][1][1], s[0]), s[1]);
     return lerp(y0, y1, s[2]);
