@@ -582,7 +582,7 @@ static void write_csv(const bench *b)
     FILE *f = open_out(b, "accuracy.csv");
     fprintf(f, "mode,scale,format,upsample,lut,detail,ms,ms_min,ms_max,wall_ms,particle_ms,particle_ms_min,"
                "particle_ms_max,particle_wall_ms,mean_abs_err,max_abs_err,psnr,edge_mean_abs_err,"
-               "edge_max_abs_err,edge_psnr,pareto,density,lod,beta,beta_8_32,band_2_8,band_8_32,ref_beta\n");
+               "edge_max_abs_err,edge_psnr,pareto,density,lod,beta,beta_8_32,band_2_8,band_8_32,ref_beta,beta_4_16\n");
     for (int i = 0; i < b->result_count; i++) {
         const result *r = &b->results[i];
         const config *c = &r->c;
@@ -595,8 +595,11 @@ static void write_csv(const bench *b)
                 bench_psnr(r->err.edge_sum_sq, r->err.edge_count), r->pareto, c->density_matched ? "matched" : "scene",
                 c->lod);
         const double *e = r->look_energy, *re = r->look_ref_energy;
-        fprintf(f, ",%.3f,%.3f,%.4f,%.4f,%.3f\n", look_beta_fit(e, 1, LOOK_SCALES - 1), look_beta_fit(e, 2, LOOK_SCALES - 1),
-                (e[1] + e[2]) / (re[1] + re[2]), (e[3] + e[4]) / (re[3] + re[4]), look_beta_fit(re, 1, LOOK_SCALES - 1));
+        /* beta_4_16: the same fit over 4..16 px, for clouds too small for the 32 px scale (the
+         * built-in explosion from the bench's orbit camera): not the issue's beta, a stand-in */
+        fprintf(f, ",%.3f,%.3f,%.4f,%.4f,%.3f,%.3f\n", look_beta_fit(e, 1, LOOK_SCALES - 1),
+                look_beta_fit(e, 2, LOOK_SCALES - 1), (e[1] + e[2]) / (re[1] + re[2]),
+                (e[3] + e[4]) / (re[3] + re[4]), look_beta_fit(re, 1, LOOK_SCALES - 1), look_beta_fit(e, 1, 3));
     }
     fclose(f);
 }
