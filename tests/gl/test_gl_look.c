@@ -64,4 +64,4 @@ CHECK_TEST(dust_storm_default_view) { check_case(&(look_case){"scenes/dust-storm
 CHECK_TEST(dust_storm_other_view) { check_case(&(look_case){"scenes/dust-storm.cfg", 2.5, -140.0f}); }
 CHECK_TEST(campfire_default_view) { check_case(&(look_case){"scenes/campfire.cfg", 3.5, 0.0f}); }
 
-int main(void) { return check_main(); }
+int main(int argc, char **argv) { return check_main_args(argc, argv); }

@@ -206,4 +206,4 @@ CHECK_TEST(detail_volume_is_turbulent)
     CHECK(sd > 0.15 && sd < 0.23, "std %g", sd);
 }
 
-int main(void) { return check_main(); }
+int main(int argc, char **argv) { return check_main_args(argc, argv); }
