@@ -7,7 +7,7 @@
  * why, with the numbers): lit-smoke, whose lit smoke textures carry its structure with or
  * without the detail; barrage and post, whose clouds never fill 129 x 129 px of smooth sky. */
 #include "check.h"
-#include "egl_headless.h"
+#include "egl/egl_headless.h"
 #include "look_metrics.h"
 #include "look_render.h"
 

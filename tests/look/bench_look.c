@@ -16,10 +16,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "egl_headless.h"
+#include "egl/egl_headless.h"
 #include "look_metrics.h"
 #include "look_render.h"
-#include "png_io.h"
+#include "image/png_io.h"
 
 typedef struct look_row {
     const char *scene, *view;

@@ -1,5 +1,5 @@
 /* One shot of an example scene for the look measurements (docs/look.md): the scene file's
- * module over the opaque test scene (platform/test_scene.h), seen from the scene's camera turned
+ * module over the opaque test scene (platform/host/test_scene.h), seen from the scene's camera turned
  * by an azimuth offset, at time t, at a target divisor, with the detail on or off; the output
  * and the background alone read back as RGBA8 (bottom row first). Needs a current GLES 3.0
  * context. Shared by tests/gl/test_gl_look.c and tests/look/bench_look.c. */
@@ -11,7 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "sbfx.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 typedef struct look_shot {
     const char *scene_path;  /* a scene file (NULL: the built-in explosion) */
