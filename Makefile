@@ -353,9 +353,9 @@ BENCH_WRAP := -Wl,--wrap=glBindFramebuffer -Wl,--wrap=glDrawArraysInstanced
 
 $(BUILD)/obj/bench/%.o: tests/bench/%.c | deps
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests/bench -c -o $@ $<
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests/bench -Itests/look -c -o $@ $<
 
-$(BUILD)/bench/bench_accuracy: $(BENCH_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
+$(BUILD)/bench/bench_accuracy: $(BENCH_OBJ) $(BUILD)/obj/look/look_metrics.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	@mkdir -p $(@D)
 	$(CC) $(LDSAN) $(BENCH_WRAP) -o $@ $^ $(PLATFORM_LIBS)
 
@@ -562,3 +562,22 @@ uninstall-kiosk:
 test-debian13:
 	@tools/deps.sh debian13
 	@tests/debian13/run.sh
+
+# ---- the look (issue 17): the β metric (tests/look/look_metrics.c, docs/look.md) ----------
+$(BUILD)/obj/look/%.o: tests/look/%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests/look -c -o $@ $<
+$(BUILD)/tests/unit/test_look_metrics: tests/unit/test_look_metrics.c $(BUILD)/obj/look/look_metrics.o $(REF_LIBS) \
+		tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(SRC_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(BUILD)/obj/look/look_metrics.o $(REF_LIBS) \
+		$(SRC_LIBS)
+LOOK_OBJ := $(BUILD)/obj/look/look_metrics.o $(BUILD)/obj/look/look_render.o
+$(BUILD)/bench/bench_look: $(BUILD)/obj/look/bench_look.o $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
+	@mkdir -p $(@D)
+	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
+bench: $(BUILD)/bench/bench_look
+$(BUILD)/tests/gl/test_gl_look: tests/gl/test_gl_look.c $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) \
+		$(REF_LIBS) $(PLATFORM_LIBS)

@@ -178,6 +178,34 @@ static void emitted(const sbfx_rf_frame *f, const sbfx_rf_medium *m, double kelv
     for (int k = 0; k < 3; k++) e[k] = mp(f, fmin(bb[k] * scale, SBFX_RF_RADIANCE_CEILING));
 }
 
+/* particle.frag's detail_density_scale: erosion with a threshold rising with age. */
+static double detail_density_scale(double detail, double intensity, double strength)
+{
+    double threshold = SBFX_RF_EROSION_THRESHOLD + SBFX_RF_EROSION_AGE * (1.0 - fmin(fmax(intensity, 0.0), 1.0));
+    double eroded = fmin(fmax((detail - threshold) * SBFX_RF_EROSION_SHARPNESS, 0.0), 1.0) * SBFX_RF_EROSION_GAIN;
+    return 1.0 + (eroded - 1.0) * strength; /* mix(1, eroded, strength) */
+}
+
+/* particle.frag's detail_light_scale: denser detail shades itself. */
+static double detail_light_scale(double detail, double strength)
+{
+    return 1.0 + SBFX_RF_DETAIL_SHADE * (0.5 - detail) * strength;
+}
+
+/* particle.frag's detail_fire_temperature: hotter core, cooler edge. */
+static double detail_fire_temperature(double detail, double rho, double strength)
+{
+    double v = fmin(fmax(detail + SBFX_RF_FIRE_CORE * (0.5 - rho), 0.0), 1.0);
+    return 0.5 + (v - 0.5) * strength;
+}
+
+/* particle.frag's particle_rho: distance from the centre in its depth plane / radius. */
+static double particle_rho(const sbfx_rf_particle *p, const double ray[3])
+{
+    double qx = ray[0] * -p->center[2] - p->center[0], qy = ray[1] * -p->center[2] - p->center[1];
+    return sqrt(qx * qx + qy * qy) / p->radius;
+}
+
 void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
                    double opaque_distance, double rgb[3], double *alpha)
 {
@@ -191,7 +219,10 @@ void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const doub
     bool scatters = m->albedo > 0.0, emits = p->medium == SBFX_FIRE;
     double detail = m->has_detail ? detail_sample(f, p, m, ray) : 0.5;
     double tau_scale = 1.0;
-    if (scatters && m->has_detail) tau_scale = 1.0 * (1.0 - m->detail_strength) + 2.0 * detail * m->detail_strength;
+    if (m->has_detail) {
+        tau_scale = detail_density_scale(detail, p->intensity, m->detail_strength);
+        if (emits) detail = detail_fire_temperature(detail, particle_rho(p, ray), m->detail_strength);
+    }
     tau_scale *= p->intensity;
     /* optical depth is linear in tau in every mode: the scale folds into the particle's tau */
     sbfx_ref_particle rp = {{p->center[0], p->center[1], p->center[2]}, p->radius, m->tau * tau_scale};
@@ -202,7 +233,9 @@ void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const doub
     if (scatters) {
         double s[3];
         in_scattered(f, p->medium, p->center, ray, s);
-        for (int k = 0; k < 3; k++) light[k] = mp(f, light[k] + m->albedo * frame_exposure(f) * m->color[k] * s[k]);
+        double shade = m->has_detail ? detail_light_scale(detail, m->detail_strength) : 1.0;
+        for (int k = 0; k < 3; k++)
+            light[k] = mp(f, light[k] + m->albedo * frame_exposure(f) * m->color[k] * (shade * s[k]));
     }
     if (emits) {
         double cooled = 1.0 - m->cooling * (1.0 - p->intensity), e[3];

@@ -26,6 +26,13 @@
 
 /* particle.frag's per-fragment radiance ceiling (RADIANCE_CEILING). */
 #define SBFX_RF_RADIANCE_CEILING 16384.0
+/* The detail's perturbation, particle.frag's EROSION_* and FIRE_CORE (docs/look.md). */
+#define SBFX_RF_EROSION_THRESHOLD 0.30
+#define SBFX_RF_EROSION_AGE 0.25
+#define SBFX_RF_EROSION_SHARPNESS 1.8
+#define SBFX_RF_EROSION_GAIN 2.2
+#define SBFX_RF_FIRE_CORE 0.6
+#define SBFX_RF_DETAIL_SHADE 1.8
 /* The shader's light falloff floor: point lights act no closer than 0.5 m (d² >= 0.25). */
 #define SBFX_RF_MIN_LIGHT_D2 0.25
 
@@ -43,8 +50,8 @@ typedef struct sbfx_rf_medium {
     double albedo, tau, phase_g, color[3];
     double detail_strength, detail_window;
     double t0, t1, cooling, emission_scale;
-    /* The GPU program samples the detail volume (it was built with detail_strength > 0). Fire
-     * takes its temperature from the detail whenever this is set, whatever the strength. */
+    /* The GPU program samples the detail volume (it was built with detail_strength > 0); the
+     * strength then scales both perturbations (0: none, though the volume is still sampled). */
     bool has_detail;
 } sbfx_rf_medium;
 

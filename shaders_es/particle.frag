@@ -169,6 +169,43 @@ float detail_sample(vec3 c, float r, vec3 ray)
 }
 #endif
 
+// The detail's perturbation (docs/look.md; ref/reference_frame.c mirrors it, constants
+// SBFX_RF_EROSION_* there). Erosion: density x saturate((detail - threshold) * sharpness) x gain,
+// the threshold rising as the particle's intensity falls (it ages), so parts of a particle thin
+// out to nothing and others thicken; strength 0 leaves the density alone.
+const float EROSION_THRESHOLD = 0.30;    // at full intensity
+const float EROSION_AGE = 0.25;          // added as the intensity falls to 0
+const float EROSION_SHARPNESS = 1.8;
+const float EROSION_GAIN = 2.2;
+float detail_density_scale(float detail, float intensity, float strength)
+{
+    float threshold = EROSION_THRESHOLD + EROSION_AGE * (1.0 - clamp(intensity, 0.0, 1.0));
+    float eroded = clamp((detail - threshold) * EROSION_SHARPNESS, 0.0, 1.0) * EROSION_GAIN;
+    return mix(1.0, eroded, strength);
+}
+
+// Fire's temperature coordinate (T = T0 + T1 * this): the detail, hotter toward the particle's
+// core and cooler toward its edge (rho = distance from the centre / radius, in the centre's
+// depth plane); 0.5 without detail (strength 0).
+const float FIRE_CORE = 0.6;
+float detail_fire_temperature(float detail, float rho, float strength)
+{
+    return mix(0.5, clamp(detail + FIRE_CORE * (0.5 - rho), 0.0, 1.0), strength);
+}
+
+// The scattered light's share of the detail: denser detail is darker (it shades itself), so the
+// inside of a cloud too thick to show holes still shows its structure. Mean about 1.
+const float DETAIL_SHADE = 1.8;
+float detail_light_scale(float detail, float strength)
+{
+    return mix(1.0, 1.0 + DETAIL_SHADE * (0.5 - detail), strength);
+}
+
+float particle_rho(vec3 c, float r, vec3 ray)
+{
+    return length(ray.xy * (-c.z) - c.xy) / r;
+}
+
 #ifdef MEDIUM_SCATTERS
 // 1 + g^2 - 2 g cos, written (1-|g|)^2 + 2|g| (1 - sign(g) cos): no cancellation at the peak
 float phase_base(float cos_theta, float g)
@@ -399,9 +436,12 @@ void main()
     float detail = 0.5;
 #ifdef HAS_DETAIL
     detail = detail_sample(c, r, ray);
+#if defined(MEDIUM_SCATTERS) || defined(MEDIUM_EMITS)
+    tau_scale = detail_density_scale(detail, intensity, u_detail_strength);
 #endif
-#if defined(MEDIUM_SCATTERS) && defined(HAS_DETAIL)
-    tau_scale = mix(1.0, 2.0 * detail, u_detail_strength);
+#ifdef MEDIUM_EMITS
+    detail = detail_fire_temperature(detail, particle_rho(c, r, ray), u_detail_strength);
+#endif
 #endif
     tau_scale *= intensity;
     float alpha = opacity_from_depth(optical_depth(c, r, ray, zs) * tau_scale);
@@ -410,12 +450,16 @@ void main()
     alpha *= soft_fade((zs + c.z) / (u_soft_scale > 0.0 ? u_soft_scale : r));
 #endif
     mediump vec3 light = vec3(0.0);
+    float shade = 1.0;
+#if defined(MEDIUM_SCATTERS) && defined(HAS_DETAIL) && !defined(LIGHTING_LIT)
+    shade = detail_light_scale(detail, u_detail_strength);   // lit smoke shades by its own maps
+#endif
 #if defined(MEDIUM_SCATTERS) && defined(LIGHT_PER_PARTICLE)
-    light += u_albedo_color * v_light;
+    light += u_albedo_color * (shade * v_light);
 #elif defined(MEDIUM_SCATTERS) && defined(LIGHTING_LIT)
     light += u_albedo_color * lit_scattered(ray, c, r, tau_scale);
 #elif defined(MEDIUM_SCATTERS)
-    light += u_albedo_color * in_scattered(ray, c);
+    light += u_albedo_color * (shade * in_scattered(ray, c));
 #endif
 #ifdef MEDIUM_EMITS
     float cooled = 1.0 - u_temperature.z * (1.0 - intensity);

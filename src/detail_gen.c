@@ -1,27 +1,39 @@
-/* Procedural detail volume (docs/design.md §2.4): tileable, looping, animated fBm of 3D gradient noise.
+/* Procedural detail volume (docs/design.md §2.4, docs/look.md): tileable, looping, animated turbulence.
+ *
+ * A domain-warped fBm of 3D gradient noise: D(p) = fbm(p + WARP * q(p)), q = two coarse fBm
+ * fields (the warp, Inigo Quilez's "domain warping"), which stretches the fine octaves into
+ * filaments and wisps instead of round blobs. The octaves' amplitudes fall by 2^(-5/6) per
+ * octave: band energy 2^(-5/3) per octave, the spectrum k^-(11/3) of a Kolmogorov scalar seen in
+ * a slice (issue 17, "turbulent spectra from octaves"), from 4 cells across the volume down to
+ * 2 texels per cell.
  *
  * Axes x, y (size texels) and t (frames) are all periodic: octave k has a lattice of
  * cells[axis] cells per axis, texel x maps to lattice coordinate x * cells / size, and lattice
- * indices are taken modulo cells, so texel size is the same lattice point as texel 0. That makes
- * the volume tile in x and y and loop in time (the GPU's REPEAT wrap then interpolates across the
- * seams) for any size, not only powers of two; with power-of-two sizes each octave's period is a
- * whole number of texels.
+ * indices are taken modulo cells, so texel size is the same lattice point as texel 0. The warp
+ * is periodic too, so the warped field still tiles in x and y and loops in time (the GPU's
+ * REPEAT wrap then interpolates across the seams).
  *
- * The sum of octaves is standardised over the whole volume and mapped through a tanh curve to
- * (0, 1): mean 0.5, standard deviation about 0.19, no hard clipping (a clamp would leave flat
- * plateaus in the perturbation). Deterministic from the seed; no allocation but the output. */
+ * The sum is standardised over the whole volume and mapped through a tanh curve to (0, 1):
+ * mean 0.5, standard deviation about 0.19, no hard clipping (a clamp would leave flat plateaus
+ * in the perturbation). Deterministic from the seed; no allocation but the output. */
 #include <math.h>
+#include <stdbool.h>
 #include "tables.h"
 
-#define MAX_OCTAVES 5
+#define MAX_OCTAVES 7
 #define BASE_CELLS_XY 4 /* coarsest octave: 4 features across the image */
 #define BASE_CELLS_T 2  /* ...and 2 across the animation loop: slow evolution */
+#define OCTAVE_GAIN 0.6674199270850172 /* 2^(-7/12): band energy 2^(-7/6) per octave */
+#define WARP_OCTAVES 2  /* the warp field: the two coarsest octaves */
+#define WARP_TEXELS_PER_SIZE 0.08 /* warp amplitude, in volume widths per unit of q */
+#define SMOOTH_OCTAVES 5 /* the smooth fBm: the first generator's octaves */
 #define OUTPUT_GAIN 0.45 /* tanh gain on the standardised sum: output std ≈ 0.19 */
 
 typedef struct octave {
     int cells[3];      /* lattice period per axis (x, y, t) */
     double offset[3];  /* random lattice shift, so lattice points do not sit on texels */
     uint32_t salt;     /* decorrelates the octaves' gradients */
+    bool nested_hash;  /* the first generator's hash (the smooth fBm keeps its textures) */
     double amplitude;
 } octave;
 
@@ -42,13 +54,19 @@ static int wrap(int i, int period)
     return m < 0 ? m + period : m;
 }
 
-/* Dot product of the lattice point's pseudo-random gradient (one of the 12 cube-edge directions
- * of improved Perlin noise) with the offset (fx, fy, ft) from that point. */
-static double lattice_dot(const octave *o, int ix, int iy, int it, double fx, double fy, double ft)
+/* The lattice point's hash from its wrapped indices: one mix of a linear combination (odd
+ * multipliers), a quarter of the hashing of the first generator's nested mixes, which dominated
+ * the volume's load time; the smooth fBm keeps the nested one. */
+static uint32_t lattice_hash(const octave *o, uint32_t wx, uint32_t wy, uint32_t wt)
 {
-    uint32_t h = mix32(o->salt ^ mix32((uint32_t)wrap(ix, o->cells[0]) ^
-                                       mix32((uint32_t)wrap(iy, o->cells[1]) ^
-                                             mix32((uint32_t)wrap(it, o->cells[2])))));
+    if (o->nested_hash) return mix32(o->salt ^ mix32(wx ^ mix32(wy ^ mix32(wt))));
+    return mix32(o->salt + wx * 0x9E3779B1u + wy * 0x85EBCA77u + wt * 0xC2B2AE3Du);
+}
+
+/* Dot product of the pseudo-random gradient of hash h (one of the 12 cube-edge directions of
+ * improved Perlin noise) with the offset (fx, fy, ft) from its lattice point. */
+static double lattice_dot(uint32_t h, double fx, double fy, double ft)
+{
     switch (h % 12) {
     case 0: return fx + fy;
     case 1: return -fx + fy;
@@ -87,12 +105,17 @@ static double gradient_noise(const octave *o, const double p[3])
         f[k] = p[k] - fl;
         s[k] = fade(f[k]);
     }
+    uint32_t w[3][2]; /* wrapped lattice indices of the cell's two corners per axis */
+    for (int k = 0; k < 3; k++) {
+        w[k][0] = (uint32_t)wrap(i[k], o->cells[k]);
+        w[k][1] = (uint32_t)wrap(i[k] + 1, o->cells[k]);
+    }
     double c[2][2][2];
     for (int dz = 0; dz < 2; dz++)
         for (int dy = 0; dy < 2; dy++)
             for (int dx = 0; dx < 2; dx++)
-                c[dz][dy][dx] = lattice_dot(o, i[0] + dx, i[1] + dy, i[2] + dz, f[0] - dx,
-                                            f[1] - dy, f[2] - dz);
+                c[dz][dy][dx] = lattice_dot(lattice_hash(o, w[0][dx], w[1][dy], w[2][dz]), f[0] - dx, f[1] - dy,
+                                            f[2] - dz);
     double y0 = lerp(lerp(c[0][0][0], c[0][0][1], s[0]), lerp(c[0][1][0], c[0][1][1], s[0]), s[1]);
     double y1 = lerp(lerp(c[1][0][0], c[1][0][1], s[0]), lerp(c[1][1][0], c[1][1][1], s[0]), s[1]);
     return lerp(y0, y1, s[2]);
@@ -106,7 +129,7 @@ static int min_int(int a, int b)
 /* Octave k doubles the previous octave's lattice, up to a cap per axis: no finer than 2 texels
  * per cell in x/y (finer would alias) and 4 frames per cell in t (finer would flicker). Stops
  * early when x/y cannot get finer any more. Returns the number of octaves. */
-static int plan_octaves(int size, int frames, uint32_t seed, octave *o)
+static int plan_octaves(int size, int frames, uint32_t seed, double gain, octave *o)
 {
     int cap_xy = size / 2 > 1 ? size / 2 : 1;
     int cap_t = frames / 4 > 1 ? frames / 4 : 1;
@@ -121,8 +144,9 @@ static int plan_octaves(int size, int frames, uint32_t seed, octave *o)
         o[n].cells[2] = min_int(BASE_CELLS_T << k, cap_t);
         for (int a = 0; a < 3; a++) o[n].offset[a] = sbfx_rng_uniform(&rng);
         o[n].salt = sbfx_rng_u32(&rng);
+        o[n].nested_hash = false;
         o[n].amplitude = amplitude;
-        amplitude *= 0.5;
+        amplitude *= gain;
         n++;
     }
     return n;
@@ -140,17 +164,33 @@ static double fbm(const octave *o, int n, double x, double y, double t, int size
     return sum;
 }
 
-void sbfx_detail_generate(int size, int frames, uint32_t seed, float *out)
+/* The warped field at texel (x, y, t): the two warp fields q (their own octaves, with other
+ * salts and offsets) displace x and y before the main fBm. */
+static double warped(const octave *o, int n, const octave *wx, const octave *wy, int nw, double x, double y,
+                     double t, int size, int frames)
+{
+    double shift = WARP_TEXELS_PER_SIZE * size;
+    double qx = fbm(wx, nw, x, y, t, size, frames), qy = fbm(wy, nw, x, y, t, size, frames);
+    return fbm(o, n, x + shift * qx, y + shift * qy, t, size, frames);
+}
+
+/* The volume with octave gain `gain` and (turbulent) the domain warp. */
+static void generate(int size, int frames, uint32_t seed, double gain, bool turbulent, float *out)
 {
     if (!out || size < 1 || frames < 1) return;
-    octave o[MAX_OCTAVES];
-    int n = plan_octaves(size, frames, seed, o);
+    octave o[MAX_OCTAVES], wx[MAX_OCTAVES], wy[MAX_OCTAVES];
+    int n = plan_octaves(size, frames, seed, gain, o);
+    int nw = plan_octaves(size, frames, seed ^ 0x77a12f3du, gain, wx);
+    plan_octaves(size, frames, seed ^ 0x1b873593u, gain, wy);
+    nw = !turbulent ? 0 : nw < WARP_OCTAVES ? nw : WARP_OCTAVES;
+    if (!turbulent && n > SMOOTH_OCTAVES) n = SMOOTH_OCTAVES;
+    for (int k = 0; k < n; k++) o[k].nested_hash = !turbulent;
     size_t count = (size_t)size * (size_t)size * (size_t)frames, idx = 0;
     double sum = 0.0, sum2 = 0.0;
     for (int t = 0; t < frames; t++)
         for (int y = 0; y < size; y++)
             for (int x = 0; x < size; x++) {
-                double v = fbm(o, n, x, y, t, size, frames);
+                double v = warped(o, n, wx, wy, nw, x, y, t, size, frames);
                 out[idx++] = (float)v;
                 sum += v;
                 sum2 += v * v;
@@ -160,4 +200,14 @@ void sbfx_detail_generate(int size, int frames, uint32_t seed, float *out)
     double inv_std = var > 1e-24 ? 1.0 / sqrt(var) : 0.0; /* constant volume: all 0.5 */
     for (size_t i = 0; i < count; i++)
         out[i] = (float)(0.5 + 0.5 * tanh(OUTPUT_GAIN * (out[i] - mean) * inv_std));
+}
+
+void sbfx_detail_generate(int size, int frames, uint32_t seed, float *out)
+{
+    generate(size, frames, seed, OCTAVE_GAIN, true, out);
+}
+
+void sbfx_detail_generate_smooth(int size, int frames, uint32_t seed, float *out)
+{
+    generate(size, frames, seed, 0.5, false, out);
 }

@@ -5,16 +5,17 @@
 void sbfx_default_media(sbfx_medium_params media[SBFX_MEDIUM_COUNT])
 {
     /* Seed §3.1: dust a = 0.9, smoke a = 0.2, both tau = 0.4; g = 0 "gives satisfactory
-     * results". Fire (§3.2) is a black body: albedo 0. */
+     * results". Fire (§3.2) is a black body: albedo 0. Detail window 0.8 of the 128-texel
+     * volume: about 100 texels across a particle, features down to a few pixels (docs/look.md). */
     media[SBFX_DUST] = (sbfx_medium_params){
         .albedo = 0.9f, .tau = 0.4f, .phase_g = 0.0f, .color = {0.80f, 0.70f, 0.56f},
-        .detail_strength = 0.8f, .detail_window = 0.15f};
+        .detail_strength = 0.8f, .detail_window = 0.8f};
     media[SBFX_SMOKE] = (sbfx_medium_params){
         .albedo = 0.2f, .tau = 0.4f, .phase_g = 0.0f, .color = {1.0f, 1.0f, 1.0f},
-        .detail_strength = 0.8f, .detail_window = 0.15f};
+        .detail_strength = 0.8f, .detail_window = 0.8f};
     media[SBFX_FIRE] = (sbfx_medium_params){
         .albedo = 0.0f, .tau = 0.4f, .phase_g = 0.0f, .color = {1.0f, 1.0f, 1.0f},
-        .detail_strength = 1.0f, .detail_window = 0.15f,
+        .detail_strength = 1.0f, .detail_window = 0.8f,
         .t0 = 1100.0f, .t1 = 900.0f, .cooling = 0.45f, .emissivity = 1.0f};
     /* Heat: shimmer of up to 1% of the image, noise a quarter of the volume per particle. */
     media[SBFX_HEAT] = (sbfx_medium_params){

@@ -86,7 +86,7 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
     if (!d.seed) d.seed = 1;
     if (!d.max_particles) d.max_particles = 2048;
     if (!(d.blackbody_max_kelvin > 0)) d.blackbody_max_kelvin = (float)SBFX_DEFAULT_MAX_KELVIN;
-    if (!d.detail_size) d.detail_size = 64;
+    if (!d.detail_size) d.detail_size = 128;
     if (!d.detail_frames) d.detail_frames = 32;
     if (!d.detail_format) d.detail_format = SBFX_DETAIL_R16F;
     if (!d.tone_map) d.tone_map = SBFX_TONE_MAP_FILMIC;

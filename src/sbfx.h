@@ -155,7 +155,7 @@ typedef struct sbfx_desc {
     float blackbody_max_kelvin;      /* the black body's unit: luminance 1 at this temperature,
                                         before the fire's emission scale (6000 K). The table's
                                         range follows what the scene's fire can reach. */
-    int detail_size;                 /* detail volume width = height (64) */
+    int detail_size;                 /* detail volume width = height (128) */
     int detail_frames;               /* detail volume depth = animation frames (32) */
     sbfx_detail_format detail_format;
     bool analytic_blackbody;         /* Planck x CIE evaluated per fragment, not the table */

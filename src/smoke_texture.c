@@ -1,6 +1,6 @@
 /* Procedural smoke textures (the lit-smoke seed's appendix): fBm and turbulence weighted by the
  * distance from the centre of the image. Per variant, three independent fBm fields f1..f3 in
- * (0,1) (the detail volume's generator, one frame) give
+ * (0,1) (the detail volume's lattice, smooth: sbfx_detail_generate_smooth, one frame) give
  *   edge   = 0.7 + 0.3 f1                  the puff's ragged outline (inside the unit circle)
  *   height = sqrt(1 - (rho/edge)^2) * (0.55 + 0.45 f2)   rho = distance from the centre, 1 at
  *            the inscribed circle: a sphere where f = 1, so lit normals read as a round puff
@@ -117,9 +117,9 @@ int sbfx_smoke_texture_generate(int size, int variants, uint32_t seed, uint8_t *
     sbfx_rng rng;
     sbfx_rng_seed(&rng, ((uint64_t)seed << 20) ^ UINT64_C(0x6c69742d736d6f6b));
     for (int v = 0; v < variants; v++) {
-        sbfx_detail_generate(size, 1, sbfx_rng_u32(&rng), f1);
-        sbfx_detail_generate(size, 1, sbfx_rng_u32(&rng), f2);
-        sbfx_detail_generate(size, 1, sbfx_rng_u32(&rng), f3);
+        sbfx_detail_generate_smooth(size, 1, sbfx_rng_u32(&rng), f1);
+        sbfx_detail_generate_smooth(size, 1, sbfx_rng_u32(&rng), f2);
+        sbfx_detail_generate_smooth(size, 1, sbfx_rng_u32(&rng), f3);
         uint8_t *surface = out + (size_t)(SBFX_SMOKE_LAYERS_PER_VARIANT * v) * layer_bytes;
         write_variant(size, f1, f2, f3, f1, surface, surface + layer_bytes);
     }

@@ -123,9 +123,13 @@ double sbfx_tone_curve_apply(const sbfx_tone_curve *c, double v);
 
 /* ---- detail volume (docs/design.md §2.4) ----------------------------------------------------- */
 
-/* Tileable (in x, y and t) animated fBm, size x size x frames floats in [0,1], x fastest.
- * Deterministic from seed. */
+/* Tileable (in x, y and t) animated turbulence, size x size x frames floats in [0,1], x fastest:
+ * domain-warped fBm, octave gain 2^(-1/2) (src/detail_gen.c, docs/look.md). Deterministic
+ * from seed. */
 void sbfx_detail_generate(int size, int frames, uint32_t seed, float *out);
+/* The same lattice without the warp, octave gain 1/2: the smooth fBm the procedural smoke
+ * textures of lit media are made of (src/smoke_texture.c). */
+void sbfx_detail_generate_smooth(int size, int frames, uint32_t seed, float *out);
 
 /* ---- procedural smoke textures of lit media (the lit-smoke seed's appendix) ------------ */
 

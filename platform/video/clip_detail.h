@@ -1,4 +1,4 @@
-/* Detail from a recorded clip (seed figure 6, DESIGN §2.4, docs/detail-clips.md): a video file
+/* Detail from a recorded clip (seed figure 6, docs/design.md §2.4, docs/detail-clips.md): a video file
  * decoded with FFmpeg's libavformat/libavcodec (libswscale for the luma), its frames made into a
  * loop without a seam and written into sbfx's detail volume through sbfx_detail_push_slice.
  *

@@ -34,6 +34,7 @@
 #include "egl/egl_headless.h"
 #include "internal.h"
 #include "lod.h"
+#include "look_metrics.h"
 #include "module.h" /* the pool's capacity: the level of detail's work memory */
 #include "image/png_io.h"
 #include "reference_frame.h"
@@ -63,6 +64,8 @@ typedef struct ref_frame {
     uint8_t *edge;      /* near a silhouette and inside some particle's footprint */
     uint64_t state_hash;
     int particles, edge_pixels;
+    uint8_t *look_mask;          /* issue 17: the reference's effect mask (look_metrics.h) */
+    look_spectrum look;          /* the reference's E(s) over it */
 } ref_frame;
 
 typedef struct config {
@@ -89,6 +92,7 @@ typedef struct result {
     bench_error err;
     bool pareto;
     uint8_t *images[FRAME_COUNT];
+    double look_energy[LOOK_SCALES], look_ref_energy[LOOK_SCALES]; /* summed over frames, per scale */
 } result;
 
 typedef struct bench {
@@ -253,6 +257,41 @@ static void prepare_frame(bench *b, ref_frame *rf, double t)
     read_distances(rf, w, h);
 }
 
+/* issue 17: the reference's fine structure, over its own effect mask (docs/look.md) */
+static void reference_look(bench *b, ref_frame *rf)
+{
+    size_t n = (size_t)b->opt.width * b->opt.height;
+    uint8_t *rgba = xcalloc(n, 4);
+    double *y = xcalloc(n, sizeof(double));
+    for (size_t i = 0; i < n; i++) {
+        for (int k = 0; k < 3; k++) rgba[4 * i + k] = (uint8_t)lround(fmin(fmax(rf->ref_rgb[3 * i + k], 0.0), 255.0));
+        rgba[4 * i + 3] = 255;
+    }
+    rf->look_mask = xcalloc(n, 1);
+    look_effect_mask(rgba, rf->scene_rgba, b->opt.width, b->opt.height, rf->look_mask);
+    look_luminance(rgba, n, y);
+    if (look_measure(y, rf->look_mask, b->opt.width, b->opt.height, &rf->look) != 0) die("look", "out of memory");
+    free(rgba);
+    free(y);
+}
+
+/* The GPU image's E(s) over the reference's mask, added to the configuration's sums (scales
+ * whose eroded mask is empty in this frame are left out of both sums). */
+static void accumulate_look(const bench *b, result *res, const ref_frame *rf, const uint8_t *gpu)
+{
+    size_t n = (size_t)b->opt.width * b->opt.height;
+    double *y = xcalloc(n, sizeof(double));
+    look_spectrum sp;
+    look_luminance(gpu, n, y);
+    if (look_measure(y, rf->look_mask, b->opt.width, b->opt.height, &sp) != 0) die("look", "out of memory");
+    for (int s = 0; s < LOOK_SCALES; s++)
+        if (sp.pixels[s] > 0 && isfinite(sp.energy[s]) && isfinite(rf->look.energy[s])) {
+            res->look_energy[s] += sp.energy[s];
+            res->look_ref_energy[s] += rf->look.energy[s];
+        }
+    free(y);
+}
+
 static void prepare_references(bench *b)
 {
     config c = {.opacity = SBFX_OPACITY_EXACT, .divisor = 4};
@@ -268,6 +307,7 @@ static void prepare_references(bench *b)
         rf->state_hash = sbfx_state_hash(fx);
         render_reference(b, fx, rf);
         write_reference_png(b, rf, i);
+        reference_look(b, rf);
         printf("bench: reference frame t=%.2f s: %d particles, %d edge pixels\n", rf->t, rf->particles,
                rf->edge_pixels);
         fflush(stdout);
@@ -346,6 +386,7 @@ static void compare_frame(bench *b, result *res, int index, uint8_t *gpu)
     size_t n = (size_t)b->opt.width * b->opt.height;
     bench_read_rgba8(b->target.fbo, b->opt.width, b->opt.height, gpu);
     bench_error_add(&res->err, gpu, rf->ref_rgb, rf->edge, n);
+    accumulate_look(b, res, rf, gpu);
     if (res->c.keep) {
         res->images[index] = xcalloc(n, 4);
         memcpy(res->images[index], gpu, n * 4);
@@ -541,11 +582,11 @@ static void write_csv(const bench *b)
     FILE *f = open_out(b, "accuracy.csv");
     fprintf(f, "mode,scale,format,upsample,lut,detail,ms,ms_min,ms_max,wall_ms,particle_ms,particle_ms_min,"
                "particle_ms_max,particle_wall_ms,mean_abs_err,max_abs_err,psnr,edge_mean_abs_err,"
-               "edge_max_abs_err,edge_psnr,pareto,density,lod\n");
+               "edge_max_abs_err,edge_psnr,pareto,density,lod,beta,beta_8_32,band_2_8,band_8_32,ref_beta,beta_4_16\n");
     for (int i = 0; i < b->result_count; i++) {
         const result *r = &b->results[i];
         const config *c = &r->c;
-        fprintf(f, "%s,%s,%s,%s,%s,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.4f,%.2f,%.2f,%.4f,%.2f,%.2f,%d,%s,%d\n",
+        fprintf(f, "%s,%s,%s,%s,%s,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.4f,%.2f,%.2f,%.4f,%.2f,%.2f,%d,%s,%d",
                 mode_names[c->opacity], scale_fraction(c->divisor), format_name(r->used_format),
                 upsample_name(c->upsample), lut_name(c), c->detail == SBFX_DETAIL_R32F ? "R32F" : "R16F", r->ms,
                 r->ms_min, r->ms_max, r->wall_ms, r->part_ms, r->part_min, r->part_max, r->part_wall_ms,
@@ -553,6 +594,12 @@ static void write_csv(const bench *b)
                 bench_error_edge_mean(&r->err), r->err.edge_max_abs,
                 bench_psnr(r->err.edge_sum_sq, r->err.edge_count), r->pareto, c->density_matched ? "matched" : "scene",
                 c->lod);
+        const double *e = r->look_energy, *re = r->look_ref_energy;
+        /* beta_4_16: the same fit over 4..16 px, for clouds too small for the 32 px scale (the
+         * built-in explosion from the bench's orbit camera): not the issue's beta, a stand-in */
+        fprintf(f, ",%.3f,%.3f,%.4f,%.4f,%.3f,%.3f\n", look_beta_fit(e, 1, LOOK_SCALES - 1),
+                look_beta_fit(e, 2, LOOK_SCALES - 1), (e[1] + e[2]) / (re[1] + re[2]),
+                (e[3] + e[4]) / (re[3] + re[4]), look_beta_fit(re, 1, LOOK_SCALES - 1), look_beta_fit(e, 1, 3));
     }
     fclose(f);
 }
@@ -893,7 +940,7 @@ static void close_all(bench *b)
     for (int i = 0; i < FRAME_COUNT; i++) {
         ref_frame *rf = &b->frames[i];
         test_scene_destroy(&rf->scene);
-        free(rf->distance), free(rf->scene_rgba), free(rf->ref_rgb), free(rf->edge);
+        free(rf->distance), free(rf->scene_rgba), free(rf->ref_rgb), free(rf->edge), free(rf->look_mask);
     }
     free(b->detail);
     bench_target_destroy(&b->target);

@@ -74,6 +74,14 @@ if [ -x "$BUILD/bench/bench_state" ]; then
     mesa_glthread=true "$BUILD/bench/bench_state" --out "$OUT" --label glthread --append | tee -a "$OUT/state.txt"
 fi
 
+# issue 17: the look — beta and band energies per scene, view, time and scale (look.csv), the
+# detail's cost (look.txt); docs/look.md. LOOK_ARGS passes options (e.g. "--quick").
+if [ -x "$BUILD/bench/bench_look" ]; then
+    # shellcheck disable=SC2086 # LOOK_ARGS is a list of options
+    "$BUILD/bench/bench_look" --out "$OUT" ${LOOK_ARGS:-} | tee "$OUT/look.log"
+    cat "$OUT/look.txt" >>"$OUT/summary.txt"
+fi
+
 # issue 11: the frame budget — the barrage at every fixed level and at several budgets
 if [ -x "$BUILD/bench/bench_budget" ]; then
     "$BUILD/bench/bench_budget" --out "$OUT" | tee "$OUT/budget.log"

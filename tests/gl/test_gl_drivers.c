@@ -19,8 +19,13 @@
  * the detail is switched off); and at a few depth discontinuities the nearest-depth upsampling
  * picks a different neighbouring texel (a decision that one ulp of depth can flip), which moves
  * a handful of pixels by tens of levels. A real disagreement — a lost pass or particle, a
- * format fallback, a wrong upsample — moves whole regions. So the bound is on fractions:
- *     >= 99.5 % of pixels within 2/255 and >= 99.8 % within 4/255 in every channel,
+ * format fallback, a wrong upsample — moves whole regions.
+ * Since issue 17 the detail carves (erosion of the density, shading, fire temperature:
+ * docs/look.md) with about 100 texels across a particle, which amplifies those low-bit filter
+ * differences: measured again (Mesa 25 llvmpipe against softpipe, 6 frames), more than 2 levels
+ * apart 0.05 .. 0.58 % of pixels, more than 4 levels 0.02 .. 0.36 %, mean 0.02 .. 0.15 levels.
+ * So the bound is on fractions:
+ *     >= 98.5 % of pixels within 2/255 and >= 99.2 % within 4/255 in every channel,
  *     mean |diff| <= 0.25/255 (about twice the largest measured),
  * and, only as a backstop against garbage, no channel more than 96/255 apart. */
 #include <errno.h>
@@ -189,8 +194,8 @@ CHECK_TEST(llvmpipe_and_softpipe_agree)
         printf("# %s t=%.1f: mean |diff| %.4f levels, max %d, pixels > 2 levels %.4f %%, > 4 levels %.4f %%\n",
                i < FRAMES ? "defaults" : "exact 1/1 RGBA32F", times[i % FRAMES], d.mean, d.max, 100 * d.over_2,
                100 * d.over_4);
-        CHECK(d.over_2 <= 0.005, "frame %d: %.3f %% of pixels differ by more than 2 levels", i, 100 * d.over_2);
-        CHECK(d.over_4 <= 0.002, "frame %d: %.3f %% of pixels differ by more than 4 levels", i, 100 * d.over_4);
+        CHECK(d.over_2 <= 0.015, "frame %d: %.3f %% of pixels differ by more than 2 levels", i, 100 * d.over_2);
+        CHECK(d.over_4 <= 0.008, "frame %d: %.3f %% of pixels differ by more than 4 levels", i, 100 * d.over_4);
         CHECK(d.mean <= 0.25, "frame %d: mean difference %.3f levels", i, d.mean);
         CHECK(d.max <= 96, "frame %d: a channel differs by %d levels", i, d.max);
     }

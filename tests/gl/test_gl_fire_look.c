@@ -1,4 +1,4 @@
-/* Fire reads as light (issue 17 item 2, DESIGN §8; docs/look-fire.md): over the test scene's
+/* Fire reads as light (issue 17 item 2, docs/design.md §8; docs/look-fire.md): over the test scene's
  * sky, a fire-only fireball (tests/look/fireball.cfg, 1400 .. 3200 K) at 0.15 .. 0.5 s and the
  * explosion's fire in its first 0.4 s show a fire-pixel luminance whose median is at least the
  * sky's behind them and whose 90th percentile is at least 1.3 times it (tests/look/fire_metric.h),

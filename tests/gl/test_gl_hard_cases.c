@@ -136,9 +136,9 @@ static void load_tables(void)
 {
     if (half_detail) return;
     cmf = sbfx_cie1931_2deg;
-    size_t n = 64 * 64 * 32;
+    size_t n = 128 * 128 * 32; /* the module's default volume */
     half_detail = malloc(n * sizeof(float));
-    sbfx_detail_generate(64, 32, 1, half_detail);
+    sbfx_detail_generate(128, 32, 1, half_detail);
     for (size_t i = 0; i < n; i++) half_detail[i] = (float)to_half(half_detail[i]);
 }
 
@@ -180,7 +180,7 @@ static void cpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, sbfx_opacity_
     sbfx_rf_light lights[SBFX_RF_MAX_LIGHTS];
     sbfx_rf_frame rf = {.width = SIZE, .height = SIZE, .projection = {p[0], p[5], p[8], p[9]},
                         .near = fixture_near(&f->frame), .opaque_distance = distance, .opacity = mode,
-                        .lights = lights, .detail = half_detail, .detail_size = 64, .detail_frames = 32,
+                        .lights = lights, .detail = half_detail, .detail_size = 128, .detail_frames = 32,
                         .detail_time = sbfx_detail_time(fx), .cmf = &cmf,
                         .blackbody_norm = sbfx_blackbody_norm(&cmf, SBFX_DEFAULT_MAX_KELVIN)};
     const sbfx_tables *t = sbfx_get_tables(fx);

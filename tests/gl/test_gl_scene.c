@@ -4,7 +4,7 @@
 
 #define BLACKBODY_BYTES (SBFX_BLACKBODY_SIZE * 16)
 #define PHASE_BYTES (SBFX_PHASE_SIZE * SBFX_MEDIUM_COUNT * 4)
-#define DETAIL_BYTES (64 * 64 * 32 * 2)
+#define DETAIL_BYTES (128 * 128 * 32 * 2) /* the default R16F detail volume (docs/look.md) */
 
 typedef struct plan {
     const char *scene;

@@ -382,12 +382,13 @@ static sbfx_result call_trigger(sbfx *fx, void *arg) { return sbfx_trigger(fx, a
 static sbfx_result call_push_slice(sbfx *fx, void *arg)
 {
     (void)arg;
-    static uint16_t slice[64 * 64];
-    for (int i = 0; i < 64 * 64; i++) {
+    enum { SIDE = 128 }; /* the default detail volume's width (docs/look.md) */
+    static uint16_t slice[SIDE * SIDE];
+    for (int i = 0; i < SIDE * SIDE; i++) {
         _Float16 v = (_Float16)((i * 37 % 101) / 100.0f);
         memcpy(&slice[i], &v, sizeof(v));
     }
-    return sbfx_detail_push_slice(fx, slice, 64);
+    return sbfx_detail_push_slice(fx, slice, SIDE);
 }
 
 /* create, trigger, update, push_slice, render (first: targets made; then steady), idle render,

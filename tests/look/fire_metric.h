@@ -1,4 +1,4 @@
-/* Does fire read as light? (issue 17 item 2, DESIGN §8; docs/look-fire.md)
+/* Does fire read as light? (issue 17 item 2, docs/design.md §8; docs/look-fire.md)
  *
  * Luminance Y of the sRGB output, linearised (IEC 61966-2-1 decode), Rec. 709 weights. Fire
  * pixels: where the output differs from a background-only render of the same view by more than

@@ -241,7 +241,7 @@ static double independent_luminance(const sbfx_cmf *cmf, double kelvin)
     return 683.002 * sum * step * 1e-9 / 3.0;
 }
 
-/* DESIGN §8: an optically thick black body at 1500 K has about 7.8e3 cd/m^2 (a clear daylight
+/* docs/design.md §8: an optically thick black body at 1500 K has about 7.8e3 cd/m^2 (a clear daylight
  * sky is about 1e4), 2000 K about 4.7e5, 2500 K about 5.7e6. */
 CHECK_TEST(blackbody_luminance_in_candela)
 {
