@@ -1,7 +1,7 @@
 #!/bin/sh
 # Makes sure the Debian packages sbfx needs are installed.
 # As root: installs what is missing (apt-get, non-interactive). Otherwise: prints the exact
-# apt-get line and exits 1. Usage: tools/deps.sh [build|test|vm|cross-arm64]
+# apt-get line and exits 1. Usage: tools/deps.sh [build|test|vm|cross-arm64|mesa-shim]
 set -eu
 set_of="${1:-test}"
 
@@ -14,6 +14,9 @@ test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang libclang-rt-14-dev"
 vm_pkgs="$build_pkgs qemu-system-x86 kmod xz-utils patch gcc-12 make libelf1"
 # make BOARD=<an arm64 board> and make cross-check: Debian's aarch64 toolchain and the arm64
 # multiarch -dev packages, with the host's make, pkg-config and compiler (build/tools/ runs here)
+# tools/mesa-shim.sh (make bench's Mali columns, make test-gpus): what Mesa 25's meson build of
+# the panfrost, v3d, freedreno and etnaviv drivers and their drm-shims needs from Debian 12
+mesa_shim_pkgs="$build_pkgs flex bison python3-mako python3-yaml python3-ply python3-pycparser libexpat1-dev libdrm-dev ninja-build xz-utils dpkg-dev patch"
 cross_arm64_pkgs="$host_tools gcc-aarch64-linux-gnu libc6-dev:arm64 libegl-dev:arm64 libgles-dev:arm64 libdrm-dev:arm64 libgbm-dev:arm64 libgpiod-dev:arm64 libpng-dev:arm64 liblcms2-dev:arm64 libconfig-dev:arm64"
 
 case "$set_of" in
@@ -21,7 +24,8 @@ case "$set_of" in
     test) want="$test_pkgs" ;;
     vm) want="$vm_pkgs" ;;
     cross-arm64) want="$cross_arm64_pkgs" ;;
-    *) echo "deps.sh: unknown package set '$set_of' (build|test|vm|cross-arm64)" >&2; exit 2 ;;
+    mesa-shim) want="$mesa_shim_pkgs" ;;
+    *) echo "deps.sh: unknown package set '$set_of' (build|test|vm|cross-arm64|mesa-shim)" >&2; exit 2 ;;
 esac
 
 # arm64 packages need the architecture enabled first (dpkg --add-architecture arm64)
