@@ -71,7 +71,8 @@ SO_LINKS := $(BUILD)/$(SONAME) $(BUILD)/libsbfx.so
 # link it before the runtime library, whose table math it calls.
 REF_OBJ := $(patsubst ref/%.c,$(BUILD)/obj/ref/%.o,$(wildcard ref/*.c))
 REF_LIBS := $(BUILD)/libsbfx_ref.a $(BUILD)/libsbfx.a
-PLATFORM_COMMON := egl_headless gl_reset png_io test_scene gl_check host_depth
+# platform/ is in rooms, one folder per concern (platform/ROOM/NAME.c -> $(BUILD)/obj/platform/ROOM/NAME.o)
+PLATFORM_COMMON := egl/egl_headless egl/gl_reset egl/gl_check image/png_io host/test_scene host/host_depth
 PLATFORM_COMMON_OBJ := $(PLATFORM_COMMON:%=$(BUILD)/obj/platform/%.o)
 
 UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/unit/%,$(wildcard tests/unit/*.c))
@@ -133,21 +134,28 @@ $(BUILD)/libsbfx.so: $(BUILD)/$(SONAME)
 	ln -sf $(<F) $@
 
 # sbfx-play: the player, its displays (headless, DRM/KMS), camera and GPIO inputs (platform/)
-PLAYER_SRC := player player_args player_usage player_inputs player_loop board luma live_detail \
-	v4l2_source gpio_gpiod1 gpio_triggers trigger_filter display_headless display_drm drm_device \
-	drm_fb drm_atomic drm_legacy drm_writeback gbm_egl player_reset display_link
+PLAYER_SRC := $(addprefix player/,player player_args player_usage player_inputs player_loop player_reset board) \
+	$(addprefix video/,luma live_detail v4l2_source) \
+	$(addprefix gpio/,gpio_gpiod1 gpio_triggers trigger_filter) \
+	$(addprefix display/,display_headless display_drm display_link) \
+	$(addprefix drm/,drm_device drm_fb drm_atomic drm_legacy drm_writeback gbm_egl)
 PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o)
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
-$(BUILD)/obj/platform/probe.o: PLATFORM_CFLAGS += -Iref
-$(BUILD)/sbfx-probe: $(BUILD)/obj/platform/probe.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
+# sbfx-probe and sbfx-soak (tools/probe/, tools/soak/): tools that look inside the module through
+# src/'s private headers, so they live outside platform/, which only uses src/sbfx.h.
+$(BUILD)/obj/tools/%.o: tools/%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -c -o $@ $<
+
+$(BUILD)/sbfx-probe: $(BUILD)/obj/tools/probe/probe.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
 # sbfx-soak: the kiosk loop for simulated hours, flatness checked (README "Kiosk months");
 # a test tool, not installed. `make soak` runs it for SOAK_HOURS and plots the record
 # with gnuplot (tests/soak/soak.gp); tests/soak.sh runs a short one inside `make test`.
-$(BUILD)/sbfx-soak: $(BUILD)/obj/platform/soak.o $(BUILD)/obj/platform/soak_check.o $(PLATFORM_COMMON_OBJ) \
+$(BUILD)/sbfx-soak: $(BUILD)/obj/tools/soak/soak.o $(BUILD)/obj/tools/soak/soak_check.o $(PLATFORM_COMMON_OBJ) \
 		$(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 
@@ -333,21 +341,21 @@ bench: $(BUILD)/bench/bench_state
 # ---- platform (issue #5: DRM/KMS kiosk, V4L2 detail, GPIO triggers, boards) ---------------
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,
 # the --gpio/--mode syntax), run by tests/run.sh like the unit tests.
-PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,luma.o trigger_filter.o board.o player_args.o \
-	soak_check.o display_link.o)
+PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,video/luma.o gpio/trigger_filter.o player/board.o \
+	player/player_args.o display/display_link.o) $(BUILD)/obj/tools/soak/soak_check.o
 PLATFORM_TESTS := $(patsubst tests/platform/%.c,$(BUILD)/tests/platform/%,$(wildcard tests/platform/*.c))
 $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(PLATFORM_TEST_OBJ) $(PLATFORM_LIBS)
+	$(CC) $(PLATFORM_CFLAGS) -Itests -Itools $(LDSAN) -o $@ $< $(PLATFORM_TEST_OBJ) $(PLATFORM_LIBS)
 # GPIO lines lost and requested again: gpio_triggers.c against a fake gpio.h backend (in the test)
 $(BUILD)/tests/platform/test_gpio_recovery: tests/platform/test_gpio_recovery.c \
-		$(BUILD)/obj/platform/gpio_triggers.o $(BUILD)/obj/platform/trigger_filter.o tests/check.h
+		$(BUILD)/obj/platform/gpio/gpio_triggers.o $(BUILD)/obj/platform/gpio/trigger_filter.o tests/check.h
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio_triggers.o \
-		$(BUILD)/obj/platform/trigger_filter.o $(PLATFORM_LIBS)
-$(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(BUILD)/obj/platform/gl_reset.o tests/check.h
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio/gpio_triggers.o \
+		$(BUILD)/obj/platform/gpio/trigger_filter.o $(PLATFORM_LIBS)
+$(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(BUILD)/obj/platform/egl/gl_reset.o tests/check.h
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gl_reset.o $(PLATFORM_LIBS)
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/egl/gl_reset.o $(PLATFORM_LIBS)
 .PHONY: test-platform test-vm cross-check
 test-platform: $(PLATFORM_TESTS)
 
@@ -356,7 +364,7 @@ test-platform: $(PLATFORM_TESTS)
 # archive, cached in build/vm/.
 VM_TOOLS := $(BUILD)/tests/vm/pngdiff $(BUILD)/tests/vm/drm_state $(BUILD)/tests/vm/v4l2_ctrl \
 	$(BUILD)/tests/vm/alloc_count.so $(BUILD)/tests/vm/vblank_stress
-$(BUILD)/tests/vm/pngdiff: tests/vm/pngdiff.c $(BUILD)/obj/platform/png_io.o
+$(BUILD)/tests/vm/pngdiff: tests/vm/pngdiff.c $(BUILD)/obj/platform/image/png_io.o
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -o $@ $^ $(PLATFORM_LIBS)
 $(BUILD)/tests/vm/alloc_count.so: tests/vm/alloc_count.c

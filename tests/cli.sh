@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The command-line contract of sbfx-play (flags in platform/player_args.c, README.md):
+# The command-line contract of sbfx-play (flags in platform/player/player_args.c, README.md):
 # --help, clear errors with exit status 1 for bad arguments, and short headless runs that
 # write PNG frames, a contact sheet and a --stats JSON object.
 # Usage: tests/cli.sh [PLAYER] (default build/sbfx-play). Prints "ok - cli/x" lines for
@@ -289,7 +289,7 @@ same_frames() {
     done
 }
 
-# A GPU reset injected before frame 5 (SBFX_PLAY_INJECT_GPU_RESET, platform/gl_reset.h): the run
+# A GPU reset injected before frame 5 (SBFX_PLAY_INJECT_GPU_RESET, platform/egl/gl_reset.h): the run
 # goes on with a new context, GL objects and sbfx. Frames 0-4 are those of a run without the
 # reset; from frame 5 the explosion in flight is gone (lost with the old module) and the frames
 # are exactly the scene of a run without timeline at the same times (the player's clock went

@@ -31,13 +31,13 @@
 #include "bench_gl.h"
 #include "bench_metrics.h"
 #include "bench_reference.h"
-#include "egl_headless.h"
+#include "egl/egl_headless.h"
 #include "internal.h"
 #include "lod.h"
 #include "module.h" /* the pool's capacity: the level of detail's work memory */
-#include "png_io.h"
+#include "image/png_io.h"
 #include "reference_frame.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 #define FRAME_COUNT 3
 #define MAX_CONFIGS 128

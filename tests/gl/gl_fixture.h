@@ -7,8 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "check.h"
-#include "egl_headless.h"
-#include "host_depth.h"
+#include "egl/egl_headless.h"
+#include "host/host_depth.h"
 #include "internal.h"
 
 typedef struct gl_fixture {
@@ -141,7 +141,7 @@ static inline double fixture_near(const sbfx_frame *frame)
 }
 
 /* The host's depth drawn as a plane at `distance` under the frame's projection and clip depth
- * mode (platform/host_depth.h), into a texture of `format`; the frame's depth texture. */
+ * mode (platform/host/host_depth.h), into a texture of `format`; the frame's depth texture. */
 static inline bool fixture_draw_depth_plane(gl_fixture *f, double distance, GLenum format)
 {
     bool zero_to_one = f->frame.clip_depth_mode == SBFX_CLIP_DEPTH_ZERO_TO_ONE;

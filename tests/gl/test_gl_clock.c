@@ -4,7 +4,7 @@
  * explosion and the lit-smoke scenes over the player's test scene; a start that is not such a
  * multiple renders what its remainder renders, finite everywhere. */
 #include "gl_fixture.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 #define YEAR 31536000.0
 #define WIDTH 192

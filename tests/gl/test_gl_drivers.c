@@ -27,7 +27,7 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include "gl_fixture.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 #define W 320
 #define H 180

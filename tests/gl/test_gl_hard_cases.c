@@ -788,7 +788,7 @@ CHECK_TEST(bad_inputs_skipped_every_field)
 
 /* ---- rendered explosion frames: no NaN or Inf in any float target ------------------------- */
 
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 #define SCAN_W 160
 #define SCAN_H 90

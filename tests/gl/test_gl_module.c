@@ -1,7 +1,7 @@
 /* The module as a host uses it: fallbacks, errors, idle frames, allocation counts, tables. */
 #include "gl_fixture.h"
 #include "reference.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 /* ---- process-wide heap-allocation counter (not under ASan, which owns malloc) ---- */
 #if !defined(__SANITIZE_ADDRESS__)

@@ -4,7 +4,7 @@
  * gives the same picture within one 8-bit level; an off-axis frustum gives the matching half of
  * a wider symmetric frame; malformed projections are refused with a message naming the fault. */
 #include "gl_fixture.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 #define W 128
 #define H 72

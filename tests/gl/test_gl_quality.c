@@ -5,7 +5,7 @@
 #include "gl_fixture.h"
 #include "ladder_default.h"
 #include "module.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 #define W 96
 #define H 64

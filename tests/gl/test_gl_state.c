@@ -12,7 +12,7 @@
 #include <EGL/egl.h>
 #include "gl_fixture.h"
 #include "gl_snapshot.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 #define W 96
 #define H 64

@@ -1,10 +1,10 @@
-/* Display unplug and replug decisions (platform/display_link.c) with injected connector states:
+/* Display unplug and replug decisions (platform/display/display_link.c) with injected connector states:
  * a pause once when it goes, a resume (with a new modeset) once when it comes back, no action
  * for the same state seen again, and the connector asked at most once a second. The real
  * driver path (vkms's connector forced off and back through sysfs) is tests/vm/guest.sh's
  * display-unplug. */
 #include "check.h"
-#include "display_link.h"
+#include "display/display_link.h"
 
 #define MS INT64_C(1000000)
 

@@ -1,10 +1,10 @@
-/* The GPU reset query of the player (platform/gl_reset.c) without a GPU: the injected reset is
+/* The GPU reset query of the player (platform/egl/gl_reset.c) without a GPU: the injected reset is
  * answered once, at its frame; a driver's status query is asked on every other frame; the
  * context attributes ask for reset notification only where EGL offers it. The recovery itself
  * (a new context, GL objects and sbfx, frames that go on) runs on llvmpipe in tests/cli.sh
  * (gpu-reset-*). */
 #include "check.h"
-#include "gl_reset.h"
+#include "egl/gl_reset.h"
 
 static int driver_calls;
 static GLenum driver_answer = GL_NO_ERROR;

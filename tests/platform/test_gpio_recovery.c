@@ -1,4 +1,4 @@
-/* GPIO trigger lines whose chip goes away and comes back (platform/gpio_triggers.c) against a
+/* GPIO trigger lines whose chip goes away and comes back (platform/gpio/gpio_triggers.c) against a
  * fake gpio.h backend defined here: the loss is logged once, the other line keeps firing, the
  * lost line is requested again with back-off (no attempt per frame, no log per attempt) and
  * fires again once it is back. sbfx_has_effect and sbfx_trigger are stubs counting triggers. */
@@ -7,7 +7,7 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "gpio_triggers.h"
+#include "gpio/gpio_triggers.h"
 
 #define MS INT64_C(1000000)
 

@@ -1,11 +1,11 @@
-/* Camera luma -> detail slices (platform/luma.c): layouts, crop, normalisation, bounds. */
+/* Camera luma -> detail slices (platform/video/luma.c): layouts, crop, normalisation, bounds. */
 #include <errno.h>
 #include <linux/videodev2.h>
 #include <stdint.h>
 #include <string.h>
 
 #include "check.h"
-#include "luma.h"
+#include "video/luma.h"
 
 #define W 64
 #define H 48

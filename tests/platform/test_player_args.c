@@ -1,9 +1,9 @@
-/* sbfx-play's platform flags (platform/player_args.c): --gpio syntax, display conflicts. */
+/* sbfx-play's platform flags (platform/player/player_args.c): --gpio syntax, display conflicts. */
 #include <errno.h>
 #include <string.h>
 
 #include "check.h"
-#include "player_args.h"
+#include "player/player_args.h"
 
 static int parse(struct player_options *opt, char *err, size_t n, const char *a, const char *b,
                  const char *c, const char *d)

@@ -1,8 +1,8 @@
-/* sbfx-soak's flatness check (platform/soak_check.c) on made-up series: flat passes; any growth
+/* sbfx-soak's flatness check (tools/soak/soak_check.c) on made-up series: flat passes; any growth
  * of what sbfx or the context holds, memory beyond its tolerance, lost time or an idle run is
  * named with how much. */
 #include "check.h"
-#include "soak_check.h"
+#include "soak/soak_check.h"
 
 #define N 100
 #define DT 0.25

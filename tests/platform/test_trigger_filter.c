@@ -1,6 +1,6 @@
-/* Debounce and rate limit of GPIO trigger lines (platform/trigger_filter.c). */
+/* Debounce and rate limit of GPIO trigger lines (platform/gpio/trigger_filter.c). */
 #include "check.h"
-#include "trigger_filter.h"
+#include "gpio/trigger_filter.h"
 
 #define MS INT64_C(1000000)
 

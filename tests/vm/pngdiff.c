@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "png_io.h"
+#include "image/png_io.h"
 
 int main(int argc, char **argv)
 {

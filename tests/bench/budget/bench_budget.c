@@ -30,9 +30,9 @@
 #include "bench_gl.h"
 #include "bench_metrics.h"
 #include "bench_reference.h"
-#include "egl_headless.h"
+#include "egl/egl_headless.h"
 #include "module.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 #define SCENE_NAME "barrage"
 #define MAX_FRAMES 2000

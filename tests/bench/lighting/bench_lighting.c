@@ -24,11 +24,11 @@
 #include <sys/stat.h>
 #include <time.h>
 
-#include "egl_headless.h"
+#include "egl/egl_headless.h"
 #include "internal.h"
 #include "lit_ref.h"
 #include "reference.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 #define WIDTH 960
 #define HEIGHT 540

@@ -10,9 +10,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include "egl_headless.h"
+#include "egl/egl_headless.h"
 #include "sbfx.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 static double now_ms(void)
 {

@@ -14,11 +14,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include "egl_headless.h"
-#include "host_depth.h"
+#include "egl/egl_headless.h"
+#include "host/host_depth.h"
 #include "internal.h"
 #include "reference.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 #define W 640
 #define H 360

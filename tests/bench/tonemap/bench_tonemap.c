@@ -25,9 +25,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "egl_headless.h"
+#include "egl/egl_headless.h"
 #include "internal.h"
-#include "test_scene.h"
+#include "host/test_scene.h"
 
 #define LOCUS_POINTS 4096
 #define FIRE_SHARE (1.0 / 3.0)

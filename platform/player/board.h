@@ -1,0 +1,49 @@
+/* Board profiles: what the player needs to know about a board at run time, read from a
+ * libconfig file (boards/NAME.cfg, `sbfx-play --board FILE`). The toolchain side of a board is
+ * boards/NAME.mk, included by the Makefile for `make BOARD=NAME`.
+ *
+ *   board = "rk3588"; description = "...";
+ *   display = { device = "/dev/dri/card0"; connector = "HDMI-A-1"; mode = "1920x1080@60";
+ *               modeset = "auto"; };                    # auto | atomic | legacy
+ *   video   = { device = "/dev/video0"; size = [640, 480]; };
+ *   gpio    = { debounce_ms = 30; min_interval_ms = 250;
+ *               lines = ( { chip = "gpiochip0"; line = 17; edge = "rising";
+ *                           effect = "explosion"; position = [0.0, 0.0, 0.0]; } ); };
+ *   render  = { target_scale = 4; max_particles = 1024; };
+ *
+ * Every key is optional; "" means "not set". An unknown key, a value of the wrong type or out of
+ * range is an error naming the file, the line and the key. */
+#ifndef SBFX_BOARD_H
+#define SBFX_BOARD_H
+
+#include <stddef.h>
+
+#include "gpio/gpio_triggers.h"
+
+enum modeset_kind { MODESET_AUTO, MODESET_ATOMIC, MODESET_LEGACY };
+
+struct board_profile {
+    char name[64];
+    char description[160];
+    char drm_device[128];
+    char connector[32];
+    char mode[32];
+    enum modeset_kind modeset;
+    char video_device[128];
+    int video_width, video_height;   /* 0: the driver's size */
+    int gpio_debounce_ms;            /* defaults of lines that do not say (-1: not set) */
+    int gpio_min_interval_ms;
+    struct gpio_trigger_spec gpio[GPIO_TRIGGERS_MAX];
+    int gpio_count;
+    int target_scale;                /* 0: not set */
+    int max_particles;               /* 0: not set */
+};
+
+void board_profile_defaults(struct board_profile *b);
+/* 0, or -ENOENT / -EINVAL with "FILE:LINE: what" in err. */
+int board_load(const char *path, struct board_profile *b, char *err, size_t n);
+
+/* "WxH" or "WxH@HZ" (a mode name); refresh 0 when not given. 0 or -EINVAL. */
+int mode_spec_parse(const char *text, int *width, int *height, int *refresh);
+
+#endif

@@ -1,0 +1,376 @@
+/* sbfx-play: renders sbfx effects over the test scene, headless into PNG frames or on a DRM/KMS
+ * display as a kiosk, with GPIO lines and a V4L2 camera as inputs.
+ *
+ * One frame: test scene -> its colour is copied into the display's framebuffer (so an idle
+ * sbfx, which issues no pass, still leaves the scene there) -> sbfx_update -> sbfx_render into
+ * that framebuffer -> the display presents it (headless: glReadPixels -> PNG; drm: page flip).
+ * The command line is in player_args.c, the loop in player_loop.c, inputs in player_inputs.c. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "player/player.h"
+
+static void on_sbfx_log(sbfx_log_level level, const char *message, void *user)
+{
+    const struct player_options *opt = user;
+    static const char *const prefix[] = {"error", "warning", "info"};
+    if (level == SBFX_LOG_INFO && opt->quiet) return;
+    const char *name = (unsigned)level <= SBFX_LOG_INFO ? prefix[level] : "?";
+    fprintf(stderr, "sbfx: %s: %s\n", name, message);
+}
+
+void player_log(const char *message, void *user)
+{
+    (void)user;
+    fprintf(stderr, "sbfx-play: %s\n", message);
+}
+
+/* ---- setup -------------------------------------------------------------------------------- */
+
+/* mkdir -p: every missing component of path, then a check that it is a directory. */
+static int make_dirs(const char *path, char *err, size_t n)
+{
+    char buf[PATH_MAX];
+    if (snprintf(buf, sizeof(buf), "%s", path) >= (int)sizeof(buf)) {
+        snprintf(err, n, "--out: path too long: %s", path);
+        return -ENAMETOOLONG;
+    }
+    for (char *p = buf + 1; *p; p++) {
+        if (*p != '/') continue;
+        *p = '\0';
+        if (mkdir(buf, 0777) != 0 && errno != EEXIST) goto err_mkdir;
+        *p = '/';
+    }
+    if (mkdir(buf, 0777) != 0 && errno != EEXIST) goto err_mkdir;
+    struct stat st;
+    if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        snprintf(err, n, "--out: %s exists and is not a directory", path);
+        return -ENOTDIR;
+    }
+    return 0;
+
+err_mkdir: {
+    int rc = -errno;
+    snprintf(err, n, "--out: cannot create %.512s: %s", buf, strerror(errno));
+    return rc;
+}
+}
+
+/* A bad --stats path should fail before the run, not after minutes of rendering. */
+static int check_writable(const char *path, char *err, size_t n)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        int rc = -errno;
+        snprintf(err, n, "--stats: cannot create %s: %s", path, strerror(errno));
+        return rc;
+    }
+    fclose(f);
+    return 0;
+}
+
+/* --trigger entries go to the module's schedule: each fires at the first simulation step at
+ * or after its time, so a run does not depend on --fps. The default timeline (one explosion at
+ * t=0 at the origin) is the scene's own; --no-timeline turns it off (desc.ignore_timeline). */
+static int schedule_triggers(struct player *p, char *err, size_t n)
+{
+    const struct player_options *opt = p->opt;
+    for (int i = 0; i < opt->trigger_count; i++) {
+        const struct player_trigger *t = &opt->triggers[i];
+        double at = t->seconds;
+        if (p->recovering) { /* a new module after a GPU reset: its time 0 is the player's now */
+            if (at <= p->fx_time_lost) continue; /* fired before the reset */
+            at = at > p->sim_time ? at - p->sim_time : 0.0;
+        }
+        sbfx_result r = sbfx_schedule(p->fx, t->effect, at, t->position);
+        if (r != SBFX_OK) {
+            snprintf(err, n, "--trigger %s@%g: %s: %s", t->effect, t->seconds, sbfx_result_string(r),
+                     sbfx_last_error(p->fx));
+            return -EINVAL;
+        }
+    }
+    return 0;
+}
+
+static int load_scene(const char *path, sbfx_scene **scene, char *err, size_t n)
+{
+    *scene = NULL;
+    if (!path) return 0; /* the library's built-in explosion */
+    char why[512];
+    if (sbfx_scene_load(path, scene, why, sizeof(why)) != SBFX_OK) {
+        snprintf(err, n, "--scene %s", why);
+        return -EINVAL;
+    }
+    return 0;
+}
+
+int player_create_fx(struct player *p, char *err, size_t n)
+{
+    const struct player_options *opt = p->opt;
+    sbfx_scene *scene = NULL;
+    int rc = load_scene(opt->scene_path, &scene, err, n);
+    if (rc == 0 && !p->recovering) rc = player_collect_scene_gpio(p, scene, err, n);
+    sbfx_scene_camera_get(scene, &p->camera); /* the default orbit without a camera group */
+    if (rc) {
+        sbfx_scene_free(scene);
+        return rc;
+    }
+    const sbfx_desc desc = {
+        .target_divisor = opt->scale ? opt->scale : p->board.target_scale,
+        .target_format = opt->format,
+        .upsample = opt->upsample,
+        .opacity = opt->opacity,
+        .tone_map = opt->tone_map,
+        .exposure = opt->exposure,
+        .seed = opt->seed,
+        .start_time = p->recovering ? p->fx_clock_lost : opt->start_time,
+        .frame_budget_ms = opt->budget_ms,
+        .max_particles = p->board.max_particles,
+        .scene = scene,
+        .ignore_timeline = opt->no_timeline || p->recovering, /* not replayed after a reset */
+        .log = on_sbfx_log,
+        .log_user = (void *)opt,
+    };
+    sbfx_result r = sbfx_create(&desc, &p->fx);
+    sbfx_scene_free(scene); /* the module keeps what it needs */
+    if (r != SBFX_OK) { /* the reason went through the log callback */
+        snprintf(err, n, "sbfx_create failed: %s", sbfx_result_string(r));
+        return -EIO;
+    }
+    p->fx_created_at = p->recovering ? p->sim_time : 0.0;
+    return schedule_triggers(p, err, n);
+}
+
+static int create_headless(struct player *p, char *err, size_t n)
+{
+    const struct player_options *opt = p->opt;
+    int rc = make_dirs(opt->out_dir, err, n);
+    if (rc) return rc;
+    if (!realpath(opt->out_dir, p->out_dir)) {
+        rc = -errno;
+        snprintf(err, n, "--out: %s: %s", opt->out_dir, strerror(errno));
+        return rc;
+    }
+    if (opt->stats_path && (rc = check_writable(opt->stats_path, err, n)) != 0) return rc;
+    const struct display_headless_desc desc = {
+        .width = opt->width, .height = opt->height, .out_dir = p->out_dir,
+        .contact_sheet = opt->contact_sheet, .frames = opt->frames,
+    };
+    p->measure_gpu = true;
+    return display_headless_create(&desc, &p->display, err, n);
+}
+
+static const char *either(const char *flag, const char *board_value)
+{
+    return flag ? flag : (board_value[0] ? board_value : NULL);
+}
+
+static int create_drm(struct player *p, char *err, size_t n)
+{
+    const struct player_options *opt = p->opt;
+    int rc = 0;
+    if (opt->stats_path && (rc = check_writable(opt->stats_path, err, n)) != 0) return rc;
+    const struct board_profile *b = &p->board;
+    const struct display_drm_desc desc = {
+        .device = either(opt->device, b->drm_device),
+        .connector = either(opt->connector, b->connector),
+        .mode = either(opt->mode, b->mode),
+        .modeset = opt->modeset >= 0 ? opt->modeset : (int)b->modeset,
+        .screenshot = opt->screenshot,
+    };
+    p->realtime = !opt->fps_set;
+    char why[768];
+    rc = display_drm_create(&desc, &p->display, why, sizeof(why));
+    if (rc) snprintf(err, n, "--display drm: %s", why);
+    return rc;
+}
+
+static int setup(struct player *p, char *err, size_t n)
+{
+    int rc = player_load_board(p, err, n);
+    if (rc) return rc;
+    rc = p->opt->display == PLAYER_DISPLAY_DRM ? create_drm(p, err, n) : create_headless(p, err, n);
+    if (rc) return rc;
+    struct display *d = p->display;
+    if ((rc = test_scene_create(&p->scene, d->width, d->height, err, n)) != 0) return rc;
+    p->scene_made = true;
+    player_reset_setup(p);
+    if ((rc = player_create_fx(p, err, n)) != 0) return rc;
+    return player_open_inputs(p, err, n);
+}
+
+/* Undoes whatever part of setup() happened: every member starts zeroed. */
+static void teardown(struct player *p)
+{
+    player_close_inputs(p);
+    if (p->fx) sbfx_destroy(p->fx);
+    if (p->scene_made) test_scene_destroy(&p->scene);
+    if (p->display) p->display->ops->destroy(p->display);
+    p->fx = NULL;
+    p->display = NULL;
+}
+
+/* ---- results -------------------------------------------------------------------------- */
+
+/* Counters of the kiosk parts, only when they are in use (the headless JSON stays as it was). */
+static void write_platform_stats(const struct player *p, FILE *f)
+{
+    const sbfx_counters *c = &p->last;
+    const struct display_counts *d = &p->display->counts;
+    fprintf(f, ", \"frames\": %lld, \"flips\": %llu, \"missed_vblanks\": %llu, \"triggers_fired\": %d, "
+            "\"triggers_refused\": %d, \"display_unplugs\": %llu, \"display_replugs\": %llu, "
+            "\"display_paused_frames\": %llu", (long long)p->frames_done, (unsigned long long)d->flips,
+            (unsigned long long)d->missed, c->triggers_fired, c->triggers_refused,
+            (unsigned long long)d->unplugs, (unsigned long long)d->replugs,
+            (unsigned long long)d->paused);
+    if (p->gpio_on) {
+        const struct gpio_trigger_counts *g = &p->gpio.counts;
+        fprintf(f, ", \"gpio_edges\": %llu, \"gpio_fired\": %llu, \"gpio_filtered\": %llu, "
+                "\"gpio_refused\": %llu, \"gpio_overflows\": %llu, \"gpio_losses\": %llu, "
+                "\"gpio_returns\": %llu, \"gpio_retries\": %llu", (unsigned long long)g->edges,
+                (unsigned long long)g->fired, (unsigned long long)g->filtered,
+                (unsigned long long)g->refused, (unsigned long long)g->overflows,
+                (unsigned long long)g->losses, (unsigned long long)g->returns,
+                (unsigned long long)g->retries);
+    }
+    if (p->live_on) {
+        const struct live_detail_counts *v = &p->live.counts;
+        fprintf(f, ", \"video_frames\": %llu, \"video_distinct\": %llu, \"video_losses\": %llu, "
+                "\"video_reopens\": %llu, \"video_takeovers\": %llu", (unsigned long long)v->frames,
+                (unsigned long long)v->distinct, (unsigned long long)v->losses,
+                (unsigned long long)v->reopens, (unsigned long long)v->takeovers);
+    }
+}
+
+static int write_stats(const struct player *p, const char *path, char *err, size_t n)
+{
+    const sbfx_counters *c = &p->last;
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        int rc = -errno;
+        snprintf(err, n, "--stats: cannot create %s: %s", path, strerror(errno));
+        return rc;
+    }
+    fprintf(f,
+            "{\"programs\": %d, \"textures\": %d, \"framebuffers\": %d, \"gpu_bytes\": %zu, "
+            "\"passes\": %d, \"draw_calls\": %d, \"particles_simulated\": %d, "
+            "\"heap_allocs_after_load\": %llu",
+            c->programs, c->textures, c->framebuffers, c->gpu_bytes, c->passes, c->draw_calls,
+            p->frame_simulated, (unsigned long long)c->heap_allocs_after_load);
+    /* the level's name comes from sbfx_quality_name: letters, digits and '/' only */
+    fprintf(f, ", \"budget_ms\": %g, \"gpu_ms\": %.3f, \"frames_over_budget\": %d, \"quality_changes\": %d, "
+            "\"quality\": \"%s\"", (double)c->budget_ms, (double)c->gpu_ms, c->frames_over_budget,
+            c->quality_changes, c->quality);
+    fprintf(f, ", \"gpu_resets\": %llu, \"gpu_reset_notification\": %d",
+            (unsigned long long)p->gpu_resets, p->reset.status ? 1 : 0);
+    if (p->display->fd >= 0 || p->gpio_on || p->live_on) write_platform_stats(p, f);
+    fprintf(f, "}\n");
+    bool failed = ferror(f) != 0;
+    if (fclose(f) != 0 || failed) {
+        snprintf(err, n, "--stats: writing %s failed: %s", path, strerror(errno));
+        return -EIO;
+    }
+    return 0;
+}
+
+static const char *format_name(sbfx_target_format format)
+{
+    static const char *const names[] = {"not reported", "RGBA8", "RGBA16F", "RGBA32F"};
+    return (unsigned)format < SBFX_FORMAT_COUNT ? names[format] : "?";
+}
+
+static void print_headless_summary(const struct player *p)
+{
+    const struct frame_times *t = &p->times;
+    int frames = (int)p->frames_done; /* headless runs are limited by --frames */
+    printf("sbfx-play: %d frames of %dx%d in %s (frame-0000.png .. frame-%04d.png)\n", frames,
+           p->opt->width, p->opt->height, p->out_dir, frames - 1);
+    if (p->opt->contact_sheet) printf("sbfx-play: contact sheet: %s/contact-sheet.png\n", p->out_dir);
+    printf("sbfx-play: sbfx update+render+glFinish: mean %.2f ms, max %.2f ms per frame "
+           "(particle target %s)\n", t->sbfx_sum / frames, t->sbfx_max,
+           format_name(p->last.target_format));
+    printf("sbfx-play: whole frame (scene, sbfx, readback, PNG): mean %.2f ms, max %.2f ms\n",
+           t->total_sum / frames, t->total_max);
+}
+
+static void print_drm_summary(const struct player *p)
+{
+    const struct display_counts *c = &p->display->counts;
+    double seconds = (double)(player_now_ns() - p->run_start_ns) / 1e9;
+    long long frames = (long long)p->frames_done;
+    printf("sbfx-play: %lld frames in %.1f s (%.1f fps) on %s; flips %llu, missed vblanks %llu; "
+           "sbfx update+render mean %.2f ms, max %.2f ms (particle target %s)\n", frames, seconds,
+           seconds > 0 ? (double)frames / seconds : 0.0, p->display->description,
+           (unsigned long long)c->flips, (unsigned long long)c->missed,
+           frames ? p->times.sbfx_sum / (double)frames : 0.0, p->times.sbfx_max, format_name(p->last.target_format));
+    if (p->opt->screenshot) printf("sbfx-play: screenshot: %s\n", p->opt->screenshot);
+}
+
+static int finish(struct player *p, char *err, size_t n)
+{
+    int rc = 0;
+    /* GPIO triggers may have fired after the last render: their counters are current now (the
+     * per-frame ones - passes, draw calls - are still the last render's). */
+    sbfx_stats(p->fx, &p->last);
+    if (p->opt->stats_path && (rc = write_stats(p, p->opt->stats_path, err, n)) != 0) return rc;
+    if (p->opt->quiet) return 0;
+    if (p->opt->display == PLAYER_DISPLAY_DRM) print_drm_summary(p);
+    else print_headless_summary(p);
+    return 0;
+}
+
+static void print_banner(const struct player *p)
+{
+    const struct player_options *opt = p->opt;
+    const char *version = (const char *)glGetString(GL_VERSION);
+    if (!version) version = "?";
+    if (opt->display != PLAYER_DISPLAY_DRM) {
+        printf("sbfx-play: %s, %s, %s; %dx%d, %d frames at %g fps\n", display_gl_renderer(),
+               version, p->display->description, opt->width, opt->height, opt->frames, opt->fps);
+        return;
+    }
+    char frames[32] = "until stopped", pace[48] = "simulation follows the clock";
+    if (opt->frames_set) snprintf(frames, sizeof(frames), "%d frames", opt->frames);
+    if (!p->realtime) snprintf(pace, sizeof(pace), "%g simulated fps", opt->fps);
+    printf("sbfx-play: %s, %s, %s; %s, %s\n", display_gl_renderer(), version,
+           p->display->description, frames, pace);
+    fflush(stdout);
+}
+
+static int play(const struct player_options *opt)
+{
+    static struct player player; /* large (PATH_MAX, trigger tables): off the stack */
+    struct player *p = &player;
+    memset(p, 0, sizeof(*p));
+    p->opt = opt;
+    char err[1024] = "";
+    int rc = setup(p, err, sizeof(err));
+    if (rc == 0) {
+        if (!opt->quiet) print_banner(p);
+        if (opt->display == PLAYER_DISPLAY_DRM) player_catch_signals();
+        rc = player_run_frames(p, err, sizeof(err));
+    }
+    if (rc == 0) rc = finish(p, err, sizeof(err));
+    if (rc) fprintf(stderr, "sbfx-play: %s\n", err);
+    teardown(p);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    static struct player_options opt; /* the trigger table is large: off the stack */
+    char err[512] = "";
+    player_options_defaults(&opt);
+    if (player_parse_args(&opt, argc, argv, err, sizeof(err)) != 0) {
+        fprintf(stderr, "sbfx-play: %s\n", err);
+        return 1;
+    }
+    if (opt.help) {
+        player_usage(stdout);
+        return 0;
+    }
+    return play(&opt) == 0 ? 0 : 1;
+}

@@ -1,0 +1,273 @@
+/* sbfx-play's frame loop. Per frame: wait until the display can take a frame (a page flip in
+ * flight completes; GPIO events and camera frames are serviced while waiting), draw the test
+ * scene, copy it into the display's framebuffer, sbfx_update + sbfx_render over it, present.
+ * Nothing here allocates. */
+#include <errno.h>
+#include <limits.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "egl/gl_check.h"
+#include "player/player.h"
+
+#define FLIP_TIMEOUT_NS INT64_C(1000000000)
+#define MAX_REALTIME_STEP 0.25 /* s: a stalled frame does not make the simulation jump */
+#define NS_PER_S 1e9
+
+static volatile sig_atomic_t stop_signal;
+
+static void on_signal(int sig)
+{
+    stop_signal = sig;
+}
+
+/* SIGINT and SIGTERM end the kiosk loop after the frame in progress; no SA_RESTART, so a poll
+ * waiting for a page flip returns at once. */
+void player_catch_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof(sa));
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+bool player_stop_requested(void)
+{
+    return stop_signal != 0;
+}
+
+int64_t player_now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
+}
+
+/* ---- waiting for the display ---------------------------------------------------------- */
+
+static int collect_fds(struct player *p, struct pollfd *fds, int max, int *display_slot)
+{
+    int count = 0;
+    *display_slot = -1;
+    if (p->display->busy && p->display->fd >= 0) {
+        *display_slot = count;
+        fds[count++] = (struct pollfd){.fd = p->display->fd, .events = POLLIN};
+    }
+    if (p->gpio_on) count += gpio_triggers_pollfds(&p->gpio, fds + count, max - count);
+    return count;
+}
+
+/* Polls the display (while a flip is in flight) and the GPIO lines; returns when the display
+ * can take the next frame, or a signal asks to stop. The camera is serviced once per frame. */
+static int wait_ready(struct player *p, char *err, size_t n)
+{
+    struct display *d = p->display;
+    int64_t deadline = player_now_ns() + FLIP_TIMEOUT_NS;
+    for (;;) {
+        struct pollfd fds[2 + GPIO_TRIGGERS_MAX];
+        int slot = -1, count = collect_fds(p, fds, (int)(sizeof(fds) / sizeof(fds[0])), &slot);
+        int64_t left = deadline - player_now_ns();
+        int timeout = d->busy ? (int)(left > 0 ? left / 1000000 + 1 : 0) : 0;
+        int r = count ? poll(fds, (nfds_t)count, timeout) : 0;
+        if (r < 0 && errno != EINTR) {
+            int rc = -errno;
+            snprintf(err, n, "poll: %s", strerror(errno));
+            return rc;
+        }
+        if (r > 0 && slot >= 0 && fds[slot].revents) {
+            int rc = d->ops->dispatch(d, err, n);
+            if (rc) return rc;
+        }
+        player_service_gpio(p);
+        if (!d->busy || player_stop_requested()) break;
+        if (player_now_ns() >= deadline) {
+            snprintf(err, n, "%s: a page flip did not complete within 1 s", d->description);
+            return -ETIMEDOUT;
+        }
+    }
+    player_service_video(p);
+    return 0;
+}
+
+/* ---- one frame ------------------------------------------------------------------------ */
+
+static int update(struct player *p, double dt, char *err, size_t n)
+{
+    if (dt <= 0.0) return 0;
+    sbfx_result r = sbfx_update(p->fx, dt);
+    if (r != SBFX_OK) {
+        snprintf(err, n, "sbfx_update(%g) at t=%.4f s: %s: %s", dt, p->sim_time,
+                 sbfx_result_string(r), sbfx_last_error(p->fx));
+        return -EIO;
+    }
+    sbfx_counters c;
+    sbfx_stats(p->fx, &c);
+    p->frame_simulated += c.particles_simulated;
+    p->sim_time += dt;
+    return 0;
+}
+
+static int draw_scene(struct player *p, double t, sbfx_frame *frame, char *err, size_t n)
+{
+    int w = p->display->width, h = p->display->height;
+    test_scene_camera(&p->camera, t, (float)w / (float)h, frame->view, frame->projection);
+    if (test_scene_draw(&p->scene, frame->view, frame->projection) != 0) {
+        snprintf(err, n, "test scene: GL error while drawing");
+        return -EIO;
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, p->scene.framebuffer);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, p->display->framebuffer);
+    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    frame->scene_color_texture = p->scene.color_texture;
+    frame->scene_depth_texture = p->scene.depth_texture;
+    frame->out_framebuffer = p->display->framebuffer;
+    frame->width = w;
+    frame->height = h;
+    if (p->measure_gpu) glFinish(); /* so the timed part below holds sbfx's GPU work only */
+    return platform_gl_check("scene copy to the output framebuffer", err, n);
+}
+
+static int run_fx(struct player *p, double t, const sbfx_frame *frame, char *err, size_t n)
+{
+    p->frame_simulated = 0;
+    int rc = update(p, t - p->sim_time, err, n);
+    if (rc) return rc;
+    sbfx_result r = sbfx_render(p->fx, frame);
+    if (r != SBFX_OK) {
+        snprintf(err, n, "sbfx_render at t=%.4f s: %s: %s", t, sbfx_result_string(r),
+                 sbfx_last_error(p->fx));
+        return -EIO;
+    }
+    if (p->measure_gpu) glFinish();
+    return 0;
+}
+
+/* The frame-budget fallback where the module cannot time itself: headless runs measure sbfx's
+ * work between two glFinish calls (the module ignores it when its own timer queries work). */
+static void report_time(struct player *p, double sbfx_ms)
+{
+    if (p->measure_gpu && p->last.budget_ms > 0) sbfx_report_frame_time(p->fx, sbfx_ms);
+}
+
+static void record_times(struct frame_times *t, double sbfx_ms, double total_ms)
+{
+    t->sbfx_sum += sbfx_ms;
+    t->total_sum += total_ms;
+    if (sbfx_ms > t->sbfx_max) t->sbfx_max = sbfx_ms;
+    if (total_ms > t->total_max) t->total_max = total_ms;
+}
+
+/* Simulated time of frame i: i/F, or (drm without --fps) the clock since the first frame,
+ * advancing at most MAX_REALTIME_STEP per frame. */
+static double frame_time(struct player *p, int64_t index, int64_t now)
+{
+    if (!p->realtime) return (double)index / p->opt->fps;
+    if (index == 0) return 0.0;
+    double dt = (double)(now - p->last_frame_ns) / NS_PER_S;
+    return p->sim_time + (dt < MAX_REALTIME_STEP ? dt : MAX_REALTIME_STEP);
+}
+
+static int play_frame(struct player *p, int64_t index, char *err, size_t n)
+{
+    int rc = player_check_gpu_reset(p, index, err, n);
+    if (rc) return rc;
+    int64_t start = player_now_ns();
+    double t = frame_time(p, index, start);
+    p->last_frame_ns = start;
+    sbfx_frame frame;
+    memset(&frame, 0, sizeof(frame));
+    rc = draw_scene(p, t, &frame, err, n);
+    if (rc) return rc;
+    int64_t fx_start = player_now_ns();
+    rc = run_fx(p, t, &frame, err, n);
+    if (rc) return rc;
+    int64_t fx_end = player_now_ns();
+    sbfx_stats(p->fx, &p->last);
+    /* headless runs stop at --frames (int); a kiosk's display does not name its frames */
+    rc = p->display->ops->present(p->display, index < INT_MAX ? (int)index : INT_MAX, err, n);
+    if (rc) return rc;
+    report_time(p, (double)(fx_end - fx_start) / 1e6);
+    record_times(&p->times, (double)(fx_end - fx_start) / 1e6, (double)(player_now_ns() - start) / 1e6);
+    return 0;
+}
+
+/* ---- the once-a-second line ------------------------------------------------------------- */
+
+static void second_reset(struct player *p, int64_t now)
+{
+    struct second_stats *s = &p->second;
+    s->start_ns = now;
+    s->frames = (uint64_t)p->frames_done;
+    s->flips = p->display->counts.flips;
+    s->missed = p->display->counts.missed;
+    s->fired = (uint64_t)p->last.triggers_fired;
+    s->video = p->live_on ? p->live.counts.frames : 0;
+    s->frame_ms_sum = p->times.total_sum;
+    s->frame_ms_max = 0.0;
+}
+
+static void stats_line(struct player *p, int64_t now)
+{
+    struct second_stats *s = &p->second;
+    const struct display_counts *c = &p->display->counts;
+    double seconds = (double)(now - s->start_ns) / NS_PER_S;
+    uint64_t frames = (uint64_t)p->frames_done - s->frames;
+    char video[96] = "";
+    if (p->live_on) {
+        char what[64];
+        live_detail_describe(&p->live, what, sizeof(what));
+        snprintf(video, sizeof(video), ", video %llu frames (%s)",
+                 (unsigned long long)(p->live.counts.frames - s->video), what);
+    }
+    char budget[96] = "";
+    if (p->last.budget_ms > 0)
+        snprintf(budget, sizeof(budget), " (gpu %.1f of %.1f ms, %d changes)", (double)p->last.gpu_ms,
+                 (double)p->last.budget_ms, p->last.quality_changes);
+    printf("sbfx-play: %.1f fps, frame %.1f ms (max %.1f), flips %llu, missed vblanks %llu, "
+           "particles %d, triggers %llu, quality %s%s%s\n",
+           (double)frames / seconds, frames ? (p->times.total_sum - s->frame_ms_sum) / (double)frames : 0.0,
+           s->frame_ms_max, (unsigned long long)(c->flips - s->flips),
+           (unsigned long long)(c->missed - s->missed), p->last.particles_alive,
+           (unsigned long long)((uint64_t)p->last.triggers_fired - s->fired), p->last.quality, budget, video);
+    fflush(stdout);
+}
+
+static void stats_tick(struct player *p)
+{
+    if (p->display->fd < 0) return; /* headless: the summary at the end says it all */
+    int64_t now = player_now_ns();
+    double last_ms = (double)(now - p->last_frame_ns) / 1e6;
+    if (last_ms > p->second.frame_ms_max) p->second.frame_ms_max = last_ms;
+    if (now - p->second.start_ns < 1000000000) return;
+    if (!p->opt->quiet) stats_line(p, now);
+    second_reset(p, now);
+}
+
+/* ---- the loop --------------------------------------------------------------------------- */
+
+int player_run_frames(struct player *p, char *err, size_t n)
+{
+    const struct player_options *opt = p->opt;
+    bool limited = opt->display != PLAYER_DISPLAY_DRM || opt->frames_set;
+    p->run_start_ns = player_now_ns();
+    second_reset(p, p->run_start_ns);
+    for (int64_t i = 0; !limited || i < opt->frames; i++) {
+        char why[1024];
+        int rc = wait_ready(p, why, sizeof(why));
+        if (rc == 0 && player_stop_requested()) break;
+        if (rc == 0) rc = play_frame(p, i, why, sizeof(why));
+        if (rc) {
+            snprintf(err, n, "frame %lld: %s", (long long)i, why);
+            return rc;
+        }
+        p->frames_done++;
+        stats_tick(p);
+    }
+    return p->display->ops->finish(p->display, err, n);
+}
