@@ -70,8 +70,9 @@ unpack() {
     mkdir -p "$dir/src" "$dir/meson"
     tar -xJf "$orig" -C "$dir/src" --strip-components=1
     dpkg -x "$(ls "$dir"/dl/meson_*.deb | head -n 1)" "$dir/meson"
-    # two small changes (tools/mesa-shim.patch): Panfrost's SHADER-DB line also gives the
-    # register count, and the v3d shim can be a V3D 7.1 (V3D_SHIM_VERSION=71)
+    # small changes (tools/mesa-shim.patch): Panfrost's SHADER-DB line also gives the register
+    # count, the v3d shim can be a V3D 7.1 (V3D_SHIM_VERSION=71), and 25.0.7's v3d builds
+    # without the shader cache (disabled here, so that every run compiles every shader)
     patch -d "$dir/src" -p1 < "$here/tools/mesa-shim.patch" >&2
 }
 

@@ -4,8 +4,10 @@
 # BIFROST_MESA_DEBUG=shaderdb and SBFX_SHADER_LOG=1, and names each SHADER-DB line after the
 # variant sbfx was building when the driver printed it (the log brackets every program build).
 # Usage: tools/shader-stats.sh [-b BUILD] [-g "g52 g57 g610"] [-s "scenes/a.cfg ..."] [-q QUALITY]
-#                              OUT.csv
+#                              [-B] OUT.csv
 #   QUALITY: extra sbfx-play flags (e.g. "--opacity spherical"), default none (the scene's own)
+#   -B: instead of the scenes, every configuration of the accuracy bench (bench_accuracy
+#       --shaders; scene column "bench")
 # Columns: gpu, gpu_id, scene, shader, variant, stage, instructions, cycles, arith_cycles,
 # texture_cycles, varying_cycles, ldst_cycles, registers, threads, spills, fills.
 # cycles is Mesa's bound, the largest of the unit columns; on Valhall arith is the largest of
@@ -17,12 +19,14 @@ build=build
 gpus="g52 g57 g610"
 scenes=""
 quality=""
-while getopts b:g:s:q: opt; do
+bench=0
+while getopts b:g:s:q:B opt; do
     case "$opt" in
         b) build=$OPTARG ;;
         g) gpus=$OPTARG ;;
         s) scenes=$OPTARG ;;
         q) quality=$OPTARG ;;
+        B) bench=1 ;;
         *) exit 2 ;;
     esac
 done
@@ -31,6 +35,7 @@ shift $((OPTIND - 1))
 out=$1
 cd "$here"
 [ -n "$scenes" ] || scenes=$(ls scenes/*.cfg)
+[ "$bench" -eq 0 ] || scenes=bench
 play=$build/sbfx-play
 [ -x "$play" ] || { echo "shader-stats: $play is missing (make)" >&2; exit 1; }
 tools/mesa-shim.sh version >/dev/null 2>&1 || { echo "shader-stats: no Mesa drm-shim build (tools/mesa-shim.sh)" >&2; exit 1; }
@@ -44,10 +49,15 @@ for gpu in $gpus; do
     for scene in $scenes; do
         name=$(basename "$scene" .cfg)
         log=$logs/$gpu-$name.log
-        # shellcheck disable=SC2046,SC2086 # the shim's KEY=VALUE lines and the quality flags are lists
+        if [ "$scene" = bench ]; then
+            set -- "$build/bench/bench_accuracy" --shaders --out "$logs/frames"
+        else
+            # shellcheck disable=SC2086 # the quality flags are a list
+            set -- "$play" --scene "$scene" --frames 3 --size 320x180 $quality --out "$logs/frames"
+        fi
+        # shellcheck disable=SC2046 # the shim's KEY=VALUE lines
         if ! env $(tools/mesa-shim.sh env "$gpu") SBFX_SHADER_LOG=1 BIFROST_MESA_DEBUG=shaderdb \
-            mesa_glthread=false "$play" --scene "$scene" --frames 3 --size 320x180 $quality \
-            --out "$logs/frames" >"$log" 2>&1; then
+            mesa_glthread=false "$@" >"$log" 2>&1; then
             echo "shader-stats: sbfx-play failed on $gpu with $scene (see $log)" >&2
             exit 1
         fi
