@@ -7,7 +7,9 @@
 # Each scene runs at its own quality and at a second level that compiles the other variants
 # (spherical opacity, bilinear upsampling, per-channel tone map, RGBA8 target). A run passes when
 # every program links, or when sbfx refuses at create with a message naming what the GPU lacks
-# (no GLES 3.0, a missing format); a shader compile or link error is a failure.
+# (no GLES 3.0, a missing format); a shader compile or link error is a failure. The etnaviv
+# driver of Mesa 25 offers no OpenGL ES 3.0 context on a GC7000L: there the check is that the
+# run stops with that message (docs/gpus.md).
 # Usage: tests/gpus/run.sh [BUILD]   (TEST_GPUS="g52 rpi4" picks shims)
 set -u
 cd "$(dirname "$0")/../.."
@@ -38,7 +40,7 @@ run_one() {
     name=$(basename "$scene" .cfg)
     log=$out/$gpu-$name-$label.log
     # shellcheck disable=SC2046 # the shim's KEY=VALUE lines
-    env $(tools/mesa-shim.sh env "$gpu") $(debug_env "$gpu") SBFX_SHADER_LOG=1 mesa_glthread=false \
+    timeout 300 env $(tools/mesa-shim.sh env "$gpu") $(debug_env "$gpu") SBFX_SHADER_LOG=1 mesa_glthread=false \
         "$play" --scene "$scene" --frames 3 --size 320x180 --out "$out/frames" "$@" >"$log" 2>&1
     rc=$?
     linked=$(grep -c "shader build end: program [1-9][0-9]* linked" "$log")
@@ -50,8 +52,11 @@ run_one() {
         ok "$what: $linked programs linked"
     elif [ "$rc" -ne 0 ] && grep -q -E "sbfx: error: .*(needs|lacks|not supported|no .*renderable|OpenGL ES 3)" "$log"; then
         ok "$what: refused at create: $(grep -m1 "sbfx: error:" "$log" | cut -c1-200)"
-    elif [ "$rc" -ne 0 ] && grep -q -i -E "EGL|context" "$log" && [ "$linked" -eq 0 ]; then
-        not_ok "$what" "no GLES 3.0 context: $(grep -m1 -i -E "EGL|context" "$log" | cut -c1-200)"
+    elif [ "$rc" -ne 0 ] && [ "$linked" -eq 0 ] && grep -q "offers no GLES 3.0 context" "$log"; then
+        # the driver has no OpenGL ES 3.0 for this GPU: nothing of sbfx can run there
+        ok "$what: refused: the driver offers no OpenGL ES 3.0 context"
+    elif [ "$rc" -eq 124 ]; then
+        not_ok "$what" "timed out after 300 s (see $log)"
     else
         not_ok "$what" "exit status $rc, $linked programs linked (see $log)"
     fi
