@@ -194,13 +194,15 @@ static void note_program(const char *message)
         memcpy(programs.name[id], programs.pending, sizeof(programs.pending));
 }
 
+static bool print_shader_builds; /* --shaders: tools/shader-stats.sh reads them */
+
 static void log_warning(sbfx_log_level level, const char *message, void *user)
 {
     (void)user;
     if (level != SBFX_LOG_INFO) fprintf(stderr, "bench: sbfx: %s\n", message);
     else if (strncmp(message, "shader build ", 13) == 0) {
         note_program(message);
-        fprintf(stderr, "bench: sbfx: info: %s\n", message); /* read by tests/bench/run.sh under a shim */
+        if (print_shader_builds) fprintf(stderr, "bench: sbfx: info: %s\n", message);
     }
 }
 
@@ -1035,6 +1037,7 @@ int main(int argc, char **argv)
     bench *b = xcalloc(1, sizeof(*b));
     b->opt = parse_options(argc, argv);
     setenv("SBFX_SHADER_LOG", "1", 1); /* the variants' names, for fragments.csv */
+    print_shader_builds = b->opt.shaders;
     if (mkdir(b->opt.out, 0777) != 0 && errno != EEXIST) die(b->opt.out, strerror(errno));
     open_gl(b);
     prepare_references(b);
