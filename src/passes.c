@@ -73,7 +73,7 @@ static void gather_lights(const sbfx *fx, const float view[16], frame_lights *ou
         to_view(view, l->vector, l->point ? 1.0f : 0.0f, out->vector[out->count]);
         memcpy(out->color[out->count], l->color, sizeof(l->color));
     }
-    /* live flashes, brightest first: the shaders light the first fx->light_slots */
+    /* live flashes, brightest first, as many as the shaders' light slots hold (lights.c) */
     int order[SBFX_MAX_LIVE_FLASHES], lit = 0;
     float weight[SBFX_MAX_LIVE_FLASHES];
     for (int i = 0; i < fx->flash_count; i++) {
@@ -85,7 +85,7 @@ static void gather_lights(const sbfx *fx, const float view[16], frame_lights *ou
         for (; at > 0 && weight[at - 1] < w; at--) order[at] = order[at - 1], weight[at] = weight[at - 1];
         order[at] = i, weight[at] = w;
     }
-    for (int j = 0; j < lit && out->count < SBFX_SHADER_LIGHTS; j++, out->count++) {
+    for (int j = 0; j < lit && out->count < fx->light_slots; j++, out->count++) {
         const sbfx_live_flash *f = &fx->flashes[order[j]];
         double t = (fx->time - f->start) / f->duration;
         to_view(view, f->position, 1.0f, out->vector[out->count]);
