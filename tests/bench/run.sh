@@ -3,7 +3,9 @@
 #   tests/bench/run.sh [BUILD]      (make bench builds $BUILD/bench/bench_accuracy first)
 # Writes $BUILD/bench/accuracy.csv, accuracy.md (the same as a markdown table), accuracy.png
 # (gnuplot), summary.txt, reference and GPU frames as PNG, then runs the other bench programs
-# that exist (lighting, scenes); prints the summary.
+# that exist (lighting, scenes); prints the summary. Where Mesa's drm-shims are built (make
+# mesa-shim): mali.csv (.md), mali-bench.csv, accuracy-mali.csv and the Mali columns and panel
+# (docs/gpus.md); without them it says so and leaves the Mali columns out.
 # BENCH_ARGS passes options to the accuracy program, e.g.
 #   BENCH_ARGS="--size 640x360 --reps 3" make bench
 #   BENCH_ARGS="--match 'sph/4'" make bench        (one family of configurations)
@@ -30,9 +32,10 @@ eval "\"$BIN\" --out \"$OUT\" ${BENCH_ARGS:-}"
 # the fragments counted above at MALI_CORES cores and MALI_MHZ, RK3588's G610 MP4 at 1 GHz).
 MALI_CORES=${MALI_CORES:-4}
 MALI_MHZ=${MALI_MHZ:-1000}
-rm -f "$OUT/accuracy-mali.csv" "$OUT/mali-points.dat"
+rm -f "$OUT/accuracy-mali.csv" "$OUT/mali-points.dat" "$OUT/mali.csv" "$OUT/mali.md"
 if tools/mesa-shim.sh version >/dev/null 2>&1; then
     tools/shader-stats.sh -b "$BUILD" "$OUT/mali.csv"
+    tools/mali-table.sh "$OUT/mali.csv" g52 g610 >"$OUT/mali.md"
     tools/shader-stats.sh -b "$BUILD" -B "$OUT/mali-bench.csv"
     awk -F, -v cores="$MALI_CORES" -v mhz="$MALI_MHZ" -f tools/mali-accuracy.awk "$OUT/mali-bench.csv" \
         "$OUT/fragments.csv" "$OUT/accuracy.csv" >"$OUT/accuracy-mali.csv"
