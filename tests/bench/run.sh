@@ -39,9 +39,11 @@ if tools/mesa-shim.sh version >/dev/null 2>&1; then
     tools/shader-stats.sh -b "$BUILD" -B "$OUT/mali-bench.csv"
     awk -F, -v cores="$MALI_CORES" -v mhz="$MALI_MHZ" -f tools/mali-accuracy.awk "$OUT/mali-bench.csv" \
         "$OUT/fragments.csv" "$OUT/accuracy.csv" >"$OUT/accuracy-mali.csv"
-    # ms on a G610 (particle + composite), mean error, label
+    # ms on a G610 (particle + composite), mean error, label (the main grid's points only)
     awk -F, 'NR > 1 && $18 != "" && $1 != "floor" {
-        printf "%.4f %s \"%.3s/%d %s %s\"\n", $18 + $19, $9, $1, 1 / $2, $4 == "bilinear" ? "bl" : "nd", $5 == "table" ? "" : $5
+        grid = $3 == "RGBA16F" && $5 == "table" && $6 == "R16F" && $7 == "scene" && $8 == 0
+        label = grid ? sprintf("%.3s/%d %s", $1, 1 / $2, $4 == "bilinear" ? "bl" : "nd") : ""
+        printf "%.4f %s \"%s\"\n", $18 + $19, $9, label
     }' "$OUT/accuracy-mali.csv" >"$OUT/mali-points.dat"
     echo "mali      : Mesa $(tools/mesa-shim.sh version) drm-shims: $OUT/mali.csv, $OUT/accuracy-mali.csv (static estimates; G610 at $MALI_CORES cores x $MALI_MHZ MHz)" >>"$OUT/summary.txt"
 else
