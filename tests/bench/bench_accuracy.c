@@ -175,13 +175,23 @@ static options parse_options(int argc, char **argv)
 
 /* ---- simulation ---------------------------------------------------------------------- */
 
-/* Program id -> the variant's name, from the module's SBFX_SHADER_LOG lines (set by main). */
-#define MAX_PROGRAM_NAMES 1024
+/* Program id -> the variant's name, from the module's SBFX_SHADER_LOG lines (set by main): the
+ * last MAX_PROGRAM_NAMES programs built (a module's are among them). */
+#define MAX_PROGRAM_NAMES 64
 static struct {
     char pending[256];
+    GLuint id[MAX_PROGRAM_NAMES];
     char name[MAX_PROGRAM_NAMES][256];
+    int next;
     char composite[256]; /* the last composite built */
 } programs;
+
+static const char *program_name(GLuint id)
+{
+    for (int i = 0; i < MAX_PROGRAM_NAMES; i++)
+        if (programs.id[i] == id && id != 0) return programs.name[i];
+    return "";
+}
 
 static void note_program(const char *message)
 {
@@ -190,8 +200,11 @@ static void note_program(const char *message)
     if (begin) snprintf(programs.pending, sizeof(programs.pending), "%s", begin + strlen("shader build begin: "));
     if (begin && strstr(begin, " composite.frag | "))
         snprintf(programs.composite, sizeof(programs.composite), "%s", strstr(begin, " | ") + 3);
-    else if (sscanf(message, "shader build end: program %u", &id) == 1 && id > 0 && id < MAX_PROGRAM_NAMES)
-        memcpy(programs.name[id], programs.pending, sizeof(programs.pending));
+    else if (sscanf(message, "shader build end: program %u", &id) == 1 && id > 0) {
+        int slot = programs.next++ % MAX_PROGRAM_NAMES;
+        programs.id[slot] = id;
+        memcpy(programs.name[slot], programs.pending, sizeof(programs.pending));
+    }
 }
 
 static bool print_shader_builds; /* --shaders: tools/shader-stats.sh reads them */
@@ -439,7 +452,7 @@ static void count_fragments(render_call *rc, variant_fragments *vf)
     vf->failed = vf->failed || t.failed;
     memcpy(vf->composite, programs.composite, sizeof(vf->composite));
     for (int d = 0; d < t.draws; d++) {
-        const char *name = t.program[d] < MAX_PROGRAM_NAMES ? programs.name[t.program[d]] : "";
+        const char *name = program_name(t.program[d]);
         int k = 0;
         while (k < vf->count && strcmp(vf->name[k], name) != 0) k++;
         if (k == vf->count) {
