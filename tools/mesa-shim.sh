@@ -50,9 +50,13 @@ archive_uri() {
 }
 
 trixie_apt() {
+    # as root apt would download as _apt, who may not write into the build folder
+    sandbox=""
+    [ "$(id -u)" -ne 0 ] || sandbox="-o APT::Sandbox::User=root"
+    # shellcheck disable=SC2086 # $sandbox is one option or none
     apt-get -q -o Dir::Etc::SourceList="$dir/apt/trixie.list" -o Dir::Etc::SourceParts=/dev/null \
         -o Dir::State::Lists="$dir/apt/lists" -o Dir::Cache="$dir/apt/cache" \
-        -o Dir::State::Status=/var/lib/dpkg/status -o APT::Sandbox::User=root "$@"
+        -o Dir::State::Status=/var/lib/dpkg/status $sandbox "$@"
 }
 
 fetch_sources() {
@@ -65,11 +69,12 @@ fetch_sources() {
 }
 
 unpack() {
-    orig=$(ls "$dir"/dl/mesa_*.orig.tar.xz | head -n 1)
+    # the .orig.tar.xz, not the .asc beside it
+    orig=$(find "$dir/dl" -maxdepth 1 -name 'mesa_*.orig.tar.xz' | head -n 1)
     rm -rf "$dir/src" "$dir/meson"
     mkdir -p "$dir/src" "$dir/meson"
     tar -xJf "$orig" -C "$dir/src" --strip-components=1
-    dpkg -x "$(ls "$dir"/dl/meson_*.deb | head -n 1)" "$dir/meson"
+    dpkg -x "$(find "$dir/dl" -maxdepth 1 -name 'meson_*.deb' | head -n 1)" "$dir/meson"
     # small changes (tools/mesa-shim.patch): Panfrost's SHADER-DB line also gives the register
     # count, the v3d shim can be a V3D 7.1 (V3D_SHIM_VERSION=71), and 25.0.7's v3d builds
     # without the shader cache (disabled here, so that every run compiles every shader)
@@ -115,6 +120,7 @@ driver_of() {
 env_of() {
     line=$(shims | awk -v n="$1" '$1 == n')
     [ -n "$line" ] || { echo "mesa-shim: unknown shim '$1' ($(shims | awk '{printf "%s ", $1}'))" >&2; exit 2; }
+    # shellcheck disable=SC2086 # the line's words: name, driver, KEY=VALUE...
     set -- $line
     echo "LD_LIBRARY_PATH=$libdir"
     echo "LIBGL_DRIVERS_PATH=$libdir/dri"

@@ -12,7 +12,7 @@
 # run stops with that message (docs/gpus.md).
 # Usage: tests/gpus/run.sh [BUILD]   (TEST_GPUS="g52 rpi4" picks shims)
 set -u
-cd "$(dirname "$0")/../.."
+cd "$(dirname "$0")/../.." || exit 1
 build=${1:-build}
 play=$build/sbfx-play
 gpus=${TEST_GPUS:-g52 g610 rpi4 rpi5 adreno618 gc7000l}
