@@ -123,7 +123,6 @@ env_of() {
     # shellcheck disable=SC2086 # the line's words: name, driver, KEY=VALUE...
     set -- $line
     echo "LD_LIBRARY_PATH=$libdir"
-    echo "LIBGL_DRIVERS_PATH=$libdir/dri"
     echo "LD_PRELOAD=$libdir/lib$2_noop_drm_shim.so"
     echo "MESA_LOADER_DRIVER_OVERRIDE=$(driver_of "$2")"
     echo "EGL_PLATFORM=surfaceless"
