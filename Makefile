@@ -13,6 +13,8 @@
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
 #   make test-vm      real-kernel tests in a qemu VM (vkms, vivid, gpio-sim; tests/vm/)
 #   make test-debian13  make test in a Debian 13 root (debootstrap; tests/debian13/run.sh), as root
+#   make test-gpus    every scene's shaders through Mesa's Mali, V3D, Adreno, Vivante compilers
+#                     (drm-shims; builds Mesa 25 into build/mesa-shim/ once; docs/gpus.md)
 #   make soak         SOAK_HOURS (10) simulated hours of the kiosk loop: build/soak/soak.csv, .png
 #   make fuzz         FUZZ_SECONDS (60) of libFuzzer on the scene parser (clang)
 #   make clean        remove build/
@@ -370,7 +372,7 @@ ladder:
 # ---- frame budget bench (issue 11): the barrage at several budgets and at every fixed level ----
 # A program of its own (tests/bench/budget/), with the accuracy bench's read-backs, metrics and
 # CPU reference; writes $(BUILD)/bench/budget.csv and budget.txt when run (tests/bench/run.sh).
-BUDGET_BENCH_OBJ := $(addprefix $(BUILD)/obj/bench/,bench_gl.o bench_metrics.o bench_reference.o)
+BUDGET_BENCH_OBJ := $(addprefix $(BUILD)/obj/bench/,bench_gl.o bench_fragments.o bench_metrics.o bench_reference.o)
 $(BUILD)/bench/bench_budget: tests/bench/budget/bench_budget.c $(BUDGET_BENCH_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests/bench $(LDSAN) $(BENCH_WRAP) -o $@ $< $(BUDGET_BENCH_OBJ) \
@@ -515,6 +517,15 @@ cross-check:
 	@for f in build/$(CROSS_BOARD)/sbfx-play build/$(CROSS_BOARD)/sbfx-probe build/$(CROSS_BOARD)/libsbfx.so; do \
 		readelf -h $$f | grep -q 'Machine:.*AArch64' || { echo "cross-check: $$f is not AArch64" >&2; exit 1; }; \
 	done; echo "cross-check: build/$(CROSS_BOARD)/sbfx-play, sbfx-probe, libsbfx.so link for AArch64"
+
+# The target GPUs' compilers without the GPUs: Mesa 25's drm-shims (tools/mesa-shim.sh, built
+# once into build/mesa-shim/), every example scene compiled by each (tests/gpus/run.sh).
+.PHONY: mesa-shim test-gpus
+mesa-shim:
+	@tools/deps.sh mesa-shim
+	@nice -n 10 tools/mesa-shim.sh build >/dev/null
+test-gpus: mesa-shim all
+	@tests/gpus/run.sh $(BUILD)
 
 .PHONY: FORCE
 FORCE:

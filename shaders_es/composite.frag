@@ -16,7 +16,10 @@
 precision highp float;
 precision highp sampler2D;
 
-uniform sampler2D u_particles;    // low-res: premultiplied light, transmittance
+// mediump: the particle target is read at half precision, which is what an RGBA16F target holds
+// and what sanitize() clamps an RGBA32F one to (docs/gpus.md, "Precision"); a Mali keeps two
+// such values in a register, which keeps this shader within 32 registers (full occupancy)
+uniform mediump sampler2D u_particles; // low-res: premultiplied light, transmittance
 uniform sampler2D u_low_depth;    // low-res opaque near / distance (0: no surface)
 uniform sampler2D u_scene_depth;  // full-res host depth, window depth
 uniform ivec2 u_low_size;
@@ -46,9 +49,15 @@ float view_distance(float d)
     return u_depth_model.w / (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z);
 }
 
+// The four low-res texels around a pixel, clamped to the target once: (x0, y0, x1, y1).
+ivec4 corners(ivec2 base)
+{
+    return clamp(ivec4(base, base + 1), ivec4(0), ivec4(u_low_size - 1, u_low_size - 1));
+}
+
 float low_distance(ivec2 q)
 {
-    float e = texelFetch(u_low_depth, clamp(q, ivec2(0), u_low_size - 1), 0).r;
+    float e = texelFetch(u_low_depth, q, 0).r;
     return e > 0.0 ? u_near / e : NO_SURFACE;
 }
 
@@ -115,16 +124,50 @@ vec4 tone_map(vec4 p, vec3 dst)
 }
 // ---- end of tone mapping ----
 
-vec4 sanitize(vec4 p)
+mediump vec4 sanitize(mediump vec4 p)
 {
     // A NaN never reaches the screen; Inf is clamped to the largest half.
     if (any(isnan(p))) return vec4(0.0, 0.0, 0.0, 1.0);
     return vec4(clamp(p.rgb, 0.0, HALF_MAX), clamp(p.a, 0.0, 1.0));
 }
 
-vec4 fetch(ivec2 q)
+mediump vec4 fetch(ivec2 q)
 {
-    return sanitize(texelFetch(u_particles, clamp(q, ivec2(0), u_low_size - 1), 0));
+    return sanitize(texelFetch(u_particles, q, 0));
+}
+
+// Weights of the four low-res texels around this pixel (x: base, y: +x, z: +y, w: +x+y).
+mediump vec4 bilinear_weights(vec2 f)
+{
+    return vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+}
+
+#ifdef UPSAMPLE_NEAREST_DEPTH
+// Bilinear where the four low-res depths agree with this pixel's, else all weight on the texel
+// whose depth is closest.
+mediump vec4 nearest_depth_weights(ivec4 c, vec2 f)
+{
+    float z = view_distance(texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r);
+    vec4 dz = abs(vec4(low_distance(c.xy), low_distance(c.zy), low_distance(c.xw), low_distance(c.zw)) - z);
+    if (!(max(max(dz.x, dz.y), max(dz.z, dz.w)) > u_depth_threshold * z)) return bilinear_weights(f);
+    mediump vec4 w = vec4(1.0, 0.0, 0.0, 0.0);
+    float best = dz.x;
+    if (dz.y < best) { best = dz.y; w = vec4(0.0, 1.0, 0.0, 0.0); }
+    if (dz.z < best) { best = dz.z; w = vec4(0.0, 0.0, 1.0, 0.0); }
+    if (dz.w < best) { w = vec4(0.0, 0.0, 0.0, 1.0); }
+    return w;
+}
+#endif
+
+// The weighted sum of the four texels, one at a time: one running sum stays live, not four
+// texels (a sanitized texel is finite, so a zero weight adds exactly nothing).
+mediump vec4 upsample(ivec4 c, mediump vec4 w)
+{
+    mediump vec4 sum = fetch(c.xy) * w.x;
+    sum += fetch(c.zy) * w.y;
+    sum += fetch(c.xw) * w.z;
+    sum += fetch(c.zw) * w.w;
+    return sum;
 }
 
 void main()
@@ -132,30 +175,20 @@ void main()
     vec2 low = gl_FragCoord.xy / u_divisor - 0.5;
     ivec2 base = ivec2(floor(low));
     vec2 f = low - vec2(base);
-    vec4 p00 = fetch(base), p10 = fetch(base + ivec2(1, 0));
-    vec4 p01 = fetch(base + ivec2(0, 1)), p11 = fetch(base + ivec2(1, 1));
-    vec4 result = mix(mix(p00, p10, f.x), mix(p01, p11, f.x), f.y);
+    ivec4 c = corners(base);
 #ifdef UPSAMPLE_NEAREST_DEPTH
-    float z = view_distance(texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r);
-    vec4 dz = abs(vec4(low_distance(base), low_distance(base + ivec2(1, 0)), low_distance(base + ivec2(0, 1)),
-                       low_distance(base + ivec2(1, 1))) - z);
-    if (max(max(dz.x, dz.y), max(dz.z, dz.w)) > u_depth_threshold * z) {
-        result = p00;
-        float best = dz.x;
-        if (dz.y < best) { best = dz.y; result = p10; }
-        if (dz.z < best) { best = dz.z; result = p01; }
-        if (dz.w < best) { result = p11; }
-    }
+    vec4 result = upsample(c, nearest_depth_weights(c, f));
+#else
+    vec4 result = upsample(c, bilinear_weights(f));
 #endif
 #ifdef OWN_SCENE
     vec2 uv = gl_FragCoord.xy / u_full_size;
 #ifdef HAS_SHIMMER
     // bilinear, like the particles: nearest low-res offsets would tear the image into blocks
-    ivec2 hi = u_low_size - 1;
-    vec2 d00 = texelFetch(u_distortion, clamp(base, ivec2(0), hi), 0).rg;
-    vec2 d10 = texelFetch(u_distortion, clamp(base + ivec2(1, 0), ivec2(0), hi), 0).rg;
-    vec2 d01 = texelFetch(u_distortion, clamp(base + ivec2(0, 1), ivec2(0), hi), 0).rg;
-    vec2 d11 = texelFetch(u_distortion, clamp(base + ivec2(1, 1), ivec2(0), hi), 0).rg;
+    vec2 d00 = texelFetch(u_distortion, c.xy, 0).rg;
+    vec2 d10 = texelFetch(u_distortion, c.zy, 0).rg;
+    vec2 d01 = texelFetch(u_distortion, c.xw, 0).rg;
+    vec2 d11 = texelFetch(u_distortion, c.zw, 0).rg;
     vec2 offset = mix(mix(d00, d10, f.x), mix(d01, d11, f.x), f.y);
     if (!(abs(offset.x) < 1.0 && abs(offset.y) < 1.0)) offset = vec2(0.0);   // NaN, Inf, absurd
     uv = clamp(uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);

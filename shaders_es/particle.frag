@@ -57,6 +57,9 @@ uniform vec2 u_phase_shift;      // -ln((1+|g|)^2) * u_phase_warp.w, entries - 1
 uniform float u_g;
 uniform vec3 u_albedo_color;     // albedo * tint
 #define MAX_LIGHTS 8
+#ifndef LIGHT_SLOTS
+#define LIGHT_SLOTS MAX_LIGHTS   // set at load to the scene's lights + one effect's flashes
+#endif
 uniform int u_light_count;
 uniform vec4 u_light_vector[MAX_LIGHTS]; // view space: w = 0 direction of travel, w = 1 position
 uniform vec3 u_light_color[MAX_LIGHTS];  // irradiance (point lights: at 1 m)
@@ -243,7 +246,7 @@ mediump vec3 in_scattered(vec3 ray, vec3 p)
 {
     vec3 to_eye = -normalize(ray);
     mediump vec3 sum = u_ambient;
-    for (int i = 0; i < MAX_LIGHTS; i++) {
+    for (int i = 0; i < LIGHT_SLOTS; i++) {
         if (i >= u_light_count) break;
         vec4 l = u_light_vector[i];
         vec3 travel = l.xyz;

@@ -1,5 +1,6 @@
 /* Small GL helpers: error checks that say what failed, program building with defines. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "module.h"
 
@@ -87,7 +88,48 @@ static GLuint compile_stage(sbfx *fx, GLenum stage, const char *name, const char
     return shader;
 }
 
+/* "#define A\n#define B 2\n" -> "A B=2": a variant's name in one line. */
+static void variant_name(const char *defines, char *out, size_t size)
+{
+    size_t n = 0;
+    out[0] = '\0';
+    for (const char *d = defines ? strstr(defines, "#define ") : NULL; d && n + 1 < size;
+         d = strstr(d, "#define ")) {
+        d += strlen("#define ");
+        if (n > 0) out[n++] = ' ';
+        bool value = false;
+        for (; *d && *d != '\n' && n + 1 < size; d++) {
+            bool space = *d == ' ';
+            if (space && value) break;
+            out[n++] = space ? '=' : *d;
+            value = value || space;
+        }
+        out[n] = '\0';
+    }
+}
+
+/* SBFX_SHADER_LOG set: the log (INFO) brackets each program build, so a driver's per-shader
+ * statistics printed in between (Mesa's SHADER-DB lines) can be named after the variant. */
+static bool shader_log_on(void)
+{
+    const char *v = getenv("SBFX_SHADER_LOG");
+    return v && *v && strcmp(v, "0") != 0;
+}
+
+static GLuint build_program(sbfx *fx, const char *vert_name, const char *frag_name, const char *defines);
+
 GLuint sbfx_program_build(sbfx *fx, const char *vert_name, const char *frag_name, const char *defines)
+{
+    if (!shader_log_on()) return build_program(fx, vert_name, frag_name, defines);
+    char name[512];
+    variant_name(defines, name, sizeof(name));
+    sbfx_log(fx, SBFX_LOG_INFO, "shader build begin: %s %s | %s", vert_name, frag_name, name);
+    GLuint program = build_program(fx, vert_name, frag_name, defines);
+    sbfx_log(fx, SBFX_LOG_INFO, "shader build end: program %u %s", program, program ? "linked" : "failed");
+    return program;
+}
+
+static GLuint build_program(sbfx *fx, const char *vert_name, const char *frag_name, const char *defines)
 {
     GLuint vs = compile_stage(fx, GL_VERTEX_SHADER, vert_name, defines);
     if (!vs) return 0;

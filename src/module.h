@@ -249,6 +249,7 @@ struct sbfx {
     sbfx_post_params post;
     sbfx_plan plan;
     int light_count;
+    int light_slots;  /* lights the phase shaders loop over: scene lights + one effect's flashes */
     sbfx_scene_light lights[SBFX_SHADER_LIGHTS];
     float ambient[3];
     sbfx_scheduled schedule[SBFX_MAX_SCHEDULE]; /* sorted by time; [next_scheduled, count) pending */
@@ -373,6 +374,8 @@ double sbfx_clock_phase(const sbfx *fx, double period);
 
 /* lights.c: moves orbiting point lights to their place on the clock */
 void sbfx_orbit_lights(sbfx *fx);
+int sbfx_light_slots_of_scene(const sbfx *fx);
+void sbfx_light_slots_reserve(sbfx *fx, int count);
 
 /* effects.c */
 void sbfx_default_media(sbfx_medium_params media[SBFX_MEDIUM_COUNT]);

@@ -73,13 +73,23 @@ static void gather_lights(const sbfx *fx, const float view[16], frame_lights *ou
         to_view(view, l->vector, l->point ? 1.0f : 0.0f, out->vector[out->count]);
         memcpy(out->color[out->count], l->color, sizeof(l->color));
     }
-    for (int i = 0; i < fx->flash_count && out->count < SBFX_SHADER_LIGHTS; i++) {
+    /* live flashes, brightest first, as many as the shaders' light slots hold (lights.c) */
+    int order[SBFX_MAX_LIVE_FLASHES], lit = 0;
+    float weight[SBFX_MAX_LIVE_FLASHES];
+    for (int i = 0; i < fx->flash_count; i++) {
         const sbfx_live_flash *f = &fx->flashes[i];
         double t = (fx->time - f->start) / f->duration;
         if (t < 0.0 || t >= 1.0) continue;
+        float w = (f->color[0] + f->color[1] + f->color[2]) * (float)(1.0 - t);
+        int at = lit++;
+        for (; at > 0 && weight[at - 1] < w; at--) order[at] = order[at - 1], weight[at] = weight[at - 1];
+        order[at] = i, weight[at] = w;
+    }
+    for (int j = 0; j < lit && out->count < fx->light_slots; j++, out->count++) {
+        const sbfx_live_flash *f = &fx->flashes[order[j]];
+        double t = (fx->time - f->start) / f->duration;
         to_view(view, f->position, 1.0f, out->vector[out->count]);
         for (int k = 0; k < 3; k++) out->color[out->count][k] = f->color[k] * (float)(1.0 - t);
-        out->count++;
     }
 }
 

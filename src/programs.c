@@ -19,6 +19,10 @@ void sbfx_particle_defines(const sbfx *fx, const sbfx_variant_key *key, sbfx_med
     bool heat = m == SBFX_HEAT;
     bool scatters = p->albedo > 0 && !heat, emits = m == SBFX_FIRE, lit = scatters && p->lit;
     bool float_targets = sbfx_half_float_renderable();
+    if (scatters && !lit && !key->lpp) {
+        size_t n = (size_t)snprintf(out, size, "#define LIGHT_SLOTS %d\n", fx->light_slots);
+        out += n, size -= n;
+    }
     size_t used = (size_t)snprintf(out, size, "%s%s%s%s%s", heat ? "#define MEDIUM_HEAT\n" : "",
                                    scatters && !lit && key->lpp ? "#define LIGHT_PER_PARTICLE\n" : "",
                                    fx->plan.particle_velocity ? "#define HAS_PARTICLE_MOTION\n" : "",

@@ -173,6 +173,7 @@ static void adopt_scene(sbfx *fx, const sbfx_scene *scene)
     memcpy(fx->effects, scene->effects, sizeof(fx->effects));
     fx->post = scene->post;
     fx->effect_count = scene->effect_count;
+    fx->light_slots = sbfx_light_slots_of_scene(fx);
     for (int e = 0; e < fx->effect_count; e++)
         for (int i = 0; i < fx->effects[e].emitter_count; i++)
             fx->uses_medium[fx->effects[e].emitters[i].medium] = true;
@@ -424,6 +425,7 @@ const sbfx_desc *sbfx_get_desc(const sbfx *fx) { return &fx->desc; }
 
 void sbfx_set_light(sbfx *fx, const float direction[3], const float color[3], const float ambient[3])
 {
+    sbfx_light_slots_reserve(fx, 1);
     fx->light_count = 1;
     fx->lights[0].point = false;
     fx->lights[0].orbit.on = false;

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Makes sure the Debian packages sbfx needs are installed.
 # As root: installs what is missing (apt-get, non-interactive). Otherwise: prints the exact
-# apt-get line and exits 1. Usage: tools/deps.sh [build|test|vm|cross-arm64|debian13]
+# apt-get line and exits 1. Usage: tools/deps.sh [build|test|vm|cross-arm64|debian13|mesa-shim]
 set -eu
 set_of="${1:-test}"
 
@@ -26,6 +26,9 @@ cross_arm64_pkgs="$host_tools liblcms2-dev colord-data gcc-aarch64-linux-gnu lib
 
 # make test-debian13: a Debian 13 root made with debootstrap, checked against the archive's key
 debian13_pkgs="debootstrap debian-archive-keyring"
+# tools/mesa-shim.sh (make bench's Mali columns, make test-gpus): what Mesa 25's meson build of
+# the panfrost, v3d, freedreno and etnaviv drivers and their drm-shims needs from Debian 12
+mesa_shim_pkgs="$build_pkgs flex bison python3-mako python3-yaml python3-ply python3-pycparser libexpat1-dev libdrm-dev ninja-build xz-utils dpkg-dev patch"
 
 case "$set_of" in
     build) want="$build_pkgs" ;;
@@ -33,7 +36,8 @@ case "$set_of" in
     test) want="$test_pkgs" ;;
     vm) want="$vm_pkgs" ;;
     cross-arm64) want="$cross_arm64_pkgs" ;;
-    *) echo "deps.sh: unknown package set '$set_of' (build|test|vm|cross-arm64|debian13)" >&2; exit 2 ;;
+    mesa-shim) want="$mesa_shim_pkgs" ;;
+    *) echo "deps.sh: unknown package set '$set_of' (build|test|vm|cross-arm64|debian13|mesa-shim)" >&2; exit 2 ;;
 esac
 
 # arm64 packages need the architecture enabled first (dpkg --add-architecture arm64)

@@ -8,11 +8,15 @@
 # Left: everything, log-log, the front labelled. Right: the planar / soft / spherical cluster
 # (their error is mostly the model's: twice the exact optical depth at the centre), labelled.
 if (!exists("dir")) dir = "build/bench"
+# mali-points.dat (tests/bench/run.sh, where Mesa's drm-shims are built): a third panel, the
+# estimated particle + composite time on a Mali-G610 against the same error
+mali = int(system("test -s ".dir."/mali-points.dat && echo 1 || echo 0"))
+width = mali ? 2600 : 1800
 
 if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
-    set terminal pngcairo size 1800,900 font "sans,10"
+    set terminal pngcairo size width,900 font "sans,10"
 } else {
-    set terminal png size 1800,900
+    set terminal png size width,900
 }
 set output dir."/accuracy.png"
 set datafile separator whitespace
@@ -26,7 +30,7 @@ stats dir."/points.dat" using ($5 < 4 && $4 == 0 ? $2 : NaN) nooutput
 cluster_lo = STATS_min
 cluster_hi = STATS_max
 
-set multiplot layout 1,2 title "sbfx: what accuracy costs — built-in explosion over the test scene, 3 frames, mean |GPU − exact CPU reference|"
+set multiplot layout 1,(mali ? 3 : 2) title "sbfx: what accuracy costs — built-in explosion over the test scene, 3 frames, mean |GPU − exact CPU reference|"
 
 set title "all configurations (red: Pareto front)"
 set xlabel "time per frame, ms (median; depth downsample + particles + composite)"
@@ -56,4 +60,14 @@ plot for [m=1:3] dir."/points.dat" using 1:($4 == 0 && $5 == m ? $2 : 1/0):(pt_o
      for [m=1:3] dir."/points.dat" using 1:($4 == 0 && $5 == m ? $2 : 1/0):3:(lc_of($5)) with labels \
          offset char 0.6,(m - 2) * 0.8 left font ",8" tc rgb variable notitle
 
+if (mali) {
+    set title "Mali-G610 (Mesa's static estimate, see summary.txt): particle + composite ms per frame"
+    set xlabel "estimated ms per frame on a G610 MP4 (fragments counted on llvmpipe x cycles per fragment)"
+    set ylabel "mean abs error, 8-bit levels"
+    set logscale xy
+    set autoscale y
+    unset key
+    plot dir."/mali-points.dat" using 1:2 with points pt 7 ps 1.2 lc rgb "#1f77b4", \
+         dir."/mali-points.dat" using 1:2:3 with labels offset char 0.6,0.5 left font ",7" tc rgb "#555555"
+}
 unset multiplot

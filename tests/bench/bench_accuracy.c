@@ -18,7 +18,13 @@
  * same reference of all of them: their error is what the level of detail costs.
  *
  * Writes DIR/accuracy.csv, DIR/points.dat and DIR/pareto.dat (for tests/bench/accuracy.gp),
- * DIR/summary.txt (the verdicts of docs/design.md §4) and a few PNGs (reference and GPU frames). */
+ * DIR/summary.txt (the verdicts of docs/design.md §4) and a few PNGs (reference and GPU frames).
+ *
+ * DIR/fragments.csv: the fragments each configuration's shader variants shade per frame,
+ * counted on the GPU (bench_fragments.h), for the Mali estimate of tests/bench/run.sh.
+ * --shaders builds every configuration's module and draws one frame, nothing else (no reference,
+ * timing or files): run under Mesa's drm-shims, the driver's statistics of every variant the
+ * configurations use (SBFX_SHADER_LOG names them; docs/gpus.md). */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -28,6 +34,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bench_fragments.h"
 #include "bench_gl.h"
 #include "bench_metrics.h"
 #include "bench_reference.h"
@@ -52,6 +59,7 @@ typedef struct options {
     const char *match; /* only configurations whose plot label contains this */
     int width, height, reps;
     bool quick;
+    bool shaders; /* --shaders: build and draw once, for the driver's shader statistics */
 } options;
 
 typedef struct ref_frame {
@@ -82,6 +90,16 @@ typedef struct config {
     int lod; /* at most this many particles drawn (src/lod.h), 0: all */
 } config;
 
+#define MAX_VARIANTS 8
+/* Fragments per frame a configuration's particle variants shade (bench_fragments.h). */
+typedef struct variant_fragments {
+    int count;
+    char name[MAX_VARIANTS][256];
+    double fragments[MAX_VARIANTS];
+    char composite[256]; /* the composite variant's defines */
+    bool failed;
+} variant_fragments;
+
 typedef struct result {
     config c;
     bool ok;
@@ -93,6 +111,7 @@ typedef struct result {
     bool pareto;
     uint8_t *images[FRAME_COUNT];
     double look_energy[LOOK_SCALES], look_ref_energy[LOOK_SCALES]; /* summed over frames, per scale */
+    variant_fragments frags;
 } result;
 
 typedef struct bench {
@@ -142,15 +161,16 @@ static void die(const char *what, const char *why)
 
 static options parse_options(int argc, char **argv)
 {
-    options o = {"build/bench", NULL, 960, 540, 7, false};
+    options o = {"build/bench", NULL, 960, 540, 7, false, false};
     for (int i = 1; i < argc; i++) {
         bool more = i + 1 < argc;
         if (!strcmp(argv[i], "--out") && more) o.out = argv[++i];
         else if (!strcmp(argv[i], "--size") && more && sscanf(argv[++i], "%dx%d", &o.width, &o.height) == 2) {}
         else if (!strcmp(argv[i], "--reps") && more) o.reps = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--quick")) o.quick = true;
+        else if (!strcmp(argv[i], "--shaders")) o.shaders = true;
         else if (!strcmp(argv[i], "--match") && more) o.match = argv[++i];
-        else die("usage", "bench_accuracy [--out DIR] [--size WxH] [--reps N] [--quick] [--match LABEL]");
+        else die("usage", "bench_accuracy [--out DIR] [--size WxH] [--reps N] [--quick] [--match LABEL] [--shaders]");
     }
     if (o.width < 16 || o.height < 16 || o.width > 4096 || o.height > 4096 || o.reps < 1 || o.reps > 50)
         die("options", "--size must be 16x16..4096x4096 and --reps 1..50");
@@ -159,10 +179,48 @@ static options parse_options(int argc, char **argv)
 
 /* ---- simulation ---------------------------------------------------------------------- */
 
+/* Program id -> the variant's name, from the module's SBFX_SHADER_LOG lines (set by main): the
+ * last MAX_PROGRAM_NAMES programs built (a module's are among them). */
+#define MAX_PROGRAM_NAMES 64
+static struct {
+    char pending[256];
+    GLuint id[MAX_PROGRAM_NAMES];
+    char name[MAX_PROGRAM_NAMES][256];
+    int next;
+    char composite[256]; /* the last composite built */
+} programs;
+
+static const char *program_name(GLuint id)
+{
+    for (int i = 0; i < MAX_PROGRAM_NAMES; i++)
+        if (programs.id[i] == id && id != 0) return programs.name[i];
+    return "";
+}
+
+static void note_program(const char *message)
+{
+    const char *begin = strstr(message, "shader build begin: ");
+    unsigned id = 0;
+    if (begin) snprintf(programs.pending, sizeof(programs.pending), "%s", begin + strlen("shader build begin: "));
+    if (begin && strstr(begin, " composite.frag | "))
+        snprintf(programs.composite, sizeof(programs.composite), "%s", strstr(begin, " | ") + 3);
+    else if (sscanf(message, "shader build end: program %u", &id) == 1 && id > 0) {
+        int slot = programs.next++ % MAX_PROGRAM_NAMES;
+        programs.id[slot] = id;
+        memcpy(programs.name[slot], programs.pending, sizeof(programs.pending));
+    }
+}
+
+static bool print_shader_builds; /* --shaders: tools/shader-stats.sh reads them */
+
 static void log_warning(sbfx_log_level level, const char *message, void *user)
 {
     (void)user;
     if (level != SBFX_LOG_INFO) fprintf(stderr, "bench: sbfx: %s\n", message);
+    else if (strncmp(message, "shader build ", 13) == 0) {
+        note_program(message);
+        if (print_shader_builds) fprintf(stderr, "bench: sbfx: info: %s\n", message);
+    }
 }
 
 static sbfx *create_module(const config *c)
@@ -292,8 +350,32 @@ static void accumulate_look(const bench *b, result *res, const ref_frame *rf, co
     free(y);
 }
 
+/* --shaders: the frames' scene and camera, no read-backs or reference (the drm-shims draw
+ * nothing). */
+static void prepare_frames_only(bench *b)
+{
+    char err[256];
+    for (int i = 0; i < FRAME_COUNT; i++) {
+        ref_frame *rf = &b->frames[i];
+        int w = b->opt.width, h = b->opt.height;
+        rf->t = frame_times[i];
+        if (test_scene_create(&rf->scene, w, h, err, sizeof(err)) != 0) die("test scene", err);
+        test_scene_orbit_camera(rf->t, (float)w / (float)h, rf->frame.view, rf->frame.projection);
+        if (test_scene_draw(&rf->scene, rf->frame.view, rf->frame.projection) != 0) die("test scene", "GL error");
+        rf->frame.scene_color_texture = rf->scene.color_texture;
+        rf->frame.scene_depth_texture = rf->scene.depth_texture;
+        rf->frame.out_framebuffer = b->target.fbo;
+        rf->frame.width = w;
+        rf->frame.height = h;
+    }
+}
+
 static void prepare_references(bench *b)
 {
+    if (b->opt.shaders) {
+        prepare_frames_only(b);
+        return;
+    }
     config c = {.opacity = SBFX_OPACITY_EXACT, .divisor = 4};
     sbfx *fx = create_module(&c);
     sbfx_detail_dimensions(fx, &b->detail_size, &b->detail_frames);
@@ -401,8 +483,45 @@ static void match_density(sbfx *fx)
     for (int i = 0; i < SBFX_MEDIUM_COUNT; i++) m[i].tau *= 0.5f;
 }
 
+/* One more draw of the frame with the fragment counter armed; per variant, summed. */
+static void count_fragments(render_call *rc, variant_fragments *vf)
+{
+    bench_fragment_tally t;
+    bench_fragments_begin(&t);
+    render_once(rc);
+    bench_fragments_end();
+    vf->failed = vf->failed || t.failed;
+    memcpy(vf->composite, programs.composite, sizeof(vf->composite));
+    for (int d = 0; d < t.draws; d++) {
+        const char *name = program_name(t.program[d]);
+        int k = 0;
+        while (k < vf->count && strcmp(vf->name[k], name) != 0) k++;
+        if (k == vf->count) {
+            if (vf->count == MAX_VARIANTS) continue;
+            snprintf(vf->name[vf->count++], sizeof(vf->name[0]), "%s", name);
+        }
+        vf->fragments[k] += t.fragments[d] / FRAME_COUNT;
+    }
+}
+
+/* --shaders: the module is made (its variants compiled) and one frame drawn. */
+static void build_config(bench *b, result *res)
+{
+    sbfx *fx = create_module(&res->c);
+    render_call rc = {fx, &b->frames[0].frame, false, 0, NULL, NULL};
+    advance_to(fx, b->frames[0].t);
+    render_once(&rc);
+    res->ok = !rc.failed;
+    if (rc.failed) fprintf(stderr, "bench: render failed: %s\n", sbfx_last_error(fx));
+    sbfx_destroy(fx);
+}
+
 static void run_config(bench *b, result *res)
 {
+    if (b->opt.shaders) {
+        build_config(b, res);
+        return;
+    }
     sbfx *fx = create_module(&res->c);
     if (res->c.density_matched) match_density(fx);
     samples s = {.part_ok = true};
@@ -425,6 +544,7 @@ static void run_config(bench *b, result *res)
         if (i == 0) render_once(&rc); /* first draw compiles the shader variants: not timed */
         time_frame(b, &rc, rf, &s);
         compare_frame(b, res, i, gpu);
+        count_fragments(&rc, &res->frags);
     }
     sbfx_counters counters;
     sbfx_stats(fx, &counters);
@@ -600,6 +720,29 @@ static void write_csv(const bench *b)
         fprintf(f, ",%.3f,%.3f,%.4f,%.4f,%.3f,%.3f\n", look_beta_fit(e, 1, LOOK_SCALES - 1),
                 look_beta_fit(e, 2, LOOK_SCALES - 1), (e[1] + e[2]) / (re[1] + re[2]),
                 (e[3] + e[4]) / (re[3] + re[4]), look_beta_fit(re, 1, LOOK_SCALES - 1), look_beta_fit(e, 1, 3));
+    }
+    fclose(f);
+}
+
+/* fragments.csv: the configuration's key (accuracy.csv's columns), each particle variant's
+ * fragments per frame, and the composite's (one per output pixel: a full-screen triangle). */
+static void write_fragments(const bench *b)
+{
+    FILE *f = open_out(b, "fragments.csv");
+    fprintf(f, "mode,scale,format,upsample,lut,detail,density,lod,shader,variant,fragments\n");
+    for (int i = 0; i < b->result_count; i++) {
+        const result *r = &b->results[i];
+        const config *c = &r->c;
+        char key[256];
+        snprintf(key, sizeof(key), "%s,%s,%s,%s,%s,%s,%s,%d", mode_names[c->opacity], scale_fraction(c->divisor),
+                 format_name(r->used_format), upsample_name(c->upsample), lut_name(c),
+                 c->detail == SBFX_DETAIL_R32F ? "R32F" : "R16F", c->density_matched ? "matched" : "scene", c->lod);
+        if (r->frags.failed) continue;
+        for (int k = 0; k < r->frags.count; k++) {
+            const char *bar = strstr(r->frags.name[k], " | ");
+            fprintf(f, "%s,particle.frag,%s,%.0f\n", key, bar ? bar + 3 : "-", r->frags.fragments[k]);
+        }
+        fprintf(f, "%s,composite.frag,%s,%d\n", key, r->frags.composite, b->opt.width * b->opt.height);
     }
     fclose(f);
 }
@@ -943,6 +1086,7 @@ static void close_all(bench *b)
         free(rf->distance), free(rf->scene_rgba), free(rf->ref_rgb), free(rf->edge), free(rf->look_mask);
     }
     free(b->detail);
+    bench_fragments_destroy();
     bench_target_destroy(&b->target);
     bench_timer_destroy(&b->timer);
     egl_headless_close(&b->egl);
@@ -952,10 +1096,18 @@ int main(int argc, char **argv)
 {
     bench *b = xcalloc(1, sizeof(*b));
     b->opt = parse_options(argc, argv);
+    setenv("SBFX_SHADER_LOG", "1", 1); /* the variants' names, for fragments.csv */
+    print_shader_builds = b->opt.shaders;
     if (mkdir(b->opt.out, 0777) != 0 && errno != EEXIST) die(b->opt.out, strerror(errno));
     open_gl(b);
     prepare_references(b);
     run_all(b);
+    if (b->opt.shaders) {
+        close_all(b);
+        free(b);
+        return 0;
+    }
+    write_fragments(b);
     mark_pareto(b);
     write_csv(b);
     write_plot_data(b);

@@ -1,4 +1,5 @@
 /* GL side of the accuracy benchmark: see bench_gl.h. */
+#include "bench_fragments.h"
 #include "bench_gl.h"
 
 #include <EGL/egl.h>
@@ -149,6 +150,7 @@ void __wrap_glDrawArraysInstanced(GLenum mode, GLint first, GLsizei count, GLsiz
 {
     if (pass.active) pass.instanced[pass.segments - 1]++;
     __real_glDrawArraysInstanced(mode, first, count, instances);
+    bench_fragments_draw(mode, first, count, instances);
 }
 
 static void delete_segment_queries(void)

@@ -3,7 +3,9 @@
 #   tests/bench/run.sh [BUILD]      (make bench builds $BUILD/bench/bench_accuracy first)
 # Writes $BUILD/bench/accuracy.csv, accuracy.md (the same as a markdown table), accuracy.png
 # (gnuplot), summary.txt, reference and GPU frames as PNG, then runs the other bench programs
-# that exist (lighting, scenes); prints the summary.
+# that exist (lighting, scenes); prints the summary. Where Mesa's drm-shims are built (make
+# mesa-shim): mali.csv (.md), mali-bench.csv, accuracy-mali.csv and the Mali columns and panel
+# (docs/gpus.md); without them it says so and leaves the Mali columns out.
 # BENCH_ARGS passes options to the accuracy program, e.g.
 #   BENCH_ARGS="--size 640x360 --reps 3" make bench
 #   BENCH_ARGS="--match 'sph/4'" make bench        (one family of configurations)
@@ -23,20 +25,56 @@ start=$(date +%s)
 # shellcheck disable=SC2086 # BENCH_ARGS is a list of options
 eval "\"$BIN\" --out \"$OUT\" ${BENCH_ARGS:-}"
 
-# The table as markdown (for docs/accuracy-and-benchmarks.md).
-awk -F, 'NR == 1 {
+# issue 21: the same configurations on Mali — Mesa's own compilers through the drm-shims
+# (tools/mesa-shim.sh, docs/gpus.md): build/bench/mali.csv (every variant the example scenes
+# compile), mali-bench.csv (every variant of this bench) and accuracy-mali.csv (per
+# configuration: cycles per fragment, and the G610's particle and composite passes in ms from
+# the fragments counted above at MALI_CORES cores and MALI_MHZ, RK3588's G610 MP4 at 1 GHz).
+MALI_CORES=${MALI_CORES:-4}
+MALI_MHZ=${MALI_MHZ:-1000}
+rm -f "$OUT/accuracy-mali.csv" "$OUT/mali-points.dat" "$OUT/mali.csv" "$OUT/mali.md"
+if tools/mesa-shim.sh version >/dev/null 2>&1; then
+    tools/shader-stats.sh -b "$BUILD" "$OUT/mali.csv"
+    tools/mali-table.sh "$OUT/mali.csv" g52 g610 >"$OUT/mali.md"
+    tools/shader-stats.sh -b "$BUILD" -B "$OUT/mali-bench.csv"
+    awk -F, -v cores="$MALI_CORES" -v mhz="$MALI_MHZ" -f tools/mali-accuracy.awk "$OUT/mali-bench.csv" \
+        "$OUT/fragments.csv" "$OUT/accuracy.csv" >"$OUT/accuracy-mali.csv"
+    # ms on a G610 (particle + composite), mean error, label (the main grid's points only)
+    awk -F, 'NR > 1 && $18 != "" && $1 != "floor" {
+        grid = $3 == "RGBA16F" && $5 == "table" && $6 == "R16F" && $7 == "scene" && $8 == 0
+        label = grid ? sprintf("%.3s/%d %s", $1, 1 / $2, $4 == "bilinear" ? "bl" : "nd") : ""
+        printf "%.4f %s \"%s\"\n", $18 + $19, $9, label
+    }' "$OUT/accuracy-mali.csv" >"$OUT/mali-points.dat"
+    echo "mali      : Mesa $(tools/mesa-shim.sh version) drm-shims: $OUT/mali.csv, $OUT/accuracy-mali.csv (static estimates; G610 at $MALI_CORES cores x $MALI_MHZ MHz)" >>"$OUT/summary.txt"
+else
+    echo "mali      : skipped: no Mesa drm-shim build (make mesa-shim; docs/gpus.md): no mali.csv, no Mali columns" | tee -a "$OUT/summary.txt" >&2
+fi
+
+# The table as markdown (for docs/accuracy-and-benchmarks.md); Mali columns where measured.
+awk -F, -v mali="$OUT/accuracy-mali.csv" 'BEGIN {
+    while ((getline line < mali) > 0) {
+        n = split(line, a, ",")
+        k = a[1] FS a[2] FS a[3] FS a[4] FS a[5] FS a[6] FS a[7] FS a[8]
+        m[k] = sprintf(" %s / %s | %s / %s | %s |", a[12], a[13], a[16], a[17], a[18] == "" ? "" : sprintf("%.2f", a[18]))
+        have = 1
+    }
+}
+NR == 1 {
     for (i = 1; i <= NF; i++) col[$i] = i
-    print "| mode | scale | target | upsample | LUT | detail | density | particles | ms (min–max) | particle pass ms | mean err | max err | PSNR dB | edge mean | edge PSNR dB | Pareto |"
-    print "| --- | ---: | --- | --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |"
+    print "| mode | scale | target | upsample | LUT | detail | density | particles | ms (min–max) | particle pass ms | mean err | max err | PSNR dB | edge mean | edge PSNR dB | Pareto |" \
+        (have ? " G52 cycles/fragment particle / composite | G610 cycles/fragment particle / composite | G610 particle pass ms (est.) |" : "")
+    print "| --- | ---: | --- | --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |" (have ? " ---: | ---: | ---: |" : "")
     next
 }
 {
-    printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.1f (%.1f–%.1f) | %.1f | %.3f | %.0f | %.1f | %.2f | %.1f | %s |\n",
+    k = $col["mode"] FS $col["scale"] FS $col["format"] FS $col["upsample"] FS $col["lut"] FS $col["detail"] FS $col["density"] FS $col["lod"]
+    tail = have ? (k in m ? m[k] : " | | |") : ""
+    printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.1f (%.1f–%.1f) | %.1f | %.3f | %.0f | %.1f | %.2f | %.1f | %s |%s\n",
         $col["mode"], $col["scale"], $col["format"], $col["upsample"], $col["lut"], $col["detail"],
         $col["density"] == "matched" ? "τ/2" : "scene", ("lod" in col && $col["lod"] > 0) ? "lod" $col["lod"] : "all",
         $col["ms"], $col["ms_min"], $col["ms_max"], $col["particle_ms"], $col["mean_abs_err"],
         $col["max_abs_err"], $col["psnr"], $col["edge_mean_abs_err"], $col["edge_psnr"],
-        $col["pareto"] == 1 ? "★" : ""
+        $col["pareto"] == 1 ? "★" : "", tail
 }' "$OUT/accuracy.csv" >"$OUT/accuracy.md"
 
 # issue 11: the quality ladder this run's front proposes (make ladder commits it to src/)
