@@ -232,6 +232,15 @@ typedef struct sbfx_budget {
     int level;                           /* the level rendered last */
 } sbfx_budget;
 
+/* GL errors pending when an entry point was called: the host's, read off at entry so that
+ * sbfx's checks see only its own, and posted again at return where GL allows (gl_util.c). */
+#define SBFX_HOST_ERRORS_MAX 8
+typedef struct sbfx_host_errors {
+    GLenum code[SBFX_HOST_ERRORS_MAX];
+    int count;
+    unsigned logged;             /* bit per kind already logged (once per module) */
+} sbfx_host_errors;
+
 struct sbfx {
     sbfx_desc desc;                      /* quality fields: the current level's */
     sbfx_quality top;                    /* the quality of the desc (and scene) at create */
@@ -243,6 +252,7 @@ struct sbfx {
     bool loaded;                 /* sbfx_create finished: heap allocations now count */
     uint64_t heap_allocs_after_load;
     bool warned_format;
+    sbfx_host_errors host_errors; /* GL errors the host left pending (gl_util.c) */
 
     sbfx_medium_params media[SBFX_MEDIUM_COUNT];
     bool uses_medium[SBFX_MEDIUM_COUNT];
@@ -380,6 +390,11 @@ void sbfx_builtin_explosion(sbfx_effect *out);
 
 /* gl_util.c */
 bool sbfx_gl_check(sbfx *fx, const char *what);
+/* Around the GL work of a public entry point: enter reads off the errors the host left
+ * pending; leave, after sbfx's own errors were checked, posts them again (src/sbfx.h, "GL errors
+ * the host left pending"). */
+void sbfx_gl_enter(sbfx *fx);
+void sbfx_gl_leave(sbfx *fx, const char *entry);
 GLuint sbfx_program_build(sbfx *fx, const char *vert_name, const char *frag_name,
                           const char *defines);
 void sbfx_texture_params(GLenum target, GLenum filter, GLenum wrap);

@@ -242,7 +242,10 @@ static sbfx_result load(sbfx *fx)
     fx->tone_curve = sbfx_tone_curve_default();
     if ((r = check_context(fx)) != SBFX_OK) return r;
     if ((r = sbfx_pool_create(fx, fx->desc.max_particles)) != SBFX_OK) return r;
-    return load_gl(fx);
+    sbfx_gl_enter(fx);
+    r = load_gl(fx);
+    sbfx_gl_leave(fx, "sbfx_create");
+    return r;
 }
 
 sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out)
