@@ -2,7 +2,8 @@
 # The test runner of `make test` (which builds everything first, normal and ASan+UBSan).
 #
 # Runs, in order, and prints every line they print:
-#   1. every test binary in $BUILD/tests/unit/, $BUILD/tests/gl/ and $BUILD/tests/platform/
+#   1. every test binary in $BUILD/tests/unit/, $BUILD/tests/gl/, $BUILD/tests/platform/ and
+#      $BUILD/tests/hosts/ (the SDL2 and Qt Quick hosts, docs/hosts/), the SDL2 example program
 #   2. glslangValidator on every shaders_es/*.vert and *.frag, plainly and once per line of
 #      tests/shader_variants.txt ("FILE -DNAME ..." : the defines of one variant)
 #   3. a check that every file in shaders_es/ begins with "#version 300 es"
@@ -161,6 +162,9 @@ check_built "" gl "$BUILD"
 run_dir "" "$BUILD/tests/gl"
 check_built "" platform "$BUILD"
 run_dir "" "$BUILD/tests/platform"
+check_built "" hosts "$BUILD"
+run_dir "" "$BUILD/tests/hosts"
+run_suite "" sdl2-example tests/hosts/sdl2_example.sh "$BUILD"
 validate_shaders
 check_version_lines
 run_cli "" "$BUILD/sbfx-play"
