@@ -182,6 +182,11 @@ $(BUILD)/tests/gl/%: tests/gl/%.c $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
+# The GL state test also runs on desktop OpenGL (tests/run.sh), where sbfx reaches glPolygonMode
+# through the process (src/gl_state.c): libOpenGL is in it, as in a desktop host.
+OPENGL_LIBS = $(call pkg_config,OPENGL_LIBS,--libs opengl)
+$(BUILD)/tests/gl/test_gl_state: PLATFORM_LIBS += -Wl,--no-as-needed $(OPENGL_LIBS) -Wl,--as-needed
+
 test-unit: $(UNIT_TESTS)
 test-gl: $(GL_TESTS) $(BUILD)/sbfx-play $(BUILD)/sbfx-probe
 

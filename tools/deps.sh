@@ -8,7 +8,8 @@ set_of="${1:-test}"
 # gcc only recommends libc6-dev, which --no-install-recommends leaves out: named here
 host_tools="make gcc libc6-dev pkg-config"
 build_pkgs="$host_tools libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev liblcms2-dev libconfig-dev libdrm-dev libgbm-dev libgpiod-dev colord-data"
-test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang libclang-rt-14-dev"
+# make test also builds the hosts (docs/hosts/): the SDL2 example, libOpenGL for desktop OpenGL
+test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang libclang-rt-14-dev libsdl2-dev libopengl-dev"
 # make test-vm: qemu (TCG), the guest's modprobe through the shared root, and what tests/vm/run.sh
 # needs to fetch and unpack Debian's kernel packages and build vkms and gpio-sim out of tree
 vm_pkgs="$build_pkgs qemu-system-x86 kmod xz-utils patch gcc-12 make libelf1"
