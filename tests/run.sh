@@ -162,9 +162,12 @@ check_built "" gl "$BUILD"
 run_dir "" "$BUILD/tests/gl"
 check_built "" platform "$BUILD"
 run_dir "" "$BUILD/tests/platform"
-# the host contract and the host's pending errors on a desktop OpenGL 4.5 core context (issue 18)
+# the host contract and the host's pending errors on desktop OpenGL 4.5, core and compatibility
+# profile (issue 18)
 for t in test_gl_state test_gl_host_errors; do
-    [ -x "$BUILD/tests/gl/$t" ] && SBFX_TEST_GL_API=core run_suite "desktop-core:" "$t" "$BUILD/tests/gl/$t"
+    [ -x "$BUILD/tests/gl/$t" ] || continue
+    SBFX_TEST_GL_API=core run_suite "desktop-core:" "$t" "$BUILD/tests/gl/$t"
+    SBFX_TEST_GL_API=compat run_suite "desktop-compat:" "$t" "$BUILD/tests/gl/$t"
 done
 check_built "" hosts "$BUILD"
 run_dir "" "$BUILD/tests/hosts"

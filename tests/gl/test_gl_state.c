@@ -135,6 +135,7 @@ static void host_open(host *h)
     h->desktop = h->gl.egl.api != EGL_HEADLESS_GLES3;
     h->compat = h->gl.egl.api == EGL_HEADLESS_GL_COMPAT;
     snap_core_profile = h->gl.egl.api == EGL_HEADLESS_GL_CORE;
+    snap_compat_profile = h->compat;
     if (h->desktop) desktop_fns_load(&h->gl_fns);
     host_objects(h);
     printf("# %s: %d texture units checked; clip control %s\n", (const char *)glGetString(GL_VERSION), h->units,
