@@ -4,6 +4,7 @@
 #   make demo         render the built-in explosion headless into build/demo/
 #   make gallery      one contact sheet per example scene into docs/gallery/ (docs/scene-format.md)
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, docs, then ASan+UBSan
+#   make test-hosts   the SDL2 example host and its tests (docs/hosts/; make test runs them)
 #   make bench        timings into build/bench/
 #   make ladder       src/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
 #   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR, MANDIR, DATADIR); also
@@ -252,12 +253,17 @@ $(BUILD)/tests/gl/%: tests/gl/%.c $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
+# The GL state test also runs on desktop OpenGL (tests/run.sh), where sbfx reaches glPolygonMode
+# through the process (src/gl_state.c): libOpenGL is in it, as in a desktop host.
+OPENGL_LIBS = $(call pkg_config,OPENGL_LIBS,--libs opengl)
+$(BUILD)/tests/gl/test_gl_state: PLATFORM_LIBS += -Wl,--no-as-needed $(OPENGL_LIBS) -Wl,--as-needed
+
 test-unit: $(UNIT_TESTS)
 test-gl: $(GL_TESTS) $(BUILD)/sbfx-play $(BUILD)/sbfx-probe
 
 test:
 	@tools/deps.sh test
-	@$(MAKE) --no-print-directory all test-unit test-gl test-platform
+	@$(MAKE) --no-print-directory all test-unit test-gl test-platform test-hosts
 	@$(MAKE) --no-print-directory BUILD=build/asan SANITIZE=1 all test-unit test-gl test-platform
 	@tests/run.sh
 
@@ -507,6 +513,25 @@ gpiod2:
 	@pc=$$(tools/libgpiod2.sh build/libgpiod2) && PKG_CONFIG_PATH=$$pc $(MAKE) --no-print-directory \
 		BUILD=$(BUILD)/gpiod2 $(BUILD)/gpiod2/sbfx-play $(BUILD)/gpiod2/tests/vm/gpio_backend \
 		$(BUILD)/gpiod2/tests/platform/test_gpio_backend
+
+# ---- hosts (issue 18): the SDL2 example (docs/hosts/) ----------
+# Built by make test (tools/deps.sh test installs their -dev packages); make and make demo
+# never need them. Their tests run headless: SDL's offscreen driver (tests/hosts/).
+SDL2_CFLAGS = $(call pkg_config,SDL2_CFLAGS,--cflags sdl2)
+SDL2_LIBS = $(call pkg_config,SDL2_LIBS,--libs sdl2)
+EXAMPLE_CFLAGS = $(BASE_CFLAGS) $(SRC_PKG_CFLAGS) -Isrc $(CFLAGS)
+$(BUILD)/obj/examples/sdl2/%.o: examples/sdl2/%.c examples/sdl2/sdl2_host.h | deps
+	@mkdir -p $(@D)
+	$(CC) $(EXAMPLE_CFLAGS) $(SDL2_CFLAGS) -c -o $@ $<
+$(BUILD)/examples/sbfx-sdl2: $(BUILD)/obj/examples/sdl2/main.o $(BUILD)/obj/examples/sdl2/sdl2_host.o $(BUILD)/libsbfx.a
+	@mkdir -p $(@D)
+	$(CC) $(LDSAN) -o $@ $^ $(SDL2_LIBS) $(SRC_LIBS)
+$(BUILD)/tests/hosts/test_sdl2: tests/hosts/test_sdl2.c $(BUILD)/obj/examples/sdl2/sdl2_host.o $(BUILD)/libsbfx.a tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(EXAMPLE_CFLAGS) $(SDL2_CFLAGS) -Iexamples/sdl2 -Itests $(LDSAN) -o $@ $< \
+		$(BUILD)/obj/examples/sdl2/sdl2_host.o $(BUILD)/libsbfx.a $(SDL2_LIBS) $(SRC_LIBS)
+.PHONY: test-hosts
+test-hosts: $(BUILD)/examples/sbfx-sdl2 $(BUILD)/tests/hosts/test_sdl2
 
 # Cross build for a board (boards/rk3588.mk: Debian's aarch64 toolchain and arm64 multiarch
 # -dev packages, which its deps step installs or names) into build/rk3588/, and a check that

@@ -35,7 +35,7 @@ static sbfx_result ensure_probe_target(sbfx *fx)
 {
     sbfx_gl *gl = &fx->gl;
     if (gl->probe_fbo) return SBFX_OK;
-    if (!sbfx_has_extension("GL_EXT_color_buffer_float"))
+    if (!sbfx_context_desktop() && !sbfx_has_extension("GL_EXT_color_buffer_float"))
         return sbfx_fail(fx, SBFX_ERR_GL, "reading tables back needs GL_EXT_color_buffer_float");
     gl->probe_texture = sbfx_texture_create(fx, GL_TEXTURE_2D, GL_NEAREST, GL_CLAMP_TO_EDGE);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 1, 1, 0, GL_RGBA, GL_FLOAT, NULL);
@@ -103,7 +103,7 @@ sbfx_result sbfx_fetch_luts(sbfx *fx, sbfx_medium medium, float kelvin, float co
     /* unit 0: where the read-back texture is made; 2 and 3: the tables */
     const sbfx_gl_units units = {.tex_2d = 1u << 0 | 1u << SBFX_UNIT_PHASE | 1u << SBFX_UNIT_BLACKBODY};
     sbfx_gl_state saved;
-    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | SBFX_GL_SAVE_PACK, &units);
+    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | SBFX_GL_SAVE_PACK | fx->context_parts, &units);
     sbfx_result r = ensure_probe_target(fx);
     if (r == SBFX_OK) r = ensure_probe_program(fx, medium);
     if (r == SBFX_OK) draw_lut_fetch(fx, medium, kelvin, cos_theta, rgb, phase);

@@ -8,6 +8,8 @@
  * some drivers serialise on them (Mesa's glthread syncs its worker thread), so the set is kept
  * to what sbfx really changes — no clear values, depth range, polygon offset or dither, which
  * no pass of sbfx touches — and only the texture units the frame binds are queried. */
+#define _GNU_SOURCE /* RTLD_DEFAULT */
+#include <dlfcn.h>
 #include "module.h"
 
 static void get_int(sbfx_gl_state *s, GLenum name, GLint *out)
@@ -81,6 +83,71 @@ static void restore_pass(const sbfx_gl_state *s)
     set_enabled(GL_CULL_FACE, s->cull_face);
     set_enabled(GL_SCISSOR_TEST, s->scissor_test);
     set_enabled(GL_RASTERIZER_DISCARD, s->rasterizer_discard);
+}
+
+/* ---- desktop OpenGL's own raster state (issue 18; docs/hosts/desktop-gl.md) ---- */
+#define GL_POLYGON_MODE_CODE 0x0B40
+#define GL_FILL_CODE 0x1B02
+#define GL_FRONT_AND_BACK_CODE 0x0408
+#define GL_COLOR_LOGIC_OP_CODE 0x0BF2
+#define GL_DEPTH_CLAMP_CODE 0x864F
+#define GL_CLIP_DISTANCE0_CODE 0x3000
+#define GL_POLYGON_SMOOTH_CODE 0x0B41
+#define GL_ALPHA_TEST_CODE 0x0BC0
+
+typedef void (*polygon_mode_fn)(GLenum face, GLenum mode);
+
+/* glPolygonMode is desktop OpenGL's only: not in libGLESv2. A desktop host has it from libOpenGL
+ * or libGL (linked, or loaded by its toolkit); looked up only when a host left a mode other
+ * than GL_FILL. */
+static polygon_mode_fn polygon_mode_function(void)
+{
+    static polygon_mode_fn fn;
+    if (!fn) *(void **)&fn = dlsym(RTLD_DEFAULT, "glPolygonMode");
+    return fn;
+}
+
+static void save_desktop(sbfx_gl_state *s)
+{
+    /* desktop OpenGL clamps gl_FragDepth to the depth range on float depth buffers (ES to
+     * [0, 1]): the depth pass writes the host's depth through it */
+    s->queries++;
+    glGetFloatv(GL_DEPTH_RANGE, s->depth_range);
+    glDepthRangef(0.0f, 1.0f);
+    get_int(s, GL_POLYGON_MODE_CODE, s->polygon_mode);
+    s->logic_op = is_enabled(s, GL_COLOR_LOGIC_OP_CODE);
+    s->depth_clamp = is_enabled(s, GL_DEPTH_CLAMP_CODE);
+    s->polygon_smooth = is_enabled(s, GL_POLYGON_SMOOTH_CODE);
+    for (GLenum i = 0; i < 8; i++) s->clip_distance[i] = is_enabled(s, GL_CLIP_DISTANCE0_CODE + i);
+    if (s->parts & SBFX_GL_SAVE_COMPAT) s->alpha_test = is_enabled(s, GL_ALPHA_TEST_CODE);
+    glDisable(GL_COLOR_LOGIC_OP_CODE);
+    glDisable(GL_DEPTH_CLAMP_CODE);
+    glDisable(GL_POLYGON_SMOOTH_CODE);
+    for (GLenum i = 0; i < 8; i++) glDisable(GL_CLIP_DISTANCE0_CODE + i);
+    if (s->parts & SBFX_GL_SAVE_COMPAT) glDisable(GL_ALPHA_TEST_CODE);
+    bool fill = s->polygon_mode[0] == GL_FILL_CODE && (s->polygon_mode[1] == 0 || s->polygon_mode[1] == GL_FILL_CODE);
+    polygon_mode_fn set_mode = fill ? NULL : polygon_mode_function();
+    if (set_mode) set_mode(GL_FRONT_AND_BACK_CODE, GL_FILL_CODE);
+    s->polygon_mode_set = set_mode != NULL;
+    s->polygon_mode_unfixed = !fill && !set_mode;
+}
+
+static void restore_desktop(const sbfx_gl_state *s)
+{
+    glDepthRangef(s->depth_range[0], s->depth_range[1]);
+    set_enabled(GL_COLOR_LOGIC_OP_CODE, s->logic_op);
+    set_enabled(GL_DEPTH_CLAMP_CODE, s->depth_clamp);
+    set_enabled(GL_POLYGON_SMOOTH_CODE, s->polygon_smooth);
+    for (GLenum i = 0; i < 8; i++) set_enabled(GL_CLIP_DISTANCE0_CODE + i, s->clip_distance[i]);
+    if (s->parts & SBFX_GL_SAVE_COMPAT) set_enabled(GL_ALPHA_TEST_CODE, s->alpha_test);
+    /* core profile has one mode for both faces; compatibility may hold two */
+    polygon_mode_fn set_mode = s->polygon_mode_set ? polygon_mode_function() : NULL;
+    if (set_mode && s->polygon_mode[1] && s->polygon_mode[1] != s->polygon_mode[0]) {
+        set_mode(GL_FRONT, (GLenum)s->polygon_mode[0]);
+        set_mode(GL_BACK, (GLenum)s->polygon_mode[1]);
+    } else if (set_mode) {
+        set_mode(GL_FRONT_AND_BACK_CODE, (GLenum)s->polygon_mode[0]);
+    }
 }
 
 static void save_objects(sbfx_gl_state *s)
@@ -165,6 +232,7 @@ void sbfx_gl_state_save(sbfx_gl_state *s, unsigned parts, const sbfx_gl_units *u
     if (parts & SBFX_GL_SAVE_PASS) {
         save_pass(s);
         begin_pass();
+        if (parts & SBFX_GL_SAVE_DESKTOP) save_desktop(s);
     }
     if (parts & SBFX_GL_SAVE_UNPACK) {
         save_pixel_store(s, unpack_names, GL_PIXEL_UNPACK_BUFFER_BINDING, s->unpack, &s->unpack_buffer);
@@ -187,6 +255,7 @@ int sbfx_gl_state_restore(sbfx_gl_state *s)
     }
     if (s->parts & SBFX_GL_SAVE_UNPACK) set_pixel_store(unpack_names, GL_PIXEL_UNPACK_BUFFER, s->unpack, s->unpack_buffer);
     if (s->parts & SBFX_GL_SAVE_PASS) restore_pass(s);
+    if ((s->parts & SBFX_GL_SAVE_PASS) && (s->parts & SBFX_GL_SAVE_DESKTOP)) restore_desktop(s);
     if (s->parts & (SBFX_GL_SAVE_PASS | SBFX_GL_SAVE_OBJECTS)) restore_objects(s);
     return s->queries;
 }

@@ -12,6 +12,7 @@ static const char *gl_error_name(GLenum e)
     case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
     case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
     case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case 0x0507: return "GL_CONTEXT_LOST";
     default: return "unknown GL error";
     }
 }
@@ -24,6 +25,66 @@ bool sbfx_gl_check(sbfx *fx, const char *what)
     if (first == GL_NO_ERROR) return true;
     sbfx_fail(fx, SBFX_ERR_GL, "%s failed with %s (0x%04x)", what, gl_error_name(first), first);
     return false;
+}
+
+/* ---- the host's pending errors (issue 18) ---- */
+
+#define GL_CONTEXT_LOST_CODE 0x0507 /* ES 3.2, GL 4.5, KHR_robustness */
+
+static int error_kind(GLenum e)
+{
+    switch (e) {
+    case GL_INVALID_ENUM: return 0;
+    case GL_INVALID_VALUE: return 1;
+    case GL_INVALID_OPERATION: return 2;
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return 3;
+    case GL_OUT_OF_MEMORY: return 4;
+    default: return 5;
+    }
+}
+
+/* GL offers no call that posts an error, but a command that fails has no other effect
+ * (except GL_OUT_OF_MEMORY): each of these fails with its error and changes nothing. */
+static bool post_again(GLenum e)
+{
+    switch (e) {
+    case GL_INVALID_ENUM: glEnable(GL_NONE); return true;
+    case GL_INVALID_VALUE: glLineWidth(0.0f); return true;
+    case GL_INVALID_OPERATION: glBeginQuery(GL_ANY_SAMPLES_PASSED, 0); return true;
+    default: return false;
+    }
+}
+
+void sbfx_gl_enter(sbfx *fx)
+{
+    sbfx_host_errors *h = &fx->host_errors;
+    h->count = 0;
+    /* bounded: a lost context may answer GL_CONTEXT_LOST to every call */
+    for (int i = 0; i < SBFX_HOST_ERRORS_MAX; i++) {
+        GLenum e = glGetError();
+        if (e == GL_NO_ERROR) break;
+        bool seen = false;
+        for (int k = 0; k < h->count; k++) seen = seen || h->code[k] == e;
+        if (!seen) h->code[h->count++] = e;
+        if (e == GL_CONTEXT_LOST_CODE) break;
+    }
+}
+
+void sbfx_gl_leave(sbfx *fx, const char *entry)
+{
+    sbfx_host_errors *h = &fx->host_errors;
+    for (int k = 0; k < h->count; k++) {
+        GLenum e = h->code[k];
+        bool posted = post_again(e);
+        unsigned bit = 1u << error_kind(e);
+        if (h->logged & bit) continue;
+        h->logged |= bit;
+        sbfx_log(fx, posted ? SBFX_LOG_INFO : SBFX_LOG_WARN,
+                 "%s: %s (0x%04x) was pending when it was called: the host's error, not sbfx's; %s "
+                 "(logged once)", entry, gl_error_name(e), e,
+                 posted ? "posted again on return" : "GL cannot post it again: it is dropped here");
+    }
+    h->count = 0;
 }
 
 bool sbfx_has_extension(const char *name)

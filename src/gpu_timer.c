@@ -1,6 +1,7 @@
 /* GPU time per frame from a ring of GL_EXT_disjoint_timer_query queries: gpu_timer.h. */
 #include "gpu_timer.h"
 
+#include <stdio.h>
 #include <string.h>
 
 #ifndef GL_TIME_ELAPSED_EXT
@@ -10,16 +11,35 @@
 #define GL_GPU_DISJOINT_EXT 0x8FBB
 #endif
 
-bool gpu_timer_supported(void)
+static bool has_extension(const char *name)
 {
     GLint count = 0;
     glGetIntegerv(GL_NUM_EXTENSIONS, &count);
     for (GLint i = 0; i < count; i++) {
         const char *ext = (const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i);
-        if (ext && strcmp(ext, "GL_EXT_disjoint_timer_query") == 0)
+        if (ext && strcmp(ext, name) == 0)
             return true;
     }
     return false;
+}
+
+/* Desktop OpenGL's version string starts with its number, ES's with "OpenGL ES". */
+static bool desktop_context(int *version)
+{
+    const char *v = (const char *)glGetString(GL_VERSION);
+    int major = 0, minor = 0;
+    if (!v || strncmp(v, "OpenGL ES", 9) == 0 || sscanf(v, "%d.%d", &major, &minor) != 2)
+        return false;
+    *version = major * 10 + minor;
+    return true;
+}
+
+bool gpu_timer_supported(void)
+{
+    int version = 0;
+    if (desktop_context(&version))
+        return version >= 33 || has_extension("GL_ARB_timer_query");
+    return has_extension("GL_EXT_disjoint_timer_query");
 }
 
 /* Records the first failure and disables the timer; true when the last calls succeeded. */
@@ -43,10 +63,14 @@ bool gpu_timer_init(gpu_timer *t)
     *t = (gpu_timer){0};
     if (!gpu_timer_supported())
         return false;
+    int version = 0;
     t->ok = true;
+    t->desktop = desktop_context(&version);
     glGenQueries(GPU_TIMER_RING, t->query);
     if (!gpu_timer_check(t, "glGenQueries"))
         return false;
+    if (t->desktop)
+        return true;
     GLint disjoint = 0;
     glGetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint); /* clears a flag left from before */
     return gpu_timer_check(t, "glGetIntegerv(GL_GPU_DISJOINT_EXT)");
@@ -55,6 +79,8 @@ bool gpu_timer_init(gpu_timer *t)
 /* Reads (and so clears) the disjoint flag; marks every query in flight invalid if it was set. */
 static void gpu_timer_disjoint(gpu_timer *t)
 {
+    if (t->desktop)
+        return;
     GLint disjoint = 0;
     glGetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
     if (!gpu_timer_check(t, "glGetIntegerv(GL_GPU_DISJOINT_EXT)") || !disjoint)

@@ -44,6 +44,7 @@ typedef struct gpu_timer {
     int head;                       /* next slot to begin */
     int count;                      /* queries ended and not yet read */
     bool ok;                        /* the extension is there and no GL call has failed */
+    bool desktop;                   /* desktop OpenGL (3.3 / GL_ARB_timer_query): no disjoint flag */
     bool active;                    /* begun, not yet ended */
     int dropped;                    /* frames not timed: ring full */
     int host_busy;                  /* frames not timed: the host's time query was active */
@@ -52,6 +53,8 @@ typedef struct gpu_timer {
     GLenum error;                   /* its error */
 } gpu_timer;
 
+/* GL_EXT_disjoint_timer_query on ES; on desktop OpenGL 3.3+ or GL_ARB_timer_query, which have
+ * no disjoint flag (the desktop driver does not report disjoint events: none are counted). */
 bool gpu_timer_supported(void);
 bool gpu_timer_init(gpu_timer *t);
 void gpu_timer_begin(gpu_timer *t, int level);

@@ -200,6 +200,7 @@ sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int si
                          size, fx->desc.detail_size, fx->desc.detail_size);
     /* the unpack state and unit 0's 3D binding are the host's: saved, set, put back */
     const sbfx_gl_units unit0_3d = {.tex_3d = 1u};
+    sbfx_gl_enter(fx);
     sbfx_gl_state saved;
     sbfx_gl_state_save(&saved, SBFX_GL_SAVE_UNPACK, &unit0_3d);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
@@ -219,5 +220,7 @@ sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int si
     }
     sbfx_gl_state_restore(&saved);
     fx->detail_ring_next = (fx->detail_ring_next + 1) % fx->desc.detail_frames;
-    return sbfx_gl_check(fx, "writing a detail slice") ? SBFX_OK : SBFX_ERR_GL;
+    sbfx_result r = sbfx_gl_check(fx, "writing a detail slice") ? SBFX_OK : SBFX_ERR_GL;
+    sbfx_gl_leave(fx, "sbfx_detail_push_slice");
+    return r;
 }

@@ -232,6 +232,15 @@ typedef struct sbfx_budget {
     int level;                           /* the level rendered last */
 } sbfx_budget;
 
+/* GL errors pending when an entry point was called: the host's, read off at entry so that
+ * sbfx's checks see only its own, and posted again at return where GL allows (gl_util.c). */
+#define SBFX_HOST_ERRORS_MAX 8
+typedef struct sbfx_host_errors {
+    GLenum code[SBFX_HOST_ERRORS_MAX];
+    int count;
+    unsigned logged;             /* bit per kind already logged (once per module) */
+} sbfx_host_errors;
+
 struct sbfx {
     sbfx_desc desc;                      /* quality fields: the current level's */
     sbfx_quality top;                    /* the quality of the desc (and scene) at create */
@@ -243,6 +252,9 @@ struct sbfx {
     bool loaded;                 /* sbfx_create finished: heap allocations now count */
     uint64_t heap_allocs_after_load;
     bool warned_format;
+    sbfx_host_errors host_errors; /* GL errors the host left pending (gl_util.c) */
+    unsigned context_parts;       /* SBFX_GL_SAVE_DESKTOP / _COMPAT on desktop OpenGL (context.c) */
+    bool warned_polygon_mode;
 
     sbfx_medium_params media[SBFX_MEDIUM_COUNT];
     bool uses_medium[SBFX_MEDIUM_COUNT];
@@ -316,6 +328,12 @@ enum {
     SBFX_GL_SAVE_OBJECTS = 1 << 1, /* program, vertex array, ARRAY_BUFFER */
     SBFX_GL_SAVE_UNPACK = 1 << 2,  /* PIXEL_UNPACK_BUFFER and the unpack pixel store */
     SBFX_GL_SAVE_PACK = 1 << 3,    /* read framebuffer, PIXEL_PACK_BUFFER and the pack pixel store */
+    /* with SBFX_GL_SAVE_PASS on desktop OpenGL (sbfx.context_parts, context.c): what changes
+     * sbfx's drawing there and not on ES — the depth range (it clamps gl_FragDepth), polygon
+     * mode, colour logic op, depth clamp, clip distances 0-7, polygon smooth; and the
+     * compatibility profile's alpha test */
+    SBFX_GL_SAVE_DESKTOP = 1 << 4,
+    SBFX_GL_SAVE_COMPAT = 1 << 5,
 };
 /* Bit u: sbfx binds that target on texture unit u (the active texture and each such unit's
  * sampler binding are saved with them). Textures are created on unit 0. */
@@ -335,6 +353,11 @@ typedef struct sbfx_gl_state {
     GLint active_texture;
     GLint texture_2d[SBFX_GL_MAX_UNITS], texture_3d[SBFX_GL_MAX_UNITS], texture_array[SBFX_GL_MAX_UNITS];
     GLint sampler[SBFX_GL_MAX_UNITS];
+    GLint polygon_mode[2];
+    GLfloat depth_range[2];
+    GLboolean logic_op, depth_clamp, clip_distance[8], polygon_smooth, alpha_test;
+    bool polygon_mode_set;             /* sbfx set GL_FILL and puts the host's mode back */
+    bool polygon_mode_unfixed;         /* not GL_FILL, and glPolygonMode out of reach */
 } sbfx_gl_state;
 /* Saves the parts (and units) and sets what every sbfx pass or transfer assumes. */
 void sbfx_gl_state_save(sbfx_gl_state *s, unsigned parts, const sbfx_gl_units *units);
@@ -381,8 +404,18 @@ void sbfx_light_slots_reserve(sbfx *fx, int count);
 void sbfx_default_media(sbfx_medium_params media[SBFX_MEDIUM_COUNT]);
 void sbfx_builtin_explosion(sbfx_effect *out);
 
+/* context.c: OpenGL ES 3.0+, or desktop OpenGL that runs GLSL ES 3.00 (issue 18) */
+sbfx_result sbfx_context_check(sbfx *fx);
+int sbfx_context_version(bool *desktop); /* major * 10 + minor of the current context */
+bool sbfx_context_desktop(void);
+
 /* gl_util.c */
 bool sbfx_gl_check(sbfx *fx, const char *what);
+/* Around the GL work of a public entry point: enter reads off the errors the host left
+ * pending; leave, after sbfx's own errors were checked, posts them again (src/sbfx.h, "GL errors
+ * the host left pending"). */
+void sbfx_gl_enter(sbfx *fx);
+void sbfx_gl_leave(sbfx *fx, const char *entry);
 GLuint sbfx_program_build(sbfx *fx, const char *vert_name, const char *frag_name,
                           const char *defines);
 void sbfx_texture_params(GLenum target, GLenum filter, GLenum wrap);
@@ -430,6 +463,7 @@ bool sbfx_rt_create(sbfx *fx, sbfx_rt *rt, int w, int h, const sbfx_rt_format *c
 void sbfx_rt_destroy(sbfx *fx, sbfx_rt *rt);
 void sbfx_rt_bind(const sbfx_rt *rt);
 bool sbfx_half_float_renderable(void);
+bool sbfx_float32_blendable(void); /* RGBA32F colour-renderable and blendable */
 
 /* targets.c: the current level's targets at the output size (on a size change, those of
  * every declared level: a budget's switch never creates one) */

@@ -356,7 +356,12 @@ sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
 {
     sbfx_gl_units units = frame_units(fx, count, frame->scene_color_texture != 0);
     sbfx_gl_state saved;
-    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS, &units);
+    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | fx->context_parts, &units);
+    if (saved.polygon_mode_unfixed && !fx->warned_polygon_mode) {
+        fx->warned_polygon_mode = true;
+        sbfx_log(fx, SBFX_LOG_WARN, "the host's polygon mode is not GL_FILL and glPolygonMode is not in the "
+                 "process (link libOpenGL or libGL): the effects are drawn in the host's mode");
+    }
     sbfx_result r = draw_frame(fx, frame, depth, count);
     fx->counters.gl_state_queries += sbfx_gl_state_restore(&saved);
     if (r != SBFX_OK) return r;
@@ -368,7 +373,7 @@ int sbfx_host_state_roundtrip(sbfx *fx, bool particles)
     if (!particles && !fx->plan.owns_scene) return 0; /* such a frame runs no pass */
     sbfx_gl_units units = frame_units(fx, particles ? 1 : 0, true);
     sbfx_gl_state saved;
-    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS, &units);
+    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | fx->context_parts, &units);
     return sbfx_gl_state_restore(&saved);
 }
 

@@ -163,7 +163,10 @@ sbfx_result sbfx_set_quality(sbfx *fx, const sbfx_quality *q)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "sbfx_set_quality: the frame budget chooses the level "
                          "(create the module without frame_budget_ms to choose it yourself)");
     if (sbfx_quality_equal(&r, &fx->current)) return SBFX_OK;
-    return sbfx_quality_apply(fx, &r);
+    sbfx_gl_enter(fx);
+    sbfx_result result = sbfx_quality_apply(fx, &r);
+    sbfx_gl_leave(fx, "sbfx_set_quality");
+    return result;
 }
 
 sbfx_result sbfx_get_quality(const sbfx *fx, sbfx_quality *out)

@@ -95,9 +95,11 @@ sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame)
     sbfx_result r = SBFX_OK;
     /* Idle without post effects: no pass at all, no GL call: the host's state is untouched. */
     if (count > 0 || fx->plan.owns_scene) {
+        sbfx_gl_enter(fx);
         r = sbfx_budget_begin_frame(fx); /* the budget's level, and its GPU timer */
         if (r == SBFX_OK) r = sbfx_render_frame(fx, frame, &depth, count);
         sbfx_budget_end_frame(fx);
+        sbfx_gl_leave(fx, "sbfx_render");
     }
     memcpy(fx->previous_view, frame->view, sizeof(fx->previous_view));
     fx->previous_render_time = fx->time;
@@ -128,7 +130,10 @@ sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
             fx->counters.particles_skipped++;
     }
     if (n == 0 && !fx->plan.owns_scene) return SBFX_OK;
-    return sbfx_render_frame(fx, frame, &depth, n);
+    sbfx_gl_enter(fx);
+    sbfx_result r = sbfx_render_frame(fx, frame, &depth, n);
+    sbfx_gl_leave(fx, "sbfx_render_view_particles");
+    return r;
 }
 
 int sbfx_frame_particles(sbfx *fx, const float view[16], const sbfx_view_particle **out)

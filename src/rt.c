@@ -80,8 +80,16 @@ void sbfx_rt_bind(const sbfx_rt *rt)
     glViewport(0, 0, rt->width, rt->height);
 }
 
-/* Float colour buffers are not renderable in core ES 3.0: the extensions must say so. */
+/* Float colour buffers are not renderable in core ES 3.0: the extensions must say so. Desktop
+ * OpenGL renders (and blends) them since 3.0 (GL_ARB_color_buffer_float). */
 bool sbfx_half_float_renderable(void)
 {
-    return sbfx_has_extension("GL_EXT_color_buffer_half_float") || sbfx_has_extension("GL_EXT_color_buffer_float");
+    return sbfx_context_desktop() || sbfx_has_extension("GL_EXT_color_buffer_half_float") ||
+           sbfx_has_extension("GL_EXT_color_buffer_float");
+}
+
+bool sbfx_float32_blendable(void)
+{
+    return sbfx_context_desktop() ||
+           (sbfx_has_extension("GL_EXT_color_buffer_float") && sbfx_has_extension("GL_EXT_float_blend"));
 }

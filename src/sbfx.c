@@ -140,22 +140,6 @@ static sbfx_result validate_desc(sbfx *fx, const sbfx_desc *d)
     return SBFX_OK;
 }
 
-/* ES 3.0 or newer must be current: glGetString answers NULL without a context. */
-static sbfx_result check_context(sbfx *fx)
-{
-    const char *version = (const char *)glGetString(GL_VERSION);
-    if (!version)
-        return sbfx_fail(fx, SBFX_ERR_NO_GLES3,
-                         "no current OpenGL ES context: make a GLES 3.0 context current "
-                         "(eglMakeCurrent) before sbfx_create");
-    int major = 0;
-    if (sscanf(version, "OpenGL ES %d", &major) != 1 || major < 3)
-        return sbfx_fail(fx, SBFX_ERR_NO_GLES3,
-                         "the current context is \"%s\"; sbfx needs OpenGL ES 3.0 or newer "
-                         "(request EGL_CONTEXT_MAJOR_VERSION 3 with EGL_OPENGL_ES3_BIT)", version);
-    return SBFX_OK;
-}
-
 /* Copies what the module keeps of a scene: media, lights, effects, the timeline. */
 static void adopt_scene(sbfx *fx, const sbfx_scene *scene)
 {
@@ -245,9 +229,12 @@ static sbfx_result load(sbfx *fx)
     sbfx_free(fx, builtin);
     sbfx_orbit_lights(fx); /* where orbiting lights are at t = 0 */
     fx->tone_curve = sbfx_tone_curve_for(fx->desc.tone_map);
-    if ((r = check_context(fx)) != SBFX_OK) return r;
+    if ((r = sbfx_context_check(fx)) != SBFX_OK) return r;
     if ((r = sbfx_pool_create(fx, fx->desc.max_particles)) != SBFX_OK) return r;
-    return load_gl(fx);
+    sbfx_gl_enter(fx);
+    r = load_gl(fx);
+    sbfx_gl_leave(fx, "sbfx_create");
+    return r;
 }
 
 sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out)

@@ -22,7 +22,7 @@ static bool format_allowed(const target_format *f)
 {
     if (f->id == SBFX_FORMAT_RGBA8) return true;
     if (f->id == SBFX_FORMAT_RGBA32F)
-        return sbfx_has_extension("GL_EXT_color_buffer_float") && sbfx_has_extension("GL_EXT_float_blend");
+        return sbfx_float32_blendable();
     return sbfx_half_float_renderable();
 }
 

@@ -2,7 +2,8 @@
 # The test runner of `make test` (which builds everything first, normal and ASan+UBSan).
 #
 # Runs, in order, and prints every line they print:
-#   1. every test binary in $BUILD/tests/unit/, $BUILD/tests/gl/ and $BUILD/tests/platform/
+#   1. every test binary in $BUILD/tests/unit/, $BUILD/tests/gl/, $BUILD/tests/platform/ and
+#      $BUILD/tests/hosts/ (the SDL2 and Qt Quick hosts, docs/hosts/), the SDL2 example program
 #   2. glslangValidator on every shaders_es/*.vert and *.frag, plainly and once per line of
 #      tests/shader_variants.txt ("FILE -DNAME ..." : the defines of one variant)
 #   3. a check that every file in shaders_es/ begins with "#version 300 es"
@@ -165,6 +166,16 @@ check_built "" gl "$BUILD"
 run_dir "" "$BUILD/tests/gl"
 check_built "" platform "$BUILD"
 run_dir "" "$BUILD/tests/platform"
+# the host contract and the host's pending errors on desktop OpenGL 4.5, core and compatibility
+# profile (issue 18)
+for t in test_gl_state test_gl_host_errors; do
+    [ -x "$BUILD/tests/gl/$t" ] || continue
+    SBFX_TEST_GL_API=core run_suite "desktop-core:" "$t" "$BUILD/tests/gl/$t"
+    SBFX_TEST_GL_API=compat run_suite "desktop-compat:" "$t" "$BUILD/tests/gl/$t"
+done
+check_built "" hosts "$BUILD"
+run_dir "" "$BUILD/tests/hosts"
+run_suite "" sdl2-example tests/hosts/sdl2_example.sh "$BUILD"
 validate_shaders
 check_version_lines
 run_cli "" "$BUILD/sbfx-play"

@@ -14,7 +14,8 @@ clang_rt=libclang-rt-14-dev
 if [ -r /etc/os-release ] && grep -qx 'VERSION_CODENAME=trixie' /etc/os-release; then
     clang_rt=libclang-rt-19-dev
 fi
-test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang $clang_rt groff-base ffmpeg imagemagick"
+test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang $clang_rt groff-base ffmpeg imagemagick libsdl2-dev libopengl-dev"
+# make test also builds the hosts (docs/hosts/): the SDL2 example, libOpenGL for desktop OpenGL
 # systemd-analyze (security --offline, verify) and systemd-sysusers check the kiosk's unit
 test_pkgs="$test_pkgs systemd"
 # make test-vm: qemu (TCG), the guest's modprobe through the shared root, and what tests/vm/run.sh

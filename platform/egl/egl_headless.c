@@ -8,6 +8,7 @@
 #include <errno.h>
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #ifndef EGL_OPENGL_ES3_BIT
@@ -137,7 +138,7 @@ static int choose_config(struct egl_headless *egl, bool surfaceless, char *err, 
         return 0;
     }
     const EGLint attribs[] = {
-        EGL_RENDERABLE_TYPE, EGL_OPENGL_ES3_BIT,
+        EGL_RENDERABLE_TYPE, egl->api == EGL_HEADLESS_GLES3 ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT,
         EGL_SURFACE_TYPE, surfaceless ? 0 : EGL_PBUFFER_BIT,
         EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8,
         EGL_NONE,
@@ -167,8 +168,33 @@ static int create_pbuffer(struct egl_headless *egl, char *err, size_t n)
     return 0;
 }
 
+/* Desktop OpenGL 4.5 (EGL 1.5 / EGL_KHR_create_context attributes), core or compatibility. */
+static int create_desktop_context(struct egl_headless *egl, char *err, size_t n)
+{
+    if (!eglBindAPI(EGL_OPENGL_API)) {
+        snprintf(err, n, "eglBindAPI(EGL_OPENGL_API) failed: %s; the EGL library offers no desktop "
+                 "OpenGL: %s", last_egl_error(), HINT_INSTALL);
+        return -ENOTSUP;
+    }
+    bool core = egl->api == EGL_HEADLESS_GL_CORE;
+    const EGLint attribs[] = {
+        EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+        EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        core ? EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT : EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT,
+        EGL_NONE,
+    };
+    egl->context = eglCreateContext(egl->display, egl->config, EGL_NO_CONTEXT, attribs);
+    if (egl->context == EGL_NO_CONTEXT) {
+        snprintf(err, n, "eglCreateContext(OpenGL 4.5 %s profile) failed: %s", core ? "core" : "compatibility",
+                 last_egl_error());
+        return -ENOTSUP;
+    }
+    return 0;
+}
+
 static int create_context(struct egl_headless *egl, char *err, size_t n)
 {
+    if (egl->api != EGL_HEADLESS_GLES3) return create_desktop_context(egl, err, n);
     if (!eglBindAPI(EGL_OPENGL_ES_API)) {
         snprintf(err, n, "eglBindAPI(EGL_OPENGL_ES_API) failed: %s; the EGL library has no "
                  "OpenGL ES support: %s", last_egl_error(), HINT_INSTALL);
@@ -193,10 +219,15 @@ static int create_context(struct egl_headless *egl, char *err, size_t n)
 
 /* EGL may hand out a context of a lower version than asked for on some drivers; the module
  * needs 3.0, so say so here rather than with a shader error later. */
-static int check_gles3(char *err, size_t n)
+static int check_gles3(const struct egl_headless *egl, char *err, size_t n)
 {
     const char *version = (const char *)glGetString(GL_VERSION);
     int major = 0, minor = 0;
+    if (egl->api != EGL_HEADLESS_GLES3) {
+        if (version && sscanf(version, "%d.%d", &major, &minor) == 2 && major * 10 + minor >= 45) return 0;
+        snprintf(err, n, "the context is '%s', not OpenGL 4.5", version ? version : "(no GL_VERSION)");
+        return -ENOTSUP;
+    }
     if (!version || sscanf(version, "OpenGL ES %d.%d", &major, &minor) != 2 || major < 3) {
         snprintf(err, n, "the context is '%s', not OpenGL ES 3.0 or later; %s",
                  version ? version : "(no GL_VERSION)", HINT_INSTALL);
@@ -205,11 +236,11 @@ static int check_gles3(char *err, size_t n)
     return 0;
 }
 
-static int open_context(struct egl_headless *out, bool robust, char *err, size_t n)
+static int open_context(struct egl_headless *out, enum egl_headless_api api, bool robust, char *err, size_t n)
 {
     struct egl_headless egl = {
         .display = EGL_NO_DISPLAY, .context = EGL_NO_CONTEXT, .surface = EGL_NO_SURFACE,
-        .robust = robust,
+        .robust = robust, .api = api,
     };
     int rc = open_display(&egl, err, n);
     if (rc) return rc;
@@ -229,7 +260,7 @@ static int open_context(struct egl_headless *out, bool robust, char *err, size_t
         rc = -EIO;
         goto err_context;
     }
-    rc = check_gles3(err, n);
+    rc = check_gles3(&egl, err, n);
     if (rc) goto err_current;
     *out = egl;
     return 0;
@@ -257,17 +288,30 @@ int egl_headless_recreate_context(struct egl_headless *egl, char *err, size_t n)
         snprintf(err, n, "eglMakeCurrent of the new context failed: %s", last_egl_error());
         return -EIO;
     }
-    return check_gles3(err, n);
+    return check_gles3(egl, err, n);
 }
 
 int egl_headless_open(struct egl_headless *out, char *err, size_t n)
 {
-    return open_context(out, false, err, n);
+    return open_context(out, EGL_HEADLESS_GLES3, false, err, n);
+}
+
+int egl_headless_open_api(struct egl_headless *out, enum egl_headless_api api, char *err, size_t n)
+{
+    return open_context(out, api, false, err, n);
 }
 
 int egl_headless_open_robust(struct egl_headless *out, char *err, size_t n)
 {
-    return open_context(out, true, err, n);
+    return open_context(out, EGL_HEADLESS_GLES3, true, err, n);
+}
+
+enum egl_headless_api egl_headless_test_api(void)
+{
+    const char *api = getenv("SBFX_TEST_GL_API");
+    if (api && strcmp(api, "core") == 0) return EGL_HEADLESS_GL_CORE;
+    if (api && strcmp(api, "compat") == 0) return EGL_HEADLESS_GL_COMPAT;
+    return EGL_HEADLESS_GLES3;
 }
 
 void egl_headless_close(struct egl_headless *egl)

@@ -19,6 +19,11 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+/* Which API a context is made for: OpenGL ES 3.0 (what everything else opens), or desktop
+ * OpenGL 4.5 with the core or the compatibility profile (EGL_OPENGL_API: desktop hosts, issue 18;
+ * docs/hosts/desktop-gl.md). */
+enum egl_headless_api { EGL_HEADLESS_GLES3, EGL_HEADLESS_GL_CORE, EGL_HEADLESS_GL_COMPAT };
+
 struct egl_headless {
     EGLDisplay display;
     EGLContext context;
@@ -28,9 +33,14 @@ struct egl_headless {
     int egl_major, egl_minor;
     bool robust;          /* asked for (open_robust), then: the context has reset notification
                              (gl_reset.h) */
+    enum egl_headless_api api;
 };
 
 int egl_headless_open(struct egl_headless *out, char *err, size_t n);
+int egl_headless_open_api(struct egl_headless *out, enum egl_headless_api api, char *err, size_t n);
+/* The API tests open: SBFX_TEST_GL_API=core or compat selects desktop OpenGL, unset or "es"
+ * OpenGL ES 3.0. */
+enum egl_headless_api egl_headless_test_api(void);
 /* The same with GPU reset notification asked for where EGL offers it (the player; tests and
  * benches keep the plain context). */
 int egl_headless_open_robust(struct egl_headless *out, char *err, size_t n);

@@ -3,6 +3,7 @@
 
 #include <EGL/egl.h>
 #include <errno.h>
+#include <stdio.h>
 #include <string.h>
 
 #define GL_LOWER_LEFT_EXT 0x8CA1
@@ -11,13 +12,37 @@
 
 typedef void (*clip_control_fn)(GLenum origin, GLenum depth);
 
-bool host_depth_has_clip_control(void)
+static bool has_extension(const char *name)
 {
     GLint n = 0;
     glGetIntegerv(GL_NUM_EXTENSIONS, &n);
     for (GLint i = 0; i < n; i++)
-        if (strcmp((const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i), "GL_EXT_clip_control") == 0) return true;
+        if (strcmp((const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i), name) == 0) return true;
     return false;
+}
+
+/* Desktop OpenGL's version string starts with its number, ES's with "OpenGL ES". */
+static bool desktop_version(int *version)
+{
+    const char *v = (const char *)glGetString(GL_VERSION);
+    int major = 0, minor = 0;
+    if (!v || strncmp(v, "OpenGL ES", 9) == 0 || sscanf(v, "%d.%d", &major, &minor) != 2) return false;
+    *version = major * 10 + minor;
+    return true;
+}
+
+bool host_depth_has_clip_control(void)
+{
+    int version = 0;
+    if (desktop_version(&version)) return version >= 45 || has_extension("GL_ARB_clip_control");
+    return has_extension("GL_EXT_clip_control");
+}
+
+void (*host_depth_clip_control(void))(GLenum origin, GLenum depth)
+{
+    int version = 0;
+    if (!host_depth_has_clip_control()) return NULL;
+    return (clip_control_fn)eglGetProcAddress(desktop_version(&version) ? "glClipControl" : "glClipControlEXT");
 }
 
 /* A full-screen quad at clip w = distance, clip z = the depth row at view z = -distance. */
@@ -65,8 +90,7 @@ int host_depth_plane(GLuint *texture, int w, int h, GLenum format, const float p
 {
     clip_control_fn clip_control = NULL;
     if (zero_to_one) {
-        if (!host_depth_has_clip_control()) return -ENOTSUP;
-        clip_control = (clip_control_fn)eglGetProcAddress("glClipControlEXT");
+        clip_control = host_depth_clip_control();
         if (!clip_control) return -ENOTSUP;
     }
     bool reversed = projection[14] > 0.0f;

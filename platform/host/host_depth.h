@@ -16,8 +16,11 @@
 #include <GLES3/gl3.h>
 #include <stdbool.h>
 
-/* True when the current context offers GL_EXT_clip_control. */
+/* True when the current context offers clip control: GL_EXT_clip_control on ES, OpenGL 4.5 or
+ * GL_ARB_clip_control on desktop OpenGL (issue 18). */
 bool host_depth_has_clip_control(void);
+/* glClipControlEXT on ES, glClipControl on desktop OpenGL; NULL without clip control. */
+void (*host_depth_clip_control(void))(GLenum origin, GLenum depth);
 
 int host_depth_plane(GLuint *texture, int w, int h, GLenum format, const float projection[16], bool zero_to_one,
                      double distance);

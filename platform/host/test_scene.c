@@ -447,7 +447,7 @@ int test_scene_use_reversed_z(struct test_scene *scene, char *err, size_t n)
         snprintf(err, n, "test scene: reversed-Z needs GL_EXT_clip_control, which this context does not offer");
         return -ENOTSUP;
     }
-    scene->clip_control = (void (*)(GLenum, GLenum))eglGetProcAddress("glClipControlEXT");
+    scene->clip_control = host_depth_clip_control();
     glDeleteTextures(1, &scene->depth_texture);
     scene->depth_texture = create_texture(GL_DEPTH_COMPONENT32F, GL_NEAREST, scene->width, scene->height);
     glBindFramebuffer(GL_FRAMEBUFFER, scene->framebuffer);

@@ -37,8 +37,8 @@ static inline void fixture_open(gl_fixture *f, int width, int height)
 {
     char err[512];
     memset(f, 0, sizeof(*f));
-    if (egl_headless_open(&f->egl, err, sizeof(err)) != 0)
-        CHECK_SKIP("no headless GLES 3.0 context: %s", err);
+    if (egl_headless_open_api(&f->egl, egl_headless_test_api(), err, sizeof(err)) != 0)
+        CHECK_SKIP("no headless %s context: %s", f->egl.api == EGL_HEADLESS_GLES3 ? "GLES 3.0" : "desktop OpenGL", err);
     f->width = width;
     f->height = height;
     glGenTextures(1, &f->depth_texture);

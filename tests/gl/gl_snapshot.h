@@ -35,6 +35,10 @@ typedef struct snapshot {
     snap_entry e[SNAP_MAX];
 } snapshot;
 
+/* Desktop OpenGL's compatibility profile: attribute 0 is glVertex's, with no current value to
+ * query (GL_INVALID_OPERATION). */
+static bool snap_compat_profile;
+
 static int snap_units(void)
 {
     GLint units = 0;
@@ -134,7 +138,7 @@ static void snap_attributes(snapshot *s)
         glGetVertexAttribPointerv(a, GL_VERTEX_ATTRIB_ARRAY_POINTER, &pointer);
         snprintf(name, sizeof(name), "attribute %u pointer", a);
         snap_add(s, name, 1)->v[0] = (double)(size_t)pointer;
-        if (a < 4) {
+        if (a < 4 && !(a == 0 && snap_compat_profile)) {
             GLfloat c[4] = {0};
             glGetVertexAttribfv(a, GL_CURRENT_VERTEX_ATTRIB, c);
             snprintf(name, sizeof(name), "attribute %u current value", a);

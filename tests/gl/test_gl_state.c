@@ -1,5 +1,7 @@
 /* The host contract (docs/design.md §5, issue 10): every entry point leaves every GL state a host can
- * rely on as the host left it, and sbfx's pictures do not depend on that state.
+ * rely on as the host left it, and sbfx's pictures do not depend on that state. On a desktop
+ * OpenGL context as well (SBFX_TEST_GL_API=core or compat, issue 18; tests/run.sh runs it so):
+ * there the host also sets desktop OpenGL's own state (gl_desktop.h).
  *
  * A "hostile" host sets everything in gl_snapshot.h to a value other than GL's default —
  * texture, sampler and binding state on many units (not only the ones sbfx uses), a pixel
@@ -12,6 +14,7 @@
 #include <EGL/egl.h>
 #include "gl_fixture.h"
 #include "gl_snapshot.h"
+#include "gl_desktop.h"
 #include "host/test_scene.h"
 
 #define W 96
@@ -29,6 +32,8 @@ typedef struct host {
     GLuint tex_2d[3], tex_3d[2], tex_array[2], tex_cube[2], samplers[2];
     GLuint out_texture[2], out_fbo[2]; /* 0: the module under GL's defaults, 1: under the hostile state */
     clip_control_fn clip_control;
+    bool desktop, compat;  /* SBFX_TEST_GL_API=core or compat: desktop OpenGL (issue 18) */
+    desktop_fns gl_fns;    /* its functions the ES headers lack */
     int units;
     snapshot before, after;
 } host;
@@ -126,11 +131,15 @@ static void host_open(host *h)
     h->gl.frame.scene_color_texture = h->scene.color_texture;
     h->gl.frame.scene_depth_texture = h->scene.depth_texture;
     h->units = snap_units();
-    if (host_depth_has_clip_control())
-        h->clip_control = (clip_control_fn)eglGetProcAddress("glClipControlEXT");
+    h->clip_control = host_depth_clip_control();
+    h->desktop = h->gl.egl.api != EGL_HEADLESS_GLES3;
+    h->compat = h->gl.egl.api == EGL_HEADLESS_GL_COMPAT;
+    snap_core_profile = h->gl.egl.api == EGL_HEADLESS_GL_CORE;
+    snap_compat_profile = h->compat;
+    if (h->desktop) desktop_fns_load(&h->gl_fns);
     host_objects(h);
-    printf("# %d texture units checked; clip control %s\n", h->units,
-           h->clip_control ? "checked" : "not offered (GL_EXT_clip_control missing)");
+    printf("# %s: %d texture units checked; clip control %s\n", (const char *)glGetString(GL_VERSION), h->units,
+           h->clip_control ? "checked" : "not offered (GL_EXT_clip_control / GL_ARB_clip_control missing)");
 }
 
 /* ---- the two host states ------------------------------------------------------------------ */
@@ -213,7 +222,7 @@ static void raster(bool hostile)
     glPolygonOffset(hostile ? 1.5f : 0.0f, hostile ? 2.0f : 0.0f);
     set_on(GL_RASTERIZER_DISCARD, false); /* the host draws nothing with it on: see rasterizer_discard_on */
     set_on(GL_PRIMITIVE_RESTART_FIXED_INDEX, hostile);
-    glHint(GL_GENERATE_MIPMAP_HINT, hostile ? GL_NICEST : GL_DONT_CARE);
+    if (!snap_core_profile) glHint(GL_GENERATE_MIPMAP_HINT, hostile ? GL_NICEST : GL_DONT_CARE);
     glHint(GL_FRAGMENT_SHADER_DERIVATIVE_HINT, hostile ? GL_FASTEST : GL_DONT_CARE);
     const GLint pack[] = {hostile ? 2 : 4, hostile ? 7 : 0, hostile ? 1 : 0, hostile ? 2 : 0};
     const GLint unpack[] = {hostile ? 8 : 4, hostile ? 5 : 0, hostile ? 3 : 0, hostile ? 1 : 0, hostile ? 1 : 0, hostile ? 1 : 0};
@@ -242,6 +251,7 @@ static void host_texture_params(const host *h, bool hostile)
 
 static void host_state(host *h, bool hostile)
 {
+    if (h->desktop) desktop_state(&h->gl_fns, h->compat, hostile);
     host_texture_params(h, hostile);
     if (h->clip_control) h->clip_control(GL_LOWER_LEFT_EXT, hostile ? GL_ZERO_TO_ONE_EXT : GL_NEGATIVE_ONE_TO_ONE_EXT);
     fragment_ops(hostile);
@@ -255,12 +265,14 @@ static void snap_before(host *h)
 {
     host_state(h, true);
     snapshot_take(&h->before, h->clip_control != NULL);
+    if (h->desktop) snap_desktop(&h->before, h->compat);
 }
 
 /* The entry point has run: the state must be the snapshot's, and GL must report no error. */
 static void snap_after(host *h, const char *what)
 {
     snapshot_take(&h->after, h->clip_control != NULL);
+    if (h->desktop) snap_desktop(&h->after, h->compat);
     char first[64];
     int differ = snapshot_diff(&h->before, &h->after, what, first, sizeof(first));
     CHECK(differ == 0, "%s changed %d GL states (first: %s)", what, differ, first);
@@ -430,8 +442,12 @@ static void run_case(const state_case *c, int expected_queries[3])
     q[2] = render_both(&h, fx, 10.5, "sbfx_render (idle)");
     printf("#   glGet/glIs calls to save and restore: first frame %d, live particles %d, idle %d\n", q[0], q[1], q[2]);
     CHECK(q[0] == q[1], "first frame %d queries, later frames %d", q[0], q[1]);
-    CHECK(q[1] == expected_queries[1] && q[2] == expected_queries[2], "queries %d / %d, expected %d / %d", q[1], q[2],
-          expected_queries[1], expected_queries[2]);
+    /* desktop OpenGL: its own raster state on top, in every block that runs a pass (module.h,
+     * SBFX_GL_SAVE_DESKTOP): depth range, polygon mode, logic op, depth clamp, polygon smooth,
+     * 8 clip distances; and the compatibility profile's alpha test */
+    int desktop = h.desktop ? (h.compat ? 14 : 13) : 0;
+    int want[3] = {expected_queries[0], expected_queries[1] + desktop, expected_queries[2] ? expected_queries[2] + desktop : 0};
+    CHECK(q[1] == want[1] && q[2] == want[2], "queries %d / %d, expected %d / %d", q[1], q[2], want[1], want[2]);
     host_state(&h, false);
     sbfx_destroy(fx[0]);
     snap_before(&h);
@@ -534,6 +550,7 @@ CHECK_TEST(snapshot_detects_each_kind_of_change)
         snap_before(&h);
         mutations[i].apply(&h);
         snapshot_take(&h.after, h.clip_control != NULL);
+        if (h.desktop) snap_desktop(&h.after, h.compat);
         char first[64];
         int differ = snapshot_diff(&h.before, &h.after, "deliberate change", first, sizeof(first));
         const char *want = mutations[i].entry;
