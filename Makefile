@@ -6,6 +6,7 @@
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, docs, then ASan+UBSan
 #   make test-hosts   the SDL2 example host and its tests (docs/hosts/; make test runs them)
 #   make bench        timings into build/bench/
+#   make figures      the seed's figures rendered into docs/figures/ (docs/figures.md)
 #   make ladder       src/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
 #   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR, MANDIR, DATADIR); also
 #                     scenes, boards and the kiosk's unit and udev rule (dist/)
@@ -16,6 +17,8 @@
 #   make test-debian13  make test in a Debian 13 root (debootstrap; tests/debian13/run.sh), as root
 #   make test-gpus    every scene's shaders through Mesa's Mali, V3D, Adreno, Vivante compilers
 #                     (drm-shims; builds Mesa 25 into build/mesa-shim/ once; docs/gpus.md)
+#   make gpiod2       sbfx-play again against libgpiod 2.x built from Debian 13's source (docs/gpio.md)
+#   make mesa-shim    Mesa 25 with the drm-shims of panfrost, v3d, freedreno, etnaviv (docs/gpus.md)
 #   make soak         SOAK_HOURS (10) simulated hours of the kiosk loop: build/soak/soak.csv, .png
 #   make fuzz         FUZZ_SECONDS (60) of libFuzzer on the scene parser (clang)
 #   make clean        remove build/
@@ -409,16 +412,16 @@ bench: $(BUILD)/bench/bench_tonemap
 # tests/look/: the fire luminance metric (fire_metric.c, plain C, for any bench to call) and the
 # renderer that feeds it; the bench writes $(BUILD)/bench/look-fire.csv, test_gl_fire_look
 # asserts the ratios.
-LOOK_OBJ := $(BUILD)/obj/look/fire_metric.o $(BUILD)/obj/look/fire_look.o
-$(BUILD)/obj/look/%.o: tests/look/%.c tests/look/fire_metric.h tests/look/fire_look.h
+FIRE_LOOK_OBJ := $(BUILD)/obj/look/fire_metric.o $(BUILD)/obj/look/fire_look.o
+$(BUILD)/obj/look/%.o: tests/look/%.c | deps
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Itests/look -c -o $@ $<
-$(BUILD)/bench/bench_look_fire: tests/look/bench_look_fire.c $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests/look -c -o $@ $<
+$(BUILD)/bench/bench_look_fire: tests/look/bench_look_fire.c $(FIRE_LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Itests/look $(LDSAN) -o $@ $< $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
-$(BUILD)/tests/gl/test_gl_fire_look: tests/gl/test_gl_fire_look.c $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h
+	$(CC) $(PLATFORM_CFLAGS) -Itests/look $(LDSAN) -o $@ $< $(FIRE_LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+$(BUILD)/tests/gl/test_gl_fire_look: tests/gl/test_gl_fire_look.c $(FIRE_LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(FIRE_LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
 bench: $(BUILD)/bench/bench_look_fire
 
@@ -600,9 +603,6 @@ test-debian13:
 	@tests/debian13/run.sh
 
 # ---- the look (issue 17): the β metric (tests/look/look_metrics.c, docs/look.md) ----------
-$(BUILD)/obj/look/%.o: tests/look/%.c | deps
-	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests/look -c -o $@ $<
 $(BUILD)/tests/unit/test_look_metrics: tests/unit/test_look_metrics.c $(BUILD)/obj/look/look_metrics.o $(REF_LIBS) \
 		tests/check.h
 	@mkdir -p $(@D)

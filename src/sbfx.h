@@ -85,8 +85,8 @@ typedef enum sbfx_detail_format {
  * room the picture leaves, room_k = 1 - T dst_k, so dst * T + C never clips where the host's
  * picture does not. dst is read from frame.scene_color_texture (black when there is none, or when
  * it is the texture out_framebuffer draws into). The curve is the identity up to 0.6 and a
- * logarithmic shoulder above that reaches 1 at 64 (filmic: at 16384, the particles' radiance
- * ceiling); docs/colour.md, docs/look-fire.md. */
+ * logarithmic shoulder above that reaches 1 at 16384, the particles' radiance ceiling (filmic:
+ * white with slope 0 at 1024); docs/colour.md, docs/look-fire.md. */
 typedef enum sbfx_tone_map {
     SBFX_TONE_MAP_DEFAULT = 0,     /* = FILMIC */
     SBFX_TONE_MAP_NONE,            /* light added as computed: each channel clips on its own */

@@ -96,7 +96,9 @@ double sbfx_phase_table_error(const float *table, int size, double g);
 /* ---- tone curve of the particles' light (sbfx_tone_map; src/tonemap.c) ----------------- */
 
 #define SBFX_TONE_KNEE 0.6   /* light below this reaches the display unchanged */
-#define SBFX_TONE_WHITE 64.0 /* ...and this much reaches 1 (hue-preserving, per-channel) */
+/* ...and this much reaches 1 (hue-preserving, per-channel): the particles' radiance ceiling
+ * (particle.frag's RADIANCE_CEILING), so no light the particles make reaches 1 before it */
+#define SBFX_TONE_WHITE 16384.0
 /* filmic (docs/look-fire.md): each channel takes this share of the three channels' mean before
  * the curve and gives it back after it, so light too bright for its hue crosses over to the
  * other channels (red -> orange -> yellow -> white) while light below the knee is untouched */

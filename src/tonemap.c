@@ -3,8 +3,8 @@
  * white point. The shoulder is k + (1 - k) ln(1 + s x) / ln(1 + s x_w), x = (v - k) / (1 - k),
  * and its steepness s makes the curve's slope 1 at the knee (no crease in gradients): that
  * needs s = ln(1 + s x_w), found by fixed-point iteration (it contracts by about 1/s per step).
- * A logarithmic shoulder keeps fire's structure: radiance from 1 to 64 spreads over a quarter
- * of the display range instead of piling up just under 1 as an exponential one would.
+ * A logarithmic shoulder keeps fire's structure: radiance from 1 up to the ceiling spreads over
+ * the top of the display range instead of piling up just under 1 as an exponential one would.
  *
  * filmic (docs/look-fire.md) uses the shoulder u = ln(1 + s x) / ln(1 + s x_w) as
  * k + (1 - k)(2u - u^2): it arrives at 1 with slope 0 at its white point (1024), so the light
