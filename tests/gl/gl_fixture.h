@@ -59,6 +59,20 @@ static inline void fixture_open(gl_fixture *f, int width, int height)
     fixture_current = f;
 }
 
+/* An RGBA8 texture of width x height and a framebuffer drawing into it, as a host makes its
+ * output; leaves the 2D texture and framebuffer bindings at 0. */
+static inline void fixture_rgba8_target(int width, int height, GLuint *texture, GLuint *fbo)
+{
+    glGenTextures(1, texture);
+    glBindTexture(GL_TEXTURE_2D, *texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glGenFramebuffers(1, fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *texture, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
 static inline void fixture_close(gl_fixture *f)
 {
     glDeleteFramebuffers(1, &f->out_fbo);

@@ -53,14 +53,7 @@ static void check_handed_back(const host *h, const char *what, bool reads_errors
 
 static void make_output(host *h, int i)
 {
-    glGenTextures(1, &h->out_texture[i]);
-    glBindTexture(GL_TEXTURE_2D, h->out_texture[i]);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, W, H, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
-    glGenFramebuffers(1, &h->out_fbo[i]);
-    glBindFramebuffer(GL_FRAMEBUFFER, h->out_fbo[i]);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, h->out_texture[i], 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glBindTexture(GL_TEXTURE_2D, 0);
+    fixture_rgba8_target(W, H, &h->out_texture[i], &h->out_fbo[i]);
 }
 
 static void host_open(host *h, GLenum error)
