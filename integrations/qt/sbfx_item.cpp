@@ -1,0 +1,126 @@
+/* SbfxItem: sbfx_item.h. Runs on Qt's GUI thread but for updatePaintNode, which Qt calls on the
+ * render thread while the GUI thread waits: the only place the item and its node meet. */
+#include "sbfx_item.h"
+
+#include <QtCore/QUrl>
+#include <QtQml/QQmlEngine>
+
+SbfxItem::SbfxItem(QQuickItem *parent) : QQuickItem(parent) { setFlag(ItemHasContents, true); }
+
+void SbfxItem::registerQmlType() { qmlRegisterType<SbfxItem>("Sbfx", 1, 0, "SbfxItem"); }
+
+void SbfxItem::trigger(const QString &effect, const QVector3D &position)
+{
+    triggers_.push_back({effect.toUtf8(), {position.x(), position.y(), position.z()}});
+    update();
+}
+
+void SbfxItem::setCameraHook(CameraHook hook)
+{
+    settings_.camera_hook = std::move(hook);
+    update();
+}
+
+void SbfxItem::setRenderObserver(RenderObserver observer)
+{
+    settings_.render_observer = std::move(observer);
+    update();
+}
+
+void SbfxItem::setScene(const QString &scene)
+{
+    const QUrl url(scene);
+    const QString path = url.isLocalFile() ? url.toLocalFile() : scene;
+    if (path == settings_.scene_path) return;
+    settings_.scene_path = path;
+    settings_.module_generation++;
+    emit sceneChanged();
+    update();
+}
+
+void SbfxItem::setQuality(const QString &quality)
+{
+    if (quality == quality_) return;
+    quality_ = quality;
+    char err[256] = "";
+    settings_.has_quality = !quality.isEmpty();
+    if (settings_.has_quality &&
+        sbfx_quality_parse(quality.toUtf8().constData(), &settings_.quality, err, sizeof(err)) != SBFX_OK) {
+        settings_.has_quality = false;
+        setError(QStringLiteral("quality \"%1\": %2").arg(quality, QString::fromUtf8(err)));
+    }
+    settings_.quality_generation++;
+    emit qualityChanged();
+    update();
+}
+
+void SbfxItem::setBudget(double ms)
+{
+    if (ms == settings_.budget_ms) return;
+    settings_.budget_ms = ms;
+    settings_.module_generation++;
+    emit budgetChanged();
+    update();
+}
+
+void SbfxItem::setViewMatrix(const QMatrix4x4 &view)
+{
+    view_ = view;
+    settings_.has_view = true;
+    std::copy(view.constData(), view.constData() + 16, settings_.view);
+    emit viewMatrixChanged();
+    update();
+}
+
+void SbfxItem::setProjectionMatrix(const QMatrix4x4 &projection)
+{
+    projection_ = projection;
+    settings_.has_projection = true;
+    std::copy(projection.constData(), projection.constData() + 16, settings_.projection);
+    emit projectionMatrixChanged();
+    update();
+}
+
+void SbfxItem::setFixedStep(double seconds)
+{
+    if (seconds == settings_.fixed_step) return;
+    settings_.fixed_step = seconds;
+    emit fixedStepChanged();
+}
+
+void SbfxItem::setRunning(bool running)
+{
+    if (running == settings_.running) return;
+    settings_.running = running;
+    emit runningChanged();
+    update();
+}
+
+void SbfxItem::setError(const QString &error)
+{
+    if (error == error_) return;
+    error_ = error;
+    emit errorChanged();
+}
+
+/* Hands the node this frame's settings and triggers, takes its report of the last frame; the
+ * signals and the next frame's request go to the GUI thread. */
+QSGNode *SbfxItem::updatePaintNode(QSGNode *old, UpdatePaintNodeData *)
+{
+    auto *node = static_cast<SbfxRenderNode *>(old);
+    if (!node) node = new SbfxRenderNode;
+    node->sync(settings_, triggers_, size());
+    const SbfxNodeStatus report = node->status();
+    const bool more_triggers = report.triggers_fired != status_.triggers_fired;
+    const bool new_error = !report.error.isEmpty() && report.error != status_.error;
+    status_ = report;
+    QMetaObject::invokeMethod(
+        this,
+        [this, more_triggers, new_error, error = report.error] {
+            if (new_error) setError(error);
+            if (more_triggers) emit triggersChanged();
+            if (settings_.running) update();
+        },
+        Qt::QueuedConnection);
+    return node;
+}

@@ -1,0 +1,180 @@
+/* The Qt Quick integration (integrations/qt/, docs/hosts/qt-quick.md) in a real Qt Quick window:
+ * xcb on Xvfb (tests/hosts/qt_quick.sh runs it under xvfb-run), OpenGL ES 3.0 asked for as a
+ * user does, the basic render loop so that each grabWindow() is one frame.
+ *
+ * A QML scene with a background, the SbfxItem, and an opaque rectangle with text above it, once
+ * with the item filling the window (sbfx composites into Qt's framebuffer) and once smaller than
+ * the window (the item's own target). After an explosion and six frames of 0.05 s:
+ *   - the explosion shows: pixels in the item's rectangle changed against the frame before it,
+ *     also right around the rectangle above it;
+ *   - the rectangle and its text are intact pixel for pixel, and so is everything outside the
+ *     item;
+ *   - the whole GL state (tests/gl/gl_snapshot.h) is the same right after the item's GL work as
+ *     right before it, in every frame, and that work left no GL error. */
+#include <QtCore/QElapsedTimer>
+#include <QtGui/QGuiApplication>
+#include <QtGui/QImage>
+#include <QtGui/QSurfaceFormat>
+#include <QtQml/QQmlComponent>
+#include <QtQml/QQmlEngine>
+#include <QtQuick/QQuickWindow>
+
+#include "check.h"
+#include "gl_snapshot.h"
+#include "sbfx_item.h"
+
+enum { W = 480, H = 320 };
+
+/* The overlay: an opaque bar with text over the middle of the item. */
+struct Box {
+    int x, y, width, height;
+    bool contains(int px, int py) const { return px >= x && px < x + width && py >= y && py < y + height; }
+};
+
+static QString scene_qml(const Box &item, const Box &overlay)
+{
+    return QStringLiteral(R"(
+import QtQuick
+import Sbfx 1.0
+Rectangle {
+    width: %1; height: %2
+    color: "#2a4d6e"
+    Rectangle { y: %2 / 2; width: %1; height: %2 / 2; color: "#6e5a3a" }
+    SbfxItem { objectName: "fx"; x: %3; y: %4; width: %5; height: %6; fixedStep: 0.05 }
+    Rectangle {
+        x: %7; y: %8; width: %9; height: %10; color: "#e8e8e8"
+        Text { anchors.centerIn: parent; text: "QML on top"; color: "black"; font.pixelSize: 16 }
+    }
+}
+)")
+        .arg(W).arg(H).arg(item.x).arg(item.y).arg(item.width).arg(item.height)
+        .arg(overlay.x).arg(overlay.y).arg(overlay.width).arg(overlay.height);
+}
+
+/* Checks of the item's GL work, made by its render observer in every frame. */
+struct GlChecks {
+    snapshot before, after;
+    int frames = 0, state_changes = 0, errors = 0;
+    char first_change[256] = "";
+    GLenum first_error = GL_NO_ERROR;
+    bool es = false;
+};
+static GlChecks checks;
+
+static void observe(bool after)
+{
+    if (!after) {
+        checks.es = strstr((const char *)glGetString(GL_VERSION), "OpenGL ES") != nullptr;
+        while (glGetError() != GL_NO_ERROR) {} /* Qt's own (Qt 6.4: glPolygonMode on ES) */
+        snapshot_take(&checks.before, false);
+        return;
+    }
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR && checks.errors++ == 0) checks.first_error = e;
+    snapshot_take(&checks.after, false);
+    char first[256] = "";
+    int diffs = snapshot_diff(&checks.before, &checks.after, "the item's render", first, sizeof(first));
+    if (diffs > 0 && checks.state_changes++ == 0) snprintf(checks.first_change, sizeof(checks.first_change), "%s", first);
+    checks.frames++;
+}
+
+static QImage next_frame(QQuickWindow &window)
+{
+    QCoreApplication::processEvents();
+    return window.grabWindow().convertToFormat(QImage::Format_RGBA8888);
+}
+
+/* Pixels that differ between two frames, inside `inside` and outside `outside`. */
+static int changed(const QImage &a, const QImage &b, const Box &inside, const Box *outside)
+{
+    int n = 0;
+    for (int y = inside.y; y < inside.y + inside.height; y++)
+        for (int x = inside.x; x < inside.x + inside.width; x++)
+            if (!(outside && outside->contains(x, y)) && a.pixel(x, y) != b.pixel(x, y)) n++;
+    return n;
+}
+
+static void run_case(const Box &item, bool expect_own_target)
+{
+    if (!getenv("DISPLAY")) CHECK_SKIP("no X display: tests/hosts/qt_quick.sh runs this under xvfb-run");
+    setenv("QT_QPA_PLATFORM", "xcb", 1);
+    setenv("QSG_RENDER_LOOP", "basic", 1);
+    QSurfaceFormat format;
+    format.setRenderableType(QSurfaceFormat::OpenGLES);
+    format.setVersion(3, 0);
+    format.setDepthBufferSize(24);
+    format.setStencilBufferSize(8);
+    QSurfaceFormat::setDefaultFormat(format);
+    QQuickWindow::setGraphicsApi(QSGRendererInterface::OpenGL);
+    int argc = 1;
+    char name[] = "test_qt_quick", *argv[] = {name, nullptr};
+    QGuiApplication app(argc, argv);
+    SbfxItem::registerQmlType();
+
+    const Box overlay = {item.x + item.width / 2 - 60, item.y + item.height / 2 - 16, 120, 32};
+    QQmlEngine engine;
+    QQmlComponent component(&engine);
+    component.setData(scene_qml(item, overlay).toUtf8(), QUrl("qrc:/test.qml"));
+    auto *root = qobject_cast<QQuickItem *>(component.create());
+    CHECK(root != nullptr, "%s", qPrintable(component.errorString()));
+    if (!root) return;
+    QQuickWindow window;
+    window.resize(W, H);
+    root->setParentItem(window.contentItem());
+    auto *fx = root->findChild<SbfxItem *>("fx");
+    fx->setRenderObserver(observe);
+    window.show();
+    QElapsedTimer waited;
+    waited.start();
+    while (!window.isExposed() && waited.elapsed() < 10000) QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
+    CHECK(window.isExposed(), "the window was not exposed within 10 s");
+
+    const QImage before = next_frame(window);
+    CHECK(before.width() == W && before.height() == H, "grabbed %dx%d", before.width(), before.height());
+    fx->trigger("explosion", QVector3D(0, 0, 0));
+    QImage after;
+    for (int i = 0; i < 6; i++) after = next_frame(window);
+    const SbfxNodeStatus s = fx->status();
+    printf("# %s; item %dx%d at (%d, %d), %s; %d frames drawn, %d particles\n",
+           checks.es ? "OpenGL ES context" : "not an ES context", s.width, s.height, item.x, item.y,
+           s.own_target ? "own target" : "Qt's framebuffer", s.frames, s.particles_alive);
+    CHECK(checks.es, "Qt made no OpenGL ES context");
+    CHECK(fx->error().isEmpty() && s.error.isEmpty(), "%s", qPrintable(fx->error() + s.error));
+    CHECK(s.own_target == expect_own_target, "own target: %d", s.own_target);
+    CHECK(s.width == item.width && s.height == item.height, "the item drew at %dx%d", s.width, s.height);
+    CHECK(s.frames >= 5 && s.particles_alive > 0, "%d frames drawn, %d particles", s.frames, s.particles_alive);
+
+    int in_item = changed(before, after, item, &overlay);
+    int item_pixels = item.width * item.height - overlay.width * overlay.height;
+    const Box ring = {overlay.x - 16, overlay.y - 16, overlay.width + 32, overlay.height + 32};
+    int around = changed(before, after, ring, &overlay);
+    printf("# explosion: %d of %d pixels of the item changed, %d of %d around the rectangle above it\n", in_item,
+           item_pixels, around, ring.width * ring.height - overlay.width * overlay.height);
+    CHECK(in_item > item_pixels / 50, "the explosion changed only %d pixels", in_item);
+    CHECK(around > (ring.width * ring.height - overlay.width * overlay.height) / 4,
+          "the explosion is not under the rectangle: %d pixels around it changed", around);
+    CHECK(changed(before, after, overlay, nullptr) == 0, "%d pixels of the QML rectangle above the item changed",
+          changed(before, after, overlay, nullptr));
+    const Box window_box = {0, 0, W, H};
+    CHECK(changed(before, after, window_box, &item) == 0, "%d pixels outside the item changed",
+          changed(before, after, window_box, &item));
+
+    printf("# GL state: %d frames observed, %d with a change (%s), %d with a GL error (first 0x%04x)\n",
+           checks.frames, checks.state_changes, checks.first_change, checks.errors, checks.first_error);
+    CHECK(checks.frames >= 7, "the observer saw %d frames", checks.frames);
+    CHECK(checks.state_changes == 0, "the GL state changed in %d frames: %s", checks.state_changes, checks.first_change);
+    CHECK(checks.errors == 0, "GL error 0x%04x after the item's work in %d frames", checks.first_error, checks.errors);
+    delete root;
+}
+
+CHECK_TEST(item_fills_the_window)
+{
+    run_case({0, 0, W, H}, false);
+}
+
+CHECK_TEST(item_smaller_than_the_window)
+{
+    run_case({60, 40, 300, 220}, true);
+}
+
+int main(int argc, char **argv) { return check_main_args(argc, argv); }
