@@ -11,6 +11,7 @@
  *     item;
  *   - the whole GL state (tests/gl/gl_snapshot.h) is the same right after the item's GL work as
  *     right before it, in every frame, and that work left no GL error. */
+#include <QtCore/QDir>
 #include <QtCore/QElapsedTimer>
 #include <QtGui/QGuiApplication>
 #include <QtGui/QImage>
@@ -78,12 +79,6 @@ static void observe(bool after)
     checks.frames++;
 }
 
-static QImage next_frame(QQuickWindow &window)
-{
-    QCoreApplication::processEvents();
-    return window.grabWindow().convertToFormat(QImage::Format_RGBA8888);
-}
-
 /* Pixels that differ between two frames, inside `inside` and outside `outside`. */
 static int changed(const QImage &a, const QImage &b, const Box &inside, const Box *outside)
 {
@@ -94,52 +89,95 @@ static int changed(const QImage &a, const QImage &b, const Box &inside, const Bo
     return n;
 }
 
+/* Qt as a user sets it up, the QML scene in a window, the item found and observed; returns
+ * false (after a failed check) when something of that did not happen. */
+struct Harness {
+    QGuiApplication *app = nullptr;
+    QQmlEngine *engine = nullptr;
+    QQuickWindow *window = nullptr;
+    QQuickItem *root = nullptr;
+    SbfxItem *fx = nullptr;
+
+    bool open(const Box &item, const Box &overlay)
+    {
+        if (!getenv("DISPLAY")) CHECK_SKIP("no X display: tests/hosts/qt_quick.sh runs this under xvfb-run");
+        setenv("QT_QPA_PLATFORM", "xcb", 1);
+        setenv("QSG_RENDER_LOOP", "basic", 1);
+        QSurfaceFormat format;
+        format.setRenderableType(QSurfaceFormat::OpenGLES);
+        format.setVersion(3, 0);
+        format.setDepthBufferSize(24);
+        format.setStencilBufferSize(8);
+        QSurfaceFormat::setDefaultFormat(format);
+        QQuickWindow::setGraphicsApi(QSGRendererInterface::OpenGL);
+        static int argc = 1;
+        static char name[] = "test_qt_quick", *argv[] = {name, nullptr};
+        app = new QGuiApplication(argc, argv);
+        SbfxItem::registerQmlType();
+        engine = new QQmlEngine;
+        QQmlComponent component(engine);
+        component.setData(scene_qml(item, overlay).toUtf8(), QUrl("qrc:/test.qml"));
+        root = qobject_cast<QQuickItem *>(component.create());
+        CHECK(root != nullptr, "%s", qPrintable(component.errorString()));
+        if (!root) return false;
+        window = new QQuickWindow;
+        window->resize(W, H);
+        root->setParentItem(window->contentItem());
+        fx = root->findChild<SbfxItem *>("fx");
+        fx->setRenderObserver(observe);
+        window->show();
+        QElapsedTimer waited;
+        waited.start();
+        while (!window->isExposed() && waited.elapsed() < 10000)
+            QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
+        CHECK(window->isExposed(), "the window was not exposed within 10 s");
+        return window->isExposed();
+    }
+    /* One frame (the basic render loop renders one per grab) after the queued events. */
+    QImage frame()
+    {
+        QCoreApplication::processEvents();
+        return window->grabWindow().convertToFormat(QImage::Format_RGBA8888);
+    }
+    QImage frames(int n)
+    {
+        QImage last;
+        for (int i = 0; i < n; i++) last = frame();
+        return last;
+    }
+    ~Harness()
+    {
+        delete root;
+        delete window;
+        delete engine;
+        delete app;
+    }
+};
+
+static void check_gl_contract()
+{
+    printf("# GL state: %d frames observed, %d with a change (%s), %d with a GL error (first 0x%04x)\n",
+           checks.frames, checks.state_changes, checks.first_change, checks.errors, checks.first_error);
+    CHECK(checks.es, "Qt made no OpenGL ES context");
+    CHECK(checks.frames >= 7, "the observer saw %d frames", checks.frames);
+    CHECK(checks.state_changes == 0, "the GL state changed in %d frames: %s", checks.state_changes, checks.first_change);
+    CHECK(checks.errors == 0, "GL error 0x%04x after the item's work in %d frames", checks.first_error, checks.errors);
+}
+
 static void run_case(const Box &item, bool expect_own_target)
 {
-    if (!getenv("DISPLAY")) CHECK_SKIP("no X display: tests/hosts/qt_quick.sh runs this under xvfb-run");
-    setenv("QT_QPA_PLATFORM", "xcb", 1);
-    setenv("QSG_RENDER_LOOP", "basic", 1);
-    QSurfaceFormat format;
-    format.setRenderableType(QSurfaceFormat::OpenGLES);
-    format.setVersion(3, 0);
-    format.setDepthBufferSize(24);
-    format.setStencilBufferSize(8);
-    QSurfaceFormat::setDefaultFormat(format);
-    QQuickWindow::setGraphicsApi(QSGRendererInterface::OpenGL);
-    int argc = 1;
-    char name[] = "test_qt_quick", *argv[] = {name, nullptr};
-    QGuiApplication app(argc, argv);
-    SbfxItem::registerQmlType();
-
     const Box overlay = {item.x + item.width / 2 - 60, item.y + item.height / 2 - 16, 120, 32};
-    QQmlEngine engine;
-    QQmlComponent component(&engine);
-    component.setData(scene_qml(item, overlay).toUtf8(), QUrl("qrc:/test.qml"));
-    auto *root = qobject_cast<QQuickItem *>(component.create());
-    CHECK(root != nullptr, "%s", qPrintable(component.errorString()));
-    if (!root) return;
-    QQuickWindow window;
-    window.resize(W, H);
-    root->setParentItem(window.contentItem());
-    auto *fx = root->findChild<SbfxItem *>("fx");
-    fx->setRenderObserver(observe);
-    window.show();
-    QElapsedTimer waited;
-    waited.start();
-    while (!window.isExposed() && waited.elapsed() < 10000) QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
-    CHECK(window.isExposed(), "the window was not exposed within 10 s");
-
-    const QImage before = next_frame(window);
+    Harness h;
+    if (!h.open(item, overlay)) return;
+    const QImage before = h.frame();
     CHECK(before.width() == W && before.height() == H, "grabbed %dx%d", before.width(), before.height());
-    fx->trigger("explosion", QVector3D(0, 0, 0));
-    QImage after;
-    for (int i = 0; i < 6; i++) after = next_frame(window);
-    const SbfxNodeStatus s = fx->status();
+    h.fx->trigger("explosion", QVector3D(0, 0, 0));
+    const QImage after = h.frames(6);
+    const SbfxNodeStatus s = h.fx->status();
     printf("# %s; item %dx%d at (%d, %d), %s; %d frames drawn, %d particles\n",
            checks.es ? "OpenGL ES context" : "not an ES context", s.width, s.height, item.x, item.y,
            s.own_target ? "own target" : "Qt's framebuffer", s.frames, s.particles_alive);
-    CHECK(checks.es, "Qt made no OpenGL ES context");
-    CHECK(fx->error().isEmpty() && s.error.isEmpty(), "%s", qPrintable(fx->error() + s.error));
+    CHECK(h.fx->error().isEmpty() && s.error.isEmpty(), "%s", qPrintable(h.fx->error() + s.error));
     CHECK(s.own_target == expect_own_target, "own target: %d", s.own_target);
     CHECK(s.width == item.width && s.height == item.height, "the item drew at %dx%d", s.width, s.height);
     CHECK(s.frames >= 5 && s.particles_alive > 0, "%d frames drawn, %d particles", s.frames, s.particles_alive);
@@ -158,13 +196,7 @@ static void run_case(const Box &item, bool expect_own_target)
     const Box window_box = {0, 0, W, H};
     CHECK(changed(before, after, window_box, &item) == 0, "%d pixels outside the item changed",
           changed(before, after, window_box, &item));
-
-    printf("# GL state: %d frames observed, %d with a change (%s), %d with a GL error (first 0x%04x)\n",
-           checks.frames, checks.state_changes, checks.first_change, checks.errors, checks.first_error);
-    CHECK(checks.frames >= 7, "the observer saw %d frames", checks.frames);
-    CHECK(checks.state_changes == 0, "the GL state changed in %d frames: %s", checks.state_changes, checks.first_change);
-    CHECK(checks.errors == 0, "GL error 0x%04x after the item's work in %d frames", checks.first_error, checks.errors);
-    delete root;
+    check_gl_contract();
 }
 
 CHECK_TEST(item_fills_the_window)
@@ -175,6 +207,64 @@ CHECK_TEST(item_fills_the_window)
 CHECK_TEST(item_smaller_than_the_window)
 {
     run_case({60, 40, 300, 220}, true);
+}
+
+/* The camera: a C++ hook looking away from the explosion hides it (and is given the item's size
+ * in pixels); the view and projection properties looking at it show it again. */
+CHECK_TEST(camera_hook_and_matrix_properties)
+{
+    const Box item = {0, 0, W, H}, nowhere = {-1, -1, 0, 0};
+    Harness h;
+    if (!h.open(item, nowhere)) return;
+    int hook_width = 0, hook_height = 0;
+    h.fx->setCameraHook([&](int width, int height, double, float view[16], float projection[16]) {
+        hook_width = width;
+        hook_height = height;
+        const float eye[3] = {0, 2, 10}, away[3] = {0, 2, 20}, up[3] = {0, 1, 0};
+        sbfx_look_at(view, eye, away, up);
+        sbfx_perspective(projection, 0.87f, float(width) / float(height), 0.1f, 200.0f);
+    });
+    const QImage before = h.frame();
+    h.fx->trigger("explosion", QVector3D(0, 0, 0));
+    const QImage away = h.frames(6);
+    CHECK(hook_width == W && hook_height == H, "the hook was given %dx%d", hook_width, hook_height);
+    CHECK(h.fx->status().particles_alive > 0, "no particles");
+    CHECK(changed(before, away, item, nullptr) == 0, "looking away, %d pixels changed", changed(before, away, item, nullptr));
+
+    h.fx->setCameraHook(nullptr);
+    QMatrix4x4 view, projection;
+    view.lookAt(QVector3D(0, 2, 10), QVector3D(0, 1, 0), QVector3D(0, 1, 0));
+    projection.perspective(50.0f, float(W) / float(H), 0.1f, 200.0f);
+    h.fx->setViewMatrix(view);
+    h.fx->setProjectionMatrix(projection);
+    const QImage toward = h.frames(2);
+    int seen = changed(before, toward, item, nullptr);
+    printf("# looking away: 0 pixels changed; the properties looking at it: %d\n", seen);
+    CHECK(seen > W * H / 100, "with the view and projection properties only %d pixels changed", seen);
+    CHECK(h.fx->error().isEmpty(), "%s", qPrintable(h.fx->error()));
+    check_gl_contract();
+}
+
+/* The scene and quality properties: explosion.cfg fires its explosion from its timeline (no
+ * trigger); a quality level switches without an error, a bad one is named in `error`. */
+CHECK_TEST(scene_and_quality_properties)
+{
+    const Box item = {0, 0, W, H}, nowhere = {-1, -1, 0, 0};
+    Harness h;
+    if (!h.open(item, nowhere)) return;
+    const QImage before = h.frame();
+    h.fx->setScene(QUrl::fromLocalFile(QDir::current().absoluteFilePath("scenes/explosion.cfg")).toString());
+    h.fx->setQuality("spherical/8/bl");
+    const QImage after = h.frames(6);
+    const SbfxNodeStatus s = h.fx->status();
+    int seen = changed(before, after, item, nullptr);
+    printf("# explosion.cfg's timeline: %d triggers, %d pixels changed\n", s.triggers_fired, seen);
+    CHECK(h.fx->error().isEmpty(), "%s", qPrintable(h.fx->error()));
+    CHECK(s.triggers_fired == 1, "%d triggers fired", s.triggers_fired);
+    CHECK(seen > W * H / 100, "only %d pixels changed", seen);
+    h.fx->setQuality("exact/3/nd");
+    CHECK(h.fx->error().contains("exact/3/nd"), "a bad quality level gave the error \"%s\"", qPrintable(h.fx->error()));
+    check_gl_contract();
 }
 
 int main(int argc, char **argv) { return check_main_args(argc, argv); }
