@@ -4,7 +4,8 @@
 #   make demo         render the built-in explosion headless into build/demo/
 #   make gallery      one contact sheet per example scene into docs/gallery/ (docs/scene-format.md)
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, docs, then ASan+UBSan
-#   make test-hosts   the SDL2 example host and its tests (docs/hosts/; make test runs them)
+#   make test-hosts   the SDL2, desktop OpenGL and Qt Quick hosts and their tests (docs/hosts/;
+#                     make test runs them)
 #   make test-qt-quick  the Qt Quick item, its example and test where Qt 6 is installed (test-hosts)
 #   make bench        timings into build/bench/
 #   make figures      the seed's figures rendered into docs/figures/ (docs/figures.md)
@@ -537,12 +538,19 @@ $(BUILD)/tests/hosts/test_sdl2: tests/hosts/test_sdl2.c $(BUILD)/obj/examples/sd
 .PHONY: test-hosts
 test-hosts: $(BUILD)/examples/sbfx-sdl2 $(BUILD)/tests/hosts/test_sdl2
 
+# The desktop OpenGL host (examples/desktop-gl/, docs/hosts/desktop-gl.md): a 3.3 core profile
+# context through EGL, its own GLSL 330 shaders and libOpenGL, sbfx on the same context.
+$(BUILD)/examples/sbfx-desktop-gl: examples/desktop-gl/host.c $(BUILD)/libsbfx.a | deps
+	@mkdir -p $(@D)
+	$(CC) $(EXAMPLE_CFLAGS) $(LDSAN) -o $@ $< $(BUILD)/libsbfx.a $(OPENGL_LIBS) \
+		$(call pkg_config,EGL_LIBS,--libs egl) $(SRC_LIBS)
+test-hosts: $(BUILD)/examples/sbfx-desktop-gl
+
 # ---- hosts (issue 18): Qt Quick (integrations/qt/, examples/qt-quick/, docs/hosts/qt-quick.md) ----
-# Built by make test-hosts when pkg-config finds Qt 6 Quick (tools/deps.sh test installs it):
+# Built by make test-hosts where pkg-config finds Qt 6 Quick (tools/deps.sh test installs it):
 # C++17, moc and rcc from Qt6Core's libexecdir (qt6-base-dev-tools). Its test runs under Xvfb
 # (tests/hosts/qt_quick.sh), so it lives in tests/qt/, not in tests/hosts/.
 QT_PKGS := Qt6Quick Qt6Qml Qt6Gui
-QT_FOUND = $(call pkg_config,QT_FOUND,--exists $(QT_PKGS) && echo yes)
 QT_PKG_CFLAGS = $(call pkg_config,QT_PKG_CFLAGS,--cflags $(QT_PKGS))
 QT_PKG_LIBS = $(call pkg_config,QT_PKG_LIBS,--libs $(QT_PKGS))
 QT_LIBEXEC = $(call pkg_config,QT_LIBEXEC,--variable=libexecdir Qt6Core)
@@ -577,7 +585,10 @@ $(BUILD)/tests/qt/test_qt_quick: tests/hosts/test_qt_quick.cpp $(QT_OBJ) $(BUILD
 	@mkdir -p $(@D)
 	$(CXX) $(QT_CXXFLAGS) -Itests -Itests/gl $(LDSAN) -o $@ $< $(QT_OBJ) $(BUILD)/libsbfx.a $(QT_LIBS)
 .PHONY: test-qt-quick
-test-qt-quick: $(if $(QT_FOUND),$(BUILD)/examples/sbfx-qt-quick $(BUILD)/tests/qt/test_qt_quick)
+test-qt-quick: | deps
+	@if $(PKG_CONFIG) --exists $(QT_PKGS); then \
+		$(MAKE) --no-print-directory BUILD=$(BUILD) $(BUILD)/examples/sbfx-qt-quick $(BUILD)/tests/qt/test_qt_quick; \
+	else echo "test-qt-quick: no Qt 6 Quick -dev packages (tools/deps.sh test installs them): not built"; fi
 test-hosts: test-qt-quick
 
 # Cross build for a board (boards/rk3588.mk: Debian's aarch64 toolchain and arm64 multiarch
