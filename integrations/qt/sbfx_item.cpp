@@ -4,6 +4,8 @@
 
 #include <QtCore/QUrl>
 #include <QtQml/QQmlEngine>
+#include <QtQuick/QQuickWindow>
+#include <QtQuick/QSGRendererInterface>
 
 SbfxItem::SbfxItem(QQuickItem *parent) : QQuickItem(parent) { setFlag(ItemHasContents, true); }
 
@@ -107,6 +109,23 @@ void SbfxItem::setError(const QString &error)
  * signals and the next frame's request go to the GUI thread. */
 QSGNode *SbfxItem::updatePaintNode(QSGNode *old, UpdatePaintNodeData *)
 {
+    const QSGRendererInterface::GraphicsApi api = window()->rendererInterface()->graphicsApi();
+    if (api != QSGRendererInterface::OpenGL) {
+        delete old;
+        QMetaObject::invokeMethod(
+            this,
+            [this, api] {
+                const QString name = api == QSGRendererInterface::Software
+                                         ? QStringLiteral("its software renderer")
+                                         : QStringLiteral("graphics API %1 (QSGRendererInterface)").arg(int(api));
+                setError(QStringLiteral("Qt Quick draws with %1, not OpenGL: call "
+                                        "QQuickWindow::setGraphicsApi(QSGRendererInterface::OpenGL) before "
+                                        "QGuiApplication, on a platform with OpenGL (not QT_QPA_PLATFORM=offscreen)")
+                             .arg(name));
+            },
+            Qt::QueuedConnection);
+        return nullptr;
+    }
     auto *node = static_cast<SbfxRenderNode *>(old);
     if (!node) node = new SbfxRenderNode;
     node->sync(settings_, triggers_, size());
