@@ -20,13 +20,13 @@ void SbfxItem::trigger(const QString &effect, const QVector3D &position)
 void SbfxItem::setCameraHook(CameraHook hook)
 {
     settings_.camera_hook = std::move(hook);
-    update();
+    settings_changed();
 }
 
 void SbfxItem::setRenderObserver(RenderObserver observer)
 {
     settings_.render_observer = std::move(observer);
-    update();
+    settings_changed();
 }
 
 void SbfxItem::setScene(const QString &scene)
@@ -37,7 +37,7 @@ void SbfxItem::setScene(const QString &scene)
     settings_.scene_path = path;
     settings_.module_generation++;
     emit sceneChanged();
-    update();
+    settings_changed();
 }
 
 void SbfxItem::setQuality(const QString &quality)
@@ -53,7 +53,7 @@ void SbfxItem::setQuality(const QString &quality)
     }
     settings_.quality_generation++;
     emit qualityChanged();
-    update();
+    settings_changed();
 }
 
 void SbfxItem::setBudget(double ms)
@@ -62,7 +62,7 @@ void SbfxItem::setBudget(double ms)
     settings_.budget_ms = ms;
     settings_.module_generation++;
     emit budgetChanged();
-    update();
+    settings_changed();
 }
 
 void SbfxItem::setViewMatrix(const QMatrix4x4 &view)
@@ -71,7 +71,7 @@ void SbfxItem::setViewMatrix(const QMatrix4x4 &view)
     settings_.has_view = true;
     std::copy(view.constData(), view.constData() + 16, settings_.view);
     emit viewMatrixChanged();
-    update();
+    settings_changed();
 }
 
 void SbfxItem::setProjectionMatrix(const QMatrix4x4 &projection)
@@ -80,7 +80,7 @@ void SbfxItem::setProjectionMatrix(const QMatrix4x4 &projection)
     settings_.has_projection = true;
     std::copy(projection.constData(), projection.constData() + 16, settings_.projection);
     emit projectionMatrixChanged();
-    update();
+    settings_changed();
 }
 
 void SbfxItem::setFixedStep(double seconds)
@@ -88,6 +88,7 @@ void SbfxItem::setFixedStep(double seconds)
     if (seconds == settings_.fixed_step) return;
     settings_.fixed_step = seconds;
     emit fixedStepChanged();
+    settings_changed();
 }
 
 void SbfxItem::setRunning(bool running)
@@ -95,6 +96,13 @@ void SbfxItem::setRunning(bool running)
     if (running == settings_.running) return;
     settings_.running = running;
     emit runningChanged();
+    settings_changed();
+}
+
+/* The node copies the settings at the next sync only when they changed. */
+void SbfxItem::settings_changed()
+{
+    settings_.generation++;
     update();
 }
 

@@ -104,6 +104,7 @@ protected:
 
 private:
     void setError(const QString &error);
+    void settings_changed();
 
     SbfxNodeSettings settings_;
     std::vector<SbfxNodeTrigger> triggers_;

@@ -78,7 +78,7 @@ void SbfxRenderNode::releaseResources()
 void SbfxRenderNode::sync(const SbfxNodeSettings &settings, std::vector<SbfxNodeTrigger> &triggers,
                           const QSizeF &item_size)
 {
-    settings_ = settings;
+    if (settings.generation != settings_.generation) settings_ = settings; /* both start from the defaults */
     triggers_.insert(triggers_.end(), triggers.begin(), triggers.end());
     triggers.clear();
     item_size_ = item_size;

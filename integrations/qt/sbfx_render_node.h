@@ -26,6 +26,7 @@
 
 /* What the item hands its node at each sync (SbfxItem::updatePaintNode). */
 struct SbfxNodeSettings {
+    unsigned generation = 0;   /* bumped by every change: the node copies the settings then */
     QString scene_path;        /* empty: the built-in explosion */
     double budget_ms = 0.0;
     unsigned module_generation = 0; /* bumped when scene or budget change: the module is remade */
