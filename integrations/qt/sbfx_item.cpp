@@ -139,7 +139,7 @@ QSGNode *SbfxItem::updatePaintNode(QSGNode *old, UpdatePaintNodeData *)
     node->sync(settings_, triggers_, size());
     const SbfxNodeStatus report = node->status();
     const bool more_triggers = report.triggers_fired != status_.triggers_fired;
-    const bool new_error = !report.error.isEmpty() && report.error != status_.error;
+    const bool new_error = report.error != status_.error; /* also cleared: a new scene loaded */
     status_ = report;
     QMetaObject::invokeMethod(
         this,

@@ -262,7 +262,8 @@ CHECK_TEST(camera_hook_and_matrix_properties)
 }
 
 /* The scene and quality properties: explosion.cfg fires its explosion from its timeline (no
- * trigger); a quality level switches without an error, a bad one is named in `error`. */
+ * trigger); a quality level switches without an error, a bad one is named in `error`, and so is
+ * an effect the scene has not. */
 CHECK_TEST(scene_and_quality_properties)
 {
     const Box item = {0, 0, W, H}, nowhere = {-1, -1, 0, 0};
@@ -280,6 +281,11 @@ CHECK_TEST(scene_and_quality_properties)
     CHECK(seen > W * H / 100, "only %d pixels changed", seen);
     h.fx->setQuality("exact/3/nd");
     CHECK(h.fx->error().contains("exact/3/nd"), "a bad quality level gave the error \"%s\"", qPrintable(h.fx->error()));
+    h.fx->trigger("no-such-effect", QVector3D(0, 0, 0));
+    h.frames(3);
+    QCoreApplication::processEvents();
+    printf("# an unknown effect: %s\n", qPrintable(h.fx->error()));
+    CHECK(h.fx->error().contains("no-such-effect"), "an unknown effect gave the error \"%s\"", qPrintable(h.fx->error()));
     check_gl_contract();
 }
 
