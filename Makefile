@@ -585,7 +585,8 @@ $(BUILD)/tests/qt/test_qt_quick: tests/hosts/test_qt_quick.cpp $(QT_OBJ) $(BUILD
 	@mkdir -p $(@D)
 	$(CXX) $(QT_CXXFLAGS) -Itests -Itests/gl $(LDSAN) -o $@ $< $(QT_OBJ) $(BUILD)/libsbfx.a $(QT_LIBS)
 .PHONY: test-qt-quick
-test-qt-quick: | deps
+# the library first, here: the sub-make then finds it made (no second make builds it at the same time)
+test-qt-quick: $(BUILD)/libsbfx.a | deps
 	@if $(PKG_CONFIG) --exists $(QT_PKGS); then \
 		$(MAKE) --no-print-directory BUILD=$(BUILD) $(BUILD)/examples/sbfx-qt-quick $(BUILD)/tests/qt/test_qt_quick; \
 	else echo "test-qt-quick: no Qt 6 Quick -dev packages (tools/deps.sh test installs them): not built"; fi
