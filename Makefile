@@ -508,6 +508,7 @@ test-vm:
 	@tools/deps.sh vm
 	@$(MAKE) --no-print-directory all $(VM_TOOLS)
 	@$(MAKE) --no-print-directory gpiod2
+	@$(MAKE) --no-print-directory test-qt-quick
 	@BUILD=$(BUILD) tests/vm/run.sh
 
 # sbfx-play and the backend check a second time, against libgpiod 2.x built from Debian 13's
