@@ -571,7 +571,7 @@ $(BUILD)/obj/integrations/qt/%.o: integrations/qt/%.cpp integrations/qt/sbfx_ite
 $(BUILD)/obj/integrations/qt/moc_%.o: $(BUILD)/gen/qt/moc_%.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(QT_CXXFLAGS) -c -o $@ $<
-$(BUILD)/obj/examples/qt-quick/%.o: examples/qt-quick/%.cpp integrations/qt/sbfx_item.h | deps
+$(BUILD)/obj/examples/qt-quick/%.o: examples/qt-quick/%.cpp integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h | deps
 	@mkdir -p $(@D)
 	$(CXX) $(QT_CXXFLAGS) -c -o $@ $<
 $(BUILD)/obj/examples/qt-quick/qrc_qt_quick.o: $(BUILD)/gen/qt/qrc_qt_quick.cpp
@@ -582,7 +582,7 @@ $(BUILD)/examples/sbfx-qt-quick: $(BUILD)/obj/examples/qt-quick/main.o $(BUILD)/
 	@mkdir -p $(@D)
 	$(CXX) $(LDSAN) -o $@ $^ $(QT_LIBS)
 $(BUILD)/tests/qt/test_qt_quick: tests/hosts/test_qt_quick.cpp $(QT_OBJ) $(BUILD)/libsbfx.a tests/check.h \
-		tests/gl/gl_snapshot.h
+		tests/gl/gl_snapshot.h integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h
 	@mkdir -p $(@D)
 	$(CXX) $(QT_CXXFLAGS) -Itests -Itests/gl $(LDSAN) -o $@ $< $(QT_OBJ) $(BUILD)/libsbfx.a $(QT_LIBS)
 .PHONY: test-qt-quick
