@@ -10,10 +10,13 @@
 
 namespace {
 
-void log_sbfx(sbfx_log_level level, const char *message, void *)
+/* sbfx's log to Qt's; the last error kept in *user (sbfx_create has no module to ask after a
+ * failure: its reason comes only through the log). */
+void log_sbfx(sbfx_log_level level, const char *message, void *user)
 {
     if (level == SBFX_LOG_INFO) qDebug("sbfx: %s", message);
     else qWarning("sbfx: %s", message);
+    if (level == SBFX_LOG_ERROR) *static_cast<QByteArray *>(user) = message;
 }
 
 /* GL errors Qt left pending (Qt 6.4 leaves GL_INVALID_OPERATION from glPolygonMode on ES each
@@ -159,11 +162,13 @@ bool SbfxRenderNode::ensure_module()
     desc.scene = scene;
     desc.frame_budget_ms = float(settings_.budget_ms);
     desc.log = log_sbfx;
+    desc.log_user = &last_logged_error_;
+    last_logged_error_.clear();
     sbfx_result r = sbfx_create(&desc, &fx_);
     sbfx_scene_free(scene);
     if (r != SBFX_OK) {
-        fail(QStringLiteral("sbfx_create: %1").arg(QString::fromLocal8Bit(sbfx_last_error(fx_))));
-        fx_ = nullptr;
+        const QByteArray why = last_logged_error_.isEmpty() ? QByteArray(sbfx_result_string(r)) : last_logged_error_;
+        fail(QStringLiteral("sbfx_create: %1").arg(QString::fromLocal8Bit(why)));
         return false;
     }
     set_quality_generation_ = 0;

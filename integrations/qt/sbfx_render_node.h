@@ -92,6 +92,7 @@ private:
     SbfxNodeStatus status_;
 
     sbfx *fx_ = nullptr;
+    QByteArray last_logged_error_; /* sbfx's last ERROR message (its log's user pointer) */
     sbfx_scene_camera scene_camera_ = {};
     unsigned made_generation_ = ~0u, set_quality_generation_ = 0;
     bool idle_draws_nothing_ = false; /* an idle frame made no pass: no copy needed while idle */

@@ -264,10 +264,10 @@ CHECK_TEST(camera_hook_and_matrix_properties)
     check_gl_contract();
 }
 
-/* The scene and quality properties: explosion.cfg fires its explosion from its timeline (no
- * trigger); a quality level switches without an error, a bad one is named in `error`, and so is
- * an effect the scene has not. */
-CHECK_TEST(scene_and_quality_properties)
+/* The scene, quality and budget properties: explosion.cfg fires its explosion from its timeline
+ * (no trigger); a quality level switches without an error, a bad one is named in `error`, and so
+ * are an effect the scene has not and a budget sbfx_create refuses, until a good one. */
+CHECK_TEST(scene_quality_and_budget_properties)
 {
     const Box item = {0, 0, W, H}, nowhere = {-1, -1, 0, 0};
     Harness h;
@@ -289,6 +289,15 @@ CHECK_TEST(scene_and_quality_properties)
     QCoreApplication::processEvents();
     printf("# an unknown effect: %s\n", qPrintable(h.fx->error()));
     CHECK(h.fx->error().contains("no-such-effect"), "an unknown effect gave the error \"%s\"", qPrintable(h.fx->error()));
+    h.fx->setBudget(-5.0);
+    h.frames(3);
+    QCoreApplication::processEvents();
+    printf("# budget -5 ms: %s\n", qPrintable(h.fx->error()));
+    CHECK(h.fx->error().contains("frame_budget_ms -5"), "budget -5 gave the error \"%s\"", qPrintable(h.fx->error()));
+    h.fx->setBudget(8.0);
+    h.frames(3);
+    QCoreApplication::processEvents();
+    CHECK(h.fx->error().isEmpty(), "with a budget of 8 ms: \"%s\"", qPrintable(h.fx->error()));
     check_gl_contract();
 }
 
