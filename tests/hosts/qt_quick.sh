@@ -22,10 +22,14 @@ trap 'rm -rf "$runtime"' EXIT
 export QT_QPA_PLATFORM=xcb XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$runtime}"
 
 if [ -x "$test_bin" ]; then
-    shift_timeout=120
-    timeout -k 5 "$shift_timeout" xvfb-run -a -s "-screen 0 1024x768x24 -nolisten tcp" "$test_bin" 2>&1
+    out=$(timeout -k 5 120 xvfb-run -a -s "-screen 0 1024x768x24 -nolisten tcp" "$test_bin" 2>&1)
     rc=$?
-    [ "$rc" -eq 124 ] && echo "not ok - qt-quick/test_qt_quick: timed out after $shift_timeout s"
+    printf '%s\n' "$out"
+    if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then
+        echo "not ok - qt-quick/test_qt_quick: timed out after 120 s"
+    elif [ "$rc" -ne 0 ] && ! printf '%s\n' "$out" | grep -q '^not ok - '; then
+        echo "not ok - qt-quick/test_qt_quick: exit status $rc without a failed test (Xvfb did not start?)"
+    fi
 else
     echo "not ok - qt-quick/test_qt_quick: $test_bin was not built (make test-qt-quick)"
 fi
