@@ -4,7 +4,9 @@
 #   make demo         render the built-in explosion headless into build/demo/
 #   make gallery      one contact sheet per example scene into docs/gallery/ (docs/scene-format.md)
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, docs, then ASan+UBSan
-#   make test-hosts   the SDL2 example host and its tests (docs/hosts/; make test runs them)
+#   make test-hosts   the SDL2, desktop OpenGL and Qt Quick hosts and their tests (docs/hosts/;
+#                     make test runs them)
+#   make test-qt-quick  the Qt Quick item, its example and test where Qt 6 is installed (test-hosts)
 #   make bench        timings into build/bench/
 #   make figures      the seed's figures rendered into docs/figures/ (docs/figures.md)
 #   make ladder       src/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
@@ -506,6 +508,7 @@ test-vm:
 	@tools/deps.sh vm
 	@$(MAKE) --no-print-directory all $(VM_TOOLS)
 	@$(MAKE) --no-print-directory gpiod2
+	@$(MAKE) --no-print-directory test-qt-quick
 	@BUILD=$(BUILD) tests/vm/run.sh
 
 # sbfx-play and the backend check a second time, against libgpiod 2.x built from Debian 13's
@@ -535,6 +538,60 @@ $(BUILD)/tests/hosts/test_sdl2: tests/hosts/test_sdl2.c $(BUILD)/obj/examples/sd
 		$(BUILD)/obj/examples/sdl2/sdl2_host.o $(BUILD)/libsbfx.a $(SDL2_LIBS) $(SRC_LIBS)
 .PHONY: test-hosts
 test-hosts: $(BUILD)/examples/sbfx-sdl2 $(BUILD)/tests/hosts/test_sdl2
+
+# The desktop OpenGL host (examples/desktop-gl/, docs/hosts/desktop-gl.md): a 3.3 core profile
+# context through EGL, its own GLSL 330 shaders and libOpenGL, sbfx on the same context.
+$(BUILD)/examples/sbfx-desktop-gl: examples/desktop-gl/host.c $(BUILD)/libsbfx.a | deps
+	@mkdir -p $(@D)
+	$(CC) $(EXAMPLE_CFLAGS) $(LDSAN) -o $@ $< $(BUILD)/libsbfx.a $(OPENGL_LIBS) \
+		$(call pkg_config,EGL_LIBS,--libs egl) $(SRC_LIBS)
+test-hosts: $(BUILD)/examples/sbfx-desktop-gl
+
+# ---- hosts (issue 18): Qt Quick (integrations/qt/, examples/qt-quick/, docs/hosts/qt-quick.md) ----
+# Built by make test-hosts where pkg-config finds Qt 6 Quick (tools/deps.sh test installs it):
+# C++17, moc and rcc from Qt6Core's libexecdir (qt6-base-dev-tools). Its test runs under Xvfb
+# (tests/hosts/qt_quick.sh), so it lives in tests/qt/, not in tests/hosts/.
+QT_PKGS := Qt6Quick Qt6Qml Qt6Gui
+QT_PKG_CFLAGS = $(call pkg_config,QT_PKG_CFLAGS,--cflags $(QT_PKGS))
+QT_PKG_LIBS = $(call pkg_config,QT_PKG_LIBS,--libs $(QT_PKGS))
+QT_LIBEXEC = $(call pkg_config,QT_LIBEXEC,--variable=libexecdir Qt6Core)
+QT_CXXFLAGS = -std=c++17 $(OPT) -Wall -Wextra -Wno-unused-parameter -fPIC -MMD -MP $(SRC_PKG_CFLAGS) -Isrc \
+	-Iintegrations/qt $(QT_PKG_CFLAGS) $(CXXFLAGS)
+QT_LIBS = $(QT_PKG_LIBS) $(SRC_LIBS)
+QT_OBJ := $(addprefix $(BUILD)/obj/integrations/qt/,sbfx_item.o sbfx_render_node.o moc_sbfx_item.o)
+$(BUILD)/gen/qt/moc_%.cpp: integrations/qt/%.h | deps
+	@mkdir -p $(@D)
+	$(QT_LIBEXEC)/moc -o $@ $<
+$(BUILD)/gen/qt/qrc_qt_quick.cpp: examples/qt-quick/qt-quick.qrc examples/qt-quick/main.qml | deps
+	@mkdir -p $(@D)
+	$(QT_LIBEXEC)/rcc --name qt_quick -o $@ $<
+$(BUILD)/obj/integrations/qt/%.o: integrations/qt/%.cpp integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h | deps
+	@mkdir -p $(@D)
+	$(CXX) $(QT_CXXFLAGS) -c -o $@ $<
+$(BUILD)/obj/integrations/qt/moc_%.o: $(BUILD)/gen/qt/moc_%.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(QT_CXXFLAGS) -c -o $@ $<
+$(BUILD)/obj/examples/qt-quick/%.o: examples/qt-quick/%.cpp integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h | deps
+	@mkdir -p $(@D)
+	$(CXX) $(QT_CXXFLAGS) -c -o $@ $<
+$(BUILD)/obj/examples/qt-quick/qrc_qt_quick.o: $(BUILD)/gen/qt/qrc_qt_quick.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(QT_CXXFLAGS) -c -o $@ $<
+$(BUILD)/examples/sbfx-qt-quick: $(BUILD)/obj/examples/qt-quick/main.o $(BUILD)/obj/examples/qt-quick/qrc_qt_quick.o \
+		$(QT_OBJ) $(BUILD)/libsbfx.a
+	@mkdir -p $(@D)
+	$(CXX) $(LDSAN) -o $@ $^ $(QT_LIBS)
+$(BUILD)/tests/qt/test_qt_quick: tests/hosts/test_qt_quick.cpp $(QT_OBJ) $(BUILD)/libsbfx.a tests/check.h \
+		tests/gl/gl_snapshot.h integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h
+	@mkdir -p $(@D)
+	$(CXX) $(QT_CXXFLAGS) -Itests -Itests/gl $(LDSAN) -o $@ $< $(QT_OBJ) $(BUILD)/libsbfx.a $(QT_LIBS)
+.PHONY: test-qt-quick
+# the library first, here: the sub-make then finds it made (no second make builds it at the same time)
+test-qt-quick: $(BUILD)/libsbfx.a | deps
+	@if $(PKG_CONFIG) --exists $(QT_PKGS); then \
+		$(MAKE) --no-print-directory BUILD=$(BUILD) $(BUILD)/examples/sbfx-qt-quick $(BUILD)/tests/qt/test_qt_quick; \
+	else echo "test-qt-quick: no Qt 6 Quick -dev packages (tools/deps.sh test installs them): not built"; fi
+test-hosts: test-qt-quick
 
 # Cross build for a board (boards/rk3588.mk: Debian's aarch64 toolchain and arm64 multiarch
 # -dev packages, which its deps step installs or names) into build/rk3588/, and a check that

@@ -3,7 +3,8 @@
 #
 # Runs, in order, and prints every line they print:
 #   1. every test binary in $BUILD/tests/unit/, $BUILD/tests/gl/, $BUILD/tests/platform/ and
-#      $BUILD/tests/hosts/ (the SDL2 and Qt Quick hosts, docs/hosts/), the SDL2 example program
+#      $BUILD/tests/hosts/ (the SDL2 host, docs/hosts/), the SDL2 and desktop OpenGL example
+#      programs, the Qt Quick item's test and example under Xvfb (tests/hosts/qt_quick.sh)
 #   2. glslangValidator on every shaders_es/*.vert and *.frag, plainly and once per line of
 #      tests/shader_variants.txt ("FILE -DNAME ..." : the defines of one variant)
 #   3. a check that every file in shaders_es/ begins with "#version 300 es"
@@ -176,6 +177,9 @@ done
 check_built "" hosts "$BUILD"
 run_dir "" "$BUILD/tests/hosts"
 run_suite "" sdl2-example tests/hosts/sdl2_example.sh "$BUILD"
+run_suite "" desktop-gl-example tests/hosts/desktop_gl_example.sh "$BUILD"
+# the Qt Quick item's test and example under Xvfb (skipped, with the reason, without Qt 6)
+run_suite "" qt-quick tests/hosts/qt_quick.sh "$BUILD"
 validate_shaders
 check_version_lines
 run_cli "" "$BUILD/sbfx-play"

@@ -19,6 +19,12 @@ case "${1##*/}" in
             *) tag=LD ;;
         esac
         ;;
+    c++ | g++ | *-g++ | clang++ | g++-[0-9]* | clang++-[0-9]*)
+        case " $line " in
+            *" -c "*) tag=CXX ;;
+            *) tag=LD ;;
+        esac
+        ;;
     ar | *-ar | gcc-ar*) tag=AR ;;
     ln) tag=LN ;;
     install) case " $line " in *" -d "*) ;; *) tag=INSTALL ;; esac ;;

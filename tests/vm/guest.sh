@@ -905,6 +905,28 @@ test_harness_limit() {
     fi
 }
 
+# Qt Quick on the DRM display (docs/hosts/qt-quick.md): the item's test on Qt's eglfs platform
+# (eglfs_kms: GBM and EGL on vkms), the item smaller than the screen, drawn through its own target.
+test_qt_eglfs() {
+    local bin=$B/tests/qt/test_qt_quick t0=$SECONDS rc
+    if [ ! -x "$bin" ]; then
+        skip qt-eglfs "$bin was not built (make test-qt-quick: Qt 6, tools/deps.sh test)"
+        return
+    fi
+    step "the Qt Quick item's test on eglfs"
+    printf '{ "device": "%s", "hwcursor": false }\n' "$CARD" >"$T/eglfs.json"
+    QT_QPA_PLATFORM=eglfs QT_QPA_EGLFS_INTEGRATION=eglfs_kms QT_QPA_EGLFS_KMS_CONFIG=$T/eglfs.json \
+        XDG_RUNTIME_DIR=$T "$bin" item_smaller_than_the_window >"$L/qt-eglfs.out" 2>&1
+    rc=$?
+    if [ "$rc" -eq 0 ] && grep -q '^ok - test_qt_quick/item_smaller_than_the_window' "$L/qt-eglfs.out"; then
+        ok "qt-eglfs ($(grep -m1 '^# explosion' "$L/qt-eglfs.out" | cut -c3-))"
+    else
+        fail qt-eglfs "exit status $rc: $(grep -m1 -e '^#   ' -e '^not ok' -e '^skip' "$L/qt-eglfs.out" ||
+            tail -n 1 "$L/qt-eglfs.out")"
+    fi
+    note "qt-eglfs: $((SECONDS - t0)) s"
+}
+
 # ---- the tier --------------------------------------------------------------------------------
 
 # SBFX_VM_TESTS (VM_TESTS on the host): only the groups named there (space separated); setup
@@ -945,6 +967,7 @@ if [ -s "$T/gpio.env" ]; then
     group gpio-late 120 test_gpio_late
     group gpio-late-gpiod2 120 with_gpiod2 test_gpio_late
 fi
+group qt-eglfs 240 test_qt_eglfs
 group display-unplug 120 test_display_unplug
 group drm-vblank-off-stress $((90 + VBLANK_CYCLES / 10)) test_vblank_off_stress
 kill "$DMESG_PID" 2>/dev/null
