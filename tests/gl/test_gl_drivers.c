@@ -24,8 +24,9 @@
  * docs/look.md) with about 100 texels across a particle, which amplifies those low-bit filter
  * differences. Measured again on 2026-11-25 (Mesa 22.3.6, Debian 12's, as in CI; llvmpipe
  * against softpipe, 6 frames, the same numbers on every run): more than 2 levels apart
- * 0.19 .. 0.66 % of pixels, more than 4 levels 0.02 .. 0.29 %, mean 0.03 .. 0.15 levels, largest
- * 17 .. 69. The same frames with every medium's detail strength 0: more than 2 levels
+ * 0.16 .. 0.65 % of pixels, more than 4 levels 0.02 .. 0.24 %, mean 0.03 .. 0.15 levels, largest
+ * 9 .. 47 (before fire's temperature took half the detail's fluctuation: up to 0.66 %, 0.29 %,
+ * 69). The same frames with every medium's detail strength 0: more than 2 levels
  * 0.002 .. 0.021 %, more than 4 levels 0 .. 0.016 %, mean 0.02 .. 0.13 levels. So the detail,
  * not a lost pass, makes the thirtyfold larger fractions: a low-bit difference of the filtered
  * detail is multiplied by the erosion ramp (slope 1.8 x 2.2 on the density) and by the fire's
