@@ -666,7 +666,7 @@ $(BUILD)/tests/unit/test_look_metrics: tests/unit/test_look_metrics.c $(BUILD)/o
 	$(CC) $(SRC_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(BUILD)/obj/look/look_metrics.o $(REF_LIBS) \
 		$(SRC_LIBS)
 LOOK_OBJ := $(BUILD)/obj/look/look_metrics.o $(BUILD)/obj/look/look_render.o
-$(BUILD)/bench/bench_look: $(BUILD)/obj/look/bench_look.o $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
+$(BUILD)/bench/bench_look: $(BUILD)/obj/look/bench_look.o $(LOOK_OBJ) $(BUILD)/obj/look/fire_metric.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
 	@mkdir -p $(@D)
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 bench: $(BUILD)/bench/bench_look

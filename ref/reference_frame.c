@@ -192,10 +192,10 @@ static double detail_light_scale(double detail, double strength)
     return 1.0 + SBFX_RF_DETAIL_SHADE * (0.5 - detail) * strength;
 }
 
-/* particle.frag's detail_fire_temperature: hotter core, cooler edge. */
+/* particle.frag's detail_fire_temperature: the detail at half amplitude, hotter core, cooler edge. */
 static double detail_fire_temperature(double detail, double rho, double strength)
 {
-    double v = fmin(fmax(detail + SBFX_RF_FIRE_CORE * (0.5 - rho), 0.0), 1.0);
+    double v = fmin(fmax(0.5 + SBFX_RF_FIRE_DETAIL * (detail - 0.5) + SBFX_RF_FIRE_CORE * (0.5 - rho), 0.0), 1.0);
     return 0.5 + (v - 0.5) * strength;
 }
 

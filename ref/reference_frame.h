@@ -26,12 +26,14 @@
 
 /* particle.frag's per-fragment radiance ceiling (RADIANCE_CEILING). */
 #define SBFX_RF_RADIANCE_CEILING 16384.0
-/* The detail's perturbation, particle.frag's EROSION_* and FIRE_CORE (docs/look.md). */
+/* The detail's perturbation, particle.frag's EROSION_*, FIRE_CORE, FIRE_DETAIL and DETAIL_SHADE
+ * (docs/look.md). */
 #define SBFX_RF_EROSION_THRESHOLD 0.30
 #define SBFX_RF_EROSION_AGE 0.25
 #define SBFX_RF_EROSION_SHARPNESS 1.8
 #define SBFX_RF_EROSION_GAIN 2.2
 #define SBFX_RF_FIRE_CORE 0.6
+#define SBFX_RF_FIRE_DETAIL 0.5
 #define SBFX_RF_DETAIL_SHADE 1.8
 /* The shader's light falloff floor: point lights act no closer than 0.5 m (d² >= 0.25). */
 #define SBFX_RF_MIN_LIGHT_D2 0.25

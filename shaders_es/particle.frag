@@ -187,13 +187,16 @@ float detail_density_scale(float detail, float intensity, float strength)
     return mix(1.0, eroded, strength);
 }
 
-// Fire's temperature coordinate (T = T0 + T1 * this): the detail, hotter toward the particle's
-// core and cooler toward its edge (rho = distance from the centre / radius, in the centre's
-// depth plane); 0.5 without detail (strength 0).
+// Fire's temperature coordinate (T = T0 + T1 * this): the detail's fluctuation at half its
+// amplitude (FIRE_DETAIL), hotter toward the particle's core and cooler toward its edge (rho =
+// distance from the centre / radius, in the centre's depth plane); 0.5 without detail
+// (strength 0). Black-body luminance is steep in T: the full fluctuation made speckle whose
+// spectrum was flatter than turbulent fire's (docs/look.md).
 const float FIRE_CORE = 0.6;
+const float FIRE_DETAIL = 0.5;
 float detail_fire_temperature(float detail, float rho, float strength)
 {
-    return mix(0.5, clamp(detail + FIRE_CORE * (0.5 - rho), 0.0, 1.0), strength);
+    return mix(0.5, clamp(0.5 + FIRE_DETAIL * (detail - 0.5) + FIRE_CORE * (0.5 - rho), 0.0, 1.0), strength);
 }
 
 // The scattered light's share of the detail: denser detail is darker (it shades itself), so the

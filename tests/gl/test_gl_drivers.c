@@ -22,11 +22,18 @@
  * format fallback, a wrong upsample — moves whole regions.
  * Since issue 17 the detail carves (erosion of the density, shading, fire temperature:
  * docs/look.md) with about 100 texels across a particle, which amplifies those low-bit filter
- * differences: measured again (Mesa 25 llvmpipe against softpipe, 6 frames), more than 2 levels
- * apart 0.05 .. 0.58 % of pixels, more than 4 levels 0.02 .. 0.36 %, mean 0.02 .. 0.15 levels.
- * So the bound is on fractions:
- *     >= 98.5 % of pixels within 2/255 and >= 99.2 % within 4/255 in every channel,
- *     mean |diff| <= 0.25/255 (about twice the largest measured),
+ * differences. Measured again on 2026-11-25 (Mesa 22.3.6, Debian 12's, as in CI; llvmpipe
+ * against softpipe, 6 frames, the same numbers on every run): more than 2 levels apart
+ * 0.16 .. 0.65 % of pixels, more than 4 levels 0.02 .. 0.24 %, mean 0.03 .. 0.15 levels, largest
+ * 9 .. 47 (before fire's temperature took half the detail's fluctuation: up to 0.66 %, 0.29 %,
+ * 69). The same frames with every medium's detail strength 0: more than 2 levels
+ * 0.002 .. 0.021 %, more than 4 levels 0 .. 0.016 %, mean 0.02 .. 0.13 levels. So the detail,
+ * not a lost pass, makes the thirtyfold larger fractions: a low-bit difference of the filtered
+ * detail is multiplied by the erosion ramp (slope 1.8 x 2.2 on the density) and by the fire's
+ * black-body colour (steep in temperature). The bound is on fractions, about 1.5 times the
+ * largest measured:
+ *     >= 99 % of pixels within 2/255 and >= 99.5 % within 4/255 in every channel,
+ *     mean |diff| <= 0.25/255 (unchanged: the detail hardly moves the mean),
  * and, only as a backstop against garbage, no channel more than 96/255 apart. */
 #include <errno.h>
 #include <fcntl.h>
@@ -194,8 +201,8 @@ CHECK_TEST(llvmpipe_and_softpipe_agree)
         printf("# %s t=%.1f: mean |diff| %.4f levels, max %d, pixels > 2 levels %.4f %%, > 4 levels %.4f %%\n",
                i < FRAMES ? "defaults" : "exact 1/1 RGBA32F", times[i % FRAMES], d.mean, d.max, 100 * d.over_2,
                100 * d.over_4);
-        CHECK(d.over_2 <= 0.015, "frame %d: %.3f %% of pixels differ by more than 2 levels", i, 100 * d.over_2);
-        CHECK(d.over_4 <= 0.008, "frame %d: %.3f %% of pixels differ by more than 4 levels", i, 100 * d.over_4);
+        CHECK(d.over_2 <= 0.010, "frame %d: %.3f %% of pixels differ by more than 2 levels", i, 100 * d.over_2);
+        CHECK(d.over_4 <= 0.005, "frame %d: %.3f %% of pixels differ by more than 4 levels", i, 100 * d.over_4);
         CHECK(d.mean <= 0.25, "frame %d: mean difference %.3f levels", i, d.mean);
         CHECK(d.max <= 96, "frame %d: a channel differs by %d levels", i, d.max);
     }

@@ -25,7 +25,7 @@ typedef struct look_case {
 static double measure(look_renderer *r, const look_case *c, bool detail_off, const uint8_t *mask, uint8_t *mask_out)
 {
     char err[512];
-    look_shot shot = {c->scene, c->t, c->azimuth_offset, 1, detail_off, NULL, false, 1};
+    look_shot shot = {c->scene, c->t, c->azimuth_offset, 1, detail_off, NULL, false, 1, false};
     CHECK(look_render(r, &shot, err, sizeof err) == 0, "%s", err);
     if (mask_out) look_effect_mask(r->out_rgba, r->background_rgba, W, H, mask_out);
     double *y = malloc(sizeof(double) * W * H);

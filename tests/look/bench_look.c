@@ -8,7 +8,8 @@
  *   bench_look [--out DIR] [--size WxH] [--quick] [--png] [--scales N] [--scene NAME]...
  *
  * Writes DIR/look.csv: one row per (scene, view, t, scale, detail) with the columns of
- * `columns[]` below (add a field to look_row and a line there to add a column), and with --png
+ * `columns[]` below (add a field to look_row and a line there to add a column), the fire
+ * luminance ratios (tests/look/fire_metric.h) on the same frame where the shot has fire, and with --png
  * DIR/look-SCENE-VIEW-T-sSCALE[-off].png. Prints a summary per shot. */
 #include <math.h>
 #include <stddef.h>
@@ -17,6 +18,7 @@
 #include <string.h>
 
 #include "egl/egl_headless.h"
+#include "fire_metric.h"
 #include "look_metrics.h"
 #include "look_render.h"
 #include "image/png_io.h"
@@ -31,6 +33,8 @@ typedef struct look_row {
     double e[LOOK_SCALES];        /* E(2) .. E(32) */
     double mask_pixels;
     double render_ms;             /* wall time of sbfx_render (llvmpipe: not a GPU time) */
+    double fire_median_ratio, fire_p90_ratio; /* fire pixels' luminance / the sky behind (fire_metric.h) */
+    double fire_pixels;           /* how many; all three nan where not measured (no fire in the shot) */
 } look_row;
 
 typedef struct column {
@@ -46,6 +50,7 @@ static const column columns[] = {
     COL(band_8_32, "%.4f"), {"e2", offsetof(look_row, e[0]), "%.4g"}, {"e4", offsetof(look_row, e[1]), "%.4g"},
     {"e8", offsetof(look_row, e[2]), "%.4g"}, {"e16", offsetof(look_row, e[3]), "%.4g"},
     {"e32", offsetof(look_row, e[4]), "%.4g"}, COL(mask_pixels, "%.0f"), COL(render_ms, "%.1f"),
+    COL(fire_median_ratio, "%.4f"), COL(fire_p90_ratio, "%.4f"), COL(fire_pixels, "%.0f"),
 };
 #define COLUMN_COUNT (sizeof columns / sizeof columns[0])
 
@@ -134,14 +139,38 @@ static void save_png(const options *o, const look_renderer *r, const look_row *r
         fprintf(stderr, "bench_look: %s\n", err);
 }
 
-/* One shot at every scale and detail setting, measured over the reference's mask. */
+/* The fire luminance ratios of the frame just rendered (r->out_rgba, the shot `lit`): the same
+ * shot again with the fire's emission off gives the pixels the fire's light changes
+ * (fire_metric_mask, as bench_look_fire does for the explosion); over those, the output's
+ * luminance against the background's. Leaves r->out_rgba as it found it. */
+static void measure_fire(look_renderer *r, const look_shot *lit, uint8_t *frame, uint8_t *fire_mask, look_row *row)
+{
+    size_t bytes = (size_t)r->width * r->height * 4;
+    char err[512];
+    memcpy(frame, r->out_rgba, bytes);
+    look_shot dark = *lit;
+    dark.fire_dark = true;
+    if (look_render(r, &dark, err, sizeof err) != 0) die("fire", err);
+    fire_metric_mask(frame, r->out_rgba, r->width, r->height, fire_mask);
+    fire_ratios fr;
+    fire_metric_ratios(frame, r->background_rgba, fire_mask, r->width, r->height, &fr); /* none: nan ratios */
+    row->fire_median_ratio = fr.median;
+    row->fire_p90_ratio = fr.p90;
+    row->fire_pixels = (double)fr.pixels;
+    memcpy(r->out_rgba, frame, bytes);
+}
+
+/* One shot at every scale and detail setting, measured over the reference's mask. The fire
+ * ratios are measured on every row of a shot whose reference frame (full resolution, detail on)
+ * has fire pixels; the other shots' rows have nan there. */
 static void run_shot(const options *o, look_renderer *r, FILE *csv, const plan *p, const view *v, double t)
 {
     static const int scales[] = {1, 2, 4, 8};
     size_t n = (size_t)r->width * r->height;
-    uint8_t *mask = malloc(n);
+    uint8_t *mask = malloc(n), *fire_mask = malloc(n), *frame = malloc(n * 4);
     double *y = malloc(n * sizeof(double));
-    if (!mask || !y) die("memory", "out of memory");
+    if (!mask || !fire_mask || !frame || !y) die("memory", "out of memory");
+    bool fire = true; /* until the reference frame shows none */
     char path[256], err[512];
     snprintf(path, sizeof path, "scenes/%s.cfg", p->scene);
     look_spectrum ref = {0};
@@ -149,7 +178,7 @@ static void run_shot(const options *o, look_renderer *r, FILE *csv, const plan *
     for (int detail = 1; detail >= 0; detail--)
         for (int s = 0; s < nscales; s++) {
             if (!detail && s > 0) continue; /* detail off: full resolution */
-            look_shot shot = {path, t, v->azimuth_offset, scales[s], !detail, NULL, false, 1};
+            look_shot shot = {path, t, v->azimuth_offset, scales[s], !detail, NULL, false, 1, false};
             if (look_render(r, &shot, err, sizeof err) != 0) die(p->scene, err);
             if (detail && s == 0) look_effect_mask(r->out_rgba, r->background_rgba, r->width, r->height, mask);
             look_luminance(r->out_rgba, n, y);
@@ -158,17 +187,22 @@ static void run_shot(const options *o, look_renderer *r, FILE *csv, const plan *
             if (detail && s == 0) ref = sp;
             look_row row = {p->scene, v->name, t, scales[s], detail, sp.beta, sp.beta_coarse,
                             look_band_fine(&sp) / look_band_fine(&ref), look_band_coarse(&sp) / look_band_coarse(&ref),
-                            {0}, (double)sp.mask_pixels, r->particle_ms};
+                            {0}, (double)sp.mask_pixels, r->particle_ms, NAN, NAN, NAN};
             memcpy(row.e, sp.energy, sizeof row.e);
+            if (fire) measure_fire(r, &shot, frame, fire_mask, &row);
+            if (detail && s == 0) fire = row.fire_pixels > 0;
             write_row(csv, &row);
             fflush(csv);
             printf("look: %-10s %-8s t=%.2f scale %d detail %-3s beta %.2f (8-32 px %.2f) bands 2-8 %.2f 8-32 %.2f "
-                   "mask %zu (%zu at 32 px)  %.0f ms\n", p->scene, v->name, t, scales[s], detail ? "on" : "off", sp.beta,
-                   sp.beta_coarse, row.band_2_8, row.band_8_32, sp.mask_pixels, sp.pixels[LOOK_SCALES - 1], r->particle_ms);
+                   "mask %zu (%zu at 32 px)  %.0f ms  fire / sky %.2f p90 %.2f\n", p->scene, v->name, t, scales[s],
+                   detail ? "on" : "off", sp.beta, sp.beta_coarse, row.band_2_8, row.band_8_32, sp.mask_pixels,
+                   sp.pixels[LOOK_SCALES - 1], row.render_ms, row.fire_median_ratio, row.fire_p90_ratio);
             fflush(stdout);
             if (o->png) save_png(o, r, &row);
         }
     free(mask);
+    free(fire_mask);
+    free(frame);
     free(y);
 }
 
@@ -182,7 +216,8 @@ static void run_cost(look_renderer *r, FILE *f)
     for (int s = 0; s < 2; s++) {
         double ms[2];
         for (int unloaded = 0; unloaded < 2; unloaded++) {
-            look_shot shot = {"scenes/explosion.cfg", plans[0].times[0], 0.0f, scales[s], false, NULL, unloaded != 0, 8};
+            look_shot shot = {"scenes/explosion.cfg", plans[0].times[0], 0.0f, scales[s], false, NULL, unloaded != 0, 8,
+                              false};
             if (look_render(r, &shot, err, sizeof err) != 0) die("cost", err);
             ms[unloaded] = r->particle_ms;
         }

@@ -79,15 +79,6 @@ static sbfx *create_at(const sbfx_scene *scene, sbfx_tone_map op, int scale, dou
     return fx;
 }
 
-static void make_fire_mask(fire_look *l)
-{
-    for (size_t i = 0; i < (size_t)l->width * l->height; i++) {
-        l->fire_mask[i] = 0;
-        for (int k = 0; k < 3; k++)
-            if (abs((int)l->out[4 * i + k] - (int)l->no_fire[4 * i + k]) > FIRE_METRIC_LEVELS) l->fire_mask[i] = 1;
-    }
-}
-
 int fire_look_measure(fire_look *l, const sbfx_scene *scene, sbfx_tone_map op, double t, int scale,
                       int use_fire_mask, fire_ratios *r, char *err, size_t n)
 {
@@ -109,7 +100,7 @@ int fire_look_measure(fire_look *l, const sbfx_scene *scene, sbfx_tone_map op, d
     if (fx) sbfx_destroy(fx);
     if (dark) sbfx_destroy(dark);
     if (rc != 0) return -1;
-    make_fire_mask(l);
+    fire_metric_mask(l->out, l->no_fire, l->width, l->height, l->fire_mask);
     if (fire_metric_ratios(l->out, l->background, use_fire_mask ? l->fire_mask : NULL, l->width, l->height, r) != 0)
         snprintf(err, n, "no fire pixels at %.2f s", t);
     return 0;

@@ -22,6 +22,12 @@ static int changed(const uint8_t *a, const uint8_t *b)
     return 0;
 }
 
+void fire_metric_mask(const uint8_t *out, const uint8_t *no_fire, int width, int height, uint8_t *mask)
+{
+    size_t n = (size_t)width * (size_t)height;
+    for (size_t i = 0; i < n; i++) mask[i] = (uint8_t)changed(out + 4 * i, no_fire + 4 * i);
+}
+
 static int compare_doubles(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;

@@ -22,6 +22,10 @@ typedef struct fire_ratios {
 /* Y of an 8-bit sRGB-encoded pixel (rgb), linearised. */
 double fire_metric_luminance(const uint8_t *rgb);
 
+/* mask[i] = 1 where out and no_fire (the same frame with the fire's emission off) differ by more
+ * than FIRE_METRIC_LEVELS in some channel: the pixels the fire's own light changes. */
+void fire_metric_mask(const uint8_t *out, const uint8_t *no_fire, int width, int height, uint8_t *mask);
+
 /* out, background: width*height RGBA8 pixels in the same row order; mask: NULL or width*height
  * bytes. Fills *r; returns 0, or -1 when there is no fire pixel or no memory (r then has NAN
  * ratios and its pixel count). */

@@ -67,6 +67,7 @@ static sbfx *create_module(const look_shot *shot, sbfx_scene **scene, char *err,
     }
     if (shot->detail_off || shot->detail_unloaded)
         for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) sbfx_media(fx)[m].detail_strength = 0.0f;
+    if (shot->fire_dark) sbfx_media(fx)[SBFX_FIRE].emission_scale = 0.0f; /* as tests/look/fire_look.c */
     if (shot->detail_unloaded && (res = sbfx_reload(fx)) != SBFX_OK) {
         snprintf(err, n, "sbfx_reload: %s", sbfx_last_error(fx));
         sbfx_destroy(fx);

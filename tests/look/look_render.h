@@ -22,6 +22,7 @@ typedef struct look_shot {
     const sbfx_desc *base;   /* optional: other desc fields (scene, divisor, log are set here) */
     bool detail_unloaded;    /* strengths 0 and sbfx_reload: programs without the detail at all */
     int reps;                /* sbfx_render this many times (0: once); particle_ms = the median */
+    bool fire_dark;          /* the fire medium's emission set to 0 (its particles still drawn) */
 } look_shot;
 
 typedef struct look_renderer {

@@ -113,6 +113,42 @@ CHECK_TEST(smooth_blobs_measure_about_six)
     free(mask);
 }
 
+static double srgb_level_to_linear(double level)
+{
+    double v = level / 255.0;
+    return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
+}
+
+/* What 8 bits do to a faint smooth cloud (docs/look.md, why "detail off raises beta by 1"
+ * cannot hold where the cloud without detail is a few levels deep): one Gaussian blob 3 .. 24
+ * sRGB levels deep (sigma 150 px) measures about 6.2 in float, 2.4 .. 3.2 once each pixel is
+ * rounded to a level, as an RGBA8 output holds it. */
+CHECK_TEST(eight_bit_steps_flatten_a_faint_smooth_cloud)
+{
+    double *exact = malloc((size_t)N * N * sizeof(double)), *stepped = malloc((size_t)N * N * sizeof(double));
+    uint8_t *mask = full_mask();
+    if (!exact || !stepped) CHECK_SKIP("out of memory");
+    const double depths[] = {3.0, 6.0, 12.0, 24.0};
+    for (size_t d = 0; d < sizeof depths / sizeof depths[0]; d++) {
+        for (int y = 0; y < N; y++)
+            for (int x = 0; x < N; x++) {
+                double dx = x - N / 2.0, dy = y - N / 2.0;
+                double level = 200.0 - depths[d] * exp(-0.5 * (dx * dx + dy * dy) / (150.0 * 150.0));
+                exact[(size_t)y * N + x] = srgb_level_to_linear(level);
+                stepped[(size_t)y * N + x] = srgb_level_to_linear(floor(level + 0.5));
+            }
+        look_spectrum a, b;
+        CHECK(look_measure(exact, mask, N, N, &a) == 0 && look_measure(stepped, mask, N, N, &b) == 0);
+        printf("# a blob %.0f levels deep: beta %.3f exact, %.3f in 8 bits (E(4) %.2g, E(32) %.2g)\n", depths[d],
+               a.beta, b.beta, b.energy[1], b.energy[4]);
+        CHECK(a.beta > 5.5, "exact %g", a.beta);
+        CHECK(b.beta > 2.2 && b.beta < 3.5, "8-bit %g", b.beta);
+    }
+    free(exact);
+    free(stepped);
+    free(mask);
+}
+
 /* The mask: changed by more than 4 levels, over a smooth background; eroded by 2s per scale. */
 CHECK_TEST(mask_keeps_changed_pixels_over_smooth_background)
 {
