@@ -5,9 +5,14 @@
 // edges onto whatever is behind it.
 //   CoC from the artist's ranges: full near blur at u_near.x, sharp from u_near.y to u_far.x,
 //   full far blur at u_far.y; radius in full-resolution pixels, at most u_max_radius.
+//   DOF_SCALE  the scene's blur resolution divisor, set at load (src/post.c): the loops the
+//              compilers unroll are as long as the block
 precision highp float;
 precision highp sampler2D;
 
+#ifndef DOF_SCALE
+#define DOF_SCALE 4                // the largest scale; the loops stop at u_scale
+#endif
 uniform sampler2D u_color;         // full resolution
 uniform sampler2D u_scene_depth;   // full resolution window depth
 uniform int u_scale;               // blur resolution divisor
@@ -48,9 +53,9 @@ void main()
     ivec2 base = ivec2(gl_FragCoord.xy) * u_scale;
     vec3 far_sum = vec3(0.0), near_sum = vec3(0.0);
     float far_coc = 0.0, near_coc = 0.0, n = 0.0;
-    for (int j = 0; j < 4; j++) {
+    for (int j = 0; j < DOF_SCALE; j++) {
         if (j >= u_scale) break;
-        for (int i = 0; i < 4; i++) {
+        for (int i = 0; i < DOF_SCALE; i++) {
             if (i >= u_scale) break;
             ivec2 q = min(base + ivec2(i, j), u_size - 1);
             vec3 c = texelFetch(u_color, q, 0).rgb;

@@ -114,7 +114,7 @@ typedef struct sbfx_post_gl {
     sbfx_rt history[2];        /* history blur ping-pong */
     int history_next;
     bool history_valid;
-    sbfx_rt velocity, tiles, neighbors;
+    sbfx_rt velocity, tile_rows, tiles, neighbors; /* tile_rows: tile max along rows only */
     sbfx_rt dof[2];            /* each: far field + near field, ping-pong of the separable blur */
     int width, height;
     double last_time;          /* simulation time of the previous render */
