@@ -52,7 +52,8 @@ void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec4 center = texelFetch(u_color, p, 0);
-    vec2 vmax = decode(texelFetch(u_neighbor_max, p / u_tile, 0));
+    // the tile under this pixel: floor((p + 0.5) / tile) = p / tile, without an integer division
+    vec2 vmax = decode(texelFetch(u_neighbor_max, ivec2(gl_FragCoord.xy / float(u_tile)), 0));
     if (length(vmax) < 0.5) {
         o_color = center;
         return;
@@ -63,9 +64,10 @@ void main()
     float weight = inv_speed_c;
     vec3 sum = center.rgb * weight;
     float j = jitter(gl_FragCoord.xy);
+    int middle = (u_samples - 1) >> 1;   // (samples - 1) / 2, the centre sample (this pixel)
     for (int i = 0; i < 64; i++) {
         if (i >= u_samples) break;
-        if (i == (u_samples - 1) / 2) continue;
+        if (i == middle) continue;
         float t = mix(-1.0, 1.0, (float(i) + j + 1.0) / float(u_samples + 1));
         ivec2 y = clamp(ivec2(floor(vec2(p) + 0.5 + vmax * t)), ivec2(0), u_size - 1);
         float distance = length(vec2(y - p));
