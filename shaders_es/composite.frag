@@ -33,7 +33,7 @@ uniform bool u_scene_known;       // u_scene_color may be read (given, and not b
 uniform vec2 u_full_size;
 #endif
 #ifdef HAS_SHIMMER
-uniform sampler2D u_distortion;   // low-res: offset of the scene lookup in UV units (rg)
+uniform sampler2D u_distortion;   // low-res RGBA16F, LINEAR: offset of the scene lookup in UV units (rg)
 #endif
 
 out vec4 o_color;
@@ -188,12 +188,9 @@ void main()
 #ifdef OWN_SCENE
     vec2 scene_uv = gl_FragCoord.xy / u_full_size;
 #ifdef HAS_SHIMMER
-    // bilinear, like the particles: nearest low-res offsets would tear the image into blocks
-    vec2 d00 = textureLod(u_distortion, uv, 0.0).rg;
-    vec2 d10 = textureLod(u_distortion, uv + vec2(t.x, 0.0), 0.0).rg;
-    vec2 d01 = textureLod(u_distortion, uv + vec2(0.0, t.y), 0.0).rg;
-    vec2 d11 = textureLod(u_distortion, uv + t, 0.0).rg;
-    vec2 offset = mix(mix(d00, d10, f.x), mix(d01, d11, f.x), f.y);
+    // bilinear, like the particles (nearest low-res offsets would tear the image into blocks), by
+    // the sampler: the offsets are RGBA16F (filterable) and read through a LINEAR sampler
+    vec2 offset = textureLod(u_distortion, uv + f * t, 0.0).rg;
     if (!(abs(offset.x) < 1.0 && abs(offset.y) < 1.0)) offset = vec2(0.0);   // NaN, Inf, absurd
     scene_uv = clamp(scene_uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);
 #endif

@@ -279,7 +279,7 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     glUniform1i(gl->composite_u.scene_known, scene_known);
     if (owns) glUniform2f(gl->composite_u.full_size, (float)f->width, (float)f->height);
     if (shimmer(fx)) {
-        sbfx_bind_texture(4, GL_TEXTURE_2D, gl->particles.texture[1], 0);
+        sbfx_bind_texture(4, GL_TEXTURE_2D, gl->particles.texture[1], gl->color_sampler); /* LINEAR: bilinear in one fetch */
         glUniform1i(gl->composite_u.distortion, 4);
     }
     sbfx_bind_texture(0, GL_TEXTURE_2D, gl->particles.texture[0], 0);

@@ -30,10 +30,13 @@ static bool try_format(sbfx *fx, sbfx_target_set *set, const target_format *f)
 {
     if (!format_allowed(f)) return false;
     /* Signed offsets and velocities need a float format: with RGBA8 they are left out
-     * (the shaders' extra outputs then go nowhere) and the loss is logged at load. */
+     * (the shaders' extra outputs then go nowhere) and the loss is logged at load. The shimmer
+     * offsets are RGBA16F whatever the light's format: the composite reads them with one
+     * filtered fetch (RGBA32F is not filterable in ES 3.0), and a half float holds an offset
+     * of at most a few hundredths to 2^-11 of itself (docs/gpus.md, "Precision"). */
     bool is_float = f->id != SBFX_FORMAT_RGBA8;
-    const sbfx_rt_format *colors[SBFX_RT_MAX] = {
-        f->rt, is_float && fx->plan.distortion ? f->rt : NULL, is_float && fx->plan.motion_target ? f->rt : NULL};
+    const sbfx_rt_format *colors[SBFX_RT_MAX] = {f->rt, is_float && fx->plan.distortion ? &sbfx_rt_rgba16f : NULL,
+                                                 is_float && fx->plan.motion_target ? f->rt : NULL};
     if (!sbfx_rt_create(fx, &set->particles, set->low_width, set->low_height, colors, NULL, GL_NEAREST)) return false;
     set->target_type = f->rt->type;
     set->format = f->id;
