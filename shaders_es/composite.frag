@@ -32,6 +32,9 @@ uniform bool u_scene_known;       // u_scene_color may be read (given, and not b
 #ifdef OWN_SCENE
 uniform vec2 u_full_size;
 #endif
+#ifdef LOW_CORNERS
+uniform sampler2D u_low_corners;  // low-res + 1: the four low-res depths around a texel (low_corners.frag)
+#endif
 #ifdef HAS_SHIMMER
 uniform sampler2D u_distortion;   // low-res RGBA16F, LINEAR: offset of the scene lookup in UV units (rg)
 #endif
@@ -147,11 +150,17 @@ mediump vec4 bilinear_weights(vec2 f)
 #ifdef UPSAMPLE_NEAREST_DEPTH
 // Bilinear where the four low-res depths agree with this pixel's, else all weight on the texel
 // whose depth is closest.
-mediump vec4 nearest_depth_weights(vec2 uv, vec2 t, vec2 f)
+mediump vec4 nearest_depth_weights(vec2 base, vec2 uv, vec2 t, vec2 f)
 {
     float z = view_distance(texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r);
+#ifdef LOW_CORNERS
+    // one fetch: the corners texel of base is base + 1 (the texture starts at texel -1)
+    vec4 e = textureLod(u_low_corners, (base + 1.5) / vec2(u_low_size + 1), 0.0);
+    vec4 dz = abs(mix(vec4(NO_SURFACE), u_near / e, greaterThan(e, vec4(0.0))) - z);
+#else
     vec4 dz = abs(vec4(low_distance(uv), low_distance(uv + vec2(t.x, 0.0)), low_distance(uv + vec2(0.0, t.y)),
                        low_distance(uv + t)) - z);
+#endif
     if (!(max(max(dz.x, dz.y), max(dz.z, dz.w)) > u_depth_threshold * z)) return bilinear_weights(f);
     mediump vec4 w = vec4(1.0, 0.0, 0.0, 0.0);
     float best = dz.x;
@@ -181,7 +190,7 @@ void main()
     vec2 t = 1.0 / vec2(u_low_size);
     vec2 uv = (base + 0.5) * t;   // the base texel's centre
 #ifdef UPSAMPLE_NEAREST_DEPTH
-    vec4 result = upsample(uv, t, nearest_depth_weights(uv, t, f));
+    vec4 result = upsample(uv, t, nearest_depth_weights(base, uv, t, f));
 #else
     vec4 result = upsample(uv, t, bilinear_weights(f));
 #endif
