@@ -5,8 +5,8 @@
 //   UPSAMPLE_BILINEAR       plain bilinear of the four nearest low-res texels;
 //   UPSAMPLE_NEAREST_DEPTH  bilinear where the four low-res depths agree with this pixel's
 //                           depth, else the texel whose depth is closest (no halos at edges).
-// Bilinear is done by hand with texelFetch so RGBA32F targets (not filterable in ES 3.0)
-// take the same path as RGBA16F and RGBA8.
+// Bilinear is done by hand (the targets' NEAREST texels) so RGBA32F targets (not filterable in
+// ES 3.0) take the same path as RGBA16F and RGBA8.
 //   OWN_SCENE     post effects follow: read the scene colour texture instead of blending over
 //                 the host's framebuffer, and write an opaque image
 //   HAS_SHIMMER   (with OWN_SCENE) heat particles' screen offsets displace the scene lookup
@@ -32,8 +32,11 @@ uniform bool u_scene_known;       // u_scene_color may be read (given, and not b
 #ifdef OWN_SCENE
 uniform vec2 u_full_size;
 #endif
+#ifdef LOW_CORNERS
+uniform sampler2D u_low_corners;  // low-res + 1: the four low-res depths around a texel (low_corners.frag)
+#endif
 #ifdef HAS_SHIMMER
-uniform sampler2D u_distortion;   // low-res: offset of the scene lookup in UV units (rg)
+uniform sampler2D u_distortion;   // low-res RGBA16F, LINEAR: offset of the scene lookup in UV units (rg)
 #endif
 
 out vec4 o_color;
@@ -49,15 +52,12 @@ float view_distance(float d)
     return u_depth_model.w / (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z);
 }
 
-// The four low-res texels around a pixel, clamped to the target once: (x0, y0, x1, y1).
-ivec4 corners(ivec2 base)
+// The low-res texels are read by texture coordinate (NEAREST, CLAMP_TO_EDGE: the sampler clamps
+// a corner off the target to its edge, no integer arithmetic here). Corner k of the four around
+// a pixel is at base_uv + offset_k: (0, 0), (t.x, 0), (0, t.y), t, t = one low-res texel.
+float low_distance(vec2 uv)
 {
-    return clamp(ivec4(base, base + 1), ivec4(0), ivec4(u_low_size - 1, u_low_size - 1));
-}
-
-float low_distance(ivec2 q)
-{
-    float e = texelFetch(u_low_depth, q, 0).r;
+    float e = textureLod(u_low_depth, uv, 0.0).r;
     return e > 0.0 ? u_near / e : NO_SURFACE;
 }
 
@@ -80,23 +80,25 @@ float tone_curve(float v)
 // mean (TONE_INSET), goes through the curve, and the share is given back, so light too bright
 // for its hue turns orange -> yellow -> white, arriving at white smoothly at 1024.
 const float TONE_INSET = 0.06;
-float tone_curve_smooth_white(float v)   // tone_curve's shoulder u as k + (1 - k)(2u - u^2)
+const float TONE_FILMIC_WHITE = 1024.0;   // SBFX_TONE_FILMIC_WHITE: the shoulder is 1 from here on
+// tone_curve's shoulder u as k + (1 - k)(2u - u^2), on four values at once (the peak and the
+// three channels of the crossover). Without a branch: below the knee max(v - k, 0) = 0 gives
+// u = 0, and min(v, k) is v (v >= 0 here).
+vec4 tone_curve_smooth_white(vec4 v)
 {
     float k = u_tone_curve.x;
-    if (v <= k) return max(v, 0.0);
-    float u = min(log(1.0 + u_tone_curve.y * (v - k) / (1.0 - k)) * u_tone_curve.z, 1.0);
-    return k + (1.0 - k) * u * (2.0 - u);
+    vec4 x = max(min(v, TONE_FILMIC_WHITE) - k, 0.0) * (u_tone_curve.y / (1.0 - k));
+    vec4 u = min(log(1.0 + x) * u_tone_curve.z, 1.0);
+    return min(v, k) + (1.0 - k) * u * (2.0 - u);
 }
 vec3 tone_filmic(vec3 q)
 {
     float peak = max(max(q.r, q.g), q.b);
-    if (peak <= u_tone_curve.x) return q;
-    vec3 kept = q * (tone_curve_smooth_white(peak) / peak);
-    if (peak <= 1.0) return kept;
     vec3 y = (1.0 - TONE_INSET) * q + TONE_INSET * ((q.r + q.g + q.b) / 3.0);
-    vec3 z = vec3(tone_curve_smooth_white(y.r), tone_curve_smooth_white(y.g), tone_curve_smooth_white(y.b));
-    vec3 crossed = clamp((z - TONE_INSET * ((z.r + z.g + z.b) / 3.0)) / (1.0 - TONE_INSET), 0.0, 1.0);
-    return mix(kept, crossed, smoothstep(0.0, 1.0, 0.5 * log2(peak)));
+    vec4 z = tone_curve_smooth_white(vec4(peak, y));
+    vec3 kept = peak > 0.0 ? q * (z.x / peak) : vec3(0.0);
+    vec3 crossed = clamp((z.yzw - TONE_INSET * ((z.y + z.z + z.w) / 3.0)) / (1.0 - TONE_INSET), 0.0, 1.0);
+    return mix(kept, crossed, smoothstep(0.0, 1.0, 0.5 * log2(clamp(peak, 1.0, 4.0))));
 }
 #endif
 
@@ -126,14 +128,17 @@ vec4 tone_map(vec4 p, vec3 dst)
 
 mediump vec4 sanitize(mediump vec4 p)
 {
-    // A NaN never reaches the screen; Inf is clamped to the largest half.
-    if (any(isnan(p))) return vec4(0.0, 0.0, 0.0, 1.0);
-    return vec4(clamp(p.rgb, 0.0, HALF_MAX), clamp(p.a, 0.0, 1.0));
+    // A NaN never reaches the screen; Inf is clamped to the largest half. One test for the four
+    // channels: their sum is NaN when any is (or when +Inf meets -Inf, which no valid texel holds).
+    mediump vec2 pair = p.rg + p.ba;
+    mediump vec4 transparent = vec4(0.0, 0.0, 0.0, 1.0);
+    mediump vec4 clamped = clamp(p, vec4(0.0), vec4(HALF_MAX, HALF_MAX, HALF_MAX, 1.0));
+    return isnan(pair.x + pair.y) ? transparent : clamped;
 }
 
-mediump vec4 fetch(ivec2 q)
+mediump vec4 fetch(vec2 uv)
 {
-    return sanitize(texelFetch(u_particles, q, 0));
+    return sanitize(textureLod(u_particles, uv, 0.0));
 }
 
 // Weights of the four low-res texels around this pixel (x: base, y: +x, z: +y, w: +x+y).
@@ -145,10 +150,17 @@ mediump vec4 bilinear_weights(vec2 f)
 #ifdef UPSAMPLE_NEAREST_DEPTH
 // Bilinear where the four low-res depths agree with this pixel's, else all weight on the texel
 // whose depth is closest.
-mediump vec4 nearest_depth_weights(ivec4 c, vec2 f)
+mediump vec4 nearest_depth_weights(vec2 base, vec2 uv, vec2 t, vec2 f)
 {
     float z = view_distance(texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r);
-    vec4 dz = abs(vec4(low_distance(c.xy), low_distance(c.zy), low_distance(c.xw), low_distance(c.zw)) - z);
+#ifdef LOW_CORNERS
+    // one fetch: the corners texel of base is base + 1 (the texture starts at texel -1)
+    vec4 e = textureLod(u_low_corners, (base + 1.5) / vec2(u_low_size + 1), 0.0);
+    vec4 dz = abs(mix(vec4(NO_SURFACE), u_near / e, greaterThan(e, vec4(0.0))) - z);
+#else
+    vec4 dz = abs(vec4(low_distance(uv), low_distance(uv + vec2(t.x, 0.0)), low_distance(uv + vec2(0.0, t.y)),
+                       low_distance(uv + t)) - z);
+#endif
     if (!(max(max(dz.x, dz.y), max(dz.z, dz.w)) > u_depth_threshold * z)) return bilinear_weights(f);
     mediump vec4 w = vec4(1.0, 0.0, 0.0, 0.0);
     float best = dz.x;
@@ -161,39 +173,37 @@ mediump vec4 nearest_depth_weights(ivec4 c, vec2 f)
 
 // The weighted sum of the four texels, one at a time: one running sum stays live, not four
 // texels (a sanitized texel is finite, so a zero weight adds exactly nothing).
-mediump vec4 upsample(ivec4 c, mediump vec4 w)
+mediump vec4 upsample(vec2 uv, vec2 t, mediump vec4 w)
 {
-    mediump vec4 sum = fetch(c.xy) * w.x;
-    sum += fetch(c.zy) * w.y;
-    sum += fetch(c.xw) * w.z;
-    sum += fetch(c.zw) * w.w;
+    mediump vec4 sum = fetch(uv) * w.x;
+    sum += fetch(uv + vec2(t.x, 0.0)) * w.y;
+    sum += fetch(uv + vec2(0.0, t.y)) * w.z;
+    sum += fetch(uv + t) * w.w;
     return sum;
 }
 
 void main()
 {
     vec2 low = gl_FragCoord.xy / u_divisor - 0.5;
-    ivec2 base = ivec2(floor(low));
-    vec2 f = low - vec2(base);
-    ivec4 c = corners(base);
+    vec2 base = floor(low);
+    vec2 f = low - base;
+    vec2 t = 1.0 / vec2(u_low_size);
+    vec2 uv = (base + 0.5) * t;   // the base texel's centre
 #ifdef UPSAMPLE_NEAREST_DEPTH
-    vec4 result = upsample(c, nearest_depth_weights(c, f));
+    vec4 result = upsample(uv, t, nearest_depth_weights(base, uv, t, f));
 #else
-    vec4 result = upsample(c, bilinear_weights(f));
+    vec4 result = upsample(uv, t, bilinear_weights(f));
 #endif
 #ifdef OWN_SCENE
-    vec2 uv = gl_FragCoord.xy / u_full_size;
+    vec2 scene_uv = gl_FragCoord.xy / u_full_size;
 #ifdef HAS_SHIMMER
-    // bilinear, like the particles: nearest low-res offsets would tear the image into blocks
-    vec2 d00 = texelFetch(u_distortion, c.xy, 0).rg;
-    vec2 d10 = texelFetch(u_distortion, c.zy, 0).rg;
-    vec2 d01 = texelFetch(u_distortion, c.xw, 0).rg;
-    vec2 d11 = texelFetch(u_distortion, c.zw, 0).rg;
-    vec2 offset = mix(mix(d00, d10, f.x), mix(d01, d11, f.x), f.y);
+    // bilinear, like the particles (nearest low-res offsets would tear the image into blocks), by
+    // the sampler: the offsets are RGBA16F (filterable) and read through a LINEAR sampler
+    vec2 offset = textureLod(u_distortion, uv + f * t, 0.0).rg;
     if (!(abs(offset.x) < 1.0 && abs(offset.y) < 1.0)) offset = vec2(0.0);   // NaN, Inf, absurd
-    uv = clamp(uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);
+    scene_uv = clamp(scene_uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);
 #endif
-    vec3 scene = texture(u_scene_color, uv).rgb;
+    vec3 scene = texture(u_scene_color, scene_uv).rgb;
     result = tone_map(result, scene);
     o_color = vec4(scene * result.a + result.rgb, 1.0);
 #else

@@ -5,9 +5,14 @@
 // edges onto whatever is behind it.
 //   CoC from the artist's ranges: full near blur at u_near.x, sharp from u_near.y to u_far.x,
 //   full far blur at u_far.y; radius in full-resolution pixels, at most u_max_radius.
+//   DOF_SCALE  the scene's blur resolution divisor, set at load (src/post.c): the loops the
+//              compilers unroll are as long as the block
 precision highp float;
 precision highp sampler2D;
 
+#ifndef DOF_SCALE
+#define DOF_SCALE 4                // the largest scale; the loops stop at u_scale
+#endif
 uniform sampler2D u_color;         // full resolution
 uniform sampler2D u_scene_depth;   // full resolution window depth
 uniform int u_scale;               // blur resolution divisor
@@ -33,34 +38,45 @@ float view_distance(float d)
     return u_depth_model.w / (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z);
 }
 
-float view_depth(ivec2 q) { return view_distance(texelFetch(u_scene_depth, q, 0).r); }
-
-// Signed CoC in [-1, 1]: negative in the near field, positive in the far field.
-float signed_coc(float z)
+// Signed CoC in [-1, 1]: negative in the near field, positive in the far field. ramps: the
+// reciprocals of the near and far ranges' lengths (once per fragment, not per texel).
+float signed_coc(float z, vec2 ramps)
 {
-    if (z < u_near.y) return -clamp((u_near.y - z) / max(u_near.y - u_near.x, 1e-4), 0.0, 1.0);
-    if (z > u_far.x) return clamp((z - u_far.x) / max(u_far.y - u_far.x, 1e-4), 0.0, 1.0);
-    return 0.0;
+    if (z < u_near.y) return -clamp((u_near.y - z) * ramps.x, 0.0, 1.0);
+    return clamp((z - u_far.x) * ramps.y, 0.0, 1.0);
 }
 
+// The particles' coverage and distance where they cover the block: the particle texel under
+// the block's centre. That is the texel of every pixel of the block whenever the particle
+// target's divisor is a multiple of the block's size (4 or 8 with blocks of 2 or 4); with a
+// finer particle target the block takes its centre's texel (one fetch per block, not per pixel).
+vec2 particle_cover(vec2 centre)
+{
+    if (!u_particles_drawn) return vec2(0.0);
+    vec4 m = textureLod(u_particle_motion, centre / (u_divisor * vec2(u_particle_size)), 0.0);
+    float coverage = clamp(1.0 - m.a, 0.0, 1.0);
+    return vec2(coverage, coverage > 1e-3 ? m.b / coverage : 0.0);
+}
+
+// The block's texels are read by coordinate at their centres: the samplers (NEAREST, or the
+// host colour's LINEAR exactly at a centre; CLAMP_TO_EDGE) clamp a block past the image's edge.
 void main()
 {
-    ivec2 base = ivec2(gl_FragCoord.xy) * u_scale;
+    vec2 base = floor(gl_FragCoord.xy) * float(u_scale) + 0.5;   // the first pixel's centre
+    vec2 texel = 1.0 / vec2(u_size);
+    vec2 ramps = 1.0 / max(vec2(u_near.y - u_near.x, u_far.y - u_far.x), 1e-4);
+    vec2 cover = particle_cover(base + 0.5 * float(u_scale - 1));
+    float particle_coc = signed_coc(cover.y, ramps);
     vec3 far_sum = vec3(0.0), near_sum = vec3(0.0);
     float far_coc = 0.0, near_coc = 0.0, n = 0.0;
-    for (int j = 0; j < 4; j++) {
+    for (int j = 0; j < DOF_SCALE; j++) {
         if (j >= u_scale) break;
-        for (int i = 0; i < 4; i++) {
+        for (int i = 0; i < DOF_SCALE; i++) {
             if (i >= u_scale) break;
-            ivec2 q = min(base + ivec2(i, j), u_size - 1);
-            vec3 c = texelFetch(u_color, q, 0).rgb;
-            float coc = signed_coc(view_depth(q));
-            if (u_particles_drawn) {
-                ivec2 t = clamp(ivec2(vec2(q) / u_divisor), ivec2(0), u_particle_size - 1);
-                vec4 m = texelFetch(u_particle_motion, t, 0);
-                float coverage = clamp(1.0 - m.a, 0.0, 1.0);
-                if (coverage > 1e-3) coc = mix(coc, signed_coc(m.b / coverage), coverage);
-            }
+            vec2 q = base + vec2(i, j);
+            vec3 c = textureLod(u_color, q * texel, 0.0).rgb;
+            float coc = signed_coc(view_distance(textureLod(u_scene_depth, q * texel, 0.0).r), ramps);
+            if (cover.x > 1e-3) coc = mix(coc, particle_coc, cover.x);
             far_sum += c;
             far_coc += max(coc, 0.0);
             near_sum += c * max(-coc, 0.0);

@@ -38,12 +38,10 @@ float view_distance(float d)
 
 float view_depth(ivec2 q) { return view_distance(texelFetch(u_scene_depth, q, 0).r); }
 
-float cone(float distance, float speed) { return clamp(1.0 - distance / max(speed, 1e-4), 0.0, 1.0); }
-
-float cylinder(float distance, float speed)
-{
-    return 1.0 - smoothstep(0.95 * speed, 1.05 * speed, distance);
-}
+// The cone and the cylinder of a sample at `distance` from this pixel, with velocity of length
+// speed (>= 0.5), on x = distance / speed: 1 - x, and 1 - smoothstep(0.95 speed, 1.05 speed, distance).
+float cone(float x) { return clamp(1.0 - x, 0.0, 1.0); }
+float cylinder(float x) { return 1.0 - smoothstep(0.95, 1.05, x); }
 
 float soft_depth_compare(float za, float zb) { return clamp(1.0 - (za - zb) / SOFT_Z, 0.0, 1.0); }
 
@@ -54,30 +52,31 @@ void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec4 center = texelFetch(u_color, p, 0);
-    vec2 vmax = decode(texelFetch(u_neighbor_max, p / u_tile, 0));
+    // the tile under this pixel: floor((p + 0.5) / tile) = p / tile, without an integer division
+    vec2 vmax = decode(texelFetch(u_neighbor_max, ivec2(gl_FragCoord.xy / float(u_tile)), 0));
     if (length(vmax) < 0.5) {
         o_color = center;
         return;
     }
     vec2 vc = decode(texelFetch(u_velocity, p, 0));
-    float speed_c = max(length(vc), 0.5);
+    float inv_speed_c = 1.0 / max(length(vc), 0.5);
     float zc = view_depth(p);
-    float weight = 1.0 / speed_c;
+    float weight = inv_speed_c;
     vec3 sum = center.rgb * weight;
     float j = jitter(gl_FragCoord.xy);
+    int middle = (u_samples - 1) >> 1;   // (samples - 1) / 2, the centre sample (this pixel)
     for (int i = 0; i < 64; i++) {
         if (i >= u_samples) break;
-        if (i == (u_samples - 1) / 2) continue;
+        if (i == middle) continue;
         float t = mix(-1.0, 1.0, (float(i) + j + 1.0) / float(u_samples + 1));
         ivec2 y = clamp(ivec2(floor(vec2(p) + 0.5 + vmax * t)), ivec2(0), u_size - 1);
         float distance = length(vec2(y - p));
         vec2 vy = decode(texelFetch(u_velocity, y, 0));
-        float speed_y = max(length(vy), 0.5);
+        float xy = distance / max(length(vy), 0.5), xc = distance * inv_speed_c;
         float zy = view_depth(y);
         // distances grow away from the eye: "front" = the sample is nearer than this pixel
         float front = soft_depth_compare(zy, zc), back = soft_depth_compare(zc, zy);
-        float a = front * cone(distance, speed_y) + back * cone(distance, speed_c) +
-                  cylinder(distance, speed_y) * cylinder(distance, speed_c) * 2.0;
+        float a = front * cone(xy) + back * cone(xc) + cylinder(xy) * cylinder(xc) * 2.0;
         weight += a;
         sum += a * texelFetch(u_color, y, 0).rgb;
     }

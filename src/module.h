@@ -114,7 +114,7 @@ typedef struct sbfx_post_gl {
     sbfx_rt history[2];        /* history blur ping-pong */
     int history_next;
     bool history_valid;
-    sbfx_rt velocity, tiles, neighbors;
+    sbfx_rt velocity, tile_rows, tiles, neighbors; /* tile_rows: tile max along rows only */
     sbfx_rt dof[2];            /* each: far field + near field, ping-pong of the separable blur */
     int width, height;
     double last_time;          /* simulation time of the previous render */
@@ -140,6 +140,7 @@ typedef struct sbfx_pass_uniforms {
     GLint particles, low_depth, low_size, depth_threshold;            /* composite */
     GLint scene_color, scene_known, distortion;                       /* composite: scene colour */
     GLint tone_curve;                                                 /* composite, tone map */
+    GLint low_corners;                                                /* composite, nearest depth */
 } sbfx_pass_uniforms;
 
 /* Run-time quality (quality.c). What a level needs on the GPU is kept per part, indexed
@@ -158,7 +159,7 @@ typedef struct sbfx_variant {
 } sbfx_variant;
 #define SBFX_TARGET_SETS (4 * SBFX_FORMAT_COUNT)
 typedef struct sbfx_target_set {
-    sbfx_rt particles, low_depth;
+    sbfx_rt particles, low_depth, low_corners; /* low_corners: RGBA32F devices only (passes.c) */
     int low_width, low_height;
     GLenum target_type;
     sbfx_target_format format;  /* what was made (a fallback may replace the one asked for) */
@@ -166,9 +167,9 @@ typedef struct sbfx_target_set {
 #define SBFX_LADDER_MAX 16
 
 typedef struct sbfx_gl {
-    sbfx_pass_uniforms depth_u, composite_u;
+    sbfx_pass_uniforms depth_u, corners_u, composite_u;
     GLuint fullscreen_vao, particle_vao, instance_buffer;
-    GLuint depth_program, composite_program;
+    GLuint depth_program, corners_program, composite_program;
     GLuint lut_program;                      /* particle.frag's TABLE_PROBE (diagnostics.c)... */
     int lut_medium;                          /* ...for this medium's table/analytic choices */
     sbfx_program particle[SBFX_MEDIUM_COUNT];
@@ -176,7 +177,7 @@ typedef struct sbfx_gl {
     GLuint smoke_texture[SBFX_MEDIUM_COUNT]; /* 2D arrays, lit media only (tables.h layout) */
     GLuint depth_sampler, color_sampler;     /* how the host's depth and colour are read */
     /* targets, (re)made when the output size changes */
-    sbfx_rt particles, low_depth;
+    sbfx_rt particles, low_depth, low_corners;
     GLuint probe_texture, probe_fbo;
     int out_width, out_height, low_width, low_height;
     GLenum target_type;
@@ -464,6 +465,7 @@ void sbfx_rt_destroy(sbfx *fx, sbfx_rt *rt);
 void sbfx_rt_bind(const sbfx_rt *rt);
 bool sbfx_half_float_renderable(void);
 bool sbfx_float32_blendable(void); /* RGBA32F colour-renderable and blendable */
+bool sbfx_float32_renderable(void); /* RGBA32F colour-renderable (the low-res corners, passes.c) */
 
 /* targets.c: the current level's targets at the output size (on a size change, those of
  * every declared level: a budget's switch never creates one) */

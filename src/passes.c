@@ -51,6 +51,30 @@ static void pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
     fx->counters.draw_calls++;
 }
 
+/* Pass 1b (nearest-depth upsampling, RGBA32F devices): the four low-res depths around each
+ * texel gathered into one RGBA32F texel (low_corners.frag), so the composite reads them in one
+ * fetch instead of four. */
+static bool corners_used(const sbfx *fx)
+{
+    return fx->gl.low_corners.framebuffer && fx->desc.upsample == SBFX_UPSAMPLE_NEAREST_DEPTH;
+}
+
+static void pass_corners(sbfx *fx)
+{
+    sbfx_gl *gl = &fx->gl;
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl->low_corners.framebuffer);
+    glViewport(0, 0, gl->low_corners.width, gl->low_corners.height);
+    glDisable(GL_BLEND); /* a copy: whatever blending the host left on */
+    glUseProgram(gl->corners_program);
+    sbfx_bind_texture(0, GL_TEXTURE_2D, gl->low_depth.depth, 0);
+    glUniform1i(gl->corners_u.low_depth, 0);
+    glUniform2i(gl->corners_u.low_size, gl->low_width, gl->low_height);
+    glBindVertexArray(gl->fullscreen_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    fx->counters.passes++;
+    fx->counters.draw_calls++;
+}
+
 /* The lights of this frame in view space: the scene's, then the live flashes (fading out
  * linearly over their duration). */
 typedef struct frame_lights {
@@ -279,15 +303,16 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     glUniform1i(gl->composite_u.scene_known, scene_known);
     if (owns) glUniform2f(gl->composite_u.full_size, (float)f->width, (float)f->height);
     if (shimmer(fx)) {
-        sbfx_bind_texture(4, GL_TEXTURE_2D, gl->particles.texture[1], 0);
+        sbfx_bind_texture(4, GL_TEXTURE_2D, gl->particles.texture[1], gl->color_sampler); /* LINEAR: bilinear in one fetch */
         glUniform1i(gl->composite_u.distortion, 4);
     }
     sbfx_bind_texture(0, GL_TEXTURE_2D, gl->particles.texture[0], 0);
-    sbfx_bind_texture(1, GL_TEXTURE_2D, gl->low_depth.depth, 0);
+    sbfx_bind_texture(1, GL_TEXTURE_2D, corners_used(fx) ? gl->low_corners.texture[0] : gl->low_depth.depth, 0);
     sbfx_bind_texture(2, GL_TEXTURE_2D, f->scene_depth_texture, gl->depth_sampler);
     const sbfx_pass_uniforms *u = &gl->composite_u;
     glUniform1i(u->particles, 0);
     glUniform1i(u->low_depth, 1);
+    glUniform1i(u->low_corners, 1);
     glUniform1i(u->scene_depth, 2);
     glUniform2i(u->low_size, gl->low_width, gl->low_height);
     glUniform1f(u->divisor, (float)fx->desc.target_divisor);
@@ -328,6 +353,7 @@ static sbfx_result draw_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
         if (fx->desc.lod_particles > 0) count = lod_reduce(&fx->lod, fx->view, count, fx->desc.lod_particles);
         sbfx_sort_back_to_front(fx, count);
         pass_depth(fx, frame, &fp);
+        if (corners_used(fx)) pass_corners(fx);
         pass_particles(fx, frame, &fp, count);
         pass_composite(fx, frame, &fp);
     }

@@ -118,18 +118,21 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     if (fx->plan.distortion && !float_ok)
         sbfx_log(fx, SBFX_LOG_WARN, "heat shimmer needs a float particle target (GL_EXT_color_buffer_half_float "
                  "or GL_EXT_color_buffer_float): shimmer is off");
-    char defines[128];
+    char defines[128], tile_defines[160], dof_defines[32];
     snprintf(defines, sizeof(defines), "%s%s", p->encode_velocity ? "#define ENCODE_UNORM\n" : "",
              fx->plan.particle_velocity && float_ok ? "#define HAS_PARTICLE_VELOCITY\n" : "");
+    /* loops sized to the scene, so the compilers unroll what runs, not the largest size */
+    snprintf(tile_defines, sizeof(tile_defines), "%s#define TILE %d\n", defines, fx->post.tile);
+    snprintf(dof_defines, sizeof(dof_defines), "#define DOF_SCALE %d\n", fx->post.dof_scale);
     bool velocity = fx->post.blur == SBFX_BLUR_VELOCITY, history = fx->post.blur == SBFX_BLUR_HISTORY;
     bool dof = fx->post.dof;
     p->copy_program = build(fx, "copy.frag", NULL, true);
     p->history_program = build(fx, "history_blur.frag", NULL, history);
     p->velocity_program = build(fx, "velocity.frag", defines, velocity);
-    p->tile_program = build(fx, "tile_max.frag", defines, velocity);
+    p->tile_program = build(fx, "tile_max.frag", tile_defines, velocity);
     p->neighbor_program = build(fx, "neighbor_max.frag", defines, velocity);
     p->blur_program = build(fx, "motion_blur.frag", defines, velocity);
-    p->dof_setup_program = build(fx, "dof_setup.frag", NULL, dof);
+    p->dof_setup_program = build(fx, "dof_setup.frag", dof_defines, dof);
     p->dof_blur_program = build(fx, "dof_blur.frag", NULL, dof);
     p->dof_composite_program = build(fx, "dof_composite.frag", NULL, dof);
     GLuint need[] = {p->copy_program, history ? p->history_program : 1, velocity ? p->blur_program : 1,
@@ -146,7 +149,7 @@ static void destroy_targets(sbfx *fx)
 {
     sbfx_post_gl *p = &fx->gl.post;
     sbfx_rt *all[] = {&p->frame[0], &p->frame[1], &p->history[0], &p->history[1], &p->velocity,
-                      &p->tiles, &p->neighbors, &p->dof[0], &p->dof[1]};
+                      &p->tile_rows, &p->tiles, &p->neighbors, &p->dof[0], &p->dof[1]};
     for (size_t i = 0; i < ARRAY_SIZE(all); i++) sbfx_rt_destroy(fx, all[i]);
     p->width = p->height = 0;
     p->history_valid = false;
@@ -183,8 +186,8 @@ sbfx_result sbfx_post_targets_ensure(sbfx *fx, int w, int h)
         for (int i = 0; i < 2; i++) ok = ok && make(fx, &p->history[i], w, h, c, NULL, GL_NEAREST);
     if (fx->post.blur == SBFX_BLUR_VELOCITY) {
         int t = fx->post.tile, tw = (w + t - 1) / t, th = (h + t - 1) / t;
-        ok = ok && make(fx, &p->velocity, w, h, v, NULL, GL_NEAREST) && make(fx, &p->tiles, tw, th, v, NULL, GL_NEAREST) &&
-             make(fx, &p->neighbors, tw, th, v, NULL, GL_NEAREST);
+        ok = ok && make(fx, &p->velocity, w, h, v, NULL, GL_NEAREST) && make(fx, &p->tile_rows, tw, h, v, NULL, GL_NEAREST) &&
+             make(fx, &p->tiles, tw, th, v, NULL, GL_NEAREST) && make(fx, &p->neighbors, tw, th, v, NULL, GL_NEAREST);
     }
     if (fx->post.dof) {
         int s = fx->post.dof_scale, dw = (w + s - 1) / s, dh = (h + s - 1) / s;
@@ -359,7 +362,21 @@ static void view_projection(const sbfx_frame *f, double out[16])
     multiply4(p, v, out);
 }
 
-/* McGuire's reconstruction: velocity, tile max, neighbour max, gather. */
+/* The longest velocity of `tile` texels of `in` along (dx, dy), into `out`: rows, then columns. */
+static void pass_tile_max(sbfx *fx, const sbfx_rt *in, const sbfx_rt *out, int dx, int dy)
+{
+    const sbfx_post_gl *p = &fx->gl.post;
+    GLuint prog = p->tile_program;
+    begin(prog, out->framebuffer, out->width, out->height);
+    bind_unit(fx, prog, PU_VELOCITY, 0, in->texture[0]);
+    glUniform1i(post_loc(p, prog, PU_TILE), fx->post.tile);
+    glUniform2i(post_loc(p, prog, PU_SIZE), in->width, in->height);
+    glUniform2i(post_loc(p, prog, PU_DIRECTION), dx, dy);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->post.tile);
+    finish(fx);
+}
+
+/* McGuire's reconstruction: velocity, tile max (rows, then columns), neighbour max, gather. */
 static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
 {
     sbfx_post_gl *p = &fx->gl.post;
@@ -384,13 +401,8 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
     glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->desc.target_divisor);
     glUniform2i(post_loc(p, prog, PU_LOW_SIZE), fx->gl.low_width, fx->gl.low_height);
     finish(fx);
-    prog = p->tile_program;
-    begin(prog, p->tiles.framebuffer, p->tiles.width, p->tiles.height);
-    bind_unit(fx, prog, PU_VELOCITY, 0, p->velocity.texture[0]);
-    glUniform1i(post_loc(p, prog, PU_TILE), post->tile);
-    glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
-    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
-    finish(fx);
+    pass_tile_max(fx, &p->velocity, &p->tile_rows, 1, 0);
+    pass_tile_max(fx, &p->tile_rows, &p->tiles, 0, 1);
     prog = p->neighbor_program;
     begin(prog, p->neighbors.framebuffer, p->neighbors.width, p->neighbors.height);
     bind_unit(fx, prog, PU_TILES, 0, p->tiles.texture[0]);

@@ -122,6 +122,18 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->scene_known = glGetUniformLocation(id, "u_scene_known");
     u->distortion = glGetUniformLocation(id, "u_distortion");
     u->tone_curve = glGetUniformLocation(id, "u_tone_curve");
+    u->low_corners = glGetUniformLocation(id, "u_low_corners");
+}
+
+/* Where RGBA32F renders, nearest-depth upsampling reads its four depths in one fetch from the
+ * low-res corners (low_corners.frag, passes.c): made with the first nearest-depth composite. */
+static sbfx_result build_corners_program(sbfx *fx)
+{
+    if (fx->gl.corners_program || !sbfx_float32_renderable()) return SBFX_OK;
+    fx->gl.corners_program = sbfx_program_build(fx, "fullscreen.vert", "low_corners.frag", NULL);
+    if (!fx->gl.corners_program) return SBFX_ERR_SHADER;
+    locate_pass_uniforms(fx->gl.corners_program, &fx->gl.corners_u);
+    return SBFX_OK;
 }
 
 static const char *const tone_map_defines[SBFX_TONE_MAP_COUNT] = {
@@ -135,8 +147,12 @@ sbfx_result sbfx_composite_build(sbfx *fx, sbfx_upsample upsample)
 {
     if (fx->gl.composites[upsample]) return SBFX_OK;
     char defines[192];
-    snprintf(defines, sizeof(defines), "%s%s%s%s",
-             upsample == SBFX_UPSAMPLE_NEAREST_DEPTH ? "#define UPSAMPLE_NEAREST_DEPTH\n" : "#define UPSAMPLE_BILINEAR\n",
+    bool nearest_depth = upsample == SBFX_UPSAMPLE_NEAREST_DEPTH;
+    sbfx_result r = nearest_depth ? build_corners_program(fx) : SBFX_OK;
+    if (r != SBFX_OK) return r;
+    snprintf(defines, sizeof(defines), "%s%s%s%s%s",
+             nearest_depth ? "#define UPSAMPLE_NEAREST_DEPTH\n" : "#define UPSAMPLE_BILINEAR\n",
+             nearest_depth && fx->gl.corners_program ? "#define LOW_CORNERS\n" : "",
              fx->plan.owns_scene ? "#define OWN_SCENE\n" : "",
              fx->plan.distortion && sbfx_half_float_renderable() ? "#define HAS_SHIMMER\n" : "",
              tone_map_defines[fx->desc.tone_map]);
@@ -212,7 +228,7 @@ void sbfx_programs_destroy(sbfx *fx)
             if (gl->variants[v].particle[m].id) glDeleteProgram(gl->variants[v].particle[m].id);
     for (int u = 0; u < SBFX_UPSAMPLE_COUNT; u++)
         if (gl->composites[u]) glDeleteProgram(gl->composites[u]);
-    GLuint programs[] = {gl->depth_program, gl->lut_program};
+    GLuint programs[] = {gl->depth_program, gl->corners_program, gl->lut_program};
     for (size_t i = 0; i < ARRAY_SIZE(programs); i++)
         if (programs[i]) glDeleteProgram(programs[i]);
     if (gl->instance_buffer) glDeleteBuffers(1, &gl->instance_buffer);

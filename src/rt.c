@@ -88,6 +88,11 @@ bool sbfx_half_float_renderable(void)
            sbfx_has_extension("GL_EXT_color_buffer_float");
 }
 
+bool sbfx_float32_renderable(void)
+{
+    return sbfx_context_desktop() || sbfx_has_extension("GL_EXT_color_buffer_float");
+}
+
 bool sbfx_float32_blendable(void)
 {
     return sbfx_context_desktop() ||

@@ -30,10 +30,13 @@ static bool try_format(sbfx *fx, sbfx_target_set *set, const target_format *f)
 {
     if (!format_allowed(f)) return false;
     /* Signed offsets and velocities need a float format: with RGBA8 they are left out
-     * (the shaders' extra outputs then go nowhere) and the loss is logged at load. */
+     * (the shaders' extra outputs then go nowhere) and the loss is logged at load. The shimmer
+     * offsets are RGBA16F whatever the light's format: the composite reads them with one
+     * filtered fetch (RGBA32F is not filterable in ES 3.0), and a half float holds an offset
+     * of at most a few hundredths to 2^-11 of itself (docs/gpus.md, "Precision"). */
     bool is_float = f->id != SBFX_FORMAT_RGBA8;
-    const sbfx_rt_format *colors[SBFX_RT_MAX] = {
-        f->rt, is_float && fx->plan.distortion ? f->rt : NULL, is_float && fx->plan.motion_target ? f->rt : NULL};
+    const sbfx_rt_format *colors[SBFX_RT_MAX] = {f->rt, is_float && fx->plan.distortion ? &sbfx_rt_rgba16f : NULL,
+                                                 is_float && fx->plan.motion_target ? f->rt : NULL};
     if (!sbfx_rt_create(fx, &set->particles, set->low_width, set->low_height, colors, NULL, GL_NEAREST)) return false;
     set->target_type = f->rt->type;
     set->format = f->id;
@@ -73,6 +76,11 @@ static sbfx_result create_low_depth(sbfx *fx, sbfx_target_set *set)
     if (!sbfx_rt_create(fx, &set->low_depth, set->low_width, set->low_height, NULL, &sbfx_rt_depth32f, GL_NEAREST))
         return sbfx_fail(fx, SBFX_ERR_GL, "the %dx%d DEPTH_COMPONENT32F target is incomplete",
                          set->low_width, set->low_height);
+    const sbfx_rt_format *corners[SBFX_RT_MAX] = {&sbfx_rt_rgba32f, NULL, NULL};
+    if (fx->gl.corners_program &&
+        !sbfx_rt_create(fx, &set->low_corners, set->low_width + 1, set->low_height + 1, corners, NULL, GL_NEAREST))
+        return sbfx_fail(fx, SBFX_ERR_GL, "the %dx%d RGBA32F target of the low-res corners is incomplete",
+                         set->low_width + 1, set->low_height + 1);
     return sbfx_gl_check(fx, "creating the low-resolution depth target") ? SBFX_OK : SBFX_ERR_GL;
 }
 
@@ -80,6 +88,7 @@ static void destroy_set(sbfx *fx, sbfx_target_set *set)
 {
     sbfx_rt_destroy(fx, &set->particles);
     sbfx_rt_destroy(fx, &set->low_depth);
+    sbfx_rt_destroy(fx, &set->low_corners);
 }
 
 /* The targets of level q at the output size (made once per size). */
@@ -114,6 +123,7 @@ sbfx_result sbfx_targets_ensure(sbfx *fx, int width, int height)
     const sbfx_target_set *set = &gl->targets[sbfx_target_index(fx->current.target_divisor, fx->current.target_format)];
     gl->particles = set->particles;
     gl->low_depth = set->low_depth;
+    gl->low_corners = set->low_corners;
     gl->low_width = set->low_width;
     gl->low_height = set->low_height;
     gl->target_type = set->target_type;
@@ -124,6 +134,6 @@ sbfx_result sbfx_targets_ensure(sbfx *fx, int width, int height)
 void sbfx_targets_destroy(sbfx *fx)
 {
     for (int i = 0; i < SBFX_TARGET_SETS; i++) destroy_set(fx, &fx->gl.targets[i]);
-    fx->gl.particles = fx->gl.low_depth = (sbfx_rt){0};
+    fx->gl.particles = fx->gl.low_depth = fx->gl.low_corners = (sbfx_rt){0};
     fx->gl.out_width = fx->gl.out_height = 0;
 }

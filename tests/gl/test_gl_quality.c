@@ -225,11 +225,14 @@ CHECK_TEST(only_declared_variants_exist)
     render(&h, up, 0, NULL);
     render(&h, targets, 0, NULL);
     counters_of(plain, &a), counters_of(up, &b), counters_of(targets, &c);
-    CHECK(a.programs == 5, "plain module: %d programs (dust, smoke, fire, depth, composite)", a.programs);
-    CHECK(b.programs == 6, "a bilinear level adds its composite only: %d programs", b.programs);
-    CHECK(c.programs == 5, "levels differing in target only add no program: %d", c.programs);
-    CHECK(c.framebuffers == a.framebuffers + 4, "two more target sets: %d framebuffers, plain %d", c.framebuffers,
-          a.framebuffers);
+    /* nearest-depth levels add the low-res corners' program and target where RGBA32F renders */
+    int corners = sbfx_float32_renderable();
+    CHECK(a.programs == 5 + corners, "plain module: %d programs (dust, smoke, fire, depth, (corners), composite)",
+          a.programs);
+    CHECK(b.programs == 6 + corners, "a bilinear level adds its composite only: %d programs", b.programs);
+    CHECK(c.programs == 5 + corners, "levels differing in target only add no program: %d", c.programs);
+    CHECK(c.framebuffers == a.framebuffers + 4 + 2 * corners, "two more target sets: %d framebuffers, plain %d",
+          c.framebuffers, a.framebuffers);
     CHECK(strcmp(a.quality, "exact/4/nd") == 0 && a.budget_ms == 0 && a.quality_changes == 0, "%s", a.quality);
     sbfx_destroy(plain);
     sbfx_destroy(up);
@@ -324,9 +327,9 @@ CHECK_TEST(scene_budget_and_ladder)
     sbfx_stats(own, &d);
     CHECK(c.budget_ms == 10000.0f && d.budget_ms == 5.0f, "budgets %g, %g", (double)c.budget_ms, (double)d.budget_ms);
     CHECK(strcmp(c.quality, "exact/4/nd") == 0, "%s", c.quality);
-    /* smoke + depth + the composites of nd (top) and bl (exact/8/bl): planar/4/bl and exact/2/nd
-     * are not below the top, so not built */
-    CHECK(c.programs == 4, "%d programs", c.programs);
+    /* smoke + depth + the composites of nd (top) and bl (exact/8/bl) + nd's low-res corners where
+     * RGBA32F renders: planar/4/bl and exact/2/nd are not below the top, so not built */
+    CHECK(c.programs == 4 + sbfx_float32_renderable(), "%d programs", c.programs);
     sbfx_destroy(fx);
     sbfx_destroy(own);
     fixture_close(&f);

@@ -1,6 +1,7 @@
 /* The plan: only what a scene uses is created; idle costs nothing; the simulation is
  * deterministic whatever the frame times; a full pool refuses triggers cleanly. */
 #include "gl_fixture.h"
+#include "module.h"
 
 #define BLACKBODY_BYTES (SBFX_BLACKBODY_SIZE * 16)
 #define PHASE_BYTES (SBFX_PHASE_SIZE * SBFX_MEDIUM_COUNT * 4)
@@ -40,7 +41,8 @@ CHECK_TEST(plan_holds_only_what_each_scene_uses)
                        DETAIL_BYTES + (size_t)want->max_particles * instance_bytes;
         printf("# %-10s programs %d textures %d framebuffers %d gpu_bytes %zu\n", want->scene, c.programs,
                c.textures, c.framebuffers, c.gpu_bytes);
-        CHECK(c.programs == want->particle_programs + 2 + want->post_programs, "%s: %d programs", want->scene,
+        /* + depth, composite and (where RGBA32F renders) the low-res corners */
+        CHECK(c.programs == want->particle_programs + 2 + sbfx_float32_renderable() + want->post_programs, "%s: %d programs", want->scene,
               c.programs);
         CHECK(c.textures == textures, "%s: %d textures, want %d", want->scene, c.textures, textures);
         CHECK(c.framebuffers == 0, "%s: targets exist before the first frame", want->scene);
