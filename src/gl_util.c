@@ -118,7 +118,8 @@ GLuint sbfx_texture_create(sbfx *fx, GLenum target, GLenum filter, GLenum wrap)
     return tex;
 }
 
-/* Compiles one stage: the embedded source with `defines` inserted after its #version line. */
+/* Compiles one stage: the embedded source with `defines` inserted after its #version line (and,
+ * on a software rasteriser, mediump defined as highp: context.c). */
 static GLuint compile_stage(sbfx *fx, GLenum stage, const char *name, const char *defines)
 {
     const char *text = sbfx_shader_source(name);
@@ -128,7 +129,8 @@ static GLuint compile_stage(sbfx *fx, GLenum stage, const char *name, const char
     }
     const char *body = strchr(text, '\n');
     body = body ? body + 1 : text;
-    const char *parts[] = {"#version 300 es\n", defines ? defines : "", "#line 2\n", body};
+    const char *precision = fx->mediump_as_highp ? "#define mediump highp\n" : "";
+    const char *parts[] = {"#version 300 es\n", precision, defines ? defines : "", "#line 2\n", body};
     GLuint shader = glCreateShader(stage);
     if (!shader) {
         sbfx_gl_check(fx, "glCreateShader");

@@ -255,6 +255,7 @@ struct sbfx {
     bool warned_format;
     sbfx_host_errors host_errors; /* GL errors the host left pending (gl_util.c) */
     unsigned context_parts;       /* SBFX_GL_SAVE_DESKTOP / _COMPAT on desktop OpenGL (context.c) */
+    bool mediump_as_highp;        /* a software rasteriser: shaders' mediump compiled as highp (context.c) */
     bool warned_polygon_mode;
 
     sbfx_medium_params media[SBFX_MEDIUM_COUNT];

@@ -59,6 +59,33 @@ CHECK_TEST(fire_needs_no_colour_matching_file)
     fixture_close(&f);
 }
 
+static bool logged_mediump;
+static void note_mediump(sbfx_log_level level, const char *message, void *user)
+{
+    (void)level, (void)user;
+    logged_mediump = logged_mediump || strstr(message, "mediump as highp") != NULL;
+}
+
+/* On Mesa's software rasterisers the shaders' mediump is compiled as highp (half precision is
+ * emulated there: the composite ran three times slower with it), and the log says so once; a GPU
+ * gets the shaders as written (src/context.c). */
+CHECK_TEST(software_rasteriser_compiles_mediump_as_highp)
+{
+    gl_fixture f;
+    fixture_open(&f, 8, 8);
+    const char *renderer = (const char *)glGetString(GL_RENDERER);
+    bool software = renderer && (strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe"));
+    logged_mediump = false;
+    sbfx *fx = NULL;
+    CHECK(sbfx_create(&(sbfx_desc){.log = note_mediump}, &fx) == SBFX_OK);
+    if (fx) {
+        CHECK(fx->mediump_as_highp == software, "renderer %s: mediump_as_highp %d", renderer, fx->mediump_as_highp);
+        CHECK(logged_mediump == software, "renderer %s: logged %d", renderer, logged_mediump);
+        sbfx_destroy(fx);
+    }
+    fixture_close(&f);
+}
+
 CHECK_TEST(bad_desc_is_rejected)
 {
     gl_fixture f;
