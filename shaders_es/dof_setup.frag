@@ -26,6 +26,10 @@ uniform bool u_particles_drawn;
 uniform sampler2D u_particle_motion; // low-res: premultiplied velocity, distance; transmittance
 uniform float u_divisor;
 uniform ivec2 u_particle_size;
+// The scene without the particles (the host's colour, LINEAR): the far field takes it instead of
+// the image where particles are sharper than the far field (see main), so in-focus particles
+// never reach the blurred field and the sky behind them blurs on its own.
+uniform sampler2D u_scene_color;
 
 layout(location = 0) out vec4 o_far;   // rgb, far CoC in [0,1]
 layout(location = 1) out vec4 o_near;  // rgb * coverage, coverage (= near CoC in [0,1])
@@ -65,10 +69,11 @@ void main()
     vec2 base = floor(gl_FragCoord.xy) * float(u_scale) + 0.5;   // the first pixel's centre
     vec2 texel = 1.0 / vec2(u_size);
     vec2 ramps = 1.0 / max(vec2(u_near.y - u_near.x, u_far.y - u_far.x), 1e-4);
-    vec2 cover = particle_cover(base + 0.5 * float(u_scale - 1));
+    vec2 centre = base + 0.5 * float(u_scale - 1);
+    vec2 cover = particle_cover(centre);
     float particle_coc = signed_coc(cover.y, ramps);
     vec3 far_sum = vec3(0.0), near_sum = vec3(0.0);
-    float far_coc = 0.0, near_coc = 0.0, n = 0.0;
+    float far_coc = 0.0, near_coc = 0.0, scene_far = 0.0, n = 0.0;
     for (int j = 0; j < DOF_SCALE; j++) {
         if (j >= u_scale) break;
         for (int i = 0; i < DOF_SCALE; i++) {
@@ -76,6 +81,7 @@ void main()
             vec2 q = base + vec2(i, j);
             vec3 c = textureLod(u_color, q * texel, 0.0).rgb;
             float coc = signed_coc(view_distance(textureLod(u_scene_depth, q * texel, 0.0).r), ramps);
+            scene_far += max(coc, 0.0);
             if (cover.x > 1e-3) coc = mix(coc, particle_coc, cover.x);
             far_sum += c;
             far_coc += max(coc, 0.0);
@@ -84,6 +90,13 @@ void main()
             n += 1.0;
         }
     }
-    o_far = vec4(far_sum / n, far_coc / n);
+    // What the far field holds: the image where the particles are as far as the far field (keep
+    // 1), the scene behind them where they are in focus or near (keep 0), between by their far
+    // CoC; its CoC likewise (the scene's, or the block's). dof_composite.frag takes the same mix
+    // at full resolution. The scene: the block's mean for blocks of 1 and 2 (one bilinear
+    // fetch at the block's centre), its centre 2 x 2 for larger ones.
+    float keep = cover.x > 1e-3 ? max(particle_coc, 0.0) : 1.0;
+    vec3 scene = textureLod(u_scene_color, centre * texel, 0.0).rgb;
+    o_far = vec4(mix(scene, far_sum / n, keep), mix(scene_far, far_coc, keep) / n);
     o_near = vec4(near_coc > 0.0 ? near_sum / n : vec3(0.0), near_coc);
 }
