@@ -294,7 +294,8 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     const sbfx_frame *f = pf->f;
     GLuint prog = p->dof_setup_program;
     begin(prog, p->dof[0].framebuffer, p->dof[0].width, p->dof[0].height);
-    bind_unit(fx, prog, PU_COLOR, 0, source);
+    sbfx_bind_texture(0, GL_TEXTURE_2D, source, fx->gl.color_sampler); /* LINEAR: 2 x 2 means in one fetch */
+    glUniform1i(post_loc(p, prog, PU_COLOR), 0);
     bind_unit(fx, prog, PU_SCENE_DEPTH, 1, f->scene_depth_texture);
     glUniform1i(post_loc(p, prog, PU_SCALE), post->dof_scale);
     glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
