@@ -10,6 +10,8 @@
 //   OWN_SCENE     post effects follow: read the scene colour texture instead of blending over
 //                 the host's framebuffer, and write an opaque image
 //   HAS_SHIMMER   (with OWN_SCENE) heat particles' screen offsets displace the scene lookup
+//   TRANSMITTANCE_ALPHA (with OWN_SCENE) the image's alpha is the particles' transmittance, not 1:
+//                 depth of field follows and weighs its CoC by it (dof_composite.frag)
 //   TONE_MAP_NONE | TONE_MAP_HUE_PRESERVING | TONE_MAP_PER_CHANNEL | TONE_MAP_FILMIC   the
 //                 particles' light on the display (sbfx_tone_map in sbfx.h; ref/reference_frame.c
 //                 mirrors it; docs/look-fire.md)
@@ -205,7 +207,11 @@ void main()
 #endif
     vec3 scene = texture(u_scene_color, scene_uv).rgb;
     result = tone_map(result, scene);
+#ifdef TRANSMITTANCE_ALPHA
+    o_color = vec4(scene * result.a + result.rgb, result.a);
+#else
     o_color = vec4(scene * result.a + result.rgb, 1.0);
+#endif
 #else
     vec3 dst = u_scene_known ? clamp(texelFetch(u_scene_color, ivec2(gl_FragCoord.xy), 0).rgb, 0.0, 1.0) : vec3(0.0);
     o_color = tone_map(result, dst);

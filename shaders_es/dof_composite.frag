@@ -1,17 +1,34 @@
 #version 300 es
 // Depth of field, step 3: the sharp full-resolution image, the blurred far field mixed in by
 // this pixel's far CoC, and the blurred near field laid over everything by its coverage.
+// Where particles cover the scene the image is C = T x scene + P (composite.frag: transmittance
+// T, the particles' light P). The far CoC is this pixel's, at full resolution: the particles'
+// (their distance's) by their coverage, the scene's by T. The far field holds the scene behind
+// particles that are in focus (dof_setup.frag: keep = their far CoC), so
+//   C' = C + w (F - X),  X = mix(scene, C, keep),  w = T x scene CoC + (1 - T) x particle CoC
+// gives, for particles in focus (keep 0), C' = P + T x (blurred scene): the particles stay the
+// sharp full-resolution picture and only the sky seen through them is blurred, by how much of
+// it is seen; for particles in the far field (keep 1) C' = mix(C, F, w) as for the scene.
+//   HAS_SHIMMER  the scene as the composite read it: displaced by the heat's offsets
+// The blurred fields are read bilinearly by their LINEAR sampler (RGBA16F or RGBA8).
 precision highp float;
 precision highp sampler2D;
 
-uniform sampler2D u_color;
-uniform sampler2D u_far_field;     // blurred
-uniform sampler2D u_near_field;    // blurred
+uniform sampler2D u_color;         // full resolution; alpha: the particles' transmittance
+uniform sampler2D u_far_field;     // blurred, LINEAR
+uniform sampler2D u_near_field;    // blurred, LINEAR
 uniform sampler2D u_scene_depth;
 uniform vec4 u_depth_model;       // window depth -> distance (view_distance)
-uniform vec2 u_far;
-uniform float u_scale;
-uniform ivec2 u_low_size;
+uniform vec2 u_far;                // [sharp, full blur] distances
+uniform vec2 u_low_texel;          // 1 / (blur scale x blur-resolution size): pixel -> field uv
+uniform bool u_particles_drawn;    // this frame's particles are in u_color and u_particle_motion
+uniform sampler2D u_particle_motion; // low-res, NEAREST: premultiplied velocity, distance; transmittance
+uniform vec2 u_particle_texel;     // 1 / (divisor x particle target size): pixel -> particle uv
+uniform sampler2D u_scene_color;   // the host's colour, LINEAR (the composite's sampler)
+uniform vec2 u_full_size;
+#ifdef HAS_SHIMMER
+uniform sampler2D u_distortion;    // low-res RGBA16F, LINEAR: the composite's scene offsets
+#endif
 
 out vec4 o_color;
 
@@ -23,27 +40,37 @@ float view_distance(float d)
     return u_depth_model.w / (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z);
 }
 
-vec4 bilinear(sampler2D t, vec2 low)
+// The scene where composite.frag read it for this pixel.
+vec3 scene_behind(vec2 particle_uv)
 {
-    vec2 x = low - 0.5;
-    ivec2 b = ivec2(floor(x));
-    vec2 f = x - vec2(b);
-    ivec2 hi = u_low_size - 1;
-    vec4 a = texelFetch(t, clamp(b, ivec2(0), hi), 0), c = texelFetch(t, clamp(b + ivec2(1, 0), ivec2(0), hi), 0);
-    vec4 d = texelFetch(t, clamp(b + ivec2(0, 1), ivec2(0), hi), 0), e = texelFetch(t, clamp(b + ivec2(1, 1), ivec2(0), hi), 0);
-    return mix(mix(a, c, f.x), mix(d, e, f.x), f.y);
+    vec2 scene_uv = gl_FragCoord.xy / u_full_size;
+#ifdef HAS_SHIMMER
+    vec2 offset = textureLod(u_distortion, particle_uv, 0.0).rg;
+    if (!(abs(offset.x) < 1.0 && abs(offset.y) < 1.0)) offset = vec2(0.0);
+    scene_uv = clamp(scene_uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);
+#endif
+    return textureLod(u_scene_color, scene_uv, 0.0).rgb;
 }
 
 void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    vec3 sharp = texelFetch(u_color, p, 0).rgb;
-    float z = view_distance(texelFetch(u_scene_depth, p, 0).r);
-    float far_coc = clamp((z - u_far.x) / max(u_far.y - u_far.x, 1e-4), 0.0, 1.0);
-    vec2 low = gl_FragCoord.xy / u_scale;
-    vec4 far_blur = bilinear(u_far_field, low);
-    vec4 near_blur = bilinear(u_near_field, low);
-    vec3 color = mix(sharp, far_blur.rgb, far_coc);
+    vec4 sharp = texelFetch(u_color, p, 0);
+    float ramp = 1.0 / max(u_far.y - u_far.x, 1e-4);
+    float far_coc = clamp((view_distance(texelFetch(u_scene_depth, p, 0).r) - u_far.x) * ramp, 0.0, 1.0);
+    vec3 x = sharp.rgb;   // what the far field holds here
+    if (u_particles_drawn) {
+        vec2 particle_uv = gl_FragCoord.xy * u_particle_texel;
+        vec4 m = textureLod(u_particle_motion, particle_uv, 0.0);
+        float coverage = 1.0 - m.a;
+        float keep = coverage > 1e-3 ? clamp((m.b / coverage - u_far.x) * ramp, 0.0, 1.0) : 1.0;
+        far_coc = mix(keep, far_coc, clamp(sharp.a, 0.0, 1.0));
+        x = mix(scene_behind(particle_uv), x, keep);
+    }
+    vec2 uv = gl_FragCoord.xy * u_low_texel;
+    vec4 far_blur = textureLod(u_far_field, uv, 0.0);
+    vec4 near_blur = textureLod(u_near_field, uv, 0.0);
+    vec3 color = sharp.rgb + far_coc * (far_blur.rgb - x);
     float coverage = clamp(near_blur.a * 2.0, 0.0, 1.0);   // a blurred edge at half coverage is opaque
     vec3 near_color = near_blur.a > 1e-4 ? near_blur.rgb / near_blur.a : color;
     o_color = vec4(mix(color, near_color, coverage), 1.0);

@@ -6,14 +6,18 @@
 //   CoC from the artist's ranges: full near blur at u_near.x, sharp from u_near.y to u_far.x,
 //   full far blur at u_far.y; radius in full-resolution pixels, at most u_max_radius.
 //   DOF_SCALE  the scene's blur resolution divisor, set at load (src/post.c): the loops the
-//              compilers unroll are as long as the block
+//              compilers unroll are as long as the block, and the block's size is a constant
+//              (without it: blocks of u_scale, loops as long as the largest, 4)
 precision highp float;
 precision highp sampler2D;
 
-#ifndef DOF_SCALE
+#ifdef DOF_SCALE
+#define SCALE DOF_SCALE
+#else
 #define DOF_SCALE 4                // the largest scale; the loops stop at u_scale
+#define SCALE u_scale
 #endif
-uniform sampler2D u_color;         // full resolution
+uniform sampler2D u_color;         // full resolution, LINEAR (block_mean)
 uniform sampler2D u_scene_depth;   // full resolution window depth
 uniform int u_scale;               // blur resolution divisor
 uniform ivec2 u_size;              // full resolution
@@ -26,6 +30,10 @@ uniform bool u_particles_drawn;
 uniform sampler2D u_particle_motion; // low-res: premultiplied velocity, distance; transmittance
 uniform float u_divisor;
 uniform ivec2 u_particle_size;
+// The scene without the particles (the host's colour, LINEAR): the far field takes it instead of
+// the image where particles are sharper than the far field (see main), so in-focus particles
+// never reach the blurred field and the sky behind them blurs on its own.
+uniform sampler2D u_scene_color;
 
 layout(location = 0) out vec4 o_far;   // rgb, far CoC in [0,1]
 layout(location = 1) out vec4 o_near;  // rgb * coverage, coverage (= near CoC in [0,1])
@@ -58,32 +66,60 @@ vec2 particle_cover(vec2 centre)
     return vec2(coverage, coverage > 1e-3 ? m.b / coverage : 0.0);
 }
 
-// The block's texels are read by coordinate at their centres: the samplers (NEAREST, or the
-// host colour's LINEAR exactly at a centre; CLAMP_TO_EDGE) clamp a block past the image's edge.
-void main()
+// The block's mean of t (LINEAR): one bilinear fetch per 2 x 2 of the block, at its centre, weighed
+// by its pixels (CLAMP_TO_EDGE: a block past the image's edge repeats the edge, as a fetch per
+// pixel would).
+vec3 block_mean(sampler2D t, vec2 base, vec2 texel)
 {
-    vec2 base = floor(gl_FragCoord.xy) * float(u_scale) + 0.5;   // the first pixel's centre
-    vec2 texel = 1.0 / vec2(u_size);
-    vec2 ramps = 1.0 / max(vec2(u_near.y - u_near.x, u_far.y - u_far.x), 1e-4);
-    vec2 cover = particle_cover(base + 0.5 * float(u_scale - 1));
-    float particle_coc = signed_coc(cover.y, ramps);
-    vec3 far_sum = vec3(0.0), near_sum = vec3(0.0);
-    float far_coc = 0.0, near_coc = 0.0, n = 0.0;
-    for (int j = 0; j < DOF_SCALE; j++) {
-        if (j >= u_scale) break;
-        for (int i = 0; i < DOF_SCALE; i++) {
-            if (i >= u_scale) break;
-            vec2 q = base + vec2(i, j);
-            vec3 c = textureLod(u_color, q * texel, 0.0).rgb;
-            float coc = signed_coc(view_distance(textureLod(u_scene_depth, q * texel, 0.0).r), ramps);
-            if (cover.x > 1e-3) coc = mix(coc, particle_coc, cover.x);
-            far_sum += c;
-            far_coc += max(coc, 0.0);
-            near_sum += c * max(-coc, 0.0);
-            near_coc = max(near_coc, -coc);   // the near field's coverage spreads, never shrinks
-            n += 1.0;
+    vec3 sum = vec3(0.0);
+    for (int j = 0; j < DOF_SCALE; j += 2) {
+        if (j >= SCALE) break;
+        for (int i = 0; i < DOF_SCALE; i += 2) {
+            if (i >= SCALE) break;
+            vec2 size = min(vec2(float(SCALE - i), float(SCALE - j)), 2.0);
+            sum += size.x * size.y * textureLod(t, (base + vec2(i, j) + 0.5 * (size - 1.0)) * texel, 0.0).rgb;
         }
     }
-    o_far = vec4(far_sum / n, far_coc / n);
-    o_near = vec4(near_coc > 0.0 ? near_sum / n : vec3(0.0), near_coc);
+    return sum / float(SCALE * SCALE);
+}
+
+// The block's depths are read by coordinate at their centres (NEAREST, CLAMP_TO_EDGE: clamped
+// past the image's edge); its colours as means (block_mean).
+void main()
+{
+    vec2 base = floor(gl_FragCoord.xy) * float(SCALE) + 0.5;   // the first pixel's centre
+    vec2 texel = 1.0 / vec2(u_size);
+    vec2 ramps = 1.0 / max(vec2(u_near.y - u_near.x, u_far.y - u_far.x), 1e-4);
+    vec2 centre = base + 0.5 * float(SCALE - 1);
+    vec2 cover = particle_cover(centre);
+    float particle_coc = signed_coc(cover.y, ramps);
+    float far_coc = 0.0, near_weight = 0.0, near_coc = 0.0;
+    for (int j = 0; j < DOF_SCALE; j++) {
+        if (j >= SCALE) break;
+        for (int i = 0; i < DOF_SCALE; i++) {
+            if (i >= SCALE) break;
+            float coc = signed_coc(view_distance(textureLod(u_scene_depth, (base + vec2(i, j)) * texel, 0.0).r), ramps);
+            if (cover.x > 1e-3) coc = mix(coc, particle_coc, cover.x);
+            far_coc += max(coc, 0.0);
+            near_weight += max(-coc, 0.0);
+            near_coc = max(near_coc, -coc);   // the near field's coverage spreads, never shrinks
+        }
+    }
+    float n = float(SCALE * SCALE);
+    far_coc /= n;
+    vec3 color = block_mean(u_color, base, texel);
+    // What the far field holds: the image where the particles are as far as the far field (keep
+    // 1), the scene behind them where they are in focus or near (keep 0), between by their far
+    // CoC; dof_composite.frag takes the same mix at full resolution. The scene's CoC where
+    // particles in focus cover it: the block's, which their coverage c scaled by 1 - c (their
+    // own CoC is 0), scaled back; unknown (0) where they are opaque.
+    float keep = cover.x > 1e-3 ? max(particle_coc, 0.0) : 1.0;
+    o_far = vec4(color, far_coc);
+    if (keep < 1.0) {   // the scene's fetches only where particles cover the block
+        float scene_coc = cover.x < 0.999 ? min(far_coc / (1.0 - cover.x), 1.0) : 0.0;
+        o_far = mix(vec4(block_mean(u_scene_color, base, texel), scene_coc), o_far, keep);
+    }
+    // The near field: the block's colour by its mean near CoC (the mean of the product where the
+    // block's pixels share a CoC, as they do but at a near object's edge)
+    o_near = vec4(near_coc > 0.0 ? color * (near_weight / n) : vec3(0.0), near_coc);
 }

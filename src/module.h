@@ -104,7 +104,7 @@ typedef struct sbfx_rt {
 
 /* Post-effect state: programs at load, targets with the output size. */
 #define SBFX_POST_PROGRAMS 9
-#define SBFX_POST_UNIFORMS 32
+#define SBFX_POST_UNIFORMS 40
 typedef struct sbfx_post_gl {
     GLuint velocity_program, tile_program, neighbor_program, blur_program;
     GLuint history_program, copy_program, dof_setup_program, dof_blur_program, dof_composite_program;

@@ -11,12 +11,15 @@ enum post_uniform {
     PU_CURRENT,
     PU_DEPTH_MODEL,
     PU_DIRECTION,
+    PU_DISTORTION,
     PU_DIVISOR,
     PU_FAR,
     PU_FAR_FIELD,
+    PU_FULL_SIZE,
     PU_HISTORY,
     PU_KEEP,
     PU_LOW_SIZE,
+    PU_LOW_TEXEL,
     PU_MAX_RADIUS,
     PU_NEAR,
     PU_NDC_DEPTH,
@@ -24,11 +27,13 @@ enum post_uniform {
     PU_NEIGHBOR_MAX,
     PU_PARTICLE_MOTION,
     PU_PARTICLE_SIZE,
+    PU_PARTICLE_TEXEL,
     PU_PARTICLE_VELOCITY,
     PU_PARTICLES_DRAWN,
     PU_REPROJECT,
     PU_SAMPLES,
     PU_SCALE,
+    PU_SCENE_COLOR,
     PU_SCENE_DEPTH,
     PU_SHUTTER,
     PU_SIZE,
@@ -45,12 +50,15 @@ static const char *const post_uniform_names[PU_COUNT] = {
     [PU_CURRENT] = "u_current",
     [PU_DEPTH_MODEL] = "u_depth_model",
     [PU_DIRECTION] = "u_direction",
+    [PU_DISTORTION] = "u_distortion",
     [PU_DIVISOR] = "u_divisor",
     [PU_FAR] = "u_far",
     [PU_FAR_FIELD] = "u_far_field",
+    [PU_FULL_SIZE] = "u_full_size",
     [PU_HISTORY] = "u_history",
     [PU_KEEP] = "u_keep",
     [PU_LOW_SIZE] = "u_low_size",
+    [PU_LOW_TEXEL] = "u_low_texel",
     [PU_MAX_RADIUS] = "u_max_radius",
     [PU_NEAR] = "u_near",
     [PU_NDC_DEPTH] = "u_ndc_depth",
@@ -58,11 +66,13 @@ static const char *const post_uniform_names[PU_COUNT] = {
     [PU_NEIGHBOR_MAX] = "u_neighbor_max",
     [PU_PARTICLE_MOTION] = "u_particle_motion",
     [PU_PARTICLE_SIZE] = "u_particle_size",
+    [PU_PARTICLE_TEXEL] = "u_particle_texel",
     [PU_PARTICLE_VELOCITY] = "u_particle_velocity",
     [PU_PARTICLES_DRAWN] = "u_particles_drawn",
     [PU_REPROJECT] = "u_reproject",
     [PU_SAMPLES] = "u_samples",
     [PU_SCALE] = "u_scale",
+    [PU_SCENE_COLOR] = "u_scene_color",
     [PU_SCENE_DEPTH] = "u_scene_depth",
     [PU_SHUTTER] = "u_shutter",
     [PU_SIZE] = "u_size",
@@ -119,6 +129,7 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
         sbfx_log(fx, SBFX_LOG_WARN, "heat shimmer needs a float particle target (GL_EXT_color_buffer_half_float "
                  "or GL_EXT_color_buffer_float): shimmer is off");
     char defines[128], tile_defines[160], dof_defines[32];
+    bool shimmer = fx->plan.distortion && float_ok;
     snprintf(defines, sizeof(defines), "%s%s", p->encode_velocity ? "#define ENCODE_UNORM\n" : "",
              fx->plan.particle_velocity && float_ok ? "#define HAS_PARTICLE_VELOCITY\n" : "");
     /* loops sized to the scene, so the compilers unroll what runs, not the largest size */
@@ -134,7 +145,7 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     p->blur_program = build(fx, "motion_blur.frag", defines, velocity);
     p->dof_setup_program = build(fx, "dof_setup.frag", dof_defines, dof);
     p->dof_blur_program = build(fx, "dof_blur.frag", NULL, dof);
-    p->dof_composite_program = build(fx, "dof_composite.frag", NULL, dof);
+    p->dof_composite_program = build(fx, "dof_composite.frag", shimmer ? "#define HAS_SHIMMER\n" : NULL, dof);
     GLuint need[] = {p->copy_program, history ? p->history_program : 1, velocity ? p->blur_program : 1,
                      velocity ? p->velocity_program : 1, velocity ? p->tile_program : 1,
                      velocity ? p->neighbor_program : 1, dof ? p->dof_composite_program : 1,
@@ -191,7 +202,9 @@ sbfx_result sbfx_post_targets_ensure(sbfx *fx, int w, int h)
     }
     if (fx->post.dof) {
         int s = fx->post.dof_scale, dw = (w + s - 1) / s, dh = (h + s - 1) / s;
-        for (int i = 0; i < 2; i++) ok = ok && make(fx, &p->dof[i], dw, dh, c, c, GL_NEAREST);
+        /* LINEAR: the composite reads the blurred fields bilinearly in one fetch each (RGBA16F and
+         * RGBA8 are filterable); the setup and the blur read texels by index */
+        for (int i = 0; i < 2; i++) ok = ok && make(fx, &p->dof[i], dw, dh, c, c, GL_LINEAR);
     }
     if (!ok) {
         destroy_targets(fx);
@@ -220,10 +233,11 @@ static void bind_unit(const sbfx *fx, GLuint program, int uniform, int unit, GLu
 
 sbfx_gl_units sbfx_post_units(const sbfx *fx)
 {
-    /* copy: unit 0; history: 0-1; depth of field and velocity blur: 0-3 */
+    /* copy: unit 0; history: 0-1; velocity blur: 0-3; depth of field: 0-6 */
     uint32_t units = 1u;
     if (fx->post.blur == SBFX_BLUR_HISTORY) units = 3u;
-    if (fx->post.dof || fx->post.blur == SBFX_BLUR_VELOCITY) units = 15u;
+    if (fx->post.blur == SBFX_BLUR_VELOCITY) units = 15u;
+    if (fx->post.dof) units = 127u;
     return (sbfx_gl_units){.tex_2d = units};
 }
 
@@ -257,6 +271,20 @@ static void set_depth_uniforms(const sbfx_post_gl *p, GLuint prog, const post_fr
     glUniform4fv(post_loc(p, prog, PU_DEPTH_MODEL), 1, pf->depth_model);
 }
 
+/* The particles' coverage and distance (the motion target) for the DoF's CoC, when this frame
+ * drew particles into it; the pixel -> particle texel scale for the composite. */
+static void bind_particle_motion(sbfx *fx, GLuint prog, int unit)
+{
+    const sbfx_post_gl *p = &fx->gl.post;
+    GLuint motion = fx->gl.particles.texture[2];
+    bind_unit(fx, prog, PU_PARTICLE_MOTION, unit, motion);
+    glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && motion);
+    float divisor = (float)fx->desc.target_divisor;
+    if (fx->gl.low_width > 0 && fx->gl.low_height > 0)
+        glUniform2f(post_loc(p, prog, PU_PARTICLE_TEXEL), 1.0f / (divisor * (float)fx->gl.low_width),
+                    1.0f / (divisor * (float)fx->gl.low_height));
+}
+
 /* Depth of field: split by CoC at the blur resolution, blur both fields separably (two
  * passes), composite over the sharp image. */
 static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
@@ -266,15 +294,16 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     const sbfx_frame *f = pf->f;
     GLuint prog = p->dof_setup_program;
     begin(prog, p->dof[0].framebuffer, p->dof[0].width, p->dof[0].height);
-    bind_unit(fx, prog, PU_COLOR, 0, source);
+    sbfx_bind_texture(0, GL_TEXTURE_2D, source, fx->gl.color_sampler); /* LINEAR: 2 x 2 means in one fetch */
+    glUniform1i(post_loc(p, prog, PU_COLOR), 0);
     bind_unit(fx, prog, PU_SCENE_DEPTH, 1, f->scene_depth_texture);
     glUniform1i(post_loc(p, prog, PU_SCALE), post->dof_scale);
     glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
     set_depth_uniforms(p, prog, pf);
     glUniform2fv(post_loc(p, prog, PU_NEAR), 1, post->dof_near);
     glUniform2fv(post_loc(p, prog, PU_FAR), 1, post->dof_far);
-    bind_unit(fx, prog, PU_PARTICLE_MOTION, 2, fx->gl.particles.texture[2]);
-    glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl.particles.texture[2]);
+    bind_particle_motion(fx, prog, 2);
+    bind_unit(fx, prog, PU_SCENE_COLOR, 3, f->scene_color_texture);
     glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->desc.target_divisor);
     glUniform2i(post_loc(p, prog, PU_PARTICLE_SIZE), fx->gl.low_width, fx->gl.low_height);
     finish(fx);
@@ -297,8 +326,14 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     bind_unit(fx, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
     set_depth_uniforms(p, prog, pf);
     glUniform2fv(post_loc(p, prog, PU_FAR), 1, post->dof_far);
-    glUniform1f(post_loc(p, prog, PU_SCALE), (float)post->dof_scale);
-    glUniform2i(post_loc(p, prog, PU_LOW_SIZE), p->dof[0].width, p->dof[0].height);
+    glUniform2f(post_loc(p, prog, PU_LOW_TEXEL), 1.0f / (float)(post->dof_scale * p->dof[0].width),
+                1.0f / (float)(post->dof_scale * p->dof[0].height));
+    bind_particle_motion(fx, prog, 4);
+    bind_unit(fx, prog, PU_SCENE_COLOR, 5, f->scene_color_texture);
+    glUniform2f(post_loc(p, prog, PU_FULL_SIZE), (float)f->width, (float)f->height);
+    /* the shimmer offsets, LINEAR like the composite's (none: an empty unit reads 0, no offset) */
+    sbfx_bind_texture(6, GL_TEXTURE_2D, fx->gl.particles.texture[1], fx->gl.color_sampler);
+    glUniform1i(post_loc(p, prog, PU_DISTORTION), 6);
     finish(fx);
 }
 

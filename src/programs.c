@@ -150,10 +150,11 @@ sbfx_result sbfx_composite_build(sbfx *fx, sbfx_upsample upsample)
     bool nearest_depth = upsample == SBFX_UPSAMPLE_NEAREST_DEPTH;
     sbfx_result r = nearest_depth ? build_corners_program(fx) : SBFX_OK;
     if (r != SBFX_OK) return r;
-    snprintf(defines, sizeof(defines), "%s%s%s%s%s",
+    snprintf(defines, sizeof(defines), "%s%s%s%s%s%s",
              nearest_depth ? "#define UPSAMPLE_NEAREST_DEPTH\n" : "#define UPSAMPLE_BILINEAR\n",
              nearest_depth && fx->gl.corners_program ? "#define LOW_CORNERS\n" : "",
              fx->plan.owns_scene ? "#define OWN_SCENE\n" : "",
+             fx->plan.owns_scene && fx->post.dof ? "#define TRANSMITTANCE_ALPHA\n" : "",
              fx->plan.distortion && sbfx_half_float_renderable() ? "#define HAS_SHIMMER\n" : "",
              tone_map_defines[fx->desc.tone_map]);
     GLuint id = sbfx_program_build(fx, "fullscreen.vert", "composite.frag", defines);

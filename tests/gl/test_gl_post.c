@@ -190,6 +190,87 @@ CHECK_TEST(focus_plane_sharp_far_field_blurred_by_its_radius)
     sbfx_destroy(fx);
 }
 
+/* A detailed smoke cloud 6 m away over a flat sky (no surface: the depth's clear value), through
+ * depth of field with the far range `far` at the post scene's blur scale 2, into out; without
+ * `far`, no post effect: the particles composited over the sky's colour in the output. */
+static double sky(int x, int y, void *u) { (void)x, (void)y, (void)u; return INFINITY; }
+
+static void render_cloud(post_fixture *p, const char *far, uint8_t *out)
+{
+    char text[1536], post[256] = "";
+    if (far)
+        snprintf(post, sizeof(post), "post = { depth_of_field = { near = [0.5, 1.0]; far = %s; max_radius = 6.0;"
+                 " scale = 2; }; };\n", far);
+    snprintf(text, sizeof(text),
+             "media = { smoke = { density = 0.6; detail = { source = \"procedural\"; strength = 0.8; window = 0.8; }; }; };\n"
+             "effects = { cloud = { steps = ( { type = \"emitter\"; medium = \"smoke\"; count = 8; spawn_radius = 0.6;"
+             " speed = [0.0, 0.05]; lifetime = [10.0, 10.0]; radius = [1.0, 1.4]; } ); }; };\n%s", post);
+    glBindFramebuffer(GL_FRAMEBUFFER, p->gl.out_fbo);
+    glClearColor(p->color[0] / 255.0f, p->color[1] / 255.0f, p->color[2] / 255.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    sbfx *fx = post_module(p, text);
+    const float at[3] = {0, 0, -6};
+    CHECK(sbfx_trigger(fx, "cloud", at) == SBFX_OK, "%s", sbfx_last_error(fx));
+    CHECK(sbfx_update(fx, 0.1) == SBFX_OK);
+    CHECK(sbfx_render(fx, &p->gl.frame) == SBFX_OK, "%s", sbfx_last_error(fx));
+    read_out(p, out);
+    sbfx_destroy(fx);
+}
+
+/* Over the pixels the cloud covers (more than 4 levels from the sky): the largest and the mean
+ * difference between two renders, in levels. */
+static int cloud_difference(const post_fixture *p, const uint8_t *a, const uint8_t *b, double *mean, int *covered)
+{
+    int worst = 0, n = 0;
+    double sum = 0;
+    for (int i = 0; i < W * H; i++) {
+        bool cloud = false;
+        for (int c = 0; c < 3; c++) cloud = cloud || abs(b[4 * i + c] - p->color[4 * i + c]) > 4;
+        if (!cloud) continue;
+        n++;
+        for (int c = 0; c < 3; c++) {
+            int d = abs(a[4 * i + c] - b[4 * i + c]);
+            worst = d > worst ? d : worst;
+            sum += d / 3.0;
+        }
+    }
+    *mean = n ? sum / n : 0;
+    *covered = n;
+    return worst;
+}
+
+/* Particles in focus over a far sky stay the full-resolution picture: the CoC where they cover
+ * the sky is theirs (by their coverage), at full resolution, so the blurred half-resolution
+ * field does not replace them (it did: the composite took the sky's CoC, 1, and the cloud's
+ * detail went through the blur scale's box and a bilinear upsample). The same cloud in the far
+ * field is blurred. The reference: the cloud without post effects over the sky's colour. */
+CHECK_TEST(particles_in_focus_stay_sharp_over_a_far_sky)
+{
+    post_fixture p;
+    post_open(&p);
+    fixture_depth(&p.gl, sky, NULL);
+    for (int i = 0; i < W * H; i++) {
+        uint8_t *px = &p.color[4 * i];
+        px[0] = 110, px[1] = 150, px[2] = 205, px[3] = 255;
+    }
+    upload_color(&p);
+    static uint8_t focused[W * H * 4], all_sharp[W * H * 4], far_cloud[W * H * 4];
+    render_cloud(&p, "[20.0, 100.0]", focused);   /* the cloud in focus, the sky far */
+    render_cloud(&p, "[2.0, 4.0]", far_cloud);    /* the cloud far too */
+    render_cloud(&p, NULL, all_sharp);
+    double mean, far_mean;
+    int covered, far_covered;
+    int worst = cloud_difference(&p, focused, all_sharp, &mean, &covered);
+    int far_worst = cloud_difference(&p, far_cloud, all_sharp, &far_mean, &far_covered);
+    printf("# in focus: %d cloud pixels, differ from no depth of field by at most %d levels (mean %.2f); "
+           "in the far field: %d pixels, at most %d (mean %.2f)\n",
+           covered, worst, mean, far_covered, far_worst, far_mean);
+    CHECK(covered > 400, "the cloud covers only %d pixels", covered);
+    CHECK(worst <= 3 && mean <= 0.5, "the in-focus cloud changed by up to %d levels (mean %.2f)", worst, mean);
+    CHECK(far_covered > 20 && far_mean > 2.0, "the far cloud is not blurred (mean change %.2f)", far_mean);
+}
+
 static int run_heat(post_fixture *p, const char *strength, uint8_t *out)
 {
     char text[1024];
