@@ -81,7 +81,8 @@ typedef struct sbfx_lit_light {
  * the particle's opacity multiplies it (every fetch at the particle's lod):
  *   albedo * B * (ambient + (1 - dampening) * sum_i E_i falloff_i S_i (wrap_i + back_i))
  * over the first SBFX_LIT_MAX_LIGHTS lights, with N, B, translucency from the maps at the
- * pixel's st, V = -normalize(ray), S_i the march toward light i. A point light at the shaded
+ * pixel's st, V = -normalize(ray), S_0 the march toward the key light (the first), S_i = 1 for
+ * the others (unshadowed). A point light at the shaded
  * point itself lights it along N. Finite for any finite input. */
 void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, int variant, double lod,
                        const double center[3], double radius, const double ray[3],
