@@ -81,7 +81,7 @@ CHECK_TEST(height_is_a_puff_weighted_by_distance_from_centre)
 }
 
 /* Normals are unit, face the eye (z > 0), and follow the height field: on the puff's slopes
- * they lean the way the height falls (outward), as -grad(H) with H = height / 2. */
+ * they lean the way the height falls (outward), as -grad(H) with H = strength x height / 2. */
 CHECK_TEST(normals_are_unit_and_follow_the_height)
 {
     uint8_t *t = generate(SIZE, 1, 11);
@@ -94,11 +94,12 @@ CHECK_TEST(normals_are_unit_and_follow_the_height)
             double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
             if (fabs(len - 1.0) > 0.02) bad_length++;
             if (!(n[2] > 0.0)) bad_z++;
-            double gx = (texel(t, SIZE, 0, x + 1, y)[3] - texel(t, SIZE, 0, x - 1, y)[3]) / 255.0 * 0.25 * SIZE;
-            double gy = (texel(t, SIZE, 0, x, y + 1)[3] - texel(t, SIZE, 0, x, y - 1)[3]) / 255.0 * 0.25 * SIZE;
+            const double slope = SBFX_SMOKE_NORMAL_STRENGTH * 0.25 * SIZE;
+            double gx = (texel(t, SIZE, 0, x + 1, y)[3] - texel(t, SIZE, 0, x - 1, y)[3]) / 255.0 * slope;
+            double gy = (texel(t, SIZE, 0, x, y + 1)[3] - texel(t, SIZE, 0, x, y - 1)[3]) / 255.0 * slope;
             double want[3] = {-gx, -gy, 1.0}, wl = sqrt(gx * gx + gy * gy + 1.0);
             for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(want[k] / wl - n[k] / len));
-            if (fabs(gx) > 0.3) {
+            if (fabs(gx) > 0.3 * SBFX_SMOKE_NORMAL_STRENGTH) {
                 slopes++;
                 if ((gx < 0) == (n[0] > 0)) agree++;
             }
@@ -107,8 +108,8 @@ CHECK_TEST(normals_are_unit_and_follow_the_height)
     CHECK(bad_length == 0, "%d normals are not unit", bad_length);
     CHECK(bad_z == 0, "%d normals face away from the eye", bad_z);
     CHECK(slopes > 100 && agree == slopes, "%d of %d slope normals lean the wrong way", slopes - agree, slopes);
-    /* the test differentiates 8-bit heights: rounding moves its gradient by up to 0.25 size/255 */
-    CHECK(worst < 0.25 * SIZE / 255.0 + 0.02, "normal map differs from the height field's gradient by %.3f", worst);
+    /* the test differentiates 8-bit heights: rounding moves its gradient by up to strength x 0.25 size/255 */
+    CHECK(worst < SBFX_SMOKE_NORMAL_STRENGTH * 0.25 * SIZE / 255.0 + 0.02, "normal map differs from the height field's gradient by %.3f", worst);
     free(t);
 }
 
