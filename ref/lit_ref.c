@@ -1,7 +1,9 @@
 /* CPU reference (double) of the lit-smoke shading: texture fetches as the GPU filters them,
  * wrap-around Lambert, back-lighting, the view-dependent step count and the height-field ray
- * march toward each light. shaders_es/particle.frag (LIGHTING_LIT) mirrors it line by line. */
+ * march toward the key light (the first; the others are lit from the particle's centre,
+ * unshadowed). shaders_es/particle.frag (LIGHTING_LIT) mirrors it line by line. */
 #include <math.h>
+#include <stdbool.h>
 #include "lit_ref.h"
 
 static int clamp_int(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
@@ -70,9 +72,7 @@ void sbfx_lit_maps_at(const sbfx_smoke_texture *tex, int variant, double s, doub
     double a[4], b[4];
     sbfx_smoke_sample(tex, SBFX_SMOKE_LAYERS_PER_VARIANT * variant, s, t, lod, a);
     sbfx_smoke_sample(tex, SBFX_SMOKE_LAYERS_PER_VARIANT * variant + 1, s, t, lod, b);
-    double n[3] = {a[0] * 2 - 1, a[1] * 2 - 1, a[2] * 2 - 1};
-    double len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    for (int k = 0; k < 3; k++) out->normal[k] = len2 > 1e-8 ? n[k] / sqrt(len2) : (k == 2);
+    for (int k = 0; k < 3; k++) out->normal[k] = a[k] * 2 - 1; /* as filtered, not renormalised */
     out->height = a[3];
     out->brightness = b[0];
     out->translucency = b[1];
@@ -101,22 +101,12 @@ int sbfx_lit_steps(double n_dot_v, int n_min, int n_max)
     return (int)floor(n_min + x * (n_max - n_min) + 0.5);
 }
 
-/* Distance along unit d from p to where it leaves [lo, hi] on each axis; 0 if already out. */
-static double box_exit(const double p[3], const double d[3])
-{
-    const double lo[3] = {0.0, 0.0, -0.5}, hi[3] = {1.0, 1.0, 0.5};
-    double t = 1e30;
-    for (int a = 0; a < 3; a++)
-        if (fabs(d[a]) > 1e-6) t = fmin(t, ((d[a] > 0 ? hi[a] : lo[a]) - p[a]) / d[a]);
-    return fmax(t, 0.0);
-}
-
 double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, double lod, const double st[2],
                        double height, const double to_light[3], double radius, double tau, int steps)
 {
     if (steps <= 0) return 1.0;
     const double start[3] = {st[0], st[1], 0.5 * height};
-    double dt = box_exit(start, to_light) / steps, sum = 0.0;
+    double dt = 1.0 / steps, sum = 0.0; /* one diameter: the longest chord of the sphere */
     for (int k = 0; k < steps; k++) {
         double t = (k + 0.5) * dt, rgba[4];
         double p[3] = {start[0] + t * to_light[0], start[1] + t * to_light[1], start[2] + t * to_light[2]};
@@ -129,17 +119,28 @@ double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, double lod, c
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/* Unit direction from the shaded point toward the light, and the light's falloff there. */
-static double toward_light(const sbfx_lit_light *l, const double p[3], const double normal[3], double dir[3])
+/* The key light at the front surface p: unit direction toward it (0 for a point light at p
+ * itself) and its falloff 1/max(d^2, 1/4). */
+static double key_light(const sbfx_lit_light *l, const double p[3], double dir[3])
 {
-    if (l->vector[3] < 0.5) {
-        for (int k = 0; k < 3; k++) dir[k] = -l->vector[k];
-        return 1.0;
-    }
-    double d[3] = {l->vector[0] - p[0], l->vector[1] - p[1], l->vector[2] - p[2]};
+    bool point = l->vector[3] > 0.5;
+    double d[3];
+    for (int k = 0; k < 3; k++) d[k] = point ? l->vector[k] - p[k] : -l->vector[k];
+    double s = 1.0 / sqrt(fmax(dot3(d, d), 1e-24));
+    for (int k = 0; k < 3; k++) dir[k] = d[k] * s;
+    return point ? fmin(s * s, 4.0) : 1.0;
+}
+
+/* A light after the key light, seen from the particle's centre c: unit direction ((0,0,1), toward
+ * the eye's side, for a point light at c) and falloff. */
+static double fill_light(const sbfx_lit_light *l, const double c[3], double dir[3])
+{
+    bool point = l->vector[3] > 0.5;
+    double d[3];
+    for (int k = 0; k < 3; k++) d[k] = point ? l->vector[k] - c[k] : -l->vector[k];
     double d2 = dot3(d, d);
-    for (int k = 0; k < 3; k++) dir[k] = d2 > 1e-12 ? d[k] / sqrt(d2) : normal[k];
-    return 1.0 / fmax(d2, 0.25);
+    for (int k = 0; k < 3; k++) dir[k] = d2 > 1e-12 ? d[k] / sqrt(d2) : (k == 2);
+    return point ? 1.0 / fmax(d2, 0.25) : 1.0;
 }
 
 void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, int variant, double lod,
@@ -152,15 +153,17 @@ void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, 
     sbfx_lit_maps maps;
     sbfx_lit_maps_at(tex, variant, st[0], st[1], lod, &maps);
     const double p[3] = {q[0], q[1], center[2] + radius * maps.height}; /* the front surface */
-    double len = sqrt(dot3(ray, ray)), v[3] = {-ray[0] / len, -ray[1] / len, -ray[2] / len};
+    double len = sqrt(dot3(center, center)), v[3]; /* V: the centre toward the eye */
+    for (int k = 0; k < 3; k++) v[k] = -center[k] / len;
     int steps = sbfx_lit_steps(dot3(maps.normal, v), m->steps_min, m->steps_max);
     double sum[3] = {0, 0, 0};
     for (int i = 0; i < light_count && i < SBFX_LIT_MAX_LIGHTS; i++) {
         double l[3];
-        double falloff = toward_light(&lights[i], p, maps.normal, l);
+        double falloff = i == 0 ? key_light(&lights[i], p, l) : fill_light(&lights[i], center, l);
         double diffuse = sbfx_lit_wrap(dot3(maps.normal, l), m->wrap);
         double back = sbfx_lit_backlight(dot3(v, l), maps.translucency, m->translucency);
-        double shadow = sbfx_lit_shadow(tex, variant, lod, st, maps.height, l, radius, m->tau, steps);
+        /* the key light (the first) is self-shadowed, the others light the relief unshadowed */
+        double shadow = i == 0 ? sbfx_lit_shadow(tex, variant, lod, st, maps.height, l, radius, m->tau, steps) : 1.0;
         for (int k = 0; k < 3; k++) sum[k] += lights[i].color[k] * falloff * shadow * (diffuse + back);
     }
     for (int k = 0; k < 3; k++)

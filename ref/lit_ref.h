@@ -32,7 +32,8 @@ void sbfx_smoke_sample(const sbfx_smoke_texture *tex, int layer, double s, doubl
  * one target pixel's width in x/(-z) units (2 / (target width * projection[0])); >= 0. */
 double sbfx_lit_lod(int size, double radius, double depth, double pixel_slope);
 
-/* The maps of one variant at st: normal renormalised after filtering ((0,0,1) if it vanished). */
+/* The maps of one variant at st: the normal 2 rgb - 1 as filtered (not renormalised: a little
+ * shorter between texels and on coarser levels). */
 typedef struct sbfx_lit_maps {
     double normal[3];
     double height, brightness, translucency;
@@ -56,8 +57,9 @@ double sbfx_lit_backlight(double v_dot_l, double translucency_map, double transl
 int sbfx_lit_steps(double n_dot_v, int n_min, int n_max);
 /* Transmittance from the front surface at (st, height) toward the unit direction to_light
  * (view space), marched through the height field of `variant` in `steps` equal steps (midpoint
- * samples) to where the ray leaves the particle's box st in [0,1]^2, zt in [-1/2, 1/2]:
- *   exp(-tau * 2r * sum_k max(0, h(st_k) - 2|zt_k|) * dt),  dt in texture units.
+ * samples) over one diameter (length 1 in texture units: the longest chord of the particle's
+ * sphere, which holds the whole slab; beyond the slab the density is 0):
+ *   exp(-tau * 2r * sum_k max(0, h(st_k) - 2|zt_k|) * dt),  dt = 1 / steps.
  * tau = extinction at the densest point (per metre), as for the particle's opacity. steps = 0
  * gives 1 (no self-shadowing). The march stops once the optical depth passes 20. */
 double sbfx_lit_shadow(const sbfx_smoke_texture *tex, int variant, double lod, const double st[2],
@@ -81,8 +83,11 @@ typedef struct sbfx_lit_light {
  * the particle's opacity multiplies it (every fetch at the particle's lod):
  *   albedo * B * (ambient + (1 - dampening) * sum_i E_i falloff_i S_i (wrap_i + back_i))
  * over the first SBFX_LIT_MAX_LIGHTS lights, with N, B, translucency from the maps at the
- * pixel's st, V = -normalize(ray), S_i the march toward light i. A point light at the shaded
- * point itself lights it along N. Finite for any finite input. */
+ * pixel's st, V the unit vector from the centre toward the eye (per particle). Light 0, the key
+ * light, is taken at the front surface p (direction and falloff per pixel; a point light at p
+ * itself has no direction: only the wrap's bias lights it) and S_0 is the march toward it. The
+ * others are taken at the centre (direction and falloff per particle; one at the centre lights
+ * it along +z) with S_i = 1. Finite for any finite input. */
 void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, int variant, double lod,
                        const double center[3], double radius, const double ray[3],
                        const sbfx_lit_light *lights, int light_count, const double ambient[3],

@@ -13,7 +13,8 @@
 //   LIGHT_PER_PARTICLE  (phase model) in-scattering computed once per particle on the CPU
 //   LIGHTING_LIT     (with MEDIUM_SCATTERS) the lit-smoke seed instead of the phase function:
 //                    per-pixel normals, wrap-around Lambert, back-lighting, up to 4 lights
-//   LIT_SHADOW       (with LIGHTING_LIT) ray-marched self-shadowing through the height field
+//   LIT_SHADOW       (with LIGHTING_LIT) ray-marched self-shadowing through the height field,
+//                    toward the key light (the first) only
 //   TABLE_PROBE      diagnostics: main() writes blackbody(T) and phase(cos) for the probe and
 //                    the tests (src/diagnostics.c) instead of shading a particle
 // Light and colour are mediump (what a Mali-class GPU runs at half precision); geometry,
@@ -68,14 +69,18 @@ uniform vec3 u_ambient;
 #ifdef LIGHTING_LIT
 precision highp sampler2DArray;
 uniform sampler2DArray u_smoke;  // per variant v: layer 2v normal*0.5+0.5, height; 2v+1 brightness, translucency
-uniform float u_smoke_size;      // texels across level 0
-uniform float u_smoke_variants;
-uniform vec2 u_pixel;            // one target pixel in NDC units (the vertex shader's too)
-uniform vec2 u_wrap;             // wrap-around scale 1/(1+w), bias w/(1+w)
+flat in vec2 v_lit;              // the particle's layer 2v and level of detail (particle.vert)
+flat in vec3 v_view;             // unit, from the particle's centre toward the eye
+uniform vec3 u_wrap;             // wrap-around scale 1/(1+w), bias w/(1+w); 1+w
 uniform float u_translucency;
-uniform float u_dampening;       // the lights' direct term is scaled by 1 - dampening
-uniform vec2 u_steps;            // nMin, nMax of the ray march
+uniform float u_direct;          // 1 - dampening: the lights' direct term is scaled by it
+uniform vec2 u_steps;            // nMin + 1/2, nMax - nMin of the ray march
 #define MAX_LIT_LIGHTS 4
+#define LIT_SLOTS (LIGHT_SLOTS < MAX_LIT_LIGHTS ? LIGHT_SLOTS : MAX_LIT_LIGHTS)
+#if LIGHT_SLOTS > 1
+flat in vec4 v_fill[LIT_SLOTS - 1]; // lights 1.. seen from the particle's centre: direction, falloff
+flat in float v_fill_back[LIT_SLOTS - 1]; // ... and falloff x max(0, -V.L)
+#endif
 #define MAX_STEPS 64             // SBFX_LIT_MAX_STEPS
 #endif
 #ifdef BLACKBODY_ANALYTIC
@@ -270,88 +275,69 @@ mediump vec3 in_scattered(vec3 ray, vec3 p)
 // The lit-smoke seed, mirrored by src/lit_ref.c (see there for the texture space). The view
 // matrix is the tangent basis of these screen-aligned particles: tangent = view x, bitangent =
 // view y, normal = view +z (toward the eye), so a normal-map texel is already a view-space normal.
-struct lit_maps {
-    vec3 normal;
-    float height, brightness, translucency;
-};
-
-lit_maps lit_fetch(vec2 st, float layer, float lod)
-{
-    vec4 a = textureLod(u_smoke, vec3(st, layer), lod);
-    vec4 b = textureLod(u_smoke, vec3(st, layer + 1.0), lod);
-    vec3 n = a.xyz * 2.0 - 1.0;
-    float len2 = dot(n, n);
-    lit_maps m;
-    m.normal = len2 > 1e-8 ? n * inversesqrt(len2) : vec3(0.0, 0.0, 1.0);
-    m.height = a.w;
-    m.brightness = b.x;
-    m.translucency = b.y;
-    return m;
-}
-
 #ifdef LIT_SHADOW
-// Transmittance toward the light: midpoint samples of the slab density max(0, h - 2|z|) from
-// the front surface to where the ray leaves the particle's box, n = nMin + (N.V)(nMax - nMin)
-// steps (the seed's eq. 5.2.5, rounded half up). tau_2r = extinction x diameter. Stops once the
-// optical depth passes 20 (transmittance < 2e-9: nothing left to see, the rest is cost).
+// Transmittance toward the key light: midpoint samples of the slab density max(0, h - 2|z|)
+// over one diameter (1 in texture units, the longest chord of the particle's sphere, which holds
+// all of the slab) from the front surface, n = nMin + (N.V)(nMax - nMin) steps (the seed's eq.
+// 5.2.5, rounded half up). tau_2r = extinction x diameter. Stops once the optical depth passes
+// 20 (transmittance < 2e-9: nothing left to see, the rest is cost).
 float lit_shadow(vec3 start, vec3 l, float layer, float lod, float n_dot_v, float tau_2r)
 {
-    float n = floor(u_steps.x + clamp(n_dot_v, 0.0, 1.0) * (u_steps.y - u_steps.x) + 0.5);
+    float n = floor(u_steps.x + clamp(n_dot_v, 0.0, 1.0) * u_steps.y);
     if (n < 0.5) return 1.0;
-    vec3 lo = vec3(0.0, 0.0, -0.5), hi = vec3(1.0, 1.0, 0.5);
-    float t_exit = 1e30;
-    for (int a = 0; a < 3; a++)
-        if (abs(l[a]) > 1e-6) t_exit = min(t_exit, ((l[a] > 0.0 ? hi[a] : lo[a]) - start[a]) / l[a]);
-    float dt = max(t_exit, 0.0) / n, sum = 0.0;
+    float dt = 1.0 / n, w = tau_2r * dt, sum = 0.0;
+    vec3 step = dt * l, p = start + 0.5 * step;
     for (int k = 0; k < MAX_STEPS; k++) {
         if (float(k) >= n) break;
-        vec3 p = start + (float(k) + 0.5) * dt * l;
         sum += max(textureLod(u_smoke, vec3(p.xy, layer), lod).w - 2.0 * abs(p.z), 0.0);
-        if (tau_2r * sum * dt > 20.0) break;
+        if (w * sum > 20.0) break;
+        p += step;
     }
-    return exp(-tau_2r * sum * dt);
+    return exp(-w * sum);
 }
 #endif
 
-// albedo is applied by the caller: B (ambient + (1 - dampening) sum_i E_i f_i S_i (wrap_i + back_i)).
-// back_i = translucency x map x max(0, -V.L): the seed prints min(0, E.L) x map, which would
-// darken smoke lit from behind; its magnitude brightens the thin rim of backlit smoke and adds
-// nothing for a light in front (V = surface -> eye, L = surface -> light).
-mediump vec3 lit_scattered(vec3 ray, vec3 c, float r, float tau_scale)
+// albedo is applied by the caller: B (ambient + (1 - dampening) sum_i E_i F_i (wrap_i + back_i)
+// S_i), wrap_i = max(0, N.L/(1+w) + w/(1+w)) (N the filtered normal 2 rgb - 1 as it is, not
+// renormalised), back_i = translucency x map x max(0, -V.L) with V the particle's centre toward
+// the eye (the seed prints min(0, E.L) x map, which would darken smoke lit from behind; its
+// magnitude brightens the thin rim of backlit smoke and adds nothing for a light in front). The
+// key light, the frame's first (the scene's first light), is lit at the relief's front surface
+// p (direction and falloff F_0 = 1/max(d², 1/4) per pixel; one at p itself has no direction,
+// only the wrap's bias lights it) and self-shadowed (S_0, the march). The others (S_i = 1) are
+// seen from the particle's centre: direction, falloff and back-light per particle
+// (particle.vert), the wrap per pixel.
+vec3 lit_scattered(vec3 ray, vec3 c, float r, float tau_scale)
 {
     vec2 q = ray.xy * (-c.z);
     vec2 st = (q - c.xy) / (2.0 * r) + 0.5;
-    float layer = 2.0 * min(floor(clamp(v_detail.x, 0.0, 1.0) * u_smoke_variants), u_smoke_variants - 1.0);
-    // one level of detail per particle: log2 of texels per target pixel at the centre's depth
-    // (explicit, because the march's fetches sit in a loop where derivatives are undefined)
-    float texels = u_smoke_size * (u_pixel.x / u_projection.x) * (-c.z) / (2.0 * r);
-    float lod = texels > 1.0 ? min(log2(texels), 30.0) : 0.0;
-    lit_maps m = lit_fetch(st, layer, lod);
-    vec3 p = vec3(q, c.z + r * m.height);     // the front surface of the relief
-    vec3 v = -normalize(ray);
-    float n_dot_v = dot(m.normal, v);
-    mediump vec3 sum = vec3(0.0);
-    for (int i = 0; i < MAX_LIT_LIGHTS; i++) {
+    float layer = v_lit.x, lod = v_lit.y;
+    vec4 a = textureLod(u_smoke, vec3(st, layer), lod);   // normal * 0.5 + 0.5, height
+    vec2 maps = textureLod(u_smoke, vec3(st, layer + 1.0), lod).xy;   // brightness, translucency
+    vec3 wn = a.xyz * (2.0 * u_wrap.x) - u_wrap.x;     // N / (1 + w)
+    float translucency = u_translucency * maps.y;
+    vec3 sum = vec3(0.0);
+#if LIGHT_SLOTS > 1
+    for (int i = 1; i < LIT_SLOTS; i++) {
         if (i >= u_light_count) break;
-        vec4 lv = u_light_vector[i];
-        vec3 l = -lv.xyz;
-        float falloff = 1.0;
-        if (lv.w > 0.5) {
-            vec3 d = lv.xyz - p;
-            float d2 = dot(d, d);
-            falloff = 1.0 / max(d2, 0.25);
-            l = d2 > 1e-12 ? d * inversesqrt(d2) : m.normal;   // a light at the point: along N
-        }
-        float diffuse = max(dot(m.normal, l) * u_wrap.x + u_wrap.y, 0.0);
-        float back = u_translucency * m.translucency * max(-dot(v, l), 0.0);
-        float shadow = 1.0;
-#ifdef LIT_SHADOW
-        if (diffuse + back > 0.0)   // a light that adds nothing needs no march
-            shadow = lit_shadow(vec3(st, 0.5 * m.height), l, layer, lod, n_dot_v, u_tau * tau_scale * 2.0 * r);
-#endif
-        sum += u_light_color[i] * (falloff * shadow * (diffuse + back));
+        vec4 f = v_fill[i - 1];
+        sum += u_light_color[i] * (f.w * max(dot(wn, f.xyz) + u_wrap.y, 0.0) + translucency * v_fill_back[i - 1]);
     }
-    return m.brightness * (u_ambient + (1.0 - u_dampening) * sum);
+#endif
+    if (u_light_count > 0) {
+        vec4 lv = u_light_vector[0];
+        bool point = lv.w > 0.5;
+        vec3 d = point ? lv.xyz - vec3(q, c.z + r * a.w) : -lv.xyz;
+        float s = inversesqrt(max(dot(d, d), 1e-24));
+        vec3 l = d * s;
+        float key = (point ? min(s * s, 4.0) : 1.0) *
+                    (max(dot(wn, l) + u_wrap.y, 0.0) + translucency * max(-dot(v_view, l), 0.0));
+#ifdef LIT_SHADOW
+        key *= lit_shadow(vec3(st, 0.5 * a.w), l, layer, lod, dot(wn, v_view) * u_wrap.z, u_tau * tau_scale * 2.0 * r);
+#endif
+        sum += u_light_color[0] * key;
+    }
+    return maps.x * (u_ambient + u_direct * sum);
 }
 #endif
 

@@ -25,6 +25,23 @@ uniform vec2 u_pixel;       // size of one target pixel in NDC units
 
 flat out vec4 v_center_radius;
 flat out vec4 v_detail;
+#ifdef LIGHTING_LIT
+uniform float u_smoke_size;     // texels across level 0
+uniform float u_smoke_variants;
+flat out vec2 v_lit;            // the particle's smoke texture layer and level of detail
+flat out vec3 v_view;           // unit, from the particle's centre toward the eye
+#define MAX_LIGHTS 8             // as particle.frag's
+#ifndef LIGHT_SLOTS
+#define LIGHT_SLOTS MAX_LIGHTS
+#endif
+#define MAX_LIT_LIGHTS 4
+#define LIT_SLOTS (LIGHT_SLOTS < MAX_LIT_LIGHTS ? LIGHT_SLOTS : MAX_LIT_LIGHTS)
+#if LIGHT_SLOTS > 1
+uniform vec4 u_light_vector[MAX_LIGHTS]; // view space: w = 0 direction of travel, w = 1 position
+flat out vec4 v_fill[LIT_SLOTS - 1];     // lights 1.. from the centre: unit direction, falloff
+flat out float v_fill_back[LIT_SLOTS - 1]; // ... and falloff x max(0, -V.L)
+#endif
+#endif
 
 // Range of slope x / (-z) over a sphere seen from the origin (tangent lines in the x-z plane).
 vec2 slope_range(float cx, float zc, float r)
@@ -59,6 +76,28 @@ void main()
     vec3 c = a_center_radius.xyz;
     float r = a_center_radius.w;
     float zc = -c.z;
+#ifdef LIGHTING_LIT
+    // layer 2v of its variant v = floor(u * variants); one level of detail per particle, log2 of
+    // texels per target pixel at the centre's depth (explicit: the march's fetches sit in a loop
+    // where derivatives are undefined)
+    float texels = u_smoke_size * (u_pixel.x / u_projection.x) * zc / (2.0 * r);
+    v_view = -normalize(c);
+    v_lit = vec2(2.0 * min(floor(clamp(a_detail.x, 0.0, 1.0) * u_smoke_variants), u_smoke_variants - 1.0),
+                 texels > 1.0 ? min(log2(texels), 30.0) : 0.0);
+#if LIGHT_SLOTS > 1
+    // the lights after the key light, seen from the centre: a point light at the centre lights
+    // it from the eye's side (+z); falloff 1/max(d², 1/4)
+    for (int i = 1; i < LIT_SLOTS; i++) {
+        vec4 lv = u_light_vector[i];
+        vec3 d = lv.w > 0.5 ? lv.xyz - c : -lv.xyz;
+        float d2 = dot(d, d);
+        vec3 l = d2 > 1e-12 ? d * inversesqrt(d2) : vec3(0.0, 0.0, 1.0);
+        float falloff = lv.w > 0.5 ? 1.0 / max(d2, 0.25) : 1.0;
+        v_fill[i - 1] = vec4(l, falloff);
+        v_fill_back[i - 1] = falloff * max(-dot(v_view, l), 0.0);
+    }
+#endif
+#endif
     vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1));
 
     // Invalid particles (the CPU side skips them already) and spheres wholly behind the near

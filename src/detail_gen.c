@@ -174,8 +174,8 @@ static double warped(const octave *o, int n, const octave *wx, const octave *wy,
     return fbm(o, n, x + shift * qx, y + shift * qy, t, size, frames);
 }
 
-/* The volume with octave gain `gain` and (turbulent) the domain warp. */
-static void generate(int size, int frames, uint32_t seed, double gain, bool turbulent, float *out)
+/* The volume with octave gain `gain`, at most `octaves` octaves and (turbulent) the domain warp. */
+static void generate(int size, int frames, uint32_t seed, double gain, int octaves, bool turbulent, float *out)
 {
     if (!out || size < 1 || frames < 1) return;
     octave o[MAX_OCTAVES], wx[MAX_OCTAVES], wy[MAX_OCTAVES];
@@ -183,7 +183,7 @@ static void generate(int size, int frames, uint32_t seed, double gain, bool turb
     int nw = plan_octaves(size, frames, seed ^ 0x77a12f3du, gain, wx);
     plan_octaves(size, frames, seed ^ 0x1b873593u, gain, wy);
     nw = !turbulent ? 0 : nw < WARP_OCTAVES ? nw : WARP_OCTAVES;
-    if (!turbulent && n > SMOOTH_OCTAVES) n = SMOOTH_OCTAVES;
+    if (n > octaves) n = octaves;
     for (int k = 0; k < n; k++) o[k].nested_hash = !turbulent;
     size_t count = (size_t)size * (size_t)size * (size_t)frames, idx = 0;
     double sum = 0.0, sum2 = 0.0;
@@ -204,10 +204,15 @@ static void generate(int size, int frames, uint32_t seed, double gain, bool turb
 
 void sbfx_detail_generate(int size, int frames, uint32_t seed, float *out)
 {
-    generate(size, frames, seed, OCTAVE_GAIN, true, out);
+    generate(size, frames, seed, OCTAVE_GAIN, MAX_OCTAVES, true, out);
 }
 
 void sbfx_detail_generate_smooth(int size, int frames, uint32_t seed, float *out)
 {
-    generate(size, frames, seed, 0.5, false, out);
+    generate(size, frames, seed, 0.5, SMOOTH_OCTAVES, false, out);
+}
+
+void sbfx_detail_generate_fbm(int size, int frames, uint32_t seed, double gain, int octaves, float *out)
+{
+    generate(size, frames, seed, gain, octaves < 1 ? 1 : octaves, false, out);
 }

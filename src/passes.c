@@ -125,10 +125,10 @@ static void set_lit_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m)
     glUniform1i(p->smoke, UNIT_SMOKE);
     glUniform1f(p->smoke_size, (float)mp->texture_size);
     glUniform1f(p->smoke_variants, (float)mp->texture_variants);
-    glUniform2f(p->wrap, 1.0f / (1.0f + mp->wrap), mp->wrap / (1.0f + mp->wrap));
+    glUniform3f(p->wrap, 1.0f / (1.0f + mp->wrap), mp->wrap / (1.0f + mp->wrap), 1.0f + mp->wrap);
     glUniform1f(p->translucency, mp->translucency);
-    glUniform1f(p->dampening, mp->dampening);
-    glUniform2f(p->steps, (float)mp->steps_min, (float)mp->steps_max);
+    glUniform1f(p->dampening, 1.0f - mp->dampening); /* u_direct */
+    glUniform2f(p->steps, (float)mp->steps_min + 0.5f, (float)(mp->steps_max - mp->steps_min));
 }
 
 static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m, const frame_lights *lights)

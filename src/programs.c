@@ -19,8 +19,9 @@ void sbfx_particle_defines(const sbfx *fx, const sbfx_variant_key *key, sbfx_med
     bool heat = m == SBFX_HEAT;
     bool scatters = p->albedo > 0 && !heat, emits = m == SBFX_FIRE, lit = scatters && p->lit;
     bool float_targets = sbfx_half_float_renderable();
-    if (scatters && !lit && !key->lpp) {
-        size_t n = (size_t)snprintf(out, size, "#define LIGHT_SLOTS %d\n", fx->light_slots);
+    if (scatters && (lit || !key->lpp)) { /* lit media light at most SBFX_LIT_MAX_LIGHTS */
+        int slots = lit && fx->light_slots > SBFX_LIT_MAX_LIGHTS ? SBFX_LIT_MAX_LIGHTS : fx->light_slots;
+        size_t n = (size_t)snprintf(out, size, "#define LIGHT_SLOTS %d\n", slots);
         out += n, size -= n;
     }
     size_t used = (size_t)snprintf(out, size, "%s%s%s%s%s", heat ? "#define MEDIUM_HEAT\n" : "",
@@ -75,7 +76,7 @@ void sbfx_program_locate(sbfx_program *p)
     p->smoke_variants = glGetUniformLocation(id, "u_smoke_variants");
     p->wrap = glGetUniformLocation(id, "u_wrap");
     p->translucency = glGetUniformLocation(id, "u_translucency");
-    p->dampening = glGetUniformLocation(id, "u_dampening");
+    p->dampening = glGetUniformLocation(id, "u_direct");
     p->steps = glGetUniformLocation(id, "u_steps");
 }
 

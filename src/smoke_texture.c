@@ -1,18 +1,24 @@
 /* Procedural smoke textures (the lit-smoke seed's appendix): fBm and turbulence weighted by the
  * distance from the centre of the image. Per variant, three independent fBm fields f1..f3 in
- * (0,1) (the detail volume's lattice, smooth: sbfx_detail_generate_smooth, one frame) give
+ * (0,1) (the detail volume's lattice, one frame: f1, f2 the smooth fBm of gain 1/2,
+ * sbfx_detail_generate_smooth; f3 gain BRIGHTNESS_GAIN, finer veins) give
  *   edge   = 0.7 + 0.3 f1                  the puff's ragged outline (inside the unit circle)
  *   height = sqrt(1 - (rho/edge)^2) * (0.55 + 0.45 f2)   rho = distance from the centre, 1 at
  *            the inscribed circle: a sphere where f = 1, so lit normals read as a round puff
  *   brightness   = 1 - 0.4 |2 f3 - 1|      turbulence: dark veins, little pre-lighting
  *   translucency = (1 - height)(0.6 + 0.4 f3)   thin smoke lets light through: the rim glows
- *   normal = normalize(-dH/ds, -dH/dt, 1) with H = height / 2 (slab half-thickness in units of
- *            the particle's diameter), central differences.
+ *   normal = normalize(-dH/ds, -dH/dt, 1) with H = SBFX_SMOKE_NORMAL_STRENGTH x height / 2 (slab
+ *            half-thickness in units of the particle's diameter, the relief shaded as 0.35 as
+ *            deep: docs/look.md), central differences.
  * The height is 0 outside the outline, so CLAMP_TO_EDGE sampling sees no seam. The mip chain is
  * the rounded 2x2 box average of the level above, layer by layer. */
 #include <math.h>
 #include <string.h>
 #include "tables.h"
+
+/* The brightness veins' fBm gain (with the normal strength, docs/look.md: the rendered lit
+ * smoke's spectrum within the turbulent range in every view measured). */
+#define BRIGHTNESS_GAIN 0.65
 
 int sbfx_smoke_texture_levels(int size)
 {
@@ -79,7 +85,7 @@ static void write_variant(int size, const float *f1, const float *f2, const floa
             int i = y * size + x;
             double g[2];
             height_gradient(h, size, x, y, g);
-            double n[3] = {-g[0], -g[1], 1.0};
+            double n[3] = {-SBFX_SMOKE_NORMAL_STRENGTH * g[0], -SBFX_SMOKE_NORMAL_STRENGTH * g[1], 1.0};
             double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
             for (int k = 0; k < 3; k++) surface[4 * i + k] = unorm8(n[k] / len * 0.5 + 0.5);
             surface[4 * i + 3] = unorm8(h[i]);
@@ -119,7 +125,7 @@ int sbfx_smoke_texture_generate(int size, int variants, uint32_t seed, uint8_t *
     for (int v = 0; v < variants; v++) {
         sbfx_detail_generate_smooth(size, 1, sbfx_rng_u32(&rng), f1);
         sbfx_detail_generate_smooth(size, 1, sbfx_rng_u32(&rng), f2);
-        sbfx_detail_generate_smooth(size, 1, sbfx_rng_u32(&rng), f3);
+        sbfx_detail_generate_fbm(size, 1, sbfx_rng_u32(&rng), BRIGHTNESS_GAIN, 5, f3);
         uint8_t *surface = out + (size_t)(SBFX_SMOKE_LAYERS_PER_VARIANT * v) * layer_bytes;
         write_variant(size, f1, f2, f3, f1, surface, surface + layer_bytes);
     }

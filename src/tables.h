@@ -132,6 +132,9 @@ void sbfx_detail_generate(int size, int frames, uint32_t seed, float *out);
 /* The same lattice without the warp, octave gain 1/2: the smooth fBm the procedural smoke
  * textures of lit media are made of (src/smoke_texture.c). */
 void sbfx_detail_generate_smooth(int size, int frames, uint32_t seed, float *out);
+/* The smooth fBm with octave gain `gain` and at most `octaves` octaves (>= 1; the smooth one
+ * is gain 1/2, 5 octaves). */
+void sbfx_detail_generate_fbm(int size, int frames, uint32_t seed, double gain, int octaves, float *out);
 
 /* ---- procedural smoke textures of lit media (the lit-smoke seed's appendix) ------------ */
 
@@ -161,6 +164,9 @@ int sbfx_smoke_texture_generate(int size, int variants, uint32_t seed, uint8_t *
 uint32_t sbfx_smoke_texture_seed(uint32_t seed, int medium);
 /* Offset in bytes of a level's first texel. */
 size_t sbfx_smoke_level_offset(int size, int layers, int level);
+
+/* The normal map's strength: normals of the height field scaled by this (src/smoke_texture.c). */
+#define SBFX_SMOKE_NORMAL_STRENGTH 0.35
 
 /* Limits of particle.frag's lit variant, which the scene parser enforces. */
 #define SBFX_LIT_MAX_LIGHTS 4 /* the seed's four; lit media use the frame's first four lights */

@@ -81,7 +81,7 @@ CHECK_TEST(height_is_a_puff_weighted_by_distance_from_centre)
 }
 
 /* Normals are unit, face the eye (z > 0), and follow the height field: on the puff's slopes
- * they lean the way the height falls (outward), as -grad(H) with H = height / 2. */
+ * they lean the way the height falls (outward), as -grad(H) with H = strength x height / 2. */
 CHECK_TEST(normals_are_unit_and_follow_the_height)
 {
     uint8_t *t = generate(SIZE, 1, 11);
@@ -94,11 +94,12 @@ CHECK_TEST(normals_are_unit_and_follow_the_height)
             double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
             if (fabs(len - 1.0) > 0.02) bad_length++;
             if (!(n[2] > 0.0)) bad_z++;
-            double gx = (texel(t, SIZE, 0, x + 1, y)[3] - texel(t, SIZE, 0, x - 1, y)[3]) / 255.0 * 0.25 * SIZE;
-            double gy = (texel(t, SIZE, 0, x, y + 1)[3] - texel(t, SIZE, 0, x, y - 1)[3]) / 255.0 * 0.25 * SIZE;
+            const double slope = SBFX_SMOKE_NORMAL_STRENGTH * 0.25 * SIZE;
+            double gx = (texel(t, SIZE, 0, x + 1, y)[3] - texel(t, SIZE, 0, x - 1, y)[3]) / 255.0 * slope;
+            double gy = (texel(t, SIZE, 0, x, y + 1)[3] - texel(t, SIZE, 0, x, y - 1)[3]) / 255.0 * slope;
             double want[3] = {-gx, -gy, 1.0}, wl = sqrt(gx * gx + gy * gy + 1.0);
             for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(want[k] / wl - n[k] / len));
-            if (fabs(gx) > 0.3) {
+            if (fabs(gx) > 0.3 * SBFX_SMOKE_NORMAL_STRENGTH) {
                 slopes++;
                 if ((gx < 0) == (n[0] > 0)) agree++;
             }
@@ -107,8 +108,8 @@ CHECK_TEST(normals_are_unit_and_follow_the_height)
     CHECK(bad_length == 0, "%d normals are not unit", bad_length);
     CHECK(bad_z == 0, "%d normals face away from the eye", bad_z);
     CHECK(slopes > 100 && agree == slopes, "%d of %d slope normals lean the wrong way", slopes - agree, slopes);
-    /* the test differentiates 8-bit heights: rounding moves its gradient by up to 0.25 size/255 */
-    CHECK(worst < 0.25 * SIZE / 255.0 + 0.02, "normal map differs from the height field's gradient by %.3f", worst);
+    /* the test differentiates 8-bit heights: rounding moves its gradient by up to strength x 0.25 size/255 */
+    CHECK(worst < SBFX_SMOKE_NORMAL_STRENGTH * 0.25 * SIZE / 255.0 + 0.02, "normal map differs from the height field's gradient by %.3f", worst);
     free(t);
 }
 
@@ -355,7 +356,7 @@ CHECK_TEST(light_in_front_and_light_behind)
     sbfx_lit_light front = {{0, 0, -1, 0}, {1, 1, 1}}, behind = {{0, 0, 1, 0}, {1, 1, 1}};
     double rgb[3];
     sbfx_lit_radiance(&m, &f.tex, 0, 0.0, centre, 1.0, ray_centre, &front, 1, none, rgb);
-    double n_dot_l = (255 / 127.5 - 1) / sqrt(2 * pow(128 / 127.5 - 1, 2) + pow(255 / 127.5 - 1, 2));
+    double n_dot_l = 255 / 127.5 - 1; /* the filtered normal as it is, not renormalised */
     CHECK_NEAR(rgb[0], n_dot_l, 1e-12);
     sbfx_lit_radiance(&m, &f.tex, 0, 0.0, centre, 1.0, ray_centre, &behind, 1, none, rgb);
     CHECK_NEAR(rgb[0], 2.0 * 0.6 * exp(-0.8 * 1.0), 1e-9);
@@ -365,8 +366,29 @@ CHECK_TEST(light_in_front_and_light_behind)
     CHECK_NEAR(rgb[0], 2.0 * 0.6 * exp(-0.8), 1e-9); /* N.L = -1: wrap gives 0 still */
 }
 
+/* Only the key light (the first) is marched: the same light behind the puff a second time
+ * adds its back-light unshadowed, and swapping the two lights' colours moves the shadow. */
+CHECK_TEST(only_the_key_light_is_shadowed)
+{
+    flat_texture f;
+    flat_init(&f, (const uint8_t[4]){128, 128, 255, 255}, (const uint8_t[4]){255, 153, 0, 255});
+    sbfx_lit_medium m = medium(0.0, 2.0, 8);
+    m.albedo_color[0] = m.albedo_color[1] = m.albedo_color[2] = 1.0;
+    const double none[3] = {0, 0, 0};
+    sbfx_lit_light two[2] = {{{0, 0, 1, 0}, {1, 1, 1}}, {{0, 0, 1, 0}, {1, 1, 1}}};
+    double rgb[3];
+    sbfx_lit_radiance(&m, &f.tex, 0, 0.0, centre, 1.0, ray_centre, two, 2, none, rgb);
+    CHECK_NEAR(rgb[0], 2.0 * 0.6 * exp(-0.8) + 2.0 * 0.6, 1e-9);
+    two[0].color[1] = 3.0; /* green from the key light: shadowed; red from both */
+    sbfx_lit_radiance(&m, &f.tex, 0, 0.0, centre, 1.0, ray_centre, two, 2, none, rgb);
+    CHECK_NEAR(rgb[1], 3.0 * 2.0 * 0.6 * exp(-0.8) + 2.0 * 0.6, 1e-9);
+    sbfx_lit_light swapped[2] = {two[1], two[0]};
+    sbfx_lit_radiance(&m, &f.tex, 0, 0.0, centre, 1.0, ray_centre, swapped, 2, none, rgb);
+    CHECK_NEAR(rgb[1], 2.0 * 0.6 * exp(-0.8) + 3.0 * 2.0 * 0.6, 1e-9);
+}
+
 /* N.V = 0 (normals in the screen plane), a point light inside the particle and one exactly at
- * the shaded point: finite, and the last one lights along the normal. */
+ * the shaded point: finite, and the last one has no direction (only the wrap's bias lights it). */
 CHECK_TEST(degenerate_geometry_stays_finite)
 {
     flat_texture f;
@@ -384,8 +406,8 @@ CHECK_TEST(degenerate_geometry_stays_finite)
     for (int k = 0; k < 3; k++) CHECK(isfinite(rgb[k]) && rgb[k] > 0.0, "rgb[%d] = %g", k, rgb[k]);
     double at_point[3];
     sbfx_lit_radiance(&m, &f.tex, 0, 0.0, centre, 1.0, ray_centre, &lights[1], 1, (const double[3]){0, 0, 0}, at_point);
-    /* along N: N.L = 1, the march leaves sideways through the slab's top half */
-    CHECK(at_point[0] > 0.5 * 2 * 4 * 0.5 * exp(-0.8 * 2), "%g", at_point[0]);
+    /* no direction: the wrap's bias w/(1+w), falloff 4, the march stays where the density is 0 */
+    CHECK_NEAR(at_point[0], 0.5 * 2 * 4 * (0.6 / 1.6), 1e-9);
     /* a fifth light is ignored: lit media take four */
     sbfx_lit_light five[5] = {lights[0], lights[1], lights[2], lights[3], {{0, 1, 0, 0}, {100, 100, 100}}};
     double rgb5[3];
