@@ -51,7 +51,10 @@ else
 fi
 
 # The table as markdown (for docs/accuracy-and-benchmarks.md); Mali columns where measured.
-awk -F, -v mali="$OUT/accuracy-mali.csv" 'BEGIN {
+awk -F, -v mali="$OUT/accuracy-mali.csv" '
+# the detail kept (issue 17): band energies relative to the reference, and beta over 4-16 px
+function kept(v) { return (v == "" || v == "nan") ? "–" : sprintf("%.2f", v) }
+BEGIN {
     while ((getline line < mali) > 0) {
         n = split(line, a, ",")
         k = a[1] FS a[2] FS a[3] FS a[4] FS a[5] FS a[6] FS a[7] FS a[8]
@@ -61,20 +64,20 @@ awk -F, -v mali="$OUT/accuracy-mali.csv" 'BEGIN {
 }
 NR == 1 {
     for (i = 1; i <= NF; i++) col[$i] = i
-    print "| mode | scale | target | upsample | LUT | detail | density | particles | ms (min–max) | particle pass ms | mean err | max err | PSNR dB | edge mean | edge PSNR dB | Pareto |" \
+    print "| mode | scale | target | upsample | LUT | detail | density | particles | ms (min–max) | particle pass ms | mean err | max err | PSNR dB | edge mean | edge PSNR dB | Pareto | detail kept 2–8 px | 8–32 px | β 4–16 px |" \
         (have ? " G52 cycles/fragment particle / composite | G610 cycles/fragment particle / composite | G610 particle pass ms (est.) |" : "")
-    print "| --- | ---: | --- | --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |" (have ? " ---: | ---: | ---: |" : "")
+    print "| --- | ---: | --- | --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: | ---: | ---: | ---: |" (have ? " ---: | ---: | ---: |" : "")
     next
 }
 {
     k = $col["mode"] FS $col["scale"] FS $col["format"] FS $col["upsample"] FS $col["lut"] FS $col["detail"] FS $col["density"] FS $col["lod"]
     tail = have ? (k in m ? m[k] : " | | |") : ""
-    printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.1f (%.1f–%.1f) | %.1f | %.3f | %.0f | %.1f | %.2f | %.1f | %s |%s\n",
+    printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.1f (%.1f–%.1f) | %.1f | %.3f | %.0f | %.1f | %.2f | %.1f | %s | %s | %s | %s |%s\n",
         $col["mode"], $col["scale"], $col["format"], $col["upsample"], $col["lut"], $col["detail"],
         $col["density"] == "matched" ? "τ/2" : "scene", ("lod" in col && $col["lod"] > 0) ? "lod" $col["lod"] : "all",
         $col["ms"], $col["ms_min"], $col["ms_max"], $col["particle_ms"], $col["mean_abs_err"],
         $col["max_abs_err"], $col["psnr"], $col["edge_mean_abs_err"], $col["edge_psnr"],
-        $col["pareto"] == 1 ? "★" : "", tail
+        $col["pareto"] == 1 ? "★" : "", kept($col["band_2_8"]), kept($col["band_8_32"]), kept($col["beta_4_16"]), tail
 }' "$OUT/accuracy.csv" >"$OUT/accuracy.md"
 
 # issue 11: the quality ladder this run's front proposes (make ladder commits it to src/)
