@@ -54,6 +54,19 @@ static void random_texel(sbfx_rng *rng, half p[4])
 
 static double gamma_n(int n) { return n * UNIT_ROUNDOFF / (1.0 - n * UNIT_ROUNDOFF); }
 
+/* composite.frag's upsample() for channel k: the four texels' weighted sum in half, one running
+ * sum (as the shader keeps it), and the same sum in double in *exact. */
+static half weighted_sum(half t[4][4], const double w[4], int k, double *exact)
+{
+    half sum = mul(t[0][k], (half)w[0]);
+    *exact = (double)t[0][k] * w[0];
+    for (int c = 1; c < 4; c++) {
+        sum = add(sum, mul(t[c][k], (half)w[c]));
+        *exact += (double)t[c][k] * w[c];
+    }
+    return sum;
+}
+
 CHECK_TEST(upsample_within_half_rounding_bound)
 {
     sbfx_rng rng;
@@ -66,12 +79,8 @@ CHECK_TEST(upsample_within_half_rounding_bound)
         double fx = sbfx_rng_range(&rng, 0.0, 1.0), fy = sbfx_rng_range(&rng, 0.0, 1.0);
         double w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
         for (int k = 0; k < 4; k++) {
-            half sum = mul(t[0][k], (half)w[0]);
-            double exact = (double)t[0][k] * w[0];
-            for (int c = 1; c < 4; c++) {
-                sum = add(sum, mul(t[c][k], (half)w[c]));
-                exact += (double)t[c][k] * w[c];
-            }
+            double exact;
+            half sum = weighted_sum(t, w, k, &exact);
             double texels = (double)t[0][k] + (double)t[1][k] + (double)t[2][k] + (double)t[3][k];
             double err = fabs((double)sum - exact);
             double bound = gamma_n(5) * exact + SUBNORMAL_HALF_ULP * (1.01 * texels + 7.0);
@@ -114,12 +123,8 @@ CHECK_TEST(upsample_at_sbfx_divisors_within_gamma4)
             CHECK((double)(half)w[c] == w[c], "divisor %d: weight %g not exact in half", d, w[c]);
         }
         for (int k = 0; k < 4; k++) {
-            half sum = mul(t[0][k], (half)w[0]);
-            double exact = (double)t[0][k] * w[0];
-            for (int c = 1; c < 4; c++) {
-                sum = add(sum, mul(t[c][k], (half)w[c]));
-                exact += (double)t[c][k] * w[c];
-            }
+            double exact;
+            half sum = weighted_sum(t, w, k, &exact);
             double err = fabs((double)sum - exact);
             over += err > gamma_n(4) * exact + 7.0 * SUBNORMAL_HALF_ULP;
             if (exact > 1e-3) worst_relative = fmax(worst_relative, err / exact);
