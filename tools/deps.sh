@@ -16,8 +16,9 @@ if [ -r /etc/os-release ] && grep -qx 'VERSION_CODENAME=trixie' /etc/os-release;
 fi
 test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang $clang_rt groff-base ffmpeg imagemagick libsdl2-dev libopengl-dev"
 # make test also builds the hosts (docs/hosts/): the SDL2 example, libOpenGL for desktop OpenGL
-# the Qt Quick item, its example and test under Xvfb (integrations/qt/, tests/hosts/qt_quick.sh)
-test_pkgs="$test_pkgs qt6-base-dev qt6-declarative-dev qml6-module-qtquick qml6-module-qtquick-window qml6-module-qtqml-workerscript qt6-qpa-plugins xvfb xauth"
+# the Qt Quick item, its example and test under Xvfb (integrations/qt/, tests/hosts/qt_quick.sh);
+# they are C++, and g++ is not in a minimal Debian root (Debian 13's debootstrap minbase)
+test_pkgs="$test_pkgs g++ qt6-base-dev qt6-declarative-dev qml6-module-qtquick qml6-module-qtquick-window qml6-module-qtqml-workerscript qt6-qpa-plugins xvfb xauth"
 # systemd-analyze (security --offline, verify) and systemd-sysusers check the kiosk's unit
 test_pkgs="$test_pkgs systemd"
 # make test-vm: qemu (TCG), the guest's modprobe through the shared root, and what tests/vm/run.sh
