@@ -459,9 +459,11 @@ void main()
 #endif
 #ifdef MEDIUM_HEAT
     // Heat neither absorbs nor lights: it adds a screen offset, two decorrelated detail
-    // samples shaped by the particle's opacity profile (zero where the sphere is clipped).
+    // samples shaped by the particle's opacity profile (zero where the sphere is clipped). The
+    // shimmer is the detail's turbulence, so it scales with the detail strength like every
+    // medium's perturbation: 0 leaves the picture behind the heat as it was (docs/look.md).
 #ifdef HAS_DETAIL
-    vec2 noise = vec2(detail, detail_sample(c + vec3(0.37, 0.61, 0.0) * r, r, ray)) - 0.5;
+    vec2 noise = u_detail_strength * (vec2(detail, detail_sample(c + vec3(0.37, 0.61, 0.0) * r, r, ray)) - 0.5);
 #else
     vec2 noise = v_detail.xy - 0.5;   // without the volume: one random direction per particle
 #endif

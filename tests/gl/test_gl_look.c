@@ -70,5 +70,7 @@ CHECK_TEST(explosion_other_view) { check_case(&(look_case){"scenes/explosion.cfg
 CHECK_TEST(dust_storm_default_view) { check_case(&(look_case){"scenes/dust-storm.cfg", 2.5, 0.0f}); }
 CHECK_TEST(dust_storm_other_view) { check_case(&(look_case){"scenes/dust-storm.cfg", 2.5, -140.0f}); }
 CHECK_TEST(campfire_default_view) { check_case(&(look_case){"scenes/campfire.cfg", 3.5, 0.0f}); }
+/* heat shimmer in front of the fire: detail off must take the shimmer's turbulence too */
+CHECK_TEST(campfire_through_the_heat) { check_case(&(look_case){"scenes/campfire.cfg", 2.0, -140.0f}); }
 
 int main(int argc, char **argv) { return check_main_args(argc, argv); }

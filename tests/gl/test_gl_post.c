@@ -1,6 +1,7 @@
 /* Post effects against what they must do on small synthetic images: zero motion is the
  * identity, a pan blurs by its velocity, the focus plane stays sharp while the far field
- * blurs by the expected radius, shimmer of zero strength is the identity, history blur does
+ * blurs by the expected radius, shimmer of zero strength is the identity and follows the detail
+ * strength, history blur does
  * not depend on the frame rate, and nothing turns NaN at edges or at the depth clear value. */
 #include "gl_fixture.h"
 #include "module.h"
@@ -311,6 +312,53 @@ CHECK_TEST(shimmer_of_zero_strength_is_identity)
     CHECK(passes >= 3, "heat particles were not drawn");
     CHECK(changed_still == 0, "zero shimmer changed %d channels", changed_still);
     CHECK(changed_moved > 100, "shimmer did not move the image (%d)", changed_moved);
+}
+
+/* With a detail volume the shimmer is the volume's turbulence scaled by the heat medium's
+ * detail strength (docs/look.md): half the strength moves the picture about half as far, and
+ * the strength set to 0 after load (the detail switched off, programs kept) moves nothing. */
+#define HEAT_DETAIL_MEDIA(detail)                                                              \
+    "media = { heat = { density = 2.0; strength = 0.03; detail = { source = \"procedural\"; strength = " detail \
+    "; window = 0.3; }; }; };\n"                                                                \
+    "effects = { haze = { steps = ( { type = \"emitter\"; medium = \"heat\"; count = 20;"        \
+    " spawn_radius = 1.0; speed = [0.0, 0.1]; lifetime = [10.0, 10.0]; radius = [1.5, 1.5]; } ); }; };\n"
+
+static double heat_detail_shift(post_fixture *p, const char *detail, bool switched_off)
+{
+    char text[1024];
+    snprintf(text, sizeof(text), HEAT_DETAIL_MEDIA("%s"), detail);
+    sbfx *fx = post_module(p, text);
+    if (switched_off) sbfx_media(fx)[SBFX_HEAT].detail_strength = 0.0f;
+    const float at[3] = {0, 0, -10};
+    CHECK(sbfx_trigger(fx, "haze", at) == SBFX_OK, "%s", sbfx_last_error(fx));
+    CHECK(sbfx_update(fx, 0.1) == SBFX_OK);
+    CHECK(sbfx_render(fx, &p->gl.frame) == SBFX_OK, "%s", sbfx_last_error(fx));
+    static uint8_t out[W * H * 4];
+    read_out(p, out);
+    sbfx_destroy(fx);
+    double sum = 0.0;
+    for (int i = 0; i < W * H * 4; i++)
+        if (i % 4 != 3) sum += abs((int)out[i] - (int)p->color[i]);
+    return sum / (W * H * 3);
+}
+
+CHECK_TEST(shimmer_follows_the_detail_strength)
+{
+    post_fixture p;
+    post_open(&p);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) { /* smooth ramps: a shift changes a pixel in proportion */
+            uint8_t *px = &p.color[4 * (y * W + x)];
+            px[0] = (uint8_t)(x * 2), px[1] = (uint8_t)(y * 4), px[2] = (uint8_t)(255 - x), px[3] = 255;
+        }
+    upload_color(&p);
+    double full = heat_detail_shift(&p, "1.0", false), half = heat_detail_shift(&p, "0.5", false);
+    double off = heat_detail_shift(&p, "1.0", true);
+    printf("# shimmer with the detail volume: mean change %.3f levels at detail strength 1, %.3f at 0.5, %.3f "
+           "switched off\n", full, half, off);
+    CHECK(full > 0.1, "the shimmer did not move the picture (%.3f levels)", full);
+    CHECK(half > 0.3 * full && half < 0.7 * full, "half the detail strength moved it %.3f of the full", half / full);
+    CHECK(off == 0.0, "with the detail switched off the shimmer still moved it (%.3f levels)", off);
 }
 
 /* The history blend fades by time, not by frames: after the same 0.2 s, 60 fps and 15 fps
