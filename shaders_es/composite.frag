@@ -4,7 +4,8 @@
 // from this pass's output (C, T). Upsampling:
 //   UPSAMPLE_BILINEAR       plain bilinear of the four nearest low-res texels;
 //   UPSAMPLE_NEAREST_DEPTH  bilinear where the four low-res depths agree with this pixel's
-//                           depth, else the texel whose depth is closest (no halos at edges).
+//                           depth or all lie beyond the particles, else the texel whose depth is
+//                           closest (no halos at edges).
 // Bilinear is done by hand (the targets' NEAREST texels) so RGBA32F targets (not filterable in
 // ES 3.0) take the same path as RGBA16F and RGBA8.
 //   OWN_SCENE     post effects follow: read the scene colour texture instead of blending over
@@ -57,10 +58,9 @@ float view_distance(float d)
 // The low-res texels are read by texture coordinate (NEAREST, CLAMP_TO_EDGE: the sampler clamps
 // a corner off the target to its edge, no integer arithmetic here). Corner k of the four around
 // a pixel is at base_uv + offset_k: (0, 0), (t.x, 0), (0, t.y), t, t = one low-res texel.
-float low_distance(vec2 uv)
+float low_near_over_distance(vec2 uv)
 {
-    float e = textureLod(u_low_depth, uv, 0.0).r;
-    return e > 0.0 ? u_near / e : NO_SURFACE;
+    return textureLod(u_low_depth, uv, 0.0).r;
 }
 
 // ---- tone mapping: the particle layer's light (pre-exposed) before it meets the host's picture ----
@@ -150,20 +150,30 @@ mediump vec4 bilinear_weights(vec2 f)
 }
 
 #ifdef UPSAMPLE_NEAREST_DEPTH
+uniform float u_particles_far;    // view distance beyond which no particle reaches (passes.c)
+uniform float u_near_over_far;    // u_near / u_particles_far
+
 // Bilinear where the four low-res depths agree with this pixel's, else all weight on the texel
-// whose depth is closest.
+// whose depth is closest. Depths are compared up to the particles' reach: surfaces that all lie
+// behind every particle hide none of them, so the four texels hold the same particles (a far
+// floor meeting the sky at the horizon is no edge), and a surface just inside the reach hides
+// only the few particles in front of it.
 mediump vec4 nearest_depth_weights(vec2 base, vec2 uv, vec2 t, vec2 f)
 {
     float z = view_distance(texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r);
+    // the four low-res depths as near / distance (0: no surface)
 #ifdef LOW_CORNERS
     // one fetch: the corners texel of base is base + 1 (the texture starts at texel -1)
     vec4 e = textureLod(u_low_corners, (base + 1.5) / vec2(u_low_size + 1), 0.0);
-    vec4 dz = abs(mix(vec4(NO_SURFACE), u_near / e, greaterThan(e, vec4(0.0))) - z);
 #else
-    vec4 dz = abs(vec4(low_distance(uv), low_distance(uv + vec2(t.x, 0.0)), low_distance(uv + vec2(0.0, t.y)),
-                       low_distance(uv + t)) - z);
+    vec4 e = vec4(low_near_over_distance(uv), low_near_over_distance(uv + vec2(t.x, 0.0)),
+                  low_near_over_distance(uv + vec2(0.0, t.y)), low_near_over_distance(uv + t));
 #endif
-    if (!(max(max(dz.x, dz.y), max(dz.z, dz.w)) > u_depth_threshold * z)) return bilinear_weights(f);
+    // distances beyond the particles' reach (no surface among them) count as that reach: what
+    // lies behind every particle hides none of them
+    float reach = min(z, u_particles_far);
+    vec4 dz = abs(u_near / max(e, vec4(u_near_over_far)) - reach);
+    if (!(max(max(dz.x, dz.y), max(dz.z, dz.w)) > u_depth_threshold * reach)) return bilinear_weights(f);
     mediump vec4 w = vec4(1.0, 0.0, 0.0, 0.0);
     float best = dz.x;
     if (dz.y < best) { best = dz.y; w = vec4(0.0, 1.0, 0.0, 0.0); }

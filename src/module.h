@@ -140,7 +140,7 @@ typedef struct sbfx_pass_uniforms {
     GLint particles, low_depth, low_size, depth_threshold;            /* composite */
     GLint scene_color, scene_known, distortion;                       /* composite: scene colour */
     GLint tone_curve;                                                 /* composite, tone map */
-    GLint low_corners;                                                /* composite, nearest depth */
+    GLint low_corners, particles_far, near_over_far;                  /* composite, nearest depth */
 } sbfx_pass_uniforms;
 
 /* Run-time quality (quality.c). What a level needs on the GPU is kept per part, indexed

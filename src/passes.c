@@ -16,11 +16,26 @@ typedef struct frame_params {
     float projection[4];   /* P[0], P[5], P[8], P[9] */
     float depth_model[4];  /* window depth -> distance (projection.c) */
     float near;
+    float particles_far;   /* view distance (along -z) beyond which no drawn particle reaches */
 } frame_params;
+
+/* The farthest view distance any of the first `count` particles reaches: its centre's distance
+ * along -z plus its radius. Nearest-depth upsampling needs no care beyond it (composite.frag). */
+static float particles_far(const sbfx *fx, int count)
+{
+    float far = 0.0f;
+    for (int i = 0; i < count; i++) {
+        const sbfx_view_particle *v = &fx->view[i];
+        float reach = -v->center[2] + v->radius;
+        if (reach > far) far = reach;
+    }
+    return far;
+}
 
 static frame_params frame_params_from(const sbfx_depth_model *m)
 {
-    frame_params fp = {{m->projection[0], m->projection[1], m->projection[2], m->projection[3]}, {0}, (float)m->near};
+    frame_params fp = {{m->projection[0], m->projection[1], m->projection[2], m->projection[3]}, {0}, (float)m->near,
+                       0.0f};
     sbfx_depth_model_uniform(m, fp.depth_model);
     return fp;
 }
@@ -319,6 +334,10 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     glUniform4fv(u->depth_model, 1, fp->depth_model);
     glUniform1f(u->near, fp->near);
     glUniform1f(u->depth_threshold, 0.05f);
+    /* at least the near plane: the reach is a distance the depths can be clamped to */
+    float reach = fp->particles_far > fp->near ? fp->particles_far : fp->near;
+    glUniform1f(u->particles_far, reach);
+    glUniform1f(u->near_over_far, fp->near / reach);
     glUniform3f(u->tone_curve, (float)fx->tone_curve.knee, (float)fx->tone_curve.steepness,
                 (float)fx->tone_curve.inverse_log_white);
     glBindVertexArray(gl->fullscreen_vao);
@@ -352,6 +371,7 @@ static sbfx_result draw_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
         /* a lodN level: at most N particles, the least visible merged (src/lod.h) */
         if (fx->desc.lod_particles > 0) count = lod_reduce(&fx->lod, fx->view, count, fx->desc.lod_particles);
         sbfx_sort_back_to_front(fx, count);
+        fp.particles_far = particles_far(fx, count);
         pass_depth(fx, frame, &fp);
         if (corners_used(fx)) pass_corners(fx);
         pass_particles(fx, frame, &fp, count);

@@ -124,6 +124,8 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->distortion = glGetUniformLocation(id, "u_distortion");
     u->tone_curve = glGetUniformLocation(id, "u_tone_curve");
     u->low_corners = glGetUniformLocation(id, "u_low_corners");
+    u->particles_far = glGetUniformLocation(id, "u_particles_far");
+    u->near_over_far = glGetUniformLocation(id, "u_near_over_far");
 }
 
 /* Where RGBA32F renders, nearest-depth upsampling reads its four depths in one fetch from the
