@@ -20,10 +20,11 @@ typedef struct frame_params {
 } frame_params;
 
 /* The farthest view distance any of the first `count` particles reaches: its centre's distance
- * along -z plus its radius. Nearest-depth upsampling needs no care beyond it (composite.frag). */
-static float particles_far(const sbfx *fx, int count)
+ * along -z plus its radius, at least `near` (the composite clamps depths to it and divides by
+ * it). Nearest-depth upsampling needs no care beyond it (composite.frag). */
+static float particles_far(const sbfx *fx, int count, float near)
 {
-    float far = 0.0f;
+    float far = near;
     for (int i = 0; i < count; i++) {
         const sbfx_view_particle *v = &fx->view[i];
         float reach = -v->center[2] + v->radius;
@@ -334,10 +335,8 @@ static void pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     glUniform4fv(u->depth_model, 1, fp->depth_model);
     glUniform1f(u->near, fp->near);
     glUniform1f(u->depth_threshold, 0.05f);
-    /* at least the near plane: the reach is a distance the depths can be clamped to */
-    float reach = fp->particles_far > fp->near ? fp->particles_far : fp->near;
-    glUniform1f(u->particles_far, reach);
-    glUniform1f(u->near_over_far, fp->near / reach);
+    glUniform1f(u->particles_far, fp->particles_far);
+    glUniform1f(u->near_over_far, fp->near / fp->particles_far);
     glUniform3f(u->tone_curve, (float)fx->tone_curve.knee, (float)fx->tone_curve.steepness,
                 (float)fx->tone_curve.inverse_log_white);
     glBindVertexArray(gl->fullscreen_vao);
@@ -371,7 +370,7 @@ static sbfx_result draw_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
         /* a lodN level: at most N particles, the least visible merged (src/lod.h) */
         if (fx->desc.lod_particles > 0) count = lod_reduce(&fx->lod, fx->view, count, fx->desc.lod_particles);
         sbfx_sort_back_to_front(fx, count);
-        fp.particles_far = particles_far(fx, count);
+        fp.particles_far = particles_far(fx, count, fp.near);
         pass_depth(fx, frame, &fp);
         if (corners_used(fx)) pass_corners(fx);
         pass_particles(fx, frame, &fp, count);
