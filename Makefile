@@ -182,14 +182,42 @@ $(BUILD)/$(SONAME): $(BUILD)/libsbfx.so.$(VERSION)
 $(BUILD)/libsbfx.so: $(BUILD)/$(SONAME)
 	ln -sf $(<F) $@
 
-# sbfx-play: the player, its displays (headless, DRM/KMS), camera and GPIO inputs (platform/)
+# The Wayland display (display_wayland.c, docs/kiosk-deploy.md "Wayland"): libwayland-client and
+# wayland-egl, the player only. The xdg-shell and presentation-time protocols' code is generated
+# by wayland-scanner (libwayland-bin, run on the build machine) from the XML of wayland-protocols
+# (architecture-independent: the build machine's, also in a cross build) into $(BUILD)/gen/wayland/.
+WAYLAND_PKGS := wayland-client wayland-egl
+WAYLAND_PKG_CFLAGS = $(call pkg_config,WAYLAND_PKG_CFLAGS,--cflags $(WAYLAND_PKGS))
+WAYLAND_PKG_LIBS = $(call pkg_config,WAYLAND_PKG_LIBS,--libs $(WAYLAND_PKGS))
+WAYLAND_SCANNER ?= wayland-scanner
+WAYLAND_PROTOCOLS_DIR = $(call pkg_config_host,WAYLAND_PROTOCOLS_DIR,--variable=pkgdatadir wayland-protocols)
+pkg_config_host = $(eval $1 := $$(shell $(HOST_PKG_CONFIG) $2))$($1)
+WAYLAND_GEN := $(BUILD)/gen/wayland
+WAYLAND_PROTOCOLS := xdg-shell presentation-time
+WAYLAND_HEADERS := $(WAYLAND_PROTOCOLS:%=$(WAYLAND_GEN)/%-client-protocol.h)
+WAYLAND_PROTOCOL_OBJ := $(WAYLAND_PROTOCOLS:%=$(BUILD)/obj/gen/wayland/%-protocol.o)
+$(WAYLAND_GEN)/%-client-protocol.h: | deps
+	@mkdir -p $(@D)
+	$(WAYLAND_SCANNER) client-header $(WAYLAND_PROTOCOLS_DIR)/stable/$*/$*.xml $@
+$(WAYLAND_GEN)/%-protocol.c: | deps
+	@mkdir -p $(@D)
+	$(WAYLAND_SCANNER) private-code $(WAYLAND_PROTOCOLS_DIR)/stable/$*/$*.xml $@
+$(BUILD)/obj/gen/wayland/%.o: $(WAYLAND_GEN)/%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) $(WAYLAND_PKG_CFLAGS) -c -o $@ $<
+$(BUILD)/obj/platform/display/display_wayland.o: $(WAYLAND_HEADERS)
+$(BUILD)/obj/platform/display/display_wayland.o $(BUILD)/obj/platform/wayland/wayland_egl.o: \
+	PLATFORM_CFLAGS += $(WAYLAND_PKG_CFLAGS) -I$(WAYLAND_GEN)
+
+# sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera and GPIO inputs (platform/)
 PLAYER_SRC := $(addprefix player/,player player_args player_usage player_stats player_inputs player_loop \
 	player_reset board player_notify) \
 	$(addprefix video/,luma live_detail v4l2_source clip_detail) \
 	$(addprefix gpio/,gpio_backend effect_names gpio_triggers trigger_filter) \
-	$(addprefix display/,display_headless display_drm display_link) \
-	$(addprefix drm/,drm_device drm_fb drm_atomic drm_legacy drm_writeback gbm_egl)
-PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o)
+	$(addprefix display/,display_headless display_drm display_link display_wayland) \
+	$(addprefix drm/,drm_device drm_fb drm_atomic drm_legacy drm_writeback gbm_egl) \
+	$(addprefix wayland/,wayland_egl present_feedback)
+PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o) $(WAYLAND_PROTOCOL_OBJ)
 # --version prints the Makefile's VERSION (the library's)
 $(BUILD)/obj/platform/player/player_usage.o: PLATFORM_CFLAGS += -DSBFX_VERSION='"$(VERSION)"'
 # The GPIO backend (docs/gpio.md): platform/gpio/gpio_gpiod2.c when pkg-config's libgpiod is 2.x
@@ -205,7 +233,7 @@ $(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
-	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS)
+	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS) $(WAYLAND_PKG_LIBS)
 # READY=1 and the watchdog's pings for systemd (player_notify.c): libsystemd, the player only
 NOTIFY_PKG_CFLAGS = $(call pkg_config,NOTIFY_PKG_CFLAGS,--cflags libsystemd)
 NOTIFY_PKG_LIBS = $(call pkg_config,NOTIFY_PKG_LIBS,--libs libsystemd)
@@ -462,6 +490,11 @@ $(BUILD)/tests/platform/test_gpio_backend: tests/platform/test_gpio_backend.c \
 		$(BUILD)/obj/platform/gpio/gpio_backend.o tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio/gpio_backend.o $(PLATFORM_LIBS)
+# presentation-time feedback into the Wayland display's counters (pure logic)
+$(BUILD)/tests/platform/test_present_feedback: tests/platform/test_present_feedback.c \
+		$(BUILD)/obj/platform/wayland/present_feedback.o tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/wayland/present_feedback.o $(PLATFORM_LIBS)
 $(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(BUILD)/obj/platform/egl/gl_reset.o tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/egl/gl_reset.o $(PLATFORM_LIBS)

@@ -11,7 +11,8 @@
 #   4. the sbfx-play command-line tests (tests/cli.sh), the probe's (tests/probe.sh), what
 #      libsbfx.so exports (tests/exports.sh), that it reads no data file and renders fire with
 #      colord-data hidden (tests/no_data_files.sh), the CIE table generator (tests/gen_cmf.sh), the
-#      kiosk's unit, udev rule and their exposure (tests/kiosk_unit.sh), make install and the host
+#      kiosk's unit, udev rule and their exposure (tests/kiosk_unit.sh), sbfx-play as a Wayland
+#      client of cage running headless (tests/wayland.sh), make install and the host
 #      example (examples/bare-egl/)
 #      built against the installed copy (tests/install.sh), a short soak and its leak
 #      detection (tests/soak.sh; make soak runs hours), the documentation's links and
@@ -191,6 +192,7 @@ run_suite "" exports tests/exports.sh "$BUILD"
 run_suite "" no-data-files tests/no_data_files.sh "$BUILD"
 run_suite "" gen-cmf tests/gen_cmf.sh "$BUILD"
 run_suite "" kiosk-unit tests/kiosk_unit.sh "$BUILD"
+run_suite "" wayland tests/wayland.sh "$BUILD"
 run_suite "" install tests/install.sh "$BUILD"
 run_suite "" docs tests/docs.sh
 run_suite "" soak tests/soak.sh "$BUILD"

@@ -8,6 +8,9 @@ set_of="${1:-test}"
 # gcc only recommends libc6-dev, which --no-install-recommends leaves out: named here
 host_tools="make gcc libc6-dev pkg-config"
 build_pkgs="$host_tools libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev liblcms2-dev libconfig-dev libdrm-dev libgbm-dev libgpiod-dev colord-data libsystemd-dev libavformat-dev libavcodec-dev libswscale-dev libavutil-dev"
+# the Wayland display (display_wayland.c): libwayland-client, wayland-egl, and the protocols'
+# XML turned into C by wayland-scanner (libwayland-bin) at build time
+build_pkgs="$build_pkgs libwayland-dev wayland-protocols libwayland-bin"
 # Debian 13 (trixie) names some packages differently: its clang is 19 (libgpiod-dev is 2.x
 # there under the same name; the GPIO backend follows pkg-config's version)
 clang_rt=libclang-rt-14-dev
@@ -21,12 +24,14 @@ test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang $clang_rt groff-base ffmp
 test_pkgs="$test_pkgs g++ qt6-base-dev qt6-declarative-dev qml6-module-qtquick qml6-module-qtquick-window qml6-module-qtqml-workerscript qt6-qpa-plugins xvfb xauth"
 # systemd-analyze (security --offline, verify) and systemd-sysusers check the kiosk's unit
 test_pkgs="$test_pkgs systemd"
+# tests/wayland.sh: sbfx-play under cage (wlroots, headless) read back by grim (wlr-screencopy)
+test_pkgs="$test_pkgs cage grim"
 # make test-vm: qemu (TCG), the guest's modprobe through the shared root, and what tests/vm/run.sh
 # needs to fetch and unpack Debian's kernel packages and build vkms and gpio-sim out of tree
 vm_pkgs="$build_pkgs qemu-system-x86 kmod xz-utils patch gcc-12 make libelf1"
 # make BOARD=<an arm64 board> and make cross-check: Debian's aarch64 toolchain and the arm64
 # multiarch -dev packages, with the host's make, pkg-config and compiler (build/tools/ runs here)
-cross_arm64_pkgs="$host_tools liblcms2-dev colord-data gcc-aarch64-linux-gnu libc6-dev:arm64 libegl-dev:arm64 libgles-dev:arm64 libdrm-dev:arm64 libgbm-dev:arm64 libgpiod-dev:arm64 libpng-dev:arm64 libconfig-dev:arm64 libsystemd-dev:arm64 libavformat-dev:arm64 libavcodec-dev:arm64 libswscale-dev:arm64 libavutil-dev:arm64"
+cross_arm64_pkgs="$host_tools liblcms2-dev colord-data gcc-aarch64-linux-gnu libc6-dev:arm64 libegl-dev:arm64 libgles-dev:arm64 libdrm-dev:arm64 libgbm-dev:arm64 libgpiod-dev:arm64 libpng-dev:arm64 libconfig-dev:arm64 libsystemd-dev:arm64 libavformat-dev:arm64 libavcodec-dev:arm64 libswscale-dev:arm64 libavutil-dev:arm64 libwayland-dev:arm64 wayland-protocols libwayland-bin"
 
 # make test-debian13: a Debian 13 root made with debootstrap, checked against the archive's key
 debian13_pkgs="debootstrap debian-archive-keyring"

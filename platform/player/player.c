@@ -193,11 +193,35 @@ static int create_drm(struct player *p, char *err, size_t n)
     return rc;
 }
 
+/* A client of the compositor of WAYLAND_DISPLAY: full screen, or --size where it refuses. */
+static int create_wayland(struct player *p, char *err, size_t n)
+{
+    const struct player_options *opt = p->opt;
+    int rc = 0;
+    if (opt->stats_path && (rc = check_writable(opt->stats_path, err, n)) != 0) return rc;
+    const struct display_wayland_desc desc = {.width = opt->width, .height = opt->height};
+    p->realtime = !opt->fps_set;
+    char why[768];
+    rc = display_wayland_create(&desc, &p->display, why, sizeof(why));
+    if (rc) snprintf(err, n, "--display wayland: %s", why);
+    return rc;
+}
+
+static int create_display(struct player *p, char *err, size_t n)
+{
+    switch (p->opt->display) {
+    case PLAYER_DISPLAY_DRM: return create_drm(p, err, n);
+    case PLAYER_DISPLAY_WAYLAND: return create_wayland(p, err, n);
+    case PLAYER_DISPLAY_HEADLESS: break;
+    }
+    return create_headless(p, err, n);
+}
+
 static int setup(struct player *p, char *err, size_t n)
 {
     int rc = player_load_board(p, err, n);
     if (rc) return rc;
-    rc = p->opt->display == PLAYER_DISPLAY_DRM ? create_drm(p, err, n) : create_headless(p, err, n);
+    rc = create_display(p, err, n);
     if (rc) return rc;
     struct display *d = p->display;
     if ((rc = test_scene_create(&p->scene, d->width, d->height, err, n)) != 0) return rc;
@@ -259,7 +283,16 @@ static void print_headless_summary(const struct player *p)
            t->total_sum / frames, t->total_max);
 }
 
-static void print_drm_summary(const struct player *p)
+/* What the compositor reported of the frames (wayland's presentation-time feedback). */
+static void print_presentation(const struct display_counts *c)
+{
+    double mean = c->feedback_presented ? (double)c->latency_ns_sum / (double)c->feedback_presented / 1e6 : 0.0;
+    printf("sbfx-play: presentation feedback: %llu presented, %llu discarded; commit to screen mean "
+           "%.2f ms, max %.2f ms\n", (unsigned long long)c->feedback_presented,
+           (unsigned long long)c->feedback_discarded, mean, (double)c->latency_ns_max / 1e6);
+}
+
+static void print_screen_summary(const struct player *p)
 {
     const struct display_counts *c = &p->display->counts;
     double seconds = (double)(player_now_ns() - p->run_start_ns) / 1e9;
@@ -269,6 +302,7 @@ static void print_drm_summary(const struct player *p)
            seconds > 0 ? (double)frames / seconds : 0.0, p->display->description,
            (unsigned long long)c->flips, (unsigned long long)c->missed,
            frames ? p->times.sbfx_sum / (double)frames : 0.0, p->times.sbfx_max, format_name(p->last.target_format));
+    if (p->display->presentation) print_presentation(c);
     if (p->opt->screenshot) printf("sbfx-play: screenshot: %s\n", p->opt->screenshot);
 }
 
@@ -280,7 +314,7 @@ static int finish(struct player *p, char *err, size_t n)
     sbfx_stats(p->fx, &p->last);
     if (p->opt->stats_path && (rc = write_stats(p, p->opt->stats_path, err, n)) != 0) return rc;
     if (p->opt->quiet) return 0;
-    if (p->opt->display == PLAYER_DISPLAY_DRM) print_drm_summary(p);
+    if (player_on_screen(p->opt)) print_screen_summary(p);
     else print_headless_summary(p);
     return 0;
 }
@@ -290,7 +324,7 @@ static void print_banner(const struct player *p)
     const struct player_options *opt = p->opt;
     const char *version = (const char *)glGetString(GL_VERSION);
     if (!version) version = "?";
-    if (opt->display != PLAYER_DISPLAY_DRM) {
+    if (!player_on_screen(opt)) {
         printf("sbfx-play: %s, %s, %s; %dx%d, %d frames at %g fps\n", display_gl_renderer(),
                version, p->display->description, opt->width, opt->height, opt->frames, opt->fps);
         return;
@@ -313,13 +347,15 @@ static int play(const struct player_options *opt)
     int rc = setup(p, err, sizeof(err));
     if (rc == 0) {
         if (!opt->quiet) print_banner(p);
-        if (opt->display == PLAYER_DISPLAY_DRM) player_catch_signals();
+        if (player_on_screen(opt)) player_catch_signals();
         rc = player_run_frames(p, err, sizeof(err));
     }
     if (rc == 0) rc = finish(p, err, sizeof(err));
     if (rc) fprintf(stderr, "sbfx-play: %s\n", err);
+    bool lost = p->display && p->display->lost;
     teardown(p);
-    return rc;
+    if (rc == 0) return 0;
+    return lost ? PLAYER_EXIT_DISPLAY_LOST : 1;
 }
 
 int main(int argc, char **argv)
@@ -339,5 +375,5 @@ int main(int argc, char **argv)
         player_version(stdout);
         return 0;
     }
-    return play(&opt) == 0 ? 0 : 1;
+    return play(&opt);
 }

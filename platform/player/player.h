@@ -20,6 +20,12 @@
 #include "host/test_scene.h"
 #include "player/player_notify.h"
 
+/* sbfx-play's exit status (main): 0 a finished or stopped run (--frames done, SIGINT, SIGTERM,
+ * the Wayland window closed), 1 a bad argument or a failure, and this one when the display
+ * server went away (the Wayland compositor, d->lost): a unit's Restart=on-failure starts
+ * sbfx-play again with the compositor (EX_UNAVAILABLE of sysexits.h). */
+#define PLAYER_EXIT_DISPLAY_LOST 69
+
 struct frame_times {
     double sbfx_sum, sbfx_max;   /* sbfx_update + sbfx_render (+ glFinish when headless) */
     double total_sum, total_max; /* the whole frame, readback and PNG included */
@@ -29,6 +35,8 @@ struct frame_times {
 struct second_stats {
     int64_t start_ns;
     uint64_t frames, flips, missed, fired, video;
+    uint64_t shown;           /* presentation feedback's frames on screen (wayland) */
+    int64_t latency_ns;       /* and their latency, summed */
     double frame_ms_sum, frame_ms_max;
 };
 
@@ -47,7 +55,7 @@ struct player {
     sbfx_counters last;       /* sbfx_stats() after the last frame */
     struct frame_times times;
     int64_t frames_done;      /* 64-bit: a kiosk at 60 Hz passes 2^31 frames in 414 days */
-    bool realtime;            /* drm without --fps: the simulation follows the clock */
+    bool realtime;            /* drm or wayland without --fps: the simulation follows the clock */
     bool measure_gpu;         /* glFinish around sbfx (headless timings) */
     int64_t run_start_ns, last_frame_ns;
     /* inputs */

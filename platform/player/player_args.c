@@ -270,12 +270,23 @@ static int set_display(struct player_options *opt, const char *value, char *err,
 {
     static const struct choice choices[] = {
         {"drm", PLAYER_DISPLAY_DRM}, {"headless", PLAYER_DISPLAY_HEADLESS},
+        {"wayland", PLAYER_DISPLAY_WAYLAND}, {"auto", PLAYER_DISPLAY_AUTO},
     };
     int v = 0;
     int rc = parse_choice("--display", value, choices, ARRAY_SIZE(choices), &v, err, n);
+    opt->display_auto = v == PLAYER_DISPLAY_AUTO;
+    /* auto: a Wayland session's variable says a compositor runs; without one, the kiosk owns
+     * the screen through DRM/KMS */
+    const char *wayland = getenv("WAYLAND_DISPLAY");
+    if (opt->display_auto) v = wayland && *wayland ? PLAYER_DISPLAY_WAYLAND : PLAYER_DISPLAY_DRM;
     opt->display = (enum player_display)v;
     opt->display_set = true;
     return rc;
+}
+
+bool player_on_screen(const struct player_options *opt)
+{
+    return opt->display != PLAYER_DISPLAY_HEADLESS;
 }
 
 static int set_device(struct player_options *opt, const char *value, char *err, size_t n)
@@ -378,7 +389,7 @@ struct flag {
 
 static const struct flag flags[] = {
     {"--headless", NULL, set_headless},
-    {"--display", "drm|headless", set_display},
+    {"--display", "headless|drm|wayland|auto", set_display},
     {"--device", "PATH (e.g. /dev/dri/card0)", set_device},
     {"--connector", "NAME (e.g. HDMI-A-1)", set_connector},
     {"--mode", "WxH[@HZ] (e.g. 1920x1080@60)", set_mode},
@@ -442,18 +453,29 @@ static int flag_value(const struct flag *f, const char *eq, int argc, char **arg
 
 static int parse_flags(struct player_options *opt, int argc, char **argv, char *err, size_t n);
 
-/* Flags that only mean something on one display. */
+static const char *display_name(enum player_display display)
+{
+    return display == PLAYER_DISPLAY_DRM ? "drm" : display == PLAYER_DISPLAY_WAYLAND ? "wayland" : "headless";
+}
+
+/* Flags that only mean something on one display. --size also sets a Wayland window's size
+ * where the compositor leaves it to the client (full screen refused). */
 static int check_display(const struct player_options *opt, char *err, size_t n)
 {
-    bool drm = opt->display == PLAYER_DISPLAY_DRM;
+    bool drm = opt->display == PLAYER_DISPLAY_DRM, screen = player_on_screen(opt);
     const char *wrong = NULL;
-    if (drm && opt->headless_flag) wrong = "--headless";
+    if (screen && opt->headless_flag) wrong = "--headless";
     else if (drm && opt->size_set) wrong = "--size";
-    else if (drm && opt->out_set) wrong = "--out";
-    else if (drm && opt->contact_sheet) wrong = "--contact-sheet";
-    if (wrong) {
+    else if (screen && opt->out_set) wrong = "--out";
+    else if (screen && opt->contact_sheet) wrong = "--contact-sheet";
+    if (wrong && drm) {
         snprintf(err, n, "%s applies to --display headless, not drm (drm: the mode sets the size; "
                  "--screenshot saves a frame)", wrong);
+        return -EINVAL;
+    }
+    if (wrong) {
+        snprintf(err, n, "%s applies to --display headless, not wayland%s (wayland: the compositor "
+                 "sets the window's size)", wrong, opt->display_auto ? " (auto chose it: WAYLAND_DISPLAY is set)" : "");
         return -EINVAL;
     }
     if (!drm && opt->device) wrong = "--device";
@@ -462,7 +484,8 @@ static int check_display(const struct player_options *opt, char *err, size_t n)
     else if (!drm && opt->modeset >= 0) wrong = "--modeset";
     else if (!drm && opt->screenshot) wrong = "--screenshot";
     if (wrong) {
-        snprintf(err, n, "%s applies to --display drm (the display is headless)", wrong);
+        snprintf(err, n, "%s applies to --display drm (the display is %s%s)", wrong, display_name(opt->display),
+                 opt->display_auto ? ": auto chose it, WAYLAND_DISPLAY is set" : "");
         return -EINVAL;
     }
     return 0;

@@ -34,7 +34,9 @@ struct player_gpio {
     float position[3];
 };
 
-enum player_display { PLAYER_DISPLAY_HEADLESS, PLAYER_DISPLAY_DRM };
+enum player_display { PLAYER_DISPLAY_HEADLESS, PLAYER_DISPLAY_DRM, PLAYER_DISPLAY_WAYLAND };
+/* --display auto: resolved while parsing (player_parse_args) */
+#define PLAYER_DISPLAY_AUTO (-1)
 
 struct player_options {
     int width, height;
@@ -63,6 +65,7 @@ struct player_options {
     enum player_display display;
     bool headless_flag;       /* --headless was given */
     bool display_set;         /* --display was given */
+    bool display_auto;        /* it was auto: wayland where WAYLAND_DISPLAY is set, else drm */
     bool size_set, frames_set, fps_set, out_set;
     const char *device;       /* --device: DRM card */
     const char *connector;
@@ -76,6 +79,8 @@ struct player_options {
 };
 
 void player_options_defaults(struct player_options *opt);
+/* A display that shows frames (drm, wayland): runs until stopped, paced by it, stats line. */
+bool player_on_screen(const struct player_options *opt);
 /* Fills opt from argv (opt must hold the defaults). 0, or -EINVAL with a message in err that
  * names the flag and the values it accepts. Stops at --help or --version (opt->help,
  * opt->version set). */

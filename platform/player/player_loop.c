@@ -84,11 +84,14 @@ static int wait_ready(struct player *p, char *err, size_t n)
             if (rc) return rc;
         }
         player_service_gpio(p);
-        if (!d->busy || player_stop_requested()) break;
-        if (player_now_ns() >= deadline) {
+        if (!d->busy || player_stop_requested() || d->closed) break;
+        if (player_now_ns() < deadline) continue;
+        if (!d->ops->stalled) {
             snprintf(err, n, "%s: a page flip did not complete within 1 s", d->description);
             return -ETIMEDOUT;
         }
+        int rc = d->ops->stalled(d, err, n); /* wayland: a hidden window; frames go on unshown */
+        if (rc) return rc;
     }
     player_service_video(p);
     return 0;
@@ -173,9 +176,25 @@ static double frame_time(struct player *p, int64_t index, int64_t now)
     return p->sim_time + (dt < MAX_REALTIME_STEP ? dt : MAX_REALTIME_STEP);
 }
 
+/* The display's size changed (a Wayland configure): the test scene's targets follow; sbfx's
+ * follow the frame's size by themselves. */
+static int follow_resize(struct player *p, char *err, size_t n)
+{
+    struct display *d = p->display;
+    d->resized = false;
+    test_scene_destroy(&p->scene);
+    p->scene_made = false;
+    int rc = test_scene_create(&p->scene, d->width, d->height, err, n);
+    if (rc) return rc;
+    p->scene_made = true;
+    if (!p->opt->quiet) fprintf(stderr, "sbfx-play: %s: the window is %dx%d now\n", d->name, d->width, d->height);
+    return 0;
+}
+
 static int play_frame(struct player *p, int64_t index, char *err, size_t n)
 {
     int rc = player_check_gpu_reset(p, index, err, n);
+    if (rc == 0 && p->display->resized) rc = follow_resize(p, err, n);
     if (rc) return rc;
     int64_t start = player_now_ns();
     double t = frame_time(p, index, start);
@@ -208,6 +227,8 @@ static void second_reset(struct player *p, int64_t now)
     s->missed = p->display->counts.missed;
     s->fired = (uint64_t)p->last.triggers_fired;
     s->video = p->live_on ? p->live.counts.frames : 0;
+    s->shown = p->display->counts.feedback_presented;
+    s->latency_ns = p->display->counts.latency_ns_sum;
     s->frame_ms_sum = p->times.total_sum;
     s->frame_ms_max = 0.0;
 }
@@ -225,16 +246,21 @@ static void stats_line(struct player *p, int64_t now)
         snprintf(video, sizeof(video), ", video %llu frames (%s)",
                  (unsigned long long)(p->live.counts.frames - s->video), what);
     }
+    char latency[64] = "";
+    if (p->display->presentation && c->feedback_presented > s->shown)
+        snprintf(latency, sizeof(latency), ", latency %.1f ms",
+                 (double)(c->latency_ns_sum - s->latency_ns) / (double)(c->feedback_presented - s->shown) / 1e6);
     char budget[96] = "";
     if (p->last.budget_ms > 0)
         snprintf(budget, sizeof(budget), " (gpu %.1f of %.1f ms, %d changes)", (double)p->last.gpu_ms,
                  (double)p->last.budget_ms, p->last.quality_changes);
     printf("sbfx-play: %.1f fps, frame %.1f ms (max %.1f), flips %llu, missed vblanks %llu, "
-           "particles %d, triggers %llu, quality %s%s%s\n",
+           "particles %d, triggers %llu, quality %s%s%s%s\n",
            (double)frames / seconds, frames ? (p->times.total_sum - s->frame_ms_sum) / (double)frames : 0.0,
            s->frame_ms_max, (unsigned long long)(c->flips - s->flips),
            (unsigned long long)(c->missed - s->missed), p->last.particles_alive,
-           (unsigned long long)((uint64_t)p->last.triggers_fired - s->fired), p->last.quality, budget, video);
+           (unsigned long long)((uint64_t)p->last.triggers_fired - s->fired), p->last.quality, budget, video,
+           latency);
     fflush(stdout);
 }
 
@@ -254,14 +280,14 @@ static void stats_tick(struct player *p)
 int player_run_frames(struct player *p, char *err, size_t n)
 {
     const struct player_options *opt = p->opt;
-    bool limited = opt->display != PLAYER_DISPLAY_DRM || opt->frames_set;
+    bool limited = !player_on_screen(opt) || opt->frames_set;
     p->run_start_ns = player_now_ns();
     second_reset(p, p->run_start_ns);
     player_notify_init(&p->notify);
     for (int64_t i = 0; !limited || i < opt->frames; i++) {
         char why[1024];
         int rc = wait_ready(p, why, sizeof(why));
-        if (rc == 0 && player_stop_requested()) {
+        if (rc == 0 && (player_stop_requested() || p->display->closed)) {
             player_notify_stopping();
             break;
         }

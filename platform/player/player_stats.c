@@ -5,7 +5,7 @@
 #include <stddef.h>
 #include "player/player.h"
 
-enum stats_group { GROUP_EVERY_RUN, GROUP_KIOSK, GROUP_GPIO, GROUP_VIDEO, GROUP_COUNT };
+enum stats_group { GROUP_EVERY_RUN, GROUP_KIOSK, GROUP_PRESENTATION, GROUP_GPIO, GROUP_VIDEO, GROUP_COUNT };
 enum stats_kind { KIND_INT, KIND_G, KIND_MS3, KIND_STRING };
 
 struct stats_key {
@@ -37,13 +37,17 @@ static const struct stats_key stats_keys[] = {
     KEY(gpu_resets, KIND_INT, GROUP_EVERY_RUN, "GPU resets the player recovered from"),
     KEY(gpu_reset_notification, KIND_INT, GROUP_EVERY_RUN, "1 when the context reports GPU resets"),
     KEY(frames, KIND_INT, GROUP_KIOSK, "frames rendered"),
-    KEY(flips, KIND_INT, GROUP_KIOSK, "page flips"),
-    KEY(missed_vblanks, KIND_INT, GROUP_KIOSK, "vblanks a flip missed"),
+    KEY(flips, KIND_INT, GROUP_KIOSK, "page flips (wayland: frame callbacks)"),
+    KEY(missed_vblanks, KIND_INT, GROUP_KIOSK, "vblanks a flip missed (wayland: refreshes)"),
     KEY(triggers_fired, KIND_INT, GROUP_KIOSK, "effects started"),
     KEY(triggers_refused, KIND_INT, GROUP_KIOSK, "triggers refused (particle pool full)"),
     KEY(display_unplugs, KIND_INT, GROUP_KIOSK, "times the display went away"),
     KEY(display_replugs, KIND_INT, GROUP_KIOSK, "times it came back"),
     KEY(display_paused_frames, KIND_INT, GROUP_KIOSK, "frames rendered but not shown meanwhile"),
+    KEY(presented_frames, KIND_INT, GROUP_PRESENTATION, "frames the compositor put on screen"),
+    KEY(discarded_frames, KIND_INT, GROUP_PRESENTATION, "frames it replaced before showing them"),
+    KEY(latency_ms_mean, KIND_MS3, GROUP_PRESENTATION, "commit to on screen, mean (ms)"),
+    KEY(latency_ms_max, KIND_MS3, GROUP_PRESENTATION, "commit to on screen, max (ms)"),
     KEY(gpio_edges, KIND_INT, GROUP_GPIO, "edges read from the GPIO lines"),
     KEY(gpio_fired, KIND_INT, GROUP_GPIO, "edges that fired their effect"),
     KEY(gpio_filtered, KIND_INT, GROUP_GPIO, "edges the debounce or rate limit dropped"),
@@ -63,7 +67,8 @@ static const struct stats_key stats_keys[] = {
 
 static const char *const group_titles[GROUP_COUNT] = {
     [GROUP_EVERY_RUN] = "every run (sbfx_stats() after the last frame, and GPU resets)",
-    [GROUP_KIOSK] = "with a DRM display, GPIO lines or a camera",
+    [GROUP_KIOSK] = "with a DRM or Wayland display, GPIO lines or a camera",
+    [GROUP_PRESENTATION] = "with a Wayland compositor's presentation-time feedback",
     [GROUP_GPIO] = "with GPIO lines",
     [GROUP_VIDEO] = "with a camera",
 };
@@ -86,6 +91,10 @@ void player_stats_collect(const struct player *p, struct player_stats_record *r)
         .triggers_fired = c->triggers_fired, .triggers_refused = c->triggers_refused,
         .display_unplugs = (long long)d->unplugs, .display_replugs = (long long)d->replugs,
         .display_paused_frames = (long long)d->paused,
+        .presented_frames = (long long)d->feedback_presented,
+        .discarded_frames = (long long)d->feedback_discarded,
+        .latency_ms_mean = d->feedback_presented ? (double)d->latency_ns_sum / (double)d->feedback_presented / 1e6 : 0.0,
+        .latency_ms_max = (double)d->latency_ns_max / 1e6,
         .gpio_edges = (long long)g->edges, .gpio_fired = (long long)g->fired,
         .gpio_filtered = (long long)g->filtered, .gpio_refused = (long long)g->refused,
         .gpio_overflows = (long long)g->overflows, .gpio_losses = (long long)g->losses,
@@ -95,7 +104,7 @@ void player_stats_collect(const struct player *p, struct player_stats_record *r)
         .video_losses = (long long)v->losses, .video_reopens = (long long)v->reopens,
         .video_takeovers = (long long)v->takeovers,
         .kiosk_on = p->display->fd >= 0 || p->gpio_on || p->live_on,
-        .gpio_on = p->gpio_on, .video_on = p->live_on,
+        .gpio_on = p->gpio_on, .video_on = p->live_on, .presentation_on = p->display->presentation,
     };
     snprintf(r->quality, sizeof(r->quality), "%s", c->quality);
 }
@@ -104,6 +113,7 @@ static bool group_written(const struct player_stats_record *r, enum stats_group 
 {
     switch (group) {
     case GROUP_KIOSK: return r->kiosk_on;
+    case GROUP_PRESENTATION: return r->presentation_on;
     case GROUP_GPIO: return r->kiosk_on && r->gpio_on;
     case GROUP_VIDEO: return r->kiosk_on && r->video_on;
     default: return true;

@@ -4,8 +4,9 @@
  *
  *   player_stats_collect  the numbers of a finished run, from the player, into one record
  *   player_stats_write    the record as one JSON object: every run's keys, then those of the
- *                         parts in use (a DRM display, GPIO lines or a camera: the kiosk's
- *                         counters; GPIO lines: gpio_*; a camera: video_*)
+ *                         parts in use (a DRM or Wayland display, GPIO lines or a camera: the
+ *                         kiosk's counters; presentation-time feedback: presented_frames,
+ *                         latency_ms_*...; GPIO lines: gpio_*; a camera: video_*)
  *   player_stats_usage    the key list for --help, grouped as the JSON is */
 #ifndef SBFX_PLAYER_STATS_H
 #define SBFX_PLAYER_STATS_H
@@ -26,10 +27,12 @@ struct player_stats_record {
     long long gpu_resets, gpu_reset_notification;
     long long frames, flips, missed_vblanks, triggers_fired, triggers_refused;
     long long display_unplugs, display_replugs, display_paused_frames;
+    long long presented_frames, discarded_frames;
+    double latency_ms_mean, latency_ms_max;
     long long gpio_edges, gpio_fired, gpio_filtered, gpio_refused, gpio_overflows;
     long long gpio_losses, gpio_returns, gpio_retries, gpio_absent, gpio_appeared;
     long long video_frames, video_distinct, video_losses, video_reopens, video_takeovers;
-    bool kiosk_on, gpio_on, video_on; /* which groups of keys the run writes */
+    bool kiosk_on, gpio_on, video_on, presentation_on; /* which groups of keys the run writes */
 };
 
 void player_stats_collect(const struct player *p, struct player_stats_record *r);

@@ -1,0 +1,302 @@
+#!/usr/bin/env bash
+# sbfx-play --display wayland under a real compositor running headless: cage 0.1.4 (wlroots'
+# headless backend, pixman renderer; Mesa's EGL reaches it through wl_shm with llvmpipe), read
+# back with grim (wlr-screencopy). cage refuses to run as root: as root the compositor and the
+# player run as nobody (setpriv), with their own XDG_RUNTIME_DIR.
+#   picture          frames grabbed from the compositor are, pixel for pixel, frames that
+#                    `sbfx-play --headless` renders of the same run (--fps 30: frame i is
+#                    simulated time i/30 on both), and the explosion is in them (the latest
+#                    differs from the scene alone, --no-timeline, at that frame)
+#   full-screen      the grab is the whole output, the player's window is that size and says
+#                    "full screen"
+#   frames-keep-coming  frame callbacks keep coming, and grabs show two different frames of the run
+#   sigterm          SIGTERM ends the run with status 0 and the summary
+#   compositor-killed  cage killed: logged, exit status 69 (PLAYER_EXIT_DISPLAY_LOST), no crash
+#   auto, no-compositor  --display auto picks wayland with WAYLAND_DISPLAY and drm without;
+#                    a missing compositor is an error naming it
+# Usage: tests/wayland.sh [BUILD] (default build). Prints ok / not ok / skip lines; every wait is
+# bounded (WAYLAND_TEST_WAIT seconds, default 60).
+set -u
+cd "$(dirname "$0")/.." || exit 1
+BUILD=${1:-build}
+SUITE=wayland
+WAIT=${WAYLAND_TEST_WAIT:-60}
+FPS=30 # simulated frames per second: the explosion lasts many frames
+failures=0
+
+ok() { echo "ok - $SUITE/$1"; }
+fail() {
+    echo "not ok - $SUITE/$1: $2"
+    failures=$((failures + 1))
+}
+skip() { echo "skip - $SUITE/$1: $2"; }
+
+player=$BUILD/sbfx-play
+if [ ! -x "$player" ]; then
+    fail build "$player was not built"
+    exit 1
+fi
+missing=""
+for tool in cage grim setpriv compare identify timeout; do
+    command -v "$tool" >/dev/null 2>&1 || missing="$missing $tool"
+done
+if [ -n "$missing" ]; then
+    for t in picture full-screen frames-keep-coming sigterm compositor-killed; do
+        skip "$t" "not installed:$missing (tools/deps.sh test: cage grim imagemagick)"
+    done
+    exit 0
+fi
+
+tmp=$(mktemp -d)
+chmod 755 "$tmp"
+pids=()
+cleanup() {
+    local p
+    for p in "${pids[@]}"; do kill -KILL "$p" 2>/dev/null; done
+    [ -n "${WAYLAND_TEST_KEEP:-}" ] && echo "# kept $tmp" || rm -rf "$tmp"
+}
+trap cleanup EXIT
+
+# The player and the scene where the unprivileged user can read them (the tree may be under
+# /root); sbfx-play links libsbfx statically.
+mkdir -p "$tmp/bin" "$tmp/out"
+cp "$player" "$tmp/bin/sbfx-play"
+cp scenes/explosion.cfg "$tmp/bin/"
+chmod -R a+rX "$tmp/bin"
+if [ "$(id -u)" -eq 0 ]; then
+    run_as=(setpriv --reuid="$(id -u nobody)" --regid="$(id -g nobody)" --clear-groups)
+    chown "$(id -u nobody)" "$tmp/out"
+else
+    run_as=()
+fi
+
+# as_user XDG COMMAND...: COMMAND as the unprivileged user in a clean environment. It execs:
+# called in a subshell, "( as_user ... ) &", $! is COMMAND's own pid.
+as_user() {
+    local xdg=$1
+    shift
+    exec "${run_as[@]}" env -i PATH=/usr/bin:/bin HOME="$tmp/out" XDG_RUNTIME_DIR="$xdg" \
+        WLR_BACKENDS=headless WLR_RENDERER=pixman WLR_LIBINPUT_NO_DEVICES=1 "$@"
+}
+
+# wait_for SECONDS COMMAND...: polls COMMAND every 0.1 s until it succeeds; 1 on timeout.
+wait_for() {
+    local deadline=$((SECONDS + $1))
+    shift
+    until "$@"; do
+        [ "$SECONDS" -ge "$deadline" ] && return 1
+        sleep 0.1
+    done
+}
+
+# start_cage NAME: a cage of its own (XDG_RUNTIME_DIR $tmp/NAME) holding a placeholder client;
+# sets cage_pid and xdg. The player joins it as a second client.
+start_cage() {
+    xdg=$tmp/$1
+    mkdir -p "$xdg"
+    [ "${#run_as[@]}" -gt 0 ] && chown "$(id -u nobody)" "$xdg"
+    chmod 700 "$xdg"
+    (as_user "$xdg" cage -- sleep $((WAIT * 3))) >"$tmp/out/$1-cage.log" 2>&1 &
+    cage_pid=$!
+    pids+=("$cage_pid")
+    wait_for 20 test -S "$xdg/wayland-0"
+}
+
+stop_cage() {
+    pkill -KILL -P "$cage_pid" 2>/dev/null # its placeholder client, by its parent's id
+    kill -KILL "$cage_pid" 2>/dev/null
+    wait "$cage_pid" 2>/dev/null
+}
+
+# play NAME ARGS...: sbfx-play --display wayland in the current cage, in the background;
+# player_pid, its stdout and stderr in $tmp/out/NAME.out and .err.
+play() {
+    local name=$1
+    shift
+    (as_user "$xdg" env WAYLAND_DISPLAY=wayland-0 "$tmp/bin/sbfx-play" --display wayland "$@") \
+        >"$tmp/out/$name.out" 2>"$tmp/out/$name.err" &
+    player_pid=$!
+    pids+=("$player_pid")
+}
+
+# stats_lines NAME N: the player printed at least N once-a-second lines
+stats_lines() { [ "$(grep -c ' fps, frame ' "$tmp/out/$1.out" 2>/dev/null)" -ge "$2" ]; }
+
+# finish_player SECONDS: waits for the player (bounded); sets player_rc (124: it did not end).
+finish_player() {
+    if wait_for "$1" bash -c "! kill -0 $player_pid 2>/dev/null"; then
+        wait "$player_pid"
+        player_rc=$?
+    else
+        kill -KILL "$player_pid" 2>/dev/null
+        wait "$player_pid" 2>/dev/null
+        player_rc=124
+    fi
+}
+
+grab() { (as_user "$xdg" env WAYLAND_DISPLAY=wayland-0 timeout 20 grim "$1") 2>>"$tmp/out/grim.err"; }
+json_number() { sed -n "s/.*\"$2\"[[:space:]]*:[[:space:]]*\([0-9][0-9]*\).*/\1/p" "$1"; }
+# differing A B: how many pixels differ (-1: a file is missing or the sizes differ)
+differing() {
+    local n
+    n=$(compare -metric AE "$1" "$2" null: 2>&1 | cut -d' ' -f1)
+    [[ "$n" =~ ^[0-9]+$ ]] && echo "$n" || echo -1
+}
+
+# ---- the picture, full screen, frames, SIGTERM -----------------------------------------------
+# raw_hash PNG: a digest of its RGB pixels (the same picture from grim and from the player's PNG
+# writer hashes the same)
+raw_hash() { convert "$1" -alpha off rgb:- 2>/dev/null | md5sum | cut -d' ' -f1; }
+
+# Grabs every half second until three show different pictures or GRAB_SECONDS pass.
+# cage 0.1.4's headless output (wlroots 0.15, pixman) can show one frame of a wl_shm window for
+# seconds while it sends frame callbacks for the newer ones, so a fixed pair of grabs could
+# catch the same one.
+GRAB_SECONDS=${WAYLAND_TEST_GRAB_SECONDS:-20}
+grab_until_two() {
+    local deadline=$((SECONDS + GRAB_SECONDS)) i=0
+    declare -A seen=()
+    # three different pictures: the first frame, at the size before the compositor's, may be one
+    while [ "$SECONDS" -lt "$deadline" ] && [ "${#seen[@]}" -lt 3 ] && kill -0 "$player_pid" 2>/dev/null; do
+        grab "$tmp/out/grab-$i.png" || break
+        seen[$(raw_hash "$tmp/out/grab-$i.png")]=1
+        i=$((i + 1))
+        sleep 0.5
+    done
+    grabs=$i
+}
+
+test_picture() {
+    if ! start_cage picture; then
+        fail picture "cage did not start within 20 s: $(tail -n 3 "$tmp/out/picture-cage.log" | tr '\n' ' ')"
+        return
+    fi
+    play run --scene "$tmp/bin/explosion.cfg" --fps "$FPS" --frames 100000 --stats "$tmp/out/run.json"
+    if ! wait_for "$WAIT" stats_lines run 1; then
+        fail picture "no stats line within $WAIT s: $(head -c 300 "$tmp/out/run.err")"
+        stop_cage
+        return
+    fi
+    grab_until_two
+    kill -TERM "$player_pid"
+    finish_player 20
+    stop_cage
+    check_sigterm
+    check_picture
+    check_frames
+}
+
+check_sigterm() {
+    if [ "$player_rc" -eq 0 ] && grep -q "frames in .* on Wayland" "$tmp/out/run.out" && [ -s "$tmp/out/run.json" ]; then
+        ok "sigterm (exit 0, summary, --stats written)"
+    else
+        fail sigterm "exit status $player_rc: $(tail -n 2 "$tmp/out/run.err" | tr '\n' ' ')"
+    fi
+}
+
+# Every grab against every frame the headless player renders of the same run, pixel for pixel:
+# matched holds the frame index of each grab that is one ("-": none, e.g. the first frame,
+# drawn at the default size before the compositor said the output's).
+check_picture() {
+    local frames size i f h
+    frames=$(json_number "$tmp/out/run.json" frames)
+    size=$(identify -format '%wx%h' "$tmp/out/grab-0.png" 2>/dev/null)
+    if [ -z "$frames" ] || [ -z "$size" ] || [ "$grabs" -eq 0 ]; then
+        fail picture "no frame count ($frames) or no grab ($size): $(head -c 200 "$tmp/out/grim.err")"
+        return
+    fi
+    "$player" --headless --scene scenes/explosion.cfg --fps "$FPS" --frames "$frames" --size "$size" \
+        --out "$tmp/headless" --quiet || { fail picture "the headless render failed"; return; }
+    declare -A frame_of=()
+    for ((i = 0; i < frames; i++)); do
+        printf -v f '%s/headless/frame-%04d.png' "$tmp" "$i"
+        frame_of[$(raw_hash "$f")]=$i
+    done
+    matched=()
+    for ((i = 0; i < grabs; i++)); do
+        h=$(raw_hash "$tmp/out/grab-$i.png")
+        matched+=("${frame_of[$h]:--}")
+    done
+    local last=-1 m # the earliest grabbed frame after frame 0 (the explosion starts at frame 1)
+    for m in "${matched[@]}"; do [ "$m" != - ] && [ "$m" -ge 1 ] && { [ "$last" -lt 0 ] || [ "$m" -lt "$last" ]; } && last=$m; done
+    if [ "$last" -lt 1 ]; then
+        fail picture "no grab is a headless frame with particles (grabs: ${matched[*]} of $frames frames)"
+        return
+    fi
+    "$player" --headless --no-timeline --scene scenes/explosion.cfg --fps "$FPS" --frames $((last + 1)) \
+        --size "$size" --out "$tmp/scene" --quiet
+    local explosion
+    printf -v f '%s/scene/frame-%04d.png' "$tmp" "$last"
+    explosion=$(differing "$tmp/headless/$(basename "$f")" "$f")
+    if [ "${explosion:-0}" -lt 1000 ]; then
+        fail picture "the grab is headless frame $last, but the scene alone differs in only $explosion pixels"
+    else
+        ok "picture (grabs are headless frames ${matched[*]} of $frames pixel for pixel, $size; the explosion covers $explosion pixels)"
+    fi
+    if grep -q "on Wayland wayland-0 $size full screen" "$tmp/out/run.out"; then
+        ok "full-screen ($size, the output's size)"
+    else
+        fail full-screen "the summary does not say '$size full screen': $(grep 'frames in' "$tmp/out/run.out")"
+    fi
+}
+
+# The compositor asked for frames all along (frame callbacks), and two grabs showed two
+# different frames of the run.
+check_frames() {
+    local flips lines distinct
+    flips=$(json_number "$tmp/out/run.json" flips)
+    lines=$(grep ' fps, frame ' "$tmp/out/run.out" | grep -vc 'flips 0,')
+    distinct=$(printf '%s\n' "${matched[@]}" | grep -v '^-$' | sort -u | wc -l)
+    if [ "${flips:-0}" -ge 3 ] && [ "$lines" -ge 1 ] && [ "$distinct" -ge 2 ]; then
+        ok "frames-keep-coming ($flips frame callbacks; grabs showed $distinct different frames)"
+    else
+        fail frames-keep-coming "frame callbacks $flips, stats lines with callbacks $lines, distinct frames grabbed $distinct (${matched[*]})"
+    fi
+}
+
+# ---- the compositor going away --------------------------------------------------------------
+test_compositor_killed() {
+    if ! start_cage killed; then
+        fail compositor-killed "cage did not start within 20 s"
+        return
+    fi
+    play killed --scene "$tmp/bin/explosion.cfg"
+    if ! wait_for "$WAIT" stats_lines killed 1; then
+        fail compositor-killed "no stats line within $WAIT s: $(head -c 300 "$tmp/out/killed.err")"
+        stop_cage
+        return
+    fi
+    stop_cage
+    finish_player 20
+    if [ "$player_rc" -eq 69 ] && grep -q "the compositor went away" "$tmp/out/killed.err"; then
+        ok "compositor-killed (logged, exit status 69)"
+    elif [ "$player_rc" -ge 124 ]; then
+        fail compositor-killed "the player did not end or crashed (status $player_rc)"
+    else
+        fail compositor-killed "exit status $player_rc, expected 69: $(tail -n 1 "$tmp/out/killed.err")"
+    fi
+}
+
+# ---- --display auto, no compositor ------------------------------------------------------------
+test_auto() {
+    local err rc
+    err=$(env -u WAYLAND_DISPLAY timeout 30 "$player" --display auto --device /nonexistent/dri/card9 2>&1 >/dev/null)
+    rc=$?
+    if [ "$rc" -eq 1 ] && grep -q -- "--display drm" <<<"$err"; then
+        ok "auto-drm (no WAYLAND_DISPLAY: drm)"
+    else
+        fail auto-drm "status $rc: $err"
+    fi
+    err=$(WAYLAND_DISPLAY=sbfx-no-such-compositor XDG_RUNTIME_DIR=$tmp timeout 30 "$player" --display auto 2>&1 >/dev/null)
+    rc=$?
+    if [ "$rc" -eq 1 ] && grep -q "cannot connect to the Wayland compositor $tmp/sbfx-no-such-compositor" <<<"$err"; then
+        ok "no-compositor (auto chose wayland; the error names the socket)"
+    else
+        fail no-compositor "status $rc: $err"
+    fi
+}
+
+test_auto
+test_picture
+test_compositor_killed
+[ "$failures" -eq 0 ]
