@@ -12,6 +12,7 @@
 #   frames-keep-coming  frame callbacks keep coming, and grabs show two different frames of the run
 #   sigterm          SIGTERM ends the run with status 0 and the summary
 #   compositor-killed  cage killed: logged, exit status 69 (PLAYER_EXIT_DISPLAY_LOST), no crash
+#   presentation     under weston (headless): presentation-time feedback reaches --stats
 #   auto, no-compositor  --display auto picks wayland with WAYLAND_DISPLAY and drm without;
 #                    a missing compositor is an error naming it
 # Usage: tests/wayland.sh [BUILD] (default build). Prints ok / not ok / skip lines; every wait is
@@ -277,6 +278,45 @@ test_compositor_killed() {
     fi
 }
 
+# ---- presentation-time feedback: weston (headless, pixman, desktop shell) ----------------------
+# cage 0.1.4 offers no wp_presentation; weston 10 does. (Its kiosk shell on the headless backend
+# sends no frame callbacks to any client, weston-simple-egl's included: the desktop shell here.)
+test_presentation() {
+    if ! command -v weston >/dev/null 2>&1; then
+        skip presentation "weston is not installed (tools/deps.sh test)"
+        return
+    fi
+    xdg=$tmp/weston
+    mkdir -p "$xdg"
+    [ "${#run_as[@]}" -gt 0 ] && chown "$(id -u nobody)" "$xdg"
+    chmod 700 "$xdg"
+    (as_user "$xdg" weston --backend=headless-backend.so --shell=desktop-shell.so --use-pixman \
+        --socket=wayland-0 --width=640 --height=360 --idle-time=0) >"$tmp/out/weston.log" 2>&1 &
+    local weston_pid=$!
+    pids+=("$weston_pid")
+    if ! wait_for 20 test -S "$xdg/wayland-0"; then
+        fail presentation "weston did not start within 20 s: $(tail -n 2 "$tmp/out/weston.log" | tr '\n' ' ')"
+        return
+    fi
+    play weston --scene "$tmp/bin/explosion.cfg" --frames 40 --stats "$tmp/out/weston.json"
+    finish_player "$WAIT"
+    kill -TERM "$weston_pid" 2>/dev/null
+    wait "$weston_pid" 2>/dev/null
+    local j=$tmp/out/weston.json presented latency frames
+    presented=$(json_number "$j" presented_frames)
+    latency=$(sed -n 's/.*"latency_ms_mean": \([0-9.]*\).*/\1/p' "$j")
+    frames=$(json_number "$j" frames)
+    if [ "$player_rc" -ne 0 ]; then
+        fail presentation "exit status $player_rc: $(tail -n 1 "$tmp/out/weston.err")"
+    elif [ "${frames:-0}" -ne 40 ] || [ "${presented:-0}" -lt 1 ] || ! awk -v l="${latency:-0}" 'BEGIN { exit !(l > 0) }'; then
+        fail presentation "frames $frames, presented_frames $presented, latency_ms_mean $latency"
+    elif ! grep -q "640x360 full screen, presentation-time feedback" "$tmp/out/weston.out"; then
+        fail presentation "not full screen with feedback: $(grep 'frames in' "$tmp/out/weston.out")"
+    else
+        ok "presentation (weston: $presented of $frames frames presented, latency mean $latency ms; $(grep 'frames in' "$tmp/out/weston.out" | grep -o 'missed vblanks [0-9]*'))"
+    fi
+}
+
 # ---- --display auto, no compositor ------------------------------------------------------------
 test_auto() {
     local err rc
@@ -299,4 +339,5 @@ test_auto() {
 test_auto
 test_picture
 test_compositor_killed
+test_presentation
 [ "$failures" -eq 0 ]

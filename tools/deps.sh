@@ -24,8 +24,9 @@ test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang $clang_rt groff-base ffmp
 test_pkgs="$test_pkgs g++ qt6-base-dev qt6-declarative-dev qml6-module-qtquick qml6-module-qtquick-window qml6-module-qtqml-workerscript qt6-qpa-plugins xvfb xauth"
 # systemd-analyze (security --offline, verify) and systemd-sysusers check the kiosk's unit
 test_pkgs="$test_pkgs systemd"
-# tests/wayland.sh: sbfx-play under cage (wlroots, headless) read back by grim (wlr-screencopy)
-test_pkgs="$test_pkgs cage grim"
+# tests/wayland.sh: sbfx-play under cage (wlroots, headless) read back by grim (wlr-screencopy),
+# and under weston (headless) for presentation-time feedback
+test_pkgs="$test_pkgs cage grim weston"
 # make test-vm: qemu (TCG), the guest's modprobe through the shared root, and what tests/vm/run.sh
 # needs to fetch and unpack Debian's kernel packages and build vkms and gpio-sim out of tree
 vm_pkgs="$build_pkgs qemu-system-x86 kmod xz-utils patch gcc-12 make libelf1"
