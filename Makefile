@@ -656,21 +656,30 @@ FORCE:
 # /usr puts the rule under /etc. On the live system (no DESTDIR, as root) the group is made
 # and systemd and udev reload.
 SYSTEMDUNITDIR ?= $(PREFIX)/lib/systemd/system
+SYSTEMDUSERUNITDIR ?= $(PREFIX)/lib/systemd/user
 SYSUSERSDIR ?= $(PREFIX)/lib/sysusers.d
 UDEVRULESDIR ?= $(if $(filter /usr,$(PREFIX)),/usr/lib/udev/rules.d,/etc/udev/rules.d)
 KIOSK_UNIT := sbfx-kiosk.service
+# the Wayland kiosk (docs/kiosk-deploy.md "Wayland"): cage on tty1 (system), or a client of the
+# session's compositor (user unit)
+KIOSK_CAGE_UNIT := sbfx-kiosk-cage.service
+KIOSK_USER_UNIT := sbfx-kiosk-wayland.service
+kiosk_unit_from = sed -e 's|@BINDIR@|$(BINDIR)|g' -e 's|@DATADIR@|$(DATADIR)|g' $1 > $2 && chmod 644 $2
 KIOSK_UDEV_RULE := 60-sbfx-gpio.rules
 .PHONY: install-kiosk uninstall-kiosk
 install: install-kiosk
 uninstall: uninstall-kiosk
 install-kiosk:
 	install -d $(DESTDIR)$(DATADIR)/sbfx/scenes $(DESTDIR)$(DATADIR)/sbfx/boards \
-		$(DESTDIR)$(SYSTEMDUNITDIR) $(DESTDIR)$(UDEVRULESDIR) $(DESTDIR)$(SYSUSERSDIR)
+		$(DESTDIR)$(SYSTEMDUNITDIR) $(DESTDIR)$(UDEVRULESDIR) $(DESTDIR)$(SYSUSERSDIR) \
+		$(DESTDIR)$(SYSTEMDUSERUNITDIR)
 	install -m 644 scenes/*.cfg $(DESTDIR)$(DATADIR)/sbfx/scenes/
 	install -m 644 boards/*.cfg $(DESTDIR)$(DATADIR)/sbfx/boards/
 	sed -e 's|@BINDIR@|$(BINDIR)|g' -e 's|@DATADIR@|$(DATADIR)|g' dist/systemd/$(KIOSK_UNIT).in \
 		> $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT)
 	chmod 644 $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT)
+	$(call kiosk_unit_from,dist/systemd/$(KIOSK_CAGE_UNIT).in,$(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_CAGE_UNIT))
+	$(call kiosk_unit_from,dist/systemd/user/$(KIOSK_USER_UNIT).in,$(DESTDIR)$(SYSTEMDUSERUNITDIR)/$(KIOSK_USER_UNIT))
 	install -m 644 dist/udev/$(KIOSK_UDEV_RULE) $(DESTDIR)$(UDEVRULESDIR)/
 	install -m 644 dist/sysusers/sbfx.conf $(DESTDIR)$(SYSUSERSDIR)/
 	@if [ -z "$(DESTDIR)" ] && [ "$$(id -u)" -eq 0 ]; then \
@@ -681,6 +690,7 @@ install-kiosk:
 	fi
 uninstall-kiosk:
 	rm -rf $(DESTDIR)$(DATADIR)/sbfx
+	rm -f $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_CAGE_UNIT) $(DESTDIR)$(SYSTEMDUSERUNITDIR)/$(KIOSK_USER_UNIT)
 	rm -f $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT) $(DESTDIR)$(UDEVRULESDIR)/$(KIOSK_UDEV_RULE) \
 		$(DESTDIR)$(SYSUSERSDIR)/sbfx.conf
 

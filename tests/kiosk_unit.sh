@@ -108,4 +108,41 @@ elif ! value SupplementaryGroups | tr ' ' '\n' | grep -qx "$rule_group"; then no
 elif command -v systemd-sysusers >/dev/null 2>&1 && ! { systemd-sysusers --root="$root" sbfx.conf >/dev/null 2>&1 &&
     grep -q "^$rule_group:" "$root/etc/group"; }; then not_ok gpio-group "systemd-sysusers did not make group $rule_group"
 else ok "gpio-group ($rule_group: udev rule, sysusers.d, SupplementaryGroups)"; fi
+
+# The Wayland kiosk's units (docs/kiosk-deploy.md "Wayland"): cage on tty1 (system) and a client of
+# the session's compositor (user): installed with their paths, verified, restarted on the
+# compositor going away (sbfx-play exits 69), the cage unit hardened as far as a compositor on a
+# seat allows (its seat's devices through logind: no DevicePolicy=), its user made by sysusers.
+cage_unit=$root/usr/lib/systemd/system/sbfx-kiosk-cage.service
+user_unit=$root/usr/lib/systemd/user/sbfx-kiosk-wayland.service
+uvalue() { sed -n "s/^$2=//p" "$1"; }
+if [ ! -f "$cage_unit" ] || [ ! -f "$user_unit" ]; then
+    not_ok wayland-units "not installed: $cage_unit $user_unit"
+elif grep -q '@[A-Z]*@' "$cage_unit" "$user_unit"; then
+    not_ok wayland-units "placeholders left: $(grep -ho '@[A-Z]*@' "$cage_unit" "$user_unit" | sort -u | tr '\n' ' ')"
+elif ! uvalue "$cage_unit" ExecStart | grep -q -- "-- /usr/bin/sbfx-play --display wayland" ||
+    ! uvalue "$user_unit" ExecStart | grep -q -- "^/usr/bin/sbfx-play --display wayland"; then
+    not_ok wayland-units "ExecStart: $(uvalue "$cage_unit" ExecStart) / $(uvalue "$user_unit" ExecStart)"
+elif [ "$(uvalue "$cage_unit" Restart)" != always ] || [ "$(uvalue "$user_unit" Restart)" != on-failure ] ||
+    uvalue "$user_unit" RestartPreventExitStatus | grep -qw 69; then
+    not_ok wayland-units "restarts: cage Restart=$(uvalue "$cage_unit" Restart), user Restart=$(uvalue "$user_unit" Restart)"
+else
+    ok "wayland-units (sbfx-kiosk-cage.service: cage -- sbfx-play, Restart=always; user sbfx-kiosk-wayland.service: Restart=on-failure restarts on 69)"
+fi
+if command -v systemd-analyze >/dev/null 2>&1 && [ -f "$cage_unit" ] && [ -f "$user_unit" ]; then
+    mkdir -p "$tmp/wverify"
+    for u in "$cage_unit" "$user_unit"; do
+        sed "s|/usr/bin/sbfx-play|$root/usr/bin/sbfx-play|" "$u" >"$tmp/wverify/$(basename "$u")"
+    done
+    if systemd-analyze verify --man=no "$tmp/wverify/"*.service >"$tmp/wverify.log" 2>&1 && [ ! -s "$tmp/wverify.log" ]; then
+        ok wayland-verify
+    else not_ok wayland-verify "$(head -n 3 "$tmp/wverify.log" | tr '\n' ' ')"; fi
+    systemd-analyze security --offline=true "$cage_unit" >"$tmp/wsecurity.log" 2>&1
+    level=$(sed -n 's/.*Overall exposure level for sbfx-kiosk-cage.service: \([0-9.]*\).*/\1/p' "$tmp/wsecurity.log")
+    if [ -n "$level" ] && awk -v l="$level" 'BEGIN { exit !(l <= 1.5) }'; then ok "wayland-exposure ($level <= 1.5)"
+    else not_ok wayland-exposure "'$level' > 1.5: $(grep '✗' "$tmp/wsecurity.log" | awk '{print $2}' | tr '\n' ' ')"; fi
+fi
+if [ "$(uvalue "$cage_unit" User)" = sbfx ] && grep -q '^u sbfx ' "$sysusers" && { ! command -v systemd-sysusers >/dev/null 2>&1 ||
+    grep -q '^sbfx:' "$root/etc/passwd"; }; then ok "wayland-user (sbfx, made by sysusers.d)"
+else not_ok wayland-user "User=$(uvalue "$cage_unit" User); sysusers.d: $(grep '^u' "$sysusers")"; fi
 exit "$failed"
