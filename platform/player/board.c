@@ -137,10 +137,11 @@ int mode_spec_parse(const char *text, int *width, int *height, int *refresh)
 
 static int read_display(struct reader *r, const config_setting_t *g)
 {
-    static const char *const keys[] = {"device", "connector", "mode", "modeset", NULL};
+    static const char *const keys[] = {"device", "connector", "mode", "modeset", "backend", NULL};
     static const char *const modesets[] = {"auto", "atomic", "legacy", NULL};
+    static const char *const backends[] = {"drm", "wayland", "auto", NULL};
     struct board_profile *b = r->b;
-    int modeset = (int)b->modeset, w, h, hz;
+    int modeset = (int)b->modeset, backend = -1, w, h, hz;
     int rc = check_keys(r, g, "display", keys);
     if (!rc) rc = get_string(r, g, "device", b->drm_device, sizeof(b->drm_device));
     if (!rc) rc = get_string(r, g, "connector", b->connector, sizeof(b->connector));
@@ -150,6 +151,8 @@ static int read_display(struct reader *r, const config_setting_t *g)
                      "'mode' = \"%s\" is not WxH or WxH@HZ (e.g. 1920x1080@60)", b->mode);
     if (!rc) rc = get_choice(r, g, "modeset", modesets, &modeset);
     b->modeset = (enum modeset_kind)modeset;
+    if (!rc) rc = get_choice(r, g, "backend", backends, &backend);
+    if (backend >= 0) snprintf(b->backend, sizeof(b->backend), "%s", backends[backend]);
     return rc;
 }
 

@@ -4,7 +4,9 @@
  *
  *   board = "rk3588"; description = "...";
  *   display = { device = "/dev/dri/card0"; connector = "HDMI-A-1"; mode = "1920x1080@60";
- *               modeset = "auto"; };                    # auto | atomic | legacy
+ *               modeset = "auto";                       # auto | atomic | legacy
+ *               backend = "wayland"; };                 # drm | wayland | auto: the display
+ *                                                       # without --display (or --headless)
  *   video   = { device = "/dev/video0"; size = [640, 480]; };
  *   gpio    = { debounce_ms = 30; min_interval_ms = 250;
  *               lines = ( { chip = "gpiochip0"; line = 17; edge = "rising";
@@ -29,6 +31,7 @@ struct board_profile {
     char connector[32];
     char mode[32];
     enum modeset_kind modeset;
+    char backend[16];                /* "drm", "wayland", "auto" or "" (not set) */
     char video_device[128];
     int video_width, video_height;   /* 0: the driver's size */
     int gpio_debounce_ms;            /* defaults of lines that do not say (-1: not set) */

@@ -358,6 +358,19 @@ static int play(const struct player_options *opt)
     return lost ? PLAYER_EXIT_DISPLAY_LOST : 1;
 }
 
+/* --board's display.backend, where the command line chose no display: read before the run,
+ * as --display is, so that the flags are checked against it. */
+static int board_display(struct player_options *opt, char *err, size_t n)
+{
+    if (!opt->board_path || opt->display_set || opt->headless_flag) return 0;
+    static struct board_profile board; /* large (GPIO table): off the stack */
+    char why[512];
+    if (board_load(opt->board_path, &board, why, sizeof(why)) != 0) return 0; /* setup says why */
+    int rc = player_board_display(opt, board.backend, why, sizeof(why));
+    if (rc) snprintf(err, n, "--board %.200s: display.backend = \"%s\": %.256s", opt->board_path, board.backend, why);
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     static struct player_options opt; /* the trigger table is large: off the stack */
@@ -374,6 +387,10 @@ int main(int argc, char **argv)
     if (opt.version) {
         player_version(stdout);
         return 0;
+    }
+    if (board_display(&opt, err, sizeof(err)) != 0) {
+        fprintf(stderr, "sbfx-play: %s\n", err);
+        return 1;
     }
     return play(&opt);
 }

@@ -491,6 +491,13 @@ static int check_display(const struct player_options *opt, char *err, size_t n)
     return 0;
 }
 
+int player_board_display(struct player_options *opt, const char *backend, char *err, size_t n)
+{
+    if (opt->display_set || opt->headless_flag || !backend[0]) return 0;
+    int rc = set_display(opt, backend, err, n);
+    return rc ? rc : check_display(opt, err, n);
+}
+
 int player_parse_args(struct player_options *opt, int argc, char **argv, char *err, size_t n)
 {
     int rc = parse_flags(opt, argc, argv, err, n);

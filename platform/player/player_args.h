@@ -85,6 +85,9 @@ bool player_on_screen(const struct player_options *opt);
  * names the flag and the values it accepts. Stops at --help or --version (opt->help,
  * opt->version set). */
 int player_parse_args(struct player_options *opt, int argc, char **argv, char *err, size_t n);
+/* The display a board profile names (display.backend: drm, wayland, auto) where the command
+ * line named none (no --display, no --headless), checked against the flags as --display is. */
+int player_board_display(struct player_options *opt, const char *backend, char *err, size_t n);
 /* Parses one EFFECT@SECONDS[:X,Y,Z]; the position defaults to the origin. */
 int player_parse_trigger(const char *text, struct player_trigger *out, char *err, size_t n);
 /* Parses one CHIP:LINE=EFFECT[@X,Y,Z]. */

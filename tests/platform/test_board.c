@@ -50,7 +50,8 @@ CHECK_TEST(values_arrive)
     struct board_profile b;
     const char *err = load_text(
         "board = \"t\";\n"
-        "display = { device = \"/dev/dri/card3\"; connector = \"DSI-1\"; mode = \"800x480@60\"; modeset = \"legacy\"; };\n"
+        "display = { device = \"/dev/dri/card3\"; connector = \"DSI-1\"; mode = \"800x480@60\"; modeset = \"legacy\";\n"
+        "  backend = \"wayland\"; };\n"
         "video = { device = \"/dev/video7\"; size = [320, 240]; };\n"
         "gpio = { debounce_ms = 12; min_interval_ms = 900;\n"
         "  lines = ( { chip = \"gpiochip2\"; line = 5; edge = \"both\"; effect = \"boom\"; position = [1.0, 2.0, 3.5]; },\n"
@@ -59,6 +60,7 @@ CHECK_TEST(values_arrive)
     CHECK(!err[0], "%s", err);
     CHECK(strcmp(b.drm_device, "/dev/dri/card3") == 0 && strcmp(b.connector, "DSI-1") == 0);
     CHECK(strcmp(b.mode, "800x480@60") == 0 && b.modeset == MODESET_LEGACY);
+    CHECK(strcmp(b.backend, "wayland") == 0, "backend '%s'", b.backend);
     CHECK(strcmp(b.video_device, "/dev/video7") == 0 && b.video_width == 320 && b.video_height == 240);
     CHECK(b.gpio_count == 2);
     CHECK(b.gpio[0].line == 5 && b.gpio[0].edge == SBFX_EDGE_BOTH && strcmp(b.gpio[0].effect, "boom") == 0);
@@ -84,6 +86,8 @@ CHECK_TEST(errors_name_file_line_and_key)
     CHECK(strstr(err, "'line' = 70000 is out of range") != NULL, "%s", err);
     err = load_text("display = { modeset = \"fast\"; };\n", &b);
     CHECK(strstr(err, "'modeset' = \"fast\" is not one of") != NULL, "%s", err);
+    err = load_text("display = { backend = \"x11\"; };\n", &b);
+    CHECK(strstr(err, "'backend' = \"x11\" is not one of") != NULL, "%s", err);
     err = load_text("video = { size = [640]; };\n", &b);
     CHECK(strstr(err, "'size' must be an array of 2 numbers") != NULL, "%s", err);
     err = load_text("board = ;\n", &b);

@@ -1,5 +1,6 @@
 /* sbfx-play's platform flags (platform/player/player_args.c): --gpio syntax, display conflicts. */
 #include <errno.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
@@ -63,6 +64,39 @@ CHECK_TEST(display_flags)
     CHECK(strcmp(opt.video, "/dev/video0") == 0 && strcmp(opt.board_path, "b.cfg") == 0);
     CHECK(parse(&opt, err, sizeof(err), "--gpio", "a:1=x", "--gpio", "a:2=y") == 0, "%s", err);
     CHECK(opt.gpio_count == 2 && opt.gpio[1].line == 2);
+}
+
+/* --display wayland and auto (WAYLAND_DISPLAY decides), their flags, and a board's display. */
+CHECK_TEST(wayland_display)
+{
+    static struct player_options opt;
+    char err[512];
+    CHECK(parse(&opt, err, sizeof(err), "--display", "wayland", "--size", "640x360") == 0, "%s", err);
+    CHECK(opt.display == PLAYER_DISPLAY_WAYLAND && player_on_screen(&opt) && opt.width == 640);
+    CHECK(parse(&opt, err, sizeof(err), "--display", "wayland", "--out", "x") == -EINVAL);
+    CHECK(strstr(err, "--out applies to --display headless, not wayland") != NULL, "%s", err);
+    CHECK(parse(&opt, err, sizeof(err), "--display", "wayland", "--mode", "640x480") == -EINVAL);
+    CHECK(strstr(err, "--mode applies to --display drm (the display is wayland)") != NULL, "%s", err);
+    setenv("WAYLAND_DISPLAY", "wayland-1", 1);
+    CHECK(parse(&opt, err, sizeof(err), "--display", "auto", NULL, NULL) == 0, "%s", err);
+    CHECK(opt.display == PLAYER_DISPLAY_WAYLAND && opt.display_auto);
+    CHECK(parse(&opt, err, sizeof(err), "--display", "auto", "--device", "/dev/dri/card0") == -EINVAL);
+    CHECK(strstr(err, "auto chose it, WAYLAND_DISPLAY is set") != NULL, "%s", err);
+    setenv("WAYLAND_DISPLAY", "", 1);
+    CHECK(parse(&opt, err, sizeof(err), "--display", "auto", NULL, NULL) == 0, "%s", err);
+    CHECK(opt.display == PLAYER_DISPLAY_DRM, "an empty WAYLAND_DISPLAY is no compositor");
+    unsetenv("WAYLAND_DISPLAY");
+    CHECK(parse(&opt, err, sizeof(err), "--display", "auto", NULL, NULL) == 0 && opt.display == PLAYER_DISPLAY_DRM);
+    /* a board's display.backend: only where the command line named none */
+    CHECK(parse(&opt, err, sizeof(err), "--board", "b.cfg", NULL, NULL) == 0, "%s", err);
+    CHECK(player_board_display(&opt, "wayland", err, sizeof(err)) == 0 && opt.display == PLAYER_DISPLAY_WAYLAND);
+    CHECK(parse(&opt, err, sizeof(err), "--board", "b.cfg", "--headless", NULL) == 0, "%s", err);
+    CHECK(player_board_display(&opt, "wayland", err, sizeof(err)) == 0 && opt.display == PLAYER_DISPLAY_HEADLESS);
+    CHECK(parse(&opt, err, sizeof(err), "--board", "b.cfg", "--out", "x") == 0, "%s", err);
+    CHECK(player_board_display(&opt, "drm", err, sizeof(err)) == -EINVAL);
+    CHECK(strstr(err, "--out applies to --display headless, not drm") != NULL, "%s", err);
+    CHECK(parse(&opt, err, sizeof(err), "--board", "b.cfg", NULL, NULL) == 0, "%s", err);
+    CHECK(player_board_display(&opt, "", err, sizeof(err)) == 0 && opt.display == PLAYER_DISPLAY_HEADLESS);
 }
 
 int main(int argc, char **argv)
