@@ -77,7 +77,8 @@ as_user() {
     local xdg=$1
     shift
     exec "${run_as[@]}" env -i PATH=/usr/bin:/bin HOME="$tmp/out" XDG_RUNTIME_DIR="$xdg" \
-        WLR_BACKENDS=headless WLR_RENDERER=pixman WLR_LIBINPUT_NO_DEVICES=1 "$@"
+        WLR_BACKENDS=headless WLR_RENDERER=pixman WLR_LIBINPUT_NO_DEVICES=1 \
+        ${ASAN_OPTIONS:+ASAN_OPTIONS=$ASAN_OPTIONS} ${UBSAN_OPTIONS:+UBSAN_OPTIONS=$UBSAN_OPTIONS} "$@"
 }
 
 # wait_for SECONDS COMMAND...: polls COMMAND every 0.1 s until it succeeds; 1 on timeout.
@@ -103,8 +104,17 @@ start_cage() {
     wait_for 20 test -S "$xdg/wayland-0"
 }
 
+# children_of PID: the processes whose parent is PID (from /proc: procps may be absent)
+children_of() {
+    local stat
+    for stat in /proc/[0-9]*/stat; do
+        awk -v p="$1" '$4 == p { print $1 }' "$stat" 2>/dev/null
+    done
+}
+
 stop_cage() {
-    pkill -KILL -P "$cage_pid" 2>/dev/null # its placeholder client, by its parent's id
+    local child
+    for child in $(children_of "$cage_pid"); do kill -KILL "$child" 2>/dev/null; done # its placeholder
     kill -KILL "$cage_pid" 2>/dev/null
     wait "$cage_pid" 2>/dev/null
 }
