@@ -131,7 +131,11 @@ play() {
 }
 
 # stats_lines NAME N: the player printed at least N once-a-second lines
-stats_lines() { [ "$(grep -c ' fps, frame ' "$tmp/out/$1.out" 2>/dev/null)" -ge "$2" ]; }
+stats_lines() {
+    local count
+    count=$(grep -c ' fps, frame ' "$tmp/out/$1.out" 2>/dev/null)
+    [ "${count:-0}" -ge "$2" ]
+}
 
 # finish_player SECONDS: waits for the player (bounded); sets player_rc (124: it did not end).
 finish_player() {

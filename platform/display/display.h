@@ -94,7 +94,9 @@ struct display_drm_desc {
 
 struct display_wayland_desc {
     int width, height;          /* the window's size where the compositor leaves it to the
-                                   client (a refused full screen) */
+                                   client: with size_set always, else only where no output's
+                                   size is known (a full-screen window is the output's size) */
+    bool size_set;              /* --size was given */
 };
 
 int display_headless_create(const struct display_headless_desc *desc, struct display **out,

@@ -47,6 +47,8 @@ struct display_wayland {
     struct wl_compositor *compositor;
     struct xdg_wm_base *wm_base;
     struct wp_presentation *presentation;
+    struct wl_output *output;       /* the first output: its size is a full-screen window's */
+    int output_width, output_height; /* its current mode (0: not told) */
     clockid_t clock;                /* the presentation clock (wp_presentation.clock_id) */
     struct wl_surface *surface;
     struct xdg_surface *xdg_surface;
@@ -131,6 +133,8 @@ static void on_registry_global(void *data, struct wl_registry *registry, uint32_
         k->wm_base = wl_registry_bind(registry, name, &xdg_wm_base_interface, 1);
     else if (strcmp(interface, wp_presentation_interface.name) == 0 && !k->presentation)
         k->presentation = wl_registry_bind(registry, name, &wp_presentation_interface, 1);
+    else if (strcmp(interface, wl_output_interface.name) == 0 && !k->output)
+        k->output = wl_registry_bind(registry, name, &wl_output_interface, 1);
 }
 
 static void on_registry_global_remove(void *data, struct wl_registry *registry, uint32_t name)
@@ -148,6 +152,27 @@ static void on_wm_base_ping(void *data, struct xdg_wm_base *wm_base, uint32_t se
 }
 
 static const struct xdg_wm_base_listener wm_base_listener = {.ping = on_wm_base_ping};
+
+static void on_output_geometry(void *data, struct wl_output *output, int32_t x, int32_t y,
+                               int32_t mm_width, int32_t mm_height, int32_t subpixel,
+                               const char *make, const char *model, int32_t transform)
+{
+}
+
+static void on_output_mode(void *data, struct wl_output *output, uint32_t flags, int32_t width,
+                           int32_t height, int32_t refresh_mhz)
+{
+    struct display_wayland *k = data;
+    if (!(flags & WL_OUTPUT_MODE_CURRENT)) return;
+    k->output_width = width;
+    k->output_height = height;
+    if (refresh_mhz > 0 && !k->base.refresh_hz) k->base.refresh_hz = refresh_mhz / 1000.0;
+}
+
+static const struct wl_output_listener output_listener = {
+    .geometry = on_output_geometry,
+    .mode = on_output_mode,
+};
 
 static void on_presentation_clock(void *data, struct wp_presentation *presentation, uint32_t clock)
 {
@@ -205,12 +230,25 @@ static void log_fullscreen(struct display_wayland *k)
     k->fullscreen_logged = k->toplevel_fullscreen;
 }
 
-/* The size the compositor configured, or ours (desc) where it leaves it to us. */
+/* Where the compositor leaves the size to us (0x0): the window's size so far, else the output's
+ * (cage configures a full-screen window only once it is mapped: its first buffer is then the
+ * right size already), else --size. */
+static void own_size(const struct display_wayland *k, int *w, int *h)
+{
+    const struct display *d = &k->base;
+    if (d->width) *w = d->width, *h = d->height;
+    else if (!k->desc.size_set && k->output_width > 0) *w = k->output_width, *h = k->output_height;
+    else *w = k->desc.width, *h = k->desc.height;
+}
+
+/* The size the compositor configured, or ours where it leaves it to us. */
 static void apply_size(struct display_wayland *k)
 {
     struct display *d = &k->base;
-    int w = k->toplevel_width > 0 ? k->toplevel_width : (d->width ? d->width : k->desc.width);
-    int h = k->toplevel_height > 0 ? k->toplevel_height : (d->height ? d->height : k->desc.height);
+    int w = 0, h = 0;
+    own_size(k, &w, &h);
+    if (k->toplevel_width > 0) w = k->toplevel_width;
+    if (k->toplevel_height > 0) h = k->toplevel_height;
     if (w == d->width && h == d->height) return;
     d->width = w;
     d->height = h;
@@ -390,6 +428,7 @@ static void wayland_destroy(struct display *d)
     if (k->xdg_surface) xdg_surface_destroy(k->xdg_surface);
     if (k->surface) wl_surface_destroy(k->surface);
     if (k->presentation) wp_presentation_destroy(k->presentation);
+    if (k->output) wl_output_destroy(k->output);
     if (k->wm_base) xdg_wm_base_destroy(k->wm_base);
     if (k->compositor) wl_compositor_destroy(k->compositor);
     if (k->registry) wl_registry_destroy(k->registry);
@@ -434,10 +473,10 @@ static int connect_compositor(struct display_wayland *k, char *err, size_t n)
     }
     xdg_wm_base_add_listener(k->wm_base, &wm_base_listener, k);
     k->clock = CLOCK_MONOTONIC;
-    if (k->presentation) {
-        wp_presentation_add_listener(k->presentation, &presentation_listener, k);
-        if (wl_display_roundtrip(k->wl) < 0) return connection_error(k, "reading the presentation clock", err, n);
-    }
+    if (k->presentation) wp_presentation_add_listener(k->presentation, &presentation_listener, k);
+    if (k->output) wl_output_add_listener(k->output, &output_listener, k);
+    if ((k->presentation || k->output) && wl_display_roundtrip(k->wl) < 0)
+        return connection_error(k, "reading the presentation clock and the output's mode", err, n);
     return 0;
 }
 

@@ -199,7 +199,9 @@ static int create_wayland(struct player *p, char *err, size_t n)
     const struct player_options *opt = p->opt;
     int rc = 0;
     if (opt->stats_path && (rc = check_writable(opt->stats_path, err, n)) != 0) return rc;
-    const struct display_wayland_desc desc = {.width = opt->width, .height = opt->height};
+    const struct display_wayland_desc desc = {
+        .width = opt->width, .height = opt->height, .size_set = opt->size_set,
+    };
     p->realtime = !opt->fps_set;
     char why[768];
     rc = display_wayland_create(&desc, &p->display, why, sizeof(why));
