@@ -10,6 +10,7 @@
 #   full-screen      the grab is the whole output, the player's window is that size and says
 #                    "full screen"
 #   frames-keep-coming  frame callbacks keep coming, and grabs show two different frames of the run
+#   resize           the window starts at --size 320x180 and follows cage's configure to the output
 #   sigterm          SIGTERM ends the run with status 0 and the summary
 #   compositor-killed  cage killed: logged, exit status 69 (PLAYER_EXIT_DISPLAY_LOST), no crash
 #   presentation     under weston (headless): presentation-time feedback reaches --stats
@@ -186,7 +187,8 @@ test_picture() {
         fail picture "cage did not start within 20 s: $(tail -n 3 "$tmp/out/picture-cage.log" | tr '\n' ' ')"
         return
     fi
-    play run --scene "$tmp/bin/explosion.cfg" --fps "$FPS" --frames 100000 --stats "$tmp/out/run.json"
+    # --size: the first buffer is 320x180, cage then configures the output's size: a resize
+    play run --scene "$tmp/bin/explosion.cfg" --fps "$FPS" --frames 100000 --size 320x180 --stats "$tmp/out/run.json"
     if ! wait_for "$WAIT" stats_lines run 1; then
         fail picture "no stats line within $WAIT s: $(head -c 300 "$tmp/out/run.err")"
         stop_cage
@@ -252,6 +254,11 @@ check_picture() {
         ok "full-screen ($size, the output's size)"
     else
         fail full-screen "the summary does not say '$size full screen': $(grep 'frames in' "$tmp/out/run.out")"
+    fi
+    if grep -q "Wayland wayland-0 320x180" "$tmp/out/run.out" && grep -q "wayland: the window is $size now" "$tmp/out/run.err"; then
+        ok "resize (320x180 -> $size by the compositor's configure; the frames after it are the headless ones)"
+    else
+        fail resize "no resize from 320x180 to $size logged: $(grep -m1 'sbfx-play: .*Wayland' "$tmp/out/run.out")"
     fi
 }
 
