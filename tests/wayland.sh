@@ -14,6 +14,8 @@
 #   sigterm          SIGTERM ends the run with status 0 and the summary
 #   compositor-killed  cage killed: logged, exit status 69 (PLAYER_EXIT_DISPLAY_LOST), no crash
 #   presentation     under weston (headless): presentation-time feedback reaches --stats
+#   hidden           under weston's kiosk shell (headless), which sends no frame callbacks: the
+#                    player logs it, renders on unshown at 10 Hz, exits 0
 #   auto, no-compositor  --display auto picks wayland with WAYLAND_DISPLAY and drm without;
 #                    a missing compositor is an error naming it
 # Usage: tests/wayland.sh [BUILD] (default build). Prints ok / not ok / skip lines; every wait is
@@ -299,6 +301,20 @@ test_compositor_killed() {
     fi
 }
 
+# start_weston NAME SHELL: weston headless (pixman, 640x360) with SHELL, XDG_RUNTIME_DIR
+# $tmp/NAME; sets weston_pid and xdg.
+start_weston() {
+    xdg=$tmp/$1
+    mkdir -p "$xdg"
+    [ "${#run_as[@]}" -gt 0 ] && chown "$(id -u nobody)" "$xdg"
+    chmod 700 "$xdg"
+    (as_user "$xdg" weston --backend=headless-backend.so --shell="$2" --use-pixman \
+        --socket=wayland-0 --width=640 --height=360 --idle-time=0) >"$tmp/out/weston-$1.log" 2>&1 &
+    weston_pid=$!
+    pids+=("$weston_pid")
+    wait_for 20 test -S "$xdg/wayland-0"
+}
+
 # ---- presentation-time feedback: weston (headless, pixman, desktop shell) ----------------------
 # cage 0.1.4 offers no wp_presentation; weston 10 does. (Its kiosk shell on the headless backend
 # sends no frame callbacks to any client, weston-simple-egl's included: the desktop shell here.)
@@ -307,16 +323,8 @@ test_presentation() {
         skip presentation "weston is not installed (tools/deps.sh test)"
         return
     fi
-    xdg=$tmp/weston
-    mkdir -p "$xdg"
-    [ "${#run_as[@]}" -gt 0 ] && chown "$(id -u nobody)" "$xdg"
-    chmod 700 "$xdg"
-    (as_user "$xdg" weston --backend=headless-backend.so --shell=desktop-shell.so --use-pixman \
-        --socket=wayland-0 --width=640 --height=360 --idle-time=0) >"$tmp/out/weston.log" 2>&1 &
-    local weston_pid=$!
-    pids+=("$weston_pid")
-    if ! wait_for 20 test -S "$xdg/wayland-0"; then
-        fail presentation "weston did not start within 20 s: $(tail -n 2 "$tmp/out/weston.log" | tr '\n' ' ')"
+    if ! start_weston weston desktop-shell.so; then
+        fail presentation "weston did not start within 20 s: $(tail -n 2 "$tmp/out/weston-weston.log" | tr '\n' ' ')"
         return
     fi
     play weston --scene "$tmp/bin/explosion.cfg" --frames 40 --stats "$tmp/out/weston.json"
@@ -335,6 +343,36 @@ test_presentation() {
         fail presentation "not full screen with feedback: $(grep 'frames in' "$tmp/out/weston.out")"
     else
         ok "presentation (weston: $presented of $frames frames presented, latency mean $latency ms; $(grep 'frames in' "$tmp/out/weston.out" | grep -o 'missed vblanks [0-9]*'))"
+    fi
+}
+
+# ---- a window the compositor does not draw: weston's kiosk shell, headless -------------------
+# It maps the window full screen but sends no frame callback (to any client): after a second
+# the player logs it and goes on at 10 Hz without showing frames, and ends normally.
+test_hidden() {
+    if ! command -v weston >/dev/null 2>&1; then
+        skip hidden "weston is not installed (tools/deps.sh test)"
+        return
+    fi
+    if ! start_weston kiosk kiosk-shell.so; then
+        fail hidden "weston did not start within 20 s: $(tail -n 2 "$tmp/out/weston-kiosk.log" | tr '\n' ' ')"
+        return
+    fi
+    play hidden --scene "$tmp/bin/explosion.cfg" --frames 20 --stats "$tmp/out/hidden.json"
+    finish_player "$WAIT"
+    kill -TERM "$weston_pid" 2>/dev/null
+    wait "$weston_pid" 2>/dev/null
+    local paused flips
+    paused=$(json_number "$tmp/out/hidden.json" display_paused_frames)
+    flips=$(json_number "$tmp/out/hidden.json" flips)
+    if [ "$player_rc" -ne 0 ]; then
+        fail hidden "exit status $player_rc: $(tail -n 1 "$tmp/out/hidden.err")"
+    elif [ "${flips:-1}" -ne 0 ]; then
+        skip hidden "this weston sent $flips frame callbacks: the window was drawn, nothing to test"
+    elif ! grep -q "no frame callback for a second" "$tmp/out/hidden.err" || [ "${paused:-0}" -lt 1 ]; then
+        fail hidden "not logged, or no paused frames ($paused): $(tail -n 1 "$tmp/out/hidden.err")"
+    else
+        ok "hidden (no frame callbacks: logged, $paused of 20 frames rendered unshown at 10 Hz, exit 0)"
     fi
 }
 
@@ -361,4 +399,5 @@ test_auto
 test_picture
 test_compositor_killed
 test_presentation
+test_hidden
 [ "$failures" -eq 0 ]
