@@ -242,6 +242,15 @@ typedef struct sbfx_host_errors {
     unsigned logged;             /* bit per kind already logged (once per module) */
 } sbfx_host_errors;
 
+/* The host's transmittance shadow map (shadow.c): made at load only when asked for. */
+typedef struct sbfx_shadow {
+    int size;                  /* 0: none */
+    sbfx_rt map;               /* one colour texture: R16F, or RGBA8 where half floats do not render */
+    GLuint program, vao, buffer;
+    GLint u_matrix;
+    bool clear;                /* the map holds 1 everywhere (no particle since it was cleared) */
+} sbfx_shadow;
+
 struct sbfx {
     sbfx_desc desc;                      /* quality fields: the current level's */
     sbfx_quality top;                    /* the quality of the desc (and scene) at create */
@@ -293,6 +302,7 @@ struct sbfx {
     int instance_light;          /* float offset of the per-particle light, 0 = none */
 
     sbfx_gl gl;
+    sbfx_shadow shadow;
     sbfx_counters counters;
     int detail_ring_next;        /* next slice sbfx_detail_push_slice writes */
     float previous_view[16];     /* the last render's view and time (particle velocities) */
@@ -517,5 +527,9 @@ sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
 
 /* render.c */
 int sbfx_collect_view_particles(sbfx *fx, const float view[16]);
+
+/* shadow.c: the host's transmittance shadow map (sbfx_render_shadow_map) */
+sbfx_result sbfx_shadow_create(sbfx *fx);
+void sbfx_shadow_destroy(sbfx *fx);
 
 #endif
