@@ -402,6 +402,8 @@ typedef struct sbfx_scene_host {
     bool has_sun;                /* the scene has a directional light */
     float sun_direction[3];      /* the direction its light travels (unit) */
     float sun_color[3];
+    float exposure;              /* render.exposure (1 when not given): the host's light is
+                                    scaled as the particles' is */
 } sbfx_scene_host;
 
 /* Fills *out from the scene (all false and zero for NULL); returns out->has_sky. */

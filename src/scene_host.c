@@ -6,13 +6,14 @@
 bool sbfx_scene_host_get(const sbfx_scene *scene, sbfx_scene_host *out)
 {
     if (!out) return false;
-    *out = (sbfx_scene_host){0};
+    *out = (sbfx_scene_host){.exposure = 1.0f};
     if (!scene) return false;
     out->host_lights = scene->host_lights;
     out->host_shadows = scene->host_shadows;
     out->has_sky = scene->has_sky;
     memcpy(out->sky, scene->sky, sizeof(out->sky));
     memcpy(out->ambient, scene->ambient, sizeof(out->ambient));
+    out->exposure = scene->render.exposure > 0.0f ? scene->render.exposure : 1.0f;
     for (int i = 0; i < scene->light_count && !out->has_sun; i++) {
         const sbfx_light *l = &scene->lights[i];
         if (l->type != SBFX_LIGHT_DIRECTIONAL) continue;
