@@ -441,6 +441,13 @@ $(BUILD)/bench/bench_state: tests/bench/state/bench_state.c $(PLATFORM_COMMON_OB
 
 bench: $(BUILD)/bench/bench_state
 
+# ---- the host's shadow map (issue 27): its size and cost ------------------------------------
+$(BUILD)/bench/bench_shadow: tests/bench/shadow/bench_shadow.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -o $@ $< $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+
+bench: $(BUILD)/bench/bench_shadow
+
 # ---- platform (issue #5: DRM/KMS kiosk, V4L2 detail, GPIO triggers, boards) ---------------
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,
 # the --gpio/--mode syntax), run by tests/run.sh like the unit tests.

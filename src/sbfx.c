@@ -136,7 +136,7 @@ static sbfx_result validate_desc(sbfx *fx, const sbfx_desc *d)
     if (d->lod_particles < 0 || d->lod_particles > (1 << 20))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "lod_particles %d: use 0 (all) .. 1048576", d->lod_particles);
     if (d->shadow_map_size < 0)
-        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "shadow_map_size %d: use texels per side (512), or 0 "
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "shadow_map_size %d: use texels per side (256), or 0 "
                          "for none", d->shadow_map_size);
     if (!(d->sim_step <= 0.1f))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "sim_step %g s: use at most 0.1 s",

@@ -196,7 +196,7 @@ typedef struct sbfx_desc {
      * emissivity * L_blackbody(T) / white_luminance. 0: the scene's, else 10000. */
     float white_luminance;
     /* Transmittance shadow map for the host (sbfx_render_shadow_map): texels per side, 16 .. the
-     * context's largest renderable size. 0: the scene's (render.shadow_map_size, or 512 with
+     * context's largest renderable size. 0: the scene's (render.shadow_map_size, or 256 with
      * render.host_shadows = true), else none: no texture, framebuffer or program is made. */
     int shadow_map_size;
 } sbfx_desc;

@@ -248,7 +248,7 @@ static int parse_render_host(parser *p, const config_setting_t *g)
     if (get_bool(p, g, "host_lights", &scene->host_lights) || get_bool(p, g, "host_shadows", &scene->host_shadows) ||
         get_int(p, g, "shadow_map_size", 16, 16384, &scene->render.shadow_map_size))
         return -1;
-    if (scene->host_shadows && !scene->render.shadow_map_size) scene->render.shadow_map_size = 512;
+    if (scene->host_shadows && !scene->render.shadow_map_size) scene->render.shadow_map_size = 256;
     return 0;
 }
 

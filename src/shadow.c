@@ -77,7 +77,7 @@ sbfx_result sbfx_shadow_create(sbfx *fx)
     int limit = renderable_limit();
     if (size < SHADOW_MIN_SIZE || size > limit)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "shadow_map_size %d: this context renders %d .. %d "
-                         "texels per side (512 is the default)", size, SHADOW_MIN_SIZE, limit);
+                         "texels per side (256 is the default)", size, SHADOW_MIN_SIZE, limit);
     sbfx_shadow *s = &fx->shadow;
     s->program = sbfx_program_build(fx, "shadow.vert", "shadow.frag", NULL);
     if (!s->program) return SBFX_ERR_SHADER;

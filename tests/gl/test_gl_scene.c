@@ -17,11 +17,11 @@ typedef struct plan {
 } plan;
 
 static const plan plans[] = {
-    {"explosion", 3, 0, true, true, 2048, 512},
-    {"smoke", 1, 0, false, true, 512, 512},
-    {"campfire", 3, 1, true, true, 1024, 512},   /* heat: shimmer owns the scene, a copy program */
-    {"dust-storm", 1, 0, false, true, 1024, 512},
-    {"barrage", 3, 0, true, true, 4096, 512},
+    {"explosion", 3, 0, true, true, 2048, 256},
+    {"smoke", 1, 0, false, true, 512, 256},
+    {"campfire", 3, 1, true, true, 1024, 256},   /* heat: shimmer owns the scene, a copy program */
+    {"dust-storm", 1, 0, false, true, 1024, 256},
+    {"barrage", 3, 0, true, true, 4096, 256},
     {"post", 4, 1 + 4 + 3, true, true, 2048, 0},
 };
 
