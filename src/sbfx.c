@@ -237,6 +237,7 @@ static sbfx_result load(sbfx *fx)
     fx->tone_curve = sbfx_tone_curve_for(fx->desc.tone_map);
     if ((r = sbfx_context_check(fx)) != SBFX_OK) return r;
     if ((r = sbfx_pool_create(fx, fx->desc.max_particles)) != SBFX_OK) return r;
+    if ((r = sbfx_fire_lights_create(fx)) != SBFX_OK) return r;
     sbfx_gl_enter(fx);
     r = load_gl(fx);
     sbfx_gl_leave(fx, "sbfx_create");
@@ -269,6 +270,7 @@ void sbfx_destroy(sbfx *fx)
 {
     if (!fx) return;
     destroy_gl(fx);
+    sbfx_fire_lights_destroy(fx);
     sbfx_pool_destroy(fx);
     free(fx);
 }
@@ -391,6 +393,8 @@ sbfx_result sbfx_update(sbfx *fx, double dt)
     /* A stall (debugger, suspended board) must not make the simulation spin: cap the debt. */
     fx->accumulator = fmin(fx->accumulator + dt, 0.25 + step);
     fx->particles_simulated = 0;
+    fx->emitted_current = false; /* the fire lights are gathered again when asked */
+    fx->counters.emitted_lights = 0;
     while (fx->accumulator >= step) {
         fire_due(fx);
         fx->particles_simulated += fx->pool.alive;

@@ -255,6 +255,8 @@ typedef struct sbfx_counters {
     float gpu_ms;             /* smoothed GPU time of sbfx's work per frame (budget only) */
     int frames_over_budget;   /* measured frames whose GPU time exceeded the budget */
     int quality_changes;      /* level changes the budget made */
+    int emitted_lights;       /* point lights gathered from fire for the last frame (0: none, or
+                                 nobody asked: sbfx_emitted_lights, fire-lit particles) */
     int shadow_passes;        /* passes of the last sbfx_render_shadow_map (0: no particle cast
                                  a shadow, or the map was not asked for) */
 } sbfx_counters;
@@ -308,6 +310,37 @@ SBFX_API double sbfx_elapsed(const sbfx *fx);
 SBFX_API sbfx_result sbfx_update(sbfx *fx, double dt);
 SBFX_API sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);
 SBFX_API void sbfx_stats(const sbfx *fx, sbfx_counters *out);
+
+/* Fire lights the host (docs/embedding.md "Fire lights your scene"). Each frame the live fire
+ * particles' black-body light is gathered into a few point lights: the fire within 2 m of its
+ * brightest particle makes one light at the luminance-weighted centre of its particles.
+ * A host shades its own scene with them, with this falloff at distance d (m) from `position`:
+ *     falloff(d) = window(d / radius) / max(d^2, 0.25),  window(x) = clamp(1 - x^4, 0, 1)^2
+ * so that a white Lambertian surface facing the light has radiance color * falloff(d) (times the
+ * host's exposure, as for its other lights). In GLSL:
+ *     float x = d / radius, window = clamp(1.0 - x * x * x * x, 0.0, 1.0);
+ *     vec3 lit = albedo * color * (window * window / max(d * d, 0.25)) * max(dot(n, l), 0.0);
+ * Units: the scene's linear light units (a linear 1.0 stands for desc.white_luminance cd/m^2; the
+ * same units as the scene's light colours, before desc.exposure). The fire's radiance is what the
+ * particles emit (emissivity x L_blackbody(T) / white_luminance); a light's radiant intensity I
+ * is that radiance integrated over each particle's disc, less what the fire particles in front of
+ * it absorb (averaged over directions), and color = I / pi, which is what makes the
+ * Lambertian radiance above right: the flux that leaves the fire is 4 pi I = 4 pi^2 color. */
+#define SBFX_MAX_POINT_LIGHTS 16
+typedef struct sbfx_point_light {
+    float position[3]; /* world space */
+    float color[3];    /* radiant intensity / pi in the scene's linear units (through
+                          white_luminance), normalised to the flux that leaves the fire (above) */
+    float radius;      /* distance beyond which the light is negligible (influence radius): where
+                          color x exposure / d^2 falls below 1/2048, at least the fire's extent
+                          + 0.5 m; falloff(d) is 0 from there on */
+} sbfx_point_light;
+/* Writes up to max lights emitted this frame (after the last sbfx_update) into out, brightest
+ * first; returns the number written (>= 0: 0 with no live fire, or a scene without fire) or a
+ * negative sbfx_result on bad arguments (max out of 1..SBFX_MAX_POINT_LIGHTS, out NULL); on error
+ * nothing is written and sbfx_last_error says why. No GL call, no allocation; the gathering runs
+ * once per update, on the first call. */
+SBFX_API int sbfx_emitted_lights(sbfx *fx, sbfx_point_light *out, int max);
 
 /* Run-time quality (docs/quality-and-budgets.md): what sbfx_desc's accuracy knobs choose at
  * create, changeable between frames without losing the simulation. Zero fields mean the
