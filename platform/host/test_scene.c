@@ -75,7 +75,22 @@ static const char fragment_source[] =
     "uniform int u_shadowed;\n"
     "uniform mat4 u_shadow_matrix;\n"
     "uniform sampler2D u_shadow;\n"
+    "uniform int u_point_count;\n"
+    "uniform vec3 u_point_position[16];\n"
+    "uniform vec4 u_point_color_radius[16];\n"
     "out vec4 o_color;\n"
+    /* the fire's lights (sbfx_emitted_lights) with the falloff src/sbfx.h documents */
+    "vec3 point_lights(vec3 world, vec3 n) {\n"
+    "    vec3 sum = vec3(0.0);\n"
+    "    for (int i = 0; i < u_point_count; i++) {\n"
+    "        vec3 to_light = u_point_position[i] - world;\n"
+    "        float d = length(to_light);\n"
+    "        float x = d / u_point_color_radius[i].w, window = clamp(1.0 - x * x * x * x, 0.0, 1.0);\n"
+    "        float lambert = max(dot(n, to_light / max(d, 1e-6)), 0.0);\n"
+    "        sum += u_point_color_radius[i].rgb * (window * window / max(d * d, 0.25) * lambert);\n"
+    "    }\n"
+    "    return sum;\n"
+    "}\n"
     /* the smoke's transmittance towards the sun (sbfx_render_shadow_map): the map is 1 on its
      * border, so CLAMP_TO_EDGE reads 1 outside the smoke */
     "float sun_visibility(vec3 world) {\n"
@@ -95,7 +110,7 @@ static const char fragment_source[] =
     "    if (u_checker != 0) albedo *= mix(0.6, 1.0, checker(v_world.xz));\n"
     "    vec3 ambient = mix(u_bounce_color, u_sky_color, 0.5 + 0.5 * n.y);\n"
     "    vec3 sun = u_sun_color * (max(dot(n, u_to_sun), 0.0) * sun_visibility(v_world));\n"
-    "    vec3 c = albedo * (sun + ambient) * u_exposure;\n"
+    "    vec3 c = albedo * (sun + ambient + point_lights(v_world, n)) * u_exposure;\n"
     "    float fog = 1.0 - exp(-0.012 * distance(v_world, u_eye));\n"
     "    c = mix(c, u_fog_color * u_exposure, fog);\n"
     "    o_color = vec4(pow(clamp(c, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);\n"
@@ -225,6 +240,12 @@ static void set_light_uniforms(const struct test_scene *scene)
     glUniform1i(glGetUniformLocation(p, "u_shadowed"), scene->shadow_texture != 0);
     glUniformMatrix4fv(glGetUniformLocation(p, "u_shadow_matrix"), 1, GL_FALSE, scene->shadow_matrix);
     glUniform1i(glGetUniformLocation(p, "u_shadow"), 0);
+    glUniform1i(glGetUniformLocation(p, "u_point_count"), scene->point_count);
+    if (scene->point_count > 0) {
+        glUniform3fv(glGetUniformLocation(p, "u_point_position"), scene->point_count, scene->point_position[0]);
+        glUniform4fv(glGetUniformLocation(p, "u_point_color_radius"), scene->point_count,
+                     scene->point_color_radius[0]);
+    }
     if (scene->shadow_texture) {
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_2D, scene->shadow_texture);
@@ -498,6 +519,16 @@ void test_scene_set_shadow(struct test_scene *scene, GLuint texture, const float
 {
     scene->shadow_texture = texture;
     if (texture) memcpy(scene->shadow_matrix, view_projection, sizeof(scene->shadow_matrix));
+}
+
+void test_scene_set_point_lights(struct test_scene *scene, const sbfx_point_light *lights, int count)
+{
+    scene->point_count = count < 0 ? 0 : count > TEST_SCENE_POINT_LIGHTS ? TEST_SCENE_POINT_LIGHTS : count;
+    for (int i = 0; i < scene->point_count; i++) {
+        memcpy(scene->point_position[i], lights[i].position, sizeof(scene->point_position[i]));
+        memcpy(scene->point_color_radius[i], lights[i].color, 3 * sizeof(float));
+        scene->point_color_radius[i][3] = lights[i].radius;
+    }
 }
 
 int test_scene_use_reversed_z(struct test_scene *scene, char *err, size_t n)

@@ -31,7 +31,10 @@ struct test_scene {
     float to_sun[3], sun_color[3], sky_color[3], bounce_color[3], fog_color[3], exposure;
     GLuint shadow_texture;  /* test_scene_set_shadow: sbfx's map, 0 none */
     float shadow_matrix[16];
+    int point_count;        /* test_scene_set_point_lights */
+    float point_position[16][3], point_color_radius[16][4];
 };
+#define TEST_SCENE_POINT_LIGHTS 16 /* SBFX_MAX_POINT_LIGHTS */
 
 /* 0, or -EINVAL (bad size), -ENOMEM (GL out of memory), -EIO (shader, framebuffer or another
  * GL failure) with a message in err. */
@@ -71,6 +74,11 @@ void test_scene_set_daylight(struct test_scene *scene, const sbfx_scene_host *ho
 /* The sun's visibility through the smoke: sbfx_render_shadow_map's texture and view_projection,
  * sampled on unit 0 by the next draws (0: no shadow). */
 void test_scene_set_shadow(struct test_scene *scene, GLuint texture, const float view_projection[16]);
+
+/* The fire's lights (sbfx_emitted_lights), shaded with the falloff src/sbfx.h gives, times the
+ * exposure; up to TEST_SCENE_POINT_LIGHTS, the rest ignored; 0: none. Takes effect at the next
+ * draw. */
+void test_scene_set_point_lights(struct test_scene *scene, const sbfx_point_light *lights, int count);
 
 /* The scene's light, for hosts that light particles to match: the direction sunlight
  * travels in (world space, unit), the sun's colour and the sky ambient (linear RGB). */

@@ -19,6 +19,19 @@ static int shadow(struct player *p, char *err, size_t n)
     return 0;
 }
 
+static int lights(struct player *p, char *err, size_t n)
+{
+    sbfx_point_light lights[SBFX_MAX_POINT_LIGHTS];
+    int count = sbfx_emitted_lights(p->fx, lights, SBFX_MAX_POINT_LIGHTS);
+    if (count < 0) {
+        snprintf(err, n, "sbfx_emitted_lights at t=%.4f s: %s: %s", p->sim_time, sbfx_result_string((sbfx_result)count),
+                 sbfx_last_error(p->fx));
+        return -EIO;
+    }
+    test_scene_set_point_lights(&p->scene, lights, count);
+    return 0;
+}
+
 int player_host_prepare(struct player *p, double t, char *err, size_t n)
 {
     test_scene_set_daylight(&p->scene, &p->host);
@@ -26,5 +39,6 @@ int player_host_prepare(struct player *p, double t, char *err, size_t n)
     if (!shadows && !p->host.host_lights) return 0;
     int rc = player_update(p, t, err, n);
     if (rc == 0 && shadows) rc = shadow(p, err, n);
+    if (rc == 0 && p->host.host_lights) rc = lights(p, err, n);
     return rc;
 }
