@@ -499,8 +499,8 @@ void test_scene_light(float direction[3], float color[3], float ambient[3])
 void test_scene_set_daylight(struct test_scene *scene, const sbfx_scene_host *host)
 {
     default_daylight(scene);
-    /* shadows fall from the scene's sun: the ground is lit from there too */
-    if (host->has_sun && host->host_shadows)
+    /* the sun stands where the scene's is (its shadows fall from there) */
+    if (host->has_sun)
         for (int i = 0; i < 3; i++) scene->to_sun[i] = -host->sun_direction[i];
     if (!host->has_sky) return;
     for (int i = 0; i < 3; i++) {

@@ -67,9 +67,10 @@ void test_scene_orbit_camera(double seconds, float aspect, float view[16], float
 /* The daylight of a scene file that gives a `sky` (sbfx_scene_host_get): the sun from its first
  * directional light (none without one), the hemisphere ambient from `ambient` (the lower half
  * 0.45 of it, light from the ground), fog and background from `sky`, everything times the
- * scene's exposure as sbfx's particles are. Without `sky` the fixed daylight below, its sun
- * turned to the scene's first directional light where the scene asks for host_shadows (the
- * shadows fall from there). Takes effect at the next draw. */
+ * scene's exposure as sbfx's particles are. Without `sky` the fixed daylight below (a day
+ * scene's light colours are the particles' irradiance, brighter than this ground wants), its
+ * sun turned to the scene's first directional light (shadows fall from there). Takes effect at
+ * the next draw. */
 void test_scene_set_daylight(struct test_scene *scene, const sbfx_scene_host *host);
 /* The sun's visibility through the smoke: sbfx_render_shadow_map's texture and view_projection,
  * sampled on unit 0 by the next draws (0: no shadow). */
