@@ -10,7 +10,9 @@
 #include "egl/egl_headless.h"
 #include "host/test_scene.h"
 #include "internal.h"
-#include "scene.h" /* render.shadow_map_size: a module without the scene's map */
+#include "module.h" /* the packed instances: the map's fragments */
+#include "scene.h"  /* render.shadow_map_size: a module without the scene's map */
+#include <math.h>
 
 #define W 640
 #define H 360
@@ -26,6 +28,7 @@ static double now_ms(void)
 typedef struct shadow_row {
     double map_ms, frame_ms;
     int particles;
+    double overdraw;  /* fragments shaded per texel of the map (the quads' area) */
     size_t bytes;
 } shadow_row;
 
@@ -77,6 +80,14 @@ static int measure(const char *path, int size, struct test_scene *scene, GLuint 
         if (sbfx_render_shadow_map(fx, sun, &map) != SBFX_OK) fprintf(stderr, "bench_shadow: %s\n", sbfx_last_error(fx));
         glFinish();
         double t1 = now_ms();
+        /* the fill, before sbfx_render reuses the instances: quad k covers (r sx size) x
+         * (r sy size) texels of size^2, sx and sy the lengths of the matrix's first two rows */
+        const float *m = map.view_projection;
+        double sx = sqrt(m[0] * m[0] + m[4] * m[4] + m[8] * m[8]), sy = sqrt(m[1] * m[1] + m[5] * m[5] + m[9] * m[9]);
+        for (int k = 0; k < map.particles; k++) {
+            double r = fx->instances[(size_t)k * 5 + 3];
+            row->overdraw += r * sx * r * sy / FRAMES;
+        }
         if (sbfx_render(fx, &frame) != SBFX_OK) fprintf(stderr, "bench_shadow: %s\n", sbfx_last_error(fx));
         glFinish();
         row->map_ms += (t1 - t0) / FRAMES;
@@ -121,9 +132,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_shadow: cannot write %s\n", path);
         return 1;
     }
-    fprintf(csv, "scene,map_size,map_bytes,particles,map_ms,frame_ms\n");
+    fprintf(csv, "scene,map_size,map_bytes,particles,fragments_per_texel,map_ms,frame_ms\n");
     printf("shadow map (sbfx_render_shadow_map, %dx%d frame, llvmpipe):\n", W, H);
-    printf("  %-10s %5s %10s %9s %8s %10s\n", "scene", "size", "bytes", "particles", "map ms", "frame ms");
+    printf("  %-10s %5s %10s %9s %9s %8s %10s\n", "scene", "size", "bytes", "particles", "frag/texel", "map ms",
+           "frame ms");
     static const char *const scenes[] = {"explosion", "barrage"};
     static const int sizes[] = {128, 256, 512, 1024, 2048};
     int rc = 0;
@@ -135,10 +147,10 @@ int main(int argc, char **argv)
                 rc = 1;
                 continue;
             }
-            fprintf(csv, "%s,%d,%zu,%d,%.3f,%.3f\n", scenes[s], sizes[k], row.bytes, row.particles, row.map_ms,
-                    row.frame_ms);
-            printf("  %-10s %5d %10zu %9d %8.2f %10.2f\n", scenes[s], sizes[k], row.bytes, row.particles, row.map_ms,
-                   row.frame_ms);
+            fprintf(csv, "%s,%d,%zu,%d,%.2f,%.3f,%.3f\n", scenes[s], sizes[k], row.bytes, row.particles, row.overdraw,
+                    row.map_ms, row.frame_ms);
+            printf("  %-10s %5d %10zu %9d %9.1f %8.2f %10.2f\n", scenes[s], sizes[k], row.bytes, row.particles,
+                   row.overdraw, row.map_ms, row.frame_ms);
         }
     fclose(csv);
     glDeleteFramebuffers(1, &out_fbo);
