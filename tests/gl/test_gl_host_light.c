@@ -145,4 +145,24 @@ CHECK_TEST(the_night_flash_lights_the_ground)
     fixture_close(&f);
 }
 
+/* What night.cfg says to its host: its own daylight (sky given), the moon as the sun, exposure 2,
+ * both host_lights and host_shadows; a scene without `sky` keeps the host's daylight. */
+CHECK_TEST(the_scene_file_describes_the_hosts_light)
+{
+    sbfx_scene *scene = fixture_load_scene("night");
+    sbfx_scene_host host;
+    CHECK(sbfx_scene_host_get(scene, &host));
+    CHECK(host.host_lights && host.host_shadows && host.has_sun && host.exposure == 2.0f);
+    CHECK(host.sky[2] == 0.014f && host.ambient[2] == 0.022f && host.sun_color[2] == 0.055f,
+          "sky %g ambient %g moon %g", host.sky[2], host.ambient[2], host.sun_color[2]);
+    double len = sqrt(0.35 * 0.35 + 0.6 * 0.6 + 0.7 * 0.7);
+    CHECK_NEAR(host.sun_direction[1], -0.6 / len, 1e-6);
+    sbfx_scene_free(scene);
+    scene = fixture_load_scene("post");
+    CHECK(!sbfx_scene_host_get(scene, &host));
+    CHECK(!host.host_lights && !host.host_shadows && !host.has_sky && host.has_sun && host.exposure == 1.0f);
+    sbfx_scene_free(scene);
+    CHECK(!sbfx_scene_host_get(NULL, &host) && !host.has_sun && host.exposure == 1.0f);
+}
+
 int main(int argc, char **argv) { return check_main_args(argc, argv); }
