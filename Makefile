@@ -46,7 +46,7 @@ CC ?= cc
 PKG_CONFIG ?= pkg-config
 # The library's version: the minor grows when a function is added to src/sbfx.h, the major
 # (the soname's number) when a signature or a public struct's layout changes.
-VERSION := 1.1.0
+VERSION := 1.2.0
 SOVERSION := $(firstword $(subst ., ,$(VERSION)))
 # tools/deps.sh's package set for this build (a board's .mk names its own)
 DEPS := build
@@ -211,7 +211,7 @@ $(BUILD)/obj/platform/display/display_wayland.o $(BUILD)/obj/platform/wayland/wa
 
 # sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera and GPIO inputs (platform/)
 PLAYER_SRC := $(addprefix player/,player player_args player_usage player_stats player_inputs player_loop \
-	player_reset board player_notify) \
+	player_reset board player_notify player_host) \
 	$(addprefix video/,luma live_detail v4l2_source clip_detail) \
 	$(addprefix gpio/,gpio_backend effect_names gpio_triggers trigger_filter) \
 	$(addprefix display/,display_headless display_drm display_link display_wayland) \
@@ -468,6 +468,13 @@ $(BUILD)/bench/bench_state: tests/bench/state/bench_state.c $(PLATFORM_COMMON_OB
 	$(CC) $(PLATFORM_CFLAGS) -Iref -o $@ $< $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
 bench: $(BUILD)/bench/bench_state
+
+# ---- the host's shadow map (issue 27): its size and cost ------------------------------------
+$(BUILD)/bench/bench_shadow: tests/bench/shadow/bench_shadow.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -o $@ $< $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+
+bench: $(BUILD)/bench/bench_shadow
 
 # ---- platform (issue #5: DRM/KMS kiosk, V4L2 detail, GPIO triggers, boards) ---------------
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,

@@ -147,6 +147,12 @@ double sbfx_window_distance(const sbfx_frame *frame, float window);
  * the glGet / glIs calls it made. */
 int sbfx_host_state_roundtrip(sbfx *fx, bool particles);
 
+/* sbfx_render_shadow_map for the given particles (world-space centres, not the pool's). */
+sbfx_result sbfx_render_shadow_particles(sbfx *fx, const float direction[3], const sbfx_view_particle *world,
+                                         int count, sbfx_shadow_map *out);
+/* Reads the shadow map back as float RGBA, size * size * 4 floats (row 0 first). */
+sbfx_result sbfx_read_shadow_map(sbfx *fx, float *values, size_t capacity);
+
 /* Hash of the live particles' simulation state (determinism tests). */
 uint64_t sbfx_state_hash(const sbfx *fx);
 

@@ -66,6 +66,7 @@ static sbfx_result upload_detail(sbfx *fx)
     }
     if (values && texels) {
         sbfx_detail_generate(size, frames, fx->desc.seed, values);
+        sbfx_fire_detail_levels(values, size, frames, fx->fire_detail); /* what fire's light averages over */
         if (fx->desc.detail_format == SBFX_DETAIL_R32F) {
             /* R32F is not filterable in core ES 3.0: sampled NEAREST, which is its cost. */
             fx->gl.detail_texture = sbfx_texture_create(fx, GL_TEXTURE_3D, GL_NEAREST, GL_REPEAT);

@@ -6,6 +6,7 @@
 #include "governor.h"
 #include "gpu_timer.h"
 #include "lod.h"
+#include "fire_light.h"
 
 #define SBFX_MAX_EFFECTS 16
 #define SBFX_MAX_EMITTERS 8
@@ -242,6 +243,15 @@ typedef struct sbfx_host_errors {
     unsigned logged;             /* bit per kind already logged (once per module) */
 } sbfx_host_errors;
 
+/* The host's transmittance shadow map (shadow.c): made at load only when asked for. */
+typedef struct sbfx_shadow {
+    int size;                  /* 0: none */
+    sbfx_rt map;               /* one colour texture: R16F, or RGBA8 where half floats do not render */
+    GLuint program, vao, buffer;
+    GLint u_matrix;
+    bool clear;                /* the map holds 1 everywhere (no particle since it was cleared) */
+} sbfx_shadow;
+
 struct sbfx {
     sbfx_desc desc;                      /* quality fields: the current level's */
     sbfx_quality top;                    /* the quality of the desc (and scene) at create */
@@ -293,6 +303,7 @@ struct sbfx {
     int instance_light;          /* float offset of the per-particle light, 0 = none */
 
     sbfx_gl gl;
+    sbfx_shadow shadow;
     sbfx_counters counters;
     int detail_ring_next;        /* next slice sbfx_detail_push_slice writes */
     float previous_view[16];     /* the last render's view and time (particle velocities) */
@@ -305,6 +316,13 @@ struct sbfx {
     float *detail_scratch;       /* one R32F slice, only with SBFX_DETAIL_R32F */
     particle_lod lod;            /* level of detail (lodN levels): work memory made with the */
     void *lod_work;              /* first level that needs it (at load for declared ones) */
+    /* fire as light (emitted_lights.c): work memory made at load when the scene has fire */
+    sbfx_fire_particle *fire_particles;
+    sbfx_fire_work *fire_work;
+    double fire_detail[SBFX_FIRE_DETAIL_LEVELS]; /* the detail volume's quantiles (fire_light.h) */
+    sbfx_fire_gathered emitted[SBFX_MAX_POINT_LIGHTS]; /* world space, after the last update */
+    int emitted_count;
+    bool emitted_current;        /* emitted[] gathered since the last sbfx_update */
 };
 
 /* projection.c: what a frame's projection says (docs/design.md §5). View distance from window depth d:
@@ -517,5 +535,17 @@ sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
 
 /* render.c */
 int sbfx_collect_view_particles(sbfx *fx, const float view[16]);
+/* A live particle's radius and intensity at its age (what the renderer draws). */
+void sbfx_pool_particle_shape(const sbfx_pool *p, int i, float *radius, float *intensity);
+
+/* emitted_lights.c: fire gathered into point lights (src/fire_light.h) */
+sbfx_result sbfx_fire_lights_create(sbfx *fx);
+void sbfx_fire_lights_destroy(sbfx *fx);
+/* The fire model of the loaded scene (its black body: the module's table). */
+sbfx_fire_model sbfx_fire_model_of(const sbfx *fx);
+
+/* shadow.c: the host's transmittance shadow map (sbfx_render_shadow_map) */
+sbfx_result sbfx_shadow_create(sbfx *fx);
+void sbfx_shadow_destroy(sbfx *fx);
 
 #endif

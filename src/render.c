@@ -26,6 +26,14 @@ static void transform_point(const float m[16], const float p[3], float out[3])
 
 static float lifetime_curve(float x) { return 1.0f - (1.0f - x) * (1.0f - x); }
 
+void sbfx_pool_particle_shape(const sbfx_pool *p, int i, float *radius, float *intensity)
+{
+    float x = p->age[i] / p->life[i];
+    float fade = p->fade_in[i] > 0.0f ? fminf(1.0f, x / p->fade_in[i]) : 1.0f;
+    *radius = p->radius0[i] + (p->radius1[i] - p->radius0[i]) * lifetime_curve(x);
+    *intensity = (p->intensity0[i] + (p->intensity1[i] - p->intensity0[i]) * x) * fade;
+}
+
 /* Where the particle was at the previous render, seen by the previous camera (velocity blur
  * only; otherwise the current centre, which means no motion). */
 static void previous_center(const sbfx *fx, const float pos[3], const float vel[3], const float view[16],
@@ -49,13 +57,10 @@ int sbfx_collect_view_particles(sbfx *fx, const float view[16])
     fx->counters.particles_skipped = 0;
     for (int i = 0; i < p->alive; i++) {
         if (p->age[i] < 0.0f) continue;
-        float x = p->age[i] / p->life[i];
-        float fade = p->fade_in[i] > 0.0f ? fminf(1.0f, x / p->fade_in[i]) : 1.0f;
         sbfx_view_particle *v = &fx->view[n];
         transform_point(view, &p->pos[3 * i], v->center);
-        v->radius = p->radius0[i] + (p->radius1[i] - p->radius0[i]) * lifetime_curve(x);
+        sbfx_pool_particle_shape(p, i, &v->radius, &v->intensity);
         memcpy(v->detail, &p->detail[3 * i], sizeof(v->detail));
-        v->intensity = (p->intensity0[i] + (p->intensity1[i] - p->intensity0[i]) * x) * fade;
         v->medium = (sbfx_medium)p->medium[i];
         previous_center(fx, &p->pos[3 * i], &p->vel[3 * i], view, v);
         if (sbfx_view_particle_valid(v)) n++;

@@ -79,6 +79,7 @@ static sbfx_desc desc_with_defaults(const sbfx_desc *in)
         if (!(d.white_luminance > 0)) d.white_luminance = s->white_luminance;
         if (d.frame_budget_ms == 0) d.frame_budget_ms = s->frame_budget_ms;
         if (!d.ladder) d.ladder = s->ladder, d.ladder_count = s->ladder_count;
+        if (!d.shadow_map_size) d.shadow_map_size = s->shadow_map_size;
     }
     if (!d.target_divisor) d.target_divisor = 4;
     if (!d.upsample) d.upsample = SBFX_UPSAMPLE_NEAREST_DEPTH;
@@ -134,6 +135,9 @@ static sbfx_result validate_desc(sbfx *fx, const sbfx_desc *d)
                          d->ladder ? "" : " and no names", SBFX_LADDER_MAX);
     if (d->lod_particles < 0 || d->lod_particles > (1 << 20))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "lod_particles %d: use 0 (all) .. 1048576", d->lod_particles);
+    if (d->shadow_map_size < 0)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "shadow_map_size %d: use texels per side (256), or 0 "
+                         "for none", d->shadow_map_size);
     if (!(d->sim_step <= 0.1f))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "sim_step %g s: use at most 0.1 s",
                          (double)d->sim_step);
@@ -190,6 +194,7 @@ static sbfx_result load_gl(sbfx *fx)
     if (r == SBFX_OK) r = sbfx_programs_create(fx);
     if (r == SBFX_OK) r = sbfx_post_programs_create(fx);
     if (r == SBFX_OK) sbfx_budget_gl_init(fx);
+    if (r == SBFX_OK) r = sbfx_shadow_create(fx);
     sbfx_gl_state_restore(&saved);
     return r;
 }
@@ -198,6 +203,7 @@ static sbfx_result load_gl(sbfx *fx)
 static void destroy_gl(sbfx *fx)
 {
     sbfx_budget_gl_destroy(fx);
+    sbfx_shadow_destroy(fx);
     sbfx_targets_destroy(fx);
     sbfx_post_destroy(fx);
     sbfx_programs_destroy(fx);
@@ -231,6 +237,7 @@ static sbfx_result load(sbfx *fx)
     fx->tone_curve = sbfx_tone_curve_for(fx->desc.tone_map);
     if ((r = sbfx_context_check(fx)) != SBFX_OK) return r;
     if ((r = sbfx_pool_create(fx, fx->desc.max_particles)) != SBFX_OK) return r;
+    if ((r = sbfx_fire_lights_create(fx)) != SBFX_OK) return r;
     sbfx_gl_enter(fx);
     r = load_gl(fx);
     sbfx_gl_leave(fx, "sbfx_create");
@@ -263,6 +270,7 @@ void sbfx_destroy(sbfx *fx)
 {
     if (!fx) return;
     destroy_gl(fx);
+    sbfx_fire_lights_destroy(fx);
     sbfx_pool_destroy(fx);
     free(fx);
 }
@@ -385,6 +393,8 @@ sbfx_result sbfx_update(sbfx *fx, double dt)
     /* A stall (debugger, suspended board) must not make the simulation spin: cap the debt. */
     fx->accumulator = fmin(fx->accumulator + dt, 0.25 + step);
     fx->particles_simulated = 0;
+    fx->emitted_current = false; /* the fire lights are gathered again when asked */
+    fx->counters.emitted_lights = 0;
     while (fx->accumulator >= step) {
         fire_due(fx);
         fx->particles_simulated += fx->pool.alive;

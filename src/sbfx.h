@@ -195,6 +195,10 @@ typedef struct sbfx_desc {
      * luminance 0.69 is about 7000 cd/m^2). Fire given an emissivity emits
      * emissivity * L_blackbody(T) / white_luminance. 0: the scene's, else 10000. */
     float white_luminance;
+    /* Transmittance shadow map for the host (sbfx_render_shadow_map): texels per side, 16 .. the
+     * context's largest renderable size. 0: the scene's (render.shadow_map_size, or 256 with
+     * render.host_shadows = true), else none: no texture, framebuffer or program is made. */
+    int shadow_map_size;
 } sbfx_desc;
 
 /* How the host's clip-space depth became the window depth its depth texture holds (with the
@@ -251,6 +255,10 @@ typedef struct sbfx_counters {
     float gpu_ms;             /* smoothed GPU time of sbfx's work per frame (budget only) */
     int frames_over_budget;   /* measured frames whose GPU time exceeded the budget */
     int quality_changes;      /* level changes the budget made */
+    int emitted_lights;       /* point lights gathered from fire for the last frame (0: none, or
+                                 nobody asked: sbfx_emitted_lights, fire-lit particles) */
+    int shadow_passes;        /* passes of the last sbfx_render_shadow_map (0: no particle cast
+                                 a shadow, or the map was not asked for) */
 } sbfx_counters;
 
 typedef struct sbfx sbfx;
@@ -302,6 +310,37 @@ SBFX_API double sbfx_elapsed(const sbfx *fx);
 SBFX_API sbfx_result sbfx_update(sbfx *fx, double dt);
 SBFX_API sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);
 SBFX_API void sbfx_stats(const sbfx *fx, sbfx_counters *out);
+
+/* Fire lights the host (docs/embedding.md "Fire lights your scene"). Each frame the live fire
+ * particles' black-body light is gathered into a few point lights: the fire within 2 m of its
+ * brightest particle makes one light at the luminance-weighted centre of its particles.
+ * A host shades its own scene with them, with this falloff at distance d (m) from `position`:
+ *     falloff(d) = window(d / radius) / max(d^2, 0.25),  window(x) = clamp(1 - x^4, 0, 1)^2
+ * so that a white Lambertian surface facing the light has radiance color * falloff(d) (times the
+ * host's exposure, as for its other lights). In GLSL:
+ *     float x = d / radius, window = clamp(1.0 - x * x * x * x, 0.0, 1.0);
+ *     vec3 lit = albedo * color * (window * window / max(d * d, 0.25)) * max(dot(n, l), 0.0);
+ * Units: the scene's linear light units (a linear 1.0 stands for desc.white_luminance cd/m^2; the
+ * same units as the scene's light colours, before desc.exposure). The fire's radiance is what the
+ * particles emit (emissivity x L_blackbody(T) / white_luminance); a light's radiant intensity I
+ * is that radiance integrated over each particle's disc, less what the fire particles in front of
+ * it absorb (averaged over directions), and color = I / pi, which is what makes the
+ * Lambertian radiance above right: the flux that leaves the fire is 4 pi I = 4 pi^2 color. */
+#define SBFX_MAX_POINT_LIGHTS 16
+typedef struct sbfx_point_light {
+    float position[3]; /* world space */
+    float color[3];    /* radiant intensity / pi in the scene's linear units (through
+                          white_luminance), normalised to the flux that leaves the fire (above) */
+    float radius;      /* distance beyond which the light is negligible (influence radius): where
+                          color x exposure / d^2 falls below 1/2048, at least the fire's extent
+                          + 0.5 m; falloff(d) is 0 from there on */
+} sbfx_point_light;
+/* Writes up to max lights emitted this frame (after the last sbfx_update) into out, brightest
+ * first; returns the number written (>= 0: 0 with no live fire, or a scene without fire) or a
+ * negative sbfx_result on bad arguments (max out of 1..SBFX_MAX_POINT_LIGHTS, out NULL); on error
+ * nothing is written and sbfx_last_error says why. No GL call, no allocation; the gathering runs
+ * once per update, on the first call. */
+SBFX_API int sbfx_emitted_lights(sbfx *fx, sbfx_point_light *out, int max);
 
 /* Run-time quality (docs/quality-and-budgets.md): what sbfx_desc's accuracy knobs choose at
  * create, changeable between frames without losing the simulation. Zero fields mean the
@@ -356,6 +395,52 @@ SBFX_API const char *sbfx_detail_clip(const sbfx *fx);
  * whose live source went away pushes it back, slice by slice, to return to procedural detail.
  * Allocates nothing. SBFX_ERR_INVALID_ARGUMENT when count is not size * size * frames. */
 SBFX_API sbfx_result sbfx_detail_procedural(const sbfx *fx, float *out, size_t count);
+
+/* Smoke shades the host (RTR 13.8.1; docs/embedding.md "Smoke that shades the host"). sbfx
+ * renders the live particles' transmittance, seen from one directional light, into a texture
+ * of its own (desc.shadow_map_size texels per side, made at load); the host multiplies the
+ * value it looks up into that light's visibility. The map holds, in .r, the transmittance
+ * along the light's ray through every particle (the exact model's optical depth of each
+ * particle's mean density, detail not sampled): 1 where no particle is, and on the map's
+ * border, so a CLAMP_TO_EDGE lookup outside the particles reads 1. The texture is LINEAR
+ * filtered, R16F where half floats are renderable, else RGBA8 (the value in every channel);
+ * the host only samples it and leaves its parameters alone. It is fitted to the particles each
+ * call: a world point p looks up uv = (view_projection * p).xy * 0.5 + 0.5. Shadows are cast
+ * along the whole ray: a surface inside or above the cloud is shaded like one below it. */
+typedef struct sbfx_shadow_map {
+    uint32_t texture;            /* sbfx's GL texture (valid until sbfx_destroy) */
+    int size;                    /* texels per side */
+    float view_projection[16];   /* world -> the map's clip space (orthographic, column-major) */
+    int particles;               /* particles drawn into it (0: the map is all 1) */
+} sbfx_shadow_map;
+
+/* Renders the map for light travelling along `direction` (world space, any length above 0)
+ * from the particles as they are now (call it after sbfx_update, before the host draws what
+ * it shades). One pass; none when no particle casts a shadow (the map is then cleared to 1
+ * once). The host's GL state is left as it was. SBFX_ERR_INVALID_ARGUMENT, with nothing
+ * changed and *out untouched, for a NULL pointer, a zero-length or non-finite direction, or a
+ * module made without a map. */
+SBFX_API sbfx_result sbfx_render_shadow_map(sbfx *fx, const float direction[3], sbfx_shadow_map *out);
+
+/* What a scene file says to its host (sbfx-play's test scene): render.host_lights and
+ * render.host_shadows, and the daylight of the ground it stands on: the first directional
+ * light (the sun or moon), `ambient` and the `sky` colour, all linear RGB in the scene's units. */
+typedef struct sbfx_scene_host {
+    bool host_lights;            /* light the host's scene with the fire's emitted lights */
+    bool host_shadows;           /* shadow it by sbfx_render_shadow_map from the sun below */
+    bool has_sky;                /* the file gives `sky`: the fields below describe the host's
+                                    daylight; false: the host keeps its own */
+    float sky[3];                /* sky and fog colour */
+    float ambient[3];            /* the scene's ambient */
+    bool has_sun;                /* the scene has a directional light */
+    float sun_direction[3];      /* the direction its light travels (unit) */
+    float sun_color[3];
+    float exposure;              /* render.exposure (1 when not given): the host's light is
+                                    scaled as the particles' is */
+} sbfx_scene_host;
+
+/* Fills *out from the scene (all false and zero for NULL); returns out->has_sky. */
+SBFX_API bool sbfx_scene_host_get(const sbfx_scene *scene, sbfx_scene_host *out);
 
 /* Helpers for hosts: column-major OpenGL matrices.
  * sbfx_perspective: symmetric frustum; far_z = INFINITY gives the infinite-far matrix

@@ -108,6 +108,15 @@ static int get_int(parser *p, const config_setting_t *g, const char *key, long l
     return 0;
 }
 
+static int get_bool(parser *p, const config_setting_t *g, const char *key, bool *out)
+{
+    const config_setting_t *s = config_setting_get_member(g, key);
+    if (!s) return 0;
+    if (config_setting_type(s) != CONFIG_TYPE_BOOL) return fail_at(p, s, "'%s' must be true or false", key);
+    *out = config_setting_get_bool(s) != 0;
+    return 0;
+}
+
 /* A fixed-length array of numbers, each in [lo, hi]. */
 static int get_vector(parser *p, const config_setting_t *g, const char *key, int n, double lo, double hi,
                       float *out)
@@ -232,12 +241,24 @@ static int parse_ladder(parser *p, const config_setting_t *g)
     return 0;
 }
 
+/* What the scene asks of its host (sbfx_scene_host): fire-lit ground, smoke shadows. */
+static int parse_render_host(parser *p, const config_setting_t *g)
+{
+    sbfx_scene *scene = p->scene;
+    if (get_bool(p, g, "host_lights", &scene->host_lights) || get_bool(p, g, "host_shadows", &scene->host_shadows) ||
+        get_int(p, g, "shadow_map_size", 16, 16384, &scene->render.shadow_map_size))
+        return -1;
+    if (scene->host_shadows && !scene->render.shadow_map_size) scene->render.shadow_map_size = 256;
+    return 0;
+}
+
 static int parse_render(parser *p, const config_setting_t *g)
 {
     static const char *const keys[] = {"target_scale", "target_format", "upsample", "opacity",
                                        "seed", "max_particles", "sim_rate", "blackbody_max_kelvin",
                                        "light_rate", "blackbody", "phase", "detail_format", "tone_map",
-                                       "exposure", "budget_ms", "ladder", "white_luminance", NULL};
+                                       "exposure", "budget_ms", "ladder", "white_luminance", "host_lights",
+                                       "host_shadows", "shadow_map_size", NULL};
     static const char *const tone_maps[] = {"none", "hue-preserving", "per-channel", "filmic", NULL};
     static const char *const rates[] = {"per-pixel", "per-particle", NULL};
     static const char *const evaluations[] = {"table", "analytic", NULL};
@@ -262,7 +283,8 @@ static int parse_render(parser *p, const config_setting_t *g)
         get_choice(p, g, "detail_format", detail_formats, SBFX_DETAIL_R16F, &detail_format) ||
         get_choice(p, g, "tone_map", tone_maps, SBFX_TONE_MAP_NONE, &tone_map) ||
         get_float(p, g, "exposure", 0.01, 100, &d->exposure) ||
-        get_float(p, g, "white_luminance", 1, 1e9, &d->white_luminance) || parse_budget(p, g) || parse_ladder(p, g))
+        get_float(p, g, "white_luminance", 1, 1e9, &d->white_luminance) || parse_budget(p, g) || parse_ladder(p, g) ||
+        parse_render_host(p, g))
         return -1;
     d->tone_map = (sbfx_tone_map)tone_map;
     d->light_per_particle = rate_choice == 1;
@@ -674,12 +696,14 @@ bool sbfx_scene_camera_get(const sbfx_scene *scene, sbfx_scene_camera *out)
 static int parse_root(parser *p, const config_setting_t *root)
 {
     static const char *const keys[] = {"render", "lights", "ambient", "media", "effects", "triggers", "post",
-                                       "camera", NULL};
+                                       "camera", "sky", NULL};
     if (check_keys(p, root, "the scene", keys)) return -1;
     const config_setting_t *s;
     if ((s = config_setting_get_member(root, "render")) && parse_render(p, s)) return -1;
     if ((s = config_setting_get_member(root, "lights")) && parse_lights(p, s)) return -1;
     if (get_vector(p, root, "ambient", 3, 0, 1e4, p->scene->ambient)) return -1;
+    if (get_vector(p, root, "sky", 3, 0, 1e4, p->scene->sky)) return -1;
+    p->scene->has_sky = config_setting_get_member(root, "sky") != NULL;
     if (!(s = config_setting_get_member(root, "media"))) return fail_at(p, root, "the scene has no 'media'");
     if (parse_media(p, s)) return -1;
     if (!(s = config_setting_get_member(root, "effects"))) return fail_at(p, root, "the scene has no 'effects'");

@@ -42,6 +42,9 @@ struct sbfx_scene {
     int gpio_count;
     sbfx_gpio_trigger gpio[SBFX_MAX_GPIO];
     sbfx_post_params post;
+    bool host_lights, host_shadows; /* render.host_lights, render.host_shadows (sbfx_scene_host) */
+    bool has_sky;
+    float sky[3];       /* the host's sky colour, linear RGB (sbfx_scene_host) */
     bool has_camera;
     sbfx_scene_camera camera; /* sbfx-play's view; the module does not use it */
 };

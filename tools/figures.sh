@@ -186,6 +186,21 @@ for i in 1 2 3 4 5 6 7 8; do
 done
 GEOMETRY=320x180 compose "$OUT/fig10-animation.png" 4x2 "${args[@]}"
 
+# ---- issue 27: fire lights the host at night, smoke shades it by day ------------------------------
+# night.cfg at the flash and after, with and without render.host_lights; dust-storm.cfg (a sun 30
+# degrees high) at 2 s with and without render.host_shadows. The same run otherwise.
+sed 's/host_lights   = true;/host_lights   = false;/' scenes/night.cfg >"$WORK/scenes/night-unlit.cfg"
+sed 's/host_shadows = true;/host_shadows = false;/' scenes/dust-storm.cfg >"$WORK/scenes/dust-storm-unshaded.cfg"
+play night --scene scenes/night.cfg --size 960x540 --fps 5 --frames 7 --quiet
+play night-unlit --scene "$WORK/scenes/night-unlit.cfg" --size 960x540 --fps 5 --frames 7 --quiet
+GEOMETRY=480x270 compose "$OUT/night-host-lights.png" 2x2 \
+    "$(frame night 3)" "night.cfg, t = 0.6 s: host_lights" "$(frame night-unlit 3)" "t = 0.6 s: without" \
+    "$(frame night 6)" "t = 1.2 s: host_lights" "$(frame night-unlit 6)" "t = 1.2 s: without"
+play shadow --scene scenes/dust-storm.cfg --size 960x540 --fps 1 --frames 3 --quiet
+play shadow-off --scene "$WORK/scenes/dust-storm-unshaded.cfg" --size 960x540 --fps 1 --frames 3 --quiet
+GEOMETRY=480x270 compose "$OUT/shadow-dust-storm.png" 2x1 \
+    "$(frame shadow 2)" "dust-storm.cfg, t = 2 s: host_shadows" "$(frame shadow-off 2)" "without"
+
 # ---- the explosion's look now (compare docs/figures/before-*.png) -------------------------------
 play look --scene scenes/explosion.cfg --size 960x540 --fps 4 --frames 7 --quiet
 for pair in 1:0.25 4:1.0 6:1.5; do

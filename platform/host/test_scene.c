@@ -68,9 +68,36 @@ static const char fragment_source[] =
     "uniform vec3 u_eye;\n"
     "uniform vec3 u_to_sun;\n"
     "uniform vec3 u_sun_color;\n"
-    "uniform vec3 u_sky_color;\n"
-    "uniform vec3 u_bounce_color;\n"
+    "uniform vec3 u_sky_color;\n"     /* the hemisphere ambient's upper half */
+    "uniform vec3 u_bounce_color;\n"  /* its lower half, light from the ground */
+    "uniform vec3 u_fog_color;\n"
+    "uniform float u_exposure;\n"
+    "uniform int u_shadowed;\n"
+    "uniform mat4 u_shadow_matrix;\n"
+    "uniform sampler2D u_shadow;\n"
+    "uniform int u_point_count;\n"
+    "uniform vec3 u_point_position[16];\n"
+    "uniform vec4 u_point_color_radius[16];\n"
     "out vec4 o_color;\n"
+    /* the fire's lights (sbfx_emitted_lights) with the falloff src/sbfx.h documents */
+    "vec3 point_lights(vec3 world, vec3 n) {\n"
+    "    vec3 sum = vec3(0.0);\n"
+    "    for (int i = 0; i < u_point_count; i++) {\n"
+    "        vec3 to_light = u_point_position[i] - world;\n"
+    "        float d = length(to_light);\n"
+    "        float x = d / u_point_color_radius[i].w, window = clamp(1.0 - x * x * x * x, 0.0, 1.0);\n"
+    "        float lambert = max(dot(n, to_light / max(d, 1e-6)), 0.0);\n"
+    "        sum += u_point_color_radius[i].rgb * (window * window / max(d * d, 0.25) * lambert);\n"
+    "    }\n"
+    "    return sum;\n"
+    "}\n"
+    /* the smoke's transmittance towards the sun (sbfx_render_shadow_map): the map is 1 on its
+     * border, so CLAMP_TO_EDGE reads 1 outside the smoke */
+    "float sun_visibility(vec3 world) {\n"
+    "    if (u_shadowed == 0) return 1.0;\n"
+    "    vec2 uv = (u_shadow_matrix * vec4(world, 1.0)).xy * 0.5 + 0.5;\n"
+    "    return texture(u_shadow, uv).r;\n"
+    "}\n"
     "float checker(vec2 p) {\n"
     "    vec2 w = max(fwidth(p), vec2(1e-4));\n"
     "    vec2 i = 2.0 * (abs(fract((p - 0.5 * w) * 0.5) - 0.5) -\n"
@@ -82,9 +109,10 @@ static const char fragment_source[] =
     "    vec3 albedo = u_albedo;\n"
     "    if (u_checker != 0) albedo *= mix(0.6, 1.0, checker(v_world.xz));\n"
     "    vec3 ambient = mix(u_bounce_color, u_sky_color, 0.5 + 0.5 * n.y);\n"
-    "    vec3 c = albedo * (u_sun_color * max(dot(n, u_to_sun), 0.0) + ambient);\n"
+    "    vec3 sun = u_sun_color * (max(dot(n, u_to_sun), 0.0) * sun_visibility(v_world));\n"
+    "    vec3 c = albedo * (sun + ambient + point_lights(v_world, n)) * u_exposure;\n"
     "    float fog = 1.0 - exp(-0.012 * distance(v_world, u_eye));\n"
-    "    c = mix(c, u_sky_color, fog);\n"
+    "    c = mix(c, u_fog_color * u_exposure, fog);\n"
     "    o_color = vec4(pow(clamp(c, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);\n"
     "}\n";
 
@@ -190,14 +218,38 @@ static GLuint compile(GLenum type, const char *source, char *err, size_t n)
     return shader;
 }
 
-static void set_constant_uniforms(GLuint program)
+static void default_daylight(struct test_scene *scene)
 {
-    glUseProgram(program);
-    glUniform3fv(glGetUniformLocation(program, "u_to_sun"), 1, to_sun);
-    glUniform3fv(glGetUniformLocation(program, "u_sun_color"), 1, sun_color);
-    glUniform3fv(glGetUniformLocation(program, "u_sky_color"), 1, sky_color);
-    glUniform3fv(glGetUniformLocation(program, "u_bounce_color"), 1, bounce_color);
-    glUseProgram(0);
+    memcpy(scene->to_sun, to_sun, sizeof(to_sun));
+    memcpy(scene->sun_color, sun_color, sizeof(sun_color));
+    memcpy(scene->sky_color, sky_color, sizeof(sky_color));
+    memcpy(scene->bounce_color, bounce_color, sizeof(bounce_color));
+    memcpy(scene->fog_color, sky_color, sizeof(sky_color));
+    scene->exposure = 1.0f;
+}
+
+static void set_light_uniforms(const struct test_scene *scene)
+{
+    GLuint p = scene->program;
+    glUniform3fv(glGetUniformLocation(p, "u_to_sun"), 1, scene->to_sun);
+    glUniform3fv(glGetUniformLocation(p, "u_sun_color"), 1, scene->sun_color);
+    glUniform3fv(glGetUniformLocation(p, "u_sky_color"), 1, scene->sky_color);
+    glUniform3fv(glGetUniformLocation(p, "u_bounce_color"), 1, scene->bounce_color);
+    glUniform3fv(glGetUniformLocation(p, "u_fog_color"), 1, scene->fog_color);
+    glUniform1f(glGetUniformLocation(p, "u_exposure"), scene->exposure);
+    glUniform1i(glGetUniformLocation(p, "u_shadowed"), scene->shadow_texture != 0);
+    glUniformMatrix4fv(glGetUniformLocation(p, "u_shadow_matrix"), 1, GL_FALSE, scene->shadow_matrix);
+    glUniform1i(glGetUniformLocation(p, "u_shadow"), 0);
+    glUniform1i(glGetUniformLocation(p, "u_point_count"), scene->point_count);
+    if (scene->point_count > 0) {
+        glUniform3fv(glGetUniformLocation(p, "u_point_position"), scene->point_count, scene->point_position[0]);
+        glUniform4fv(glGetUniformLocation(p, "u_point_color_radius"), scene->point_count,
+                     scene->point_color_radius[0]);
+    }
+    if (scene->shadow_texture) {
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, scene->shadow_texture);
+    }
 }
 
 static int create_program(struct test_scene *scene, char *err, size_t n)
@@ -227,7 +279,6 @@ static int create_program(struct test_scene *scene, char *err, size_t n)
     scene->u_eye = glGetUniformLocation(p, "u_eye");
     scene->u_albedo = glGetUniformLocation(p, "u_albedo");
     scene->u_checker = glGetUniformLocation(p, "u_checker");
-    set_constant_uniforms(p);
     return 0;
 
 err_vs:
@@ -299,6 +350,7 @@ int test_scene_create(struct test_scene *scene, int width, int height, char *err
     if (rc) return rc;
     scene->width = width;
     scene->height = height;
+    default_daylight(scene);
     rc = create_framebuffer(scene, err, n);
     if (rc) goto err_scene;
     rc = create_program(scene, err, n);
@@ -361,8 +413,9 @@ static void begin_pass(struct test_scene *scene)
     glCullFace(GL_BACK);
     glFrontFace(GL_CCW);
     /* the clear colour is the fog colour, sRGB-encoded like the shader's output */
-    glClearColor(powf(sky_color[0], 1 / 2.2f), powf(sky_color[1], 1 / 2.2f),
-                 powf(sky_color[2], 1 / 2.2f), 1.0f);
+    float clear[3];
+    for (int i = 0; i < 3; i++) clear[i] = powf(fminf(scene->fog_color[i] * scene->exposure, 1.0f), 1 / 2.2f);
+    glClearColor(clear[0], clear[1], clear[2], 1.0f);
     glClearDepthf(scene->reversed_z ? 0.0f : 1.0f);
     glDepthFunc(scene->reversed_z ? GL_GREATER : GL_LESS);
     if (scene->reversed_z) scene->clip_control(GL_LOWER_LEFT_EXT, GL_ZERO_TO_ONE_EXT);
@@ -372,6 +425,7 @@ static void begin_pass(struct test_scene *scene)
 static void end_pass(struct test_scene *scene)
 {
     if (scene->reversed_z) scene->clip_control(GL_LOWER_LEFT_EXT, GL_NEGATIVE_ONE_TO_ONE_EXT);
+    if (scene->shadow_texture) glBindTexture(GL_TEXTURE_2D, 0);
     glBindVertexArray(0);
     glUseProgram(0);
     glDisable(GL_DEPTH_TEST);
@@ -389,6 +443,7 @@ int test_scene_draw(struct test_scene *scene, const float view[16], const float 
     glBindVertexArray(scene->vao);
     glUniformMatrix4fv(scene->u_view_proj, 1, GL_FALSE, view_proj);
     glUniform3fv(scene->u_eye, 1, eye);
+    set_light_uniforms(scene);
     draw_ground(scene);
     for (size_t i = 0; i < ARRAY_SIZE(boxes); i++) draw_box(scene, &boxes[i]);
     end_pass(scene);
@@ -438,6 +493,41 @@ void test_scene_light(float direction[3], float color[3], float ambient[3])
         direction[i] = -to_sun[i];
         color[i] = sun_color[i];
         ambient[i] = sky_color[i];
+    }
+}
+
+void test_scene_set_daylight(struct test_scene *scene, const sbfx_scene_host *host)
+{
+    default_daylight(scene);
+    /* the sun stands where the scene's is (its shadows fall from there) */
+    if (host->has_sun)
+        for (int i = 0; i < 3; i++) scene->to_sun[i] = -host->sun_direction[i];
+    if (!host->has_sky) return;
+    for (int i = 0; i < 3; i++) {
+        scene->to_sun[i] = host->has_sun ? -host->sun_direction[i] : 0.0f;
+        scene->sun_color[i] = host->has_sun ? host->sun_color[i] : 0.0f;
+        scene->sky_color[i] = host->ambient[i];
+        /* light from the ground: the ambient's, reflected by ground of about the default
+         * bounce's share of the default sky (0.16 / 0.34) */
+        scene->bounce_color[i] = 0.45f * host->ambient[i];
+        scene->fog_color[i] = host->sky[i];
+    }
+    scene->exposure = host->exposure > 0.0f ? host->exposure : 1.0f;
+}
+
+void test_scene_set_shadow(struct test_scene *scene, GLuint texture, const float view_projection[16])
+{
+    scene->shadow_texture = texture;
+    if (texture) memcpy(scene->shadow_matrix, view_projection, sizeof(scene->shadow_matrix));
+}
+
+void test_scene_set_point_lights(struct test_scene *scene, const sbfx_point_light *lights, int count)
+{
+    scene->point_count = count < 0 ? 0 : count > TEST_SCENE_POINT_LIGHTS ? TEST_SCENE_POINT_LIGHTS : count;
+    for (int i = 0; i < scene->point_count; i++) {
+        memcpy(scene->point_position[i], lights[i].position, sizeof(scene->point_position[i]));
+        memcpy(scene->point_color_radius[i], lights[i].color, 3 * sizeof(float));
+        scene->point_color_radius[i][3] = lights[i].radius;
     }
 }
 

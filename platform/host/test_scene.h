@@ -27,7 +27,14 @@ struct test_scene {
     int width, height;
     GLuint program, vao, vbo;
     GLint u_model, u_normal_matrix, u_view_proj, u_eye, u_albedo, u_checker;
+    /* the light (test_scene_set_daylight; the fixed daylight below by default), linear RGB */
+    float to_sun[3], sun_color[3], sky_color[3], bounce_color[3], fog_color[3], exposure;
+    GLuint shadow_texture;  /* test_scene_set_shadow: sbfx's map, 0 none */
+    float shadow_matrix[16];
+    int point_count;        /* test_scene_set_point_lights */
+    float point_position[16][3], point_color_radius[16][4];
 };
+#define TEST_SCENE_POINT_LIGHTS 16 /* SBFX_MAX_POINT_LIGHTS */
 
 /* 0, or -EINVAL (bad size), -ENOMEM (GL out of memory), -EIO (shader, framebuffer or another
  * GL failure) with a message in err. */
@@ -56,6 +63,23 @@ void test_scene_camera(const sbfx_scene_camera *camera, double seconds, float as
  * (about 3.4 degrees per second) around the origin, 8.5 m away, 2.6 m high, looking at
  * (0, 1.5, 0); 50 degree vertical fov. */
 void test_scene_orbit_camera(double seconds, float aspect, float view[16], float projection[16]);
+
+/* The daylight of a scene file that gives a `sky` (sbfx_scene_host_get): the sun from its first
+ * directional light (none without one), the hemisphere ambient from `ambient` (the lower half
+ * 0.45 of it, light from the ground), fog and background from `sky`, everything times the
+ * scene's exposure as sbfx's particles are. Without `sky` the fixed daylight below (a day
+ * scene's light colours are the particles' irradiance, brighter than this ground wants), its
+ * sun turned to the scene's first directional light (shadows fall from there). Takes effect at
+ * the next draw. */
+void test_scene_set_daylight(struct test_scene *scene, const sbfx_scene_host *host);
+/* The sun's visibility through the smoke: sbfx_render_shadow_map's texture and view_projection,
+ * sampled on unit 0 by the next draws (0: no shadow). */
+void test_scene_set_shadow(struct test_scene *scene, GLuint texture, const float view_projection[16]);
+
+/* The fire's lights (sbfx_emitted_lights), shaded with the falloff src/sbfx.h gives, times the
+ * exposure; up to TEST_SCENE_POINT_LIGHTS, the rest ignored; 0: none. Takes effect at the next
+ * draw. */
+void test_scene_set_point_lights(struct test_scene *scene, const sbfx_point_light *lights, int count);
 
 /* The scene's light, for hosts that light particles to match: the direction sunlight
  * travels in (world space, unit), the sun's colour and the sky ambient (linear RGB). */

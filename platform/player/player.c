@@ -119,6 +119,7 @@ int player_create_fx(struct player *p, char *err, size_t n)
     int rc = load_scene(opt->scene_path, &scene, err, n);
     if (rc == 0 && !p->recovering) rc = player_collect_scene_gpio(p, scene, err, n);
     sbfx_scene_camera_get(scene, &p->camera); /* the default orbit without a camera group */
+    sbfx_scene_host_get(scene, &p->host);     /* the test scene's fixed daylight without `sky` */
     if (rc) {
         sbfx_scene_free(scene);
         return rc;

@@ -48,6 +48,7 @@ struct player {
     struct test_scene scene;
     bool scene_made;
     sbfx_scene_camera camera; /* the scene file's camera group, or the default orbit */
+    sbfx_scene_host host;     /* the scene file's daylight, host_lights, host_shadows */
     sbfx *fx;
     char out_dir[PATH_MAX];
     double sim_time;
@@ -83,6 +84,14 @@ void player_log(const char *message, void *user); /* "sbfx-play: message" on std
 /* Makes sbfx (again, while p->recovering: the scene's GPIO lines are kept, its timeline is not
  * replayed, --trigger entries still ahead are scheduled relative to now). */
 int player_create_fx(struct player *p, char *err, size_t n);
+
+/* player_host.c */
+/* Before the test scene is drawn at time t: the scene file's daylight, and where it asks for
+ * them the smoke's shadow map (render.host_shadows) and the fire's lights
+ * (render.host_lights), which need the simulation at t: it is advanced here first. */
+int player_host_prepare(struct player *p, double t, char *err, size_t n);
+/* Advances sbfx to time t (player_loop.c). */
+int player_update(struct player *p, double t, char *err, size_t n);
 
 /* player_reset.c */
 /* Before each frame: asks the context whether the GPU was reset (SBFX_PLAY_INJECT_GPU_RESET=N

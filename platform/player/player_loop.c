@@ -101,7 +101,7 @@ static int wait_ready(struct player *p, char *err, size_t n)
 
 static int update(struct player *p, double dt, char *err, size_t n)
 {
-    if (dt <= 0.0) return 0;
+    if (dt <= 0.0) return 0; /* already there (player_host_prepare advanced it) */
     sbfx_result r = sbfx_update(p->fx, dt);
     if (r != SBFX_OK) {
         snprintf(err, n, "sbfx_update(%g) at t=%.4f s: %s: %s", dt, p->sim_time,
@@ -136,9 +136,10 @@ static int draw_scene(struct player *p, double t, sbfx_frame *frame, char *err, 
     return platform_gl_check("scene copy to the output framebuffer", err, n);
 }
 
+int player_update(struct player *p, double t, char *err, size_t n) { return update(p, t - p->sim_time, err, n); }
+
 static int run_fx(struct player *p, double t, const sbfx_frame *frame, char *err, size_t n)
 {
-    p->frame_simulated = 0;
     int rc = update(p, t - p->sim_time, err, n);
     if (rc) return rc;
     sbfx_result r = sbfx_render(p->fx, frame);
@@ -201,6 +202,9 @@ static int play_frame(struct player *p, int64_t index, char *err, size_t n)
     p->last_frame_ns = start;
     sbfx_frame frame;
     memset(&frame, 0, sizeof(frame));
+    p->frame_simulated = 0;
+    rc = player_host_prepare(p, t, err, n);
+    if (rc) return rc;
     rc = draw_scene(p, t, &frame, err, n);
     if (rc) return rc;
     int64_t fx_start = player_now_ns();

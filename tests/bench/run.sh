@@ -115,6 +115,12 @@ if [ -x "$BUILD/bench/bench_state" ]; then
     mesa_glthread=true "$BUILD/bench/bench_state" --out "$OUT" --label glthread --append | tee -a "$OUT/state.txt"
 fi
 
+# issue 27: the host's shadow map, per size: ms per sbfx_render_shadow_map, bytes (shadow.csv)
+if [ -x "$BUILD/bench/bench_shadow" ]; then
+    "$BUILD/bench/bench_shadow" --out "$OUT" | tee "$OUT/shadow.txt"
+    cat "$OUT/shadow.txt" >>"$OUT/summary.txt"
+fi
+
 # issue 17: the look — beta and band energies per scene, view, time and scale (look.csv), the
 # detail's cost (look.txt); docs/look.md. LOOK_ARGS passes options (e.g. "--quick").
 if [ -x "$BUILD/bench/bench_look" ]; then

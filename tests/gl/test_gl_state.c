@@ -501,6 +501,61 @@ CHECK_TEST(frame_budget_leaves_state)
     run_case(&cases[5], expected);
 }
 
+/* ---- the host's shadow map (sbfx_render_shadow_map) ------------------------------------------ */
+
+static sbfx_result call_shadow_map(sbfx *fx, void *arg)
+{
+    sbfx_shadow_map map;
+    return sbfx_render_shadow_map(fx, arg, &map);
+}
+
+/* Made at load, drawn with live particles (one pass), cleared once when they are gone, refused
+ * for a zero direction: the host's state is the snapshot's after each; both modules' maps hold
+ * the same bytes whatever the host's state was. */
+CHECK_TEST(shadow_map_leaves_state)
+{
+    host h;
+    host_open(&h);
+    sbfx_desc desc = {.ignore_timeline = true, .max_particles = 512, .shadow_map_size = 64};
+    sbfx *fx[2];
+    host_state(&h, false);
+    fx[0] = fixture_module(&h.gl, desc);
+    snap_before(&h);
+    fx[1] = fixture_module(&h.gl, desc);
+    snap_after(&h, "sbfx_create with a shadow map");
+    float sun[3] = {0.5f, -0.8f, 0.3f};
+    both(&h, fx, call_shadow_map, sun, "sbfx_render_shadow_map (idle: nothing drawn)");
+    both(&h, fx, call_trigger, (void *)"explosion", "sbfx_trigger");
+    double dt = 0.5;
+    both(&h, fx, call_update, &dt, "sbfx_update");
+    both(&h, fx, call_shadow_map, sun, "sbfx_render_shadow_map (live particles)");
+    sbfx_counters c;
+    sbfx_stats(fx[1], &c);
+    CHECK(c.shadow_passes == 1, "%d shadow passes with live particles", c.shadow_passes);
+    static float maps[2][64 * 64 * 4];
+    host_state(&h, false);
+    for (int i = 0; i < 2; i++) CHECK(sbfx_read_shadow_map(fx[i], maps[i], 64 * 64 * 4) == SBFX_OK);
+    int map_differ = 0, first_differ = -1;
+    for (int i = 0; i < 64 * 64 * 4; i++)
+        if (maps[0][i] != maps[1][i] && map_differ++ == 0) first_differ = i;
+    CHECK(map_differ == 0, "%d values of the map depend on the host's GL state (first: texel %d, %g vs %g)",
+          map_differ, first_differ / 4, first_differ >= 0 ? maps[0][first_differ] : 0.0,
+          first_differ >= 0 ? maps[1][first_differ] : 0.0);
+    snap_before(&h);
+    sbfx_shadow_map untouched;
+    CHECK(sbfx_render_shadow_map(fx[1], (const float[3]){0, 0, 0}, &untouched) == SBFX_ERR_INVALID_ARGUMENT);
+    snap_after(&h, "sbfx_render_shadow_map (zero direction)");
+    dt = 10.0;
+    for (int i = 0; i < 40; i++) both(&h, fx, call_update, &dt, "sbfx_update");
+    both(&h, fx, call_shadow_map, sun, "sbfx_render_shadow_map (particles gone: cleared once)");
+    host_state(&h, false);
+    sbfx_destroy(fx[0]);
+    snap_before(&h);
+    sbfx_destroy(fx[1]);
+    snap_after(&h, "sbfx_destroy with a shadow map");
+    fixture_close(&h.gl);
+}
+
 /* ---- the snapshot can fail -------------------------------------------------------------------- */
 
 typedef struct mutation {

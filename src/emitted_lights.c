@@ -1,0 +1,85 @@
+/* Fire as light for the host (sbfx_emitted_lights): the live fire particles gathered into a few
+ * point lights (fire_light.h), once per update, when asked. */
+#include <math.h>
+#include <string.h>
+#include "module.h"
+
+/* The module's black body: its table (made at load with the fire), as the shader samples it. */
+static void table_blackbody(const void *ctx, double kelvin, double rgb[3])
+{
+    const sbfx_tables *t = ctx;
+    sbfx_blackbody_table_lookup(t->blackbody, SBFX_BLACKBODY_SIZE, t->blackbody_lo, t->blackbody_hi, kelvin, rgb);
+}
+
+sbfx_fire_model sbfx_fire_model_of(const sbfx *fx)
+{
+    const sbfx_medium_params *m = &fx->media[SBFX_FIRE];
+    sbfx_fire_model model = {.tau = m->tau, .t0 = m->t0, .t1 = m->t1, .cooling = m->cooling,
+                             .detail_strength = m->detail_strength,
+                             .emission_scale = (double)m->emission_scale * (1.0 - m->albedo),
+                             .blackbody = table_blackbody, .blackbody_ctx = &fx->tables};
+    memcpy(model.detail, fx->fire_detail, sizeof(model.detail));
+    return model;
+}
+
+sbfx_result sbfx_fire_lights_create(sbfx *fx)
+{
+    if (!fx->uses_medium[SBFX_FIRE]) return SBFX_OK; /* nothing to gather: no memory */
+    size_t n = (size_t)fx->pool.capacity;
+    fx->fire_particles = sbfx_calloc(fx, n, sizeof(*fx->fire_particles));
+    fx->fire_work = sbfx_calloc(fx, n, sizeof(*fx->fire_work));
+    if (!fx->fire_particles || !fx->fire_work)
+        return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "cannot allocate the fire lights' work memory");
+    return SBFX_OK;
+}
+
+void sbfx_fire_lights_destroy(sbfx *fx)
+{
+    sbfx_free(fx, fx->fire_particles);
+    sbfx_free(fx, fx->fire_work);
+    fx->fire_particles = NULL;
+    fx->fire_work = NULL;
+}
+
+/* The live fire of the pool (world space, whose delay has passed) gathered into fx->emitted. */
+static void gather_pool(sbfx *fx)
+{
+    const sbfx_pool *p = &fx->pool;
+    int n = 0;
+    for (int i = 0; i < p->alive; i++) {
+        if (p->medium[i] != SBFX_FIRE || p->age[i] < 0.0f) continue;
+        float radius, intensity;
+        sbfx_pool_particle_shape(p, i, &radius, &intensity);
+        sbfx_fire_particle *f = &fx->fire_particles[n++];
+        for (int k = 0; k < 3; k++) f->position[k] = p->pos[3 * i + k];
+        f->radius = radius;
+        f->intensity = intensity;
+    }
+    sbfx_fire_model model = sbfx_fire_model_of(fx);
+    fx->emitted_count = sbfx_fire_gather(&model, fx->fire_particles, n, fx->fire_work, fx->emitted,
+                                         SBFX_MAX_POINT_LIGHTS);
+    fx->emitted_current = true;
+    fx->counters.emitted_lights = fx->emitted_count;
+}
+
+int sbfx_emitted_lights(sbfx *fx, sbfx_point_light *out, int max)
+{
+    if (!fx) return SBFX_ERR_INVALID_ARGUMENT;
+    if (!out || max < 1 || max > SBFX_MAX_POINT_LIGHTS)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "sbfx_emitted_lights: %s (max %d): give an array of 1 .. %d "
+                         "lights", out ? "max out of range" : "out is NULL", max, SBFX_MAX_POINT_LIGHTS);
+    if (!fx->fire_work) return 0;   /* the scene has no fire */
+    if (!fx->emitted_current) gather_pool(fx);
+    int n = fx->emitted_count < max ? fx->emitted_count : max;
+    for (int i = 0; i < n; i++) {
+        const sbfx_fire_gathered *g = &fx->emitted[i];
+        double top = 0.0;
+        for (int k = 0; k < 3; k++) {
+            out[i].position[k] = (float)g->position[k];
+            out[i].color[k] = (float)(g->intensity[k] / M_PI);
+            top = fmax(top, g->intensity[k] / M_PI);
+        }
+        out[i].radius = (float)sbfx_fire_light_radius(top, fx->desc.exposure, g->extent);
+    }
+    return n;
+}

@@ -1,0 +1,81 @@
+/* Fire as a light source (issue 27): the radiant intensity of fire particles from their black
+ * body, and the live fire gathered into a few point lights. Pure C in double, no GL: the module
+ * (emitted_lights.c) and the CPU reference (ref/) run the same code. */
+#ifndef SBFX_FIRE_LIGHT_H
+#define SBFX_FIRE_LIGHT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+/* What a fire particle's light depends on: particle.frag's fire (MEDIUM_EMITS), averaged over
+ * the detail's values (one per pixel drives both the density and the temperature there; the
+ * black body is steep in T, so the light at the mean detail would be far too little for cooling
+ * fire). The black body is the module's normalised one (table or analytic). */
+#define SBFX_FIRE_DETAIL_LEVELS 8
+typedef struct sbfx_fire_model {
+    double tau, t0, t1, cooling, detail_strength;
+    double detail[SBFX_FIRE_DETAIL_LEVELS]; /* the detail volume's quantiles (j + 1/2) / LEVELS */
+    double emission_scale;  /* radiance per unit of the normalised black body, times (1 - albedo) */
+    void (*blackbody)(const void *ctx, double kelvin, double rgb[3]);
+    const void *blackbody_ctx;
+} sbfx_fire_model;
+
+/* The quantiles of the values a pixel samples from the detail volume (size x size x frames, x
+ * fastest): trilinear between texels, as the GPU filters a magnified window (which narrows the
+ * texels' spread), at 65536 fixed pseudo-random points; a 1024-bin histogram, no memory. */
+void sbfx_fire_detail_levels(const float *volume, int size, int frames, double out[SBFX_FIRE_DETAIL_LEVELS]);
+
+/* Radiant intensity rgb (linear radiance units x m^2: light per steradian, the same in every
+ * direction) of one fire particle of the given radius and intensity, and its emitting area
+ * (m^2, the integral of its opacity over its disc):
+ *     I = E_detail ∫ L_e(T(rho, detail)) alpha(rho, detail) dA   over the disc, rho = distance from the centre / radius,
+ * alpha the exact model's opacity of the chord at rho (docs/design.md §2.1), L_e what the shader
+ * emits there. Zero for a particle that is not finite or has no radius or intensity. */
+void sbfx_fire_particle_intensity(const sbfx_fire_model *m, double radius, double intensity, double rgb[3],
+                                  double *area);
+
+/* One live fire particle, in any one frame (world or view space). */
+typedef struct sbfx_fire_particle {
+    double position[3];
+    double radius, intensity;
+} sbfx_fire_particle;
+
+/* Per-particle work memory of sbfx_fire_gather (one per particle, made at load). */
+typedef struct sbfx_fire_work {
+    double rgb[3], area, luminance;
+    int cluster;
+} sbfx_fire_work;
+
+/* A gathered light: the fire within SBFX_FIRE_CLUSTER_M of its brightest particle. */
+typedef struct sbfx_fire_gathered {
+    double position[3];     /* luminance-weighted centre of its particles */
+    double intensity[3];    /* radiant intensity that leaves the cluster (linear units x m^2) */
+    double extent;          /* rms distance of its light from the centre + mean particle radius */
+} sbfx_fire_gathered;
+
+#define SBFX_FIRE_CLUSTER_M 2.0    /* particles this close to a cluster's seed join it */
+#define SBFX_FIRE_GATHER_MAX 16    /* = SBFX_MAX_POINT_LIGHTS */
+
+/* Gathers `count` fire particles into at most `max` (<= SBFX_FIRE_GATHER_MAX) lights, brightest
+ * first; returns how many. Greedy and deterministic: the brightest particle not yet taken seeds a
+ * light and takes every particle within SBFX_FIRE_CLUSTER_M of it; once `max` lights are seeded
+ * the rest join the nearest seed. Each particle adds its intensity times the share that leaves
+ * the fire: the other fire particles in front of it, averaged over directions, pass
+ * prod_j (1 - f_j a_j) of it (f_j: the fraction of directions j's sphere covers seen from it,
+ * a_j: j's mean opacity over its disc). */
+int sbfx_fire_gather(const sbfx_fire_model *m, const sbfx_fire_particle *particles, int count,
+                     sbfx_fire_work *work, sbfx_fire_gathered *out, int max);
+
+/* The host's falloff of a point light (src/sbfx.h, sbfx_emitted_lights): at distance d from a
+ * light of influence radius R, window(d / R) / max(d^2, SBFX_LIGHT_MIN_D2) with
+ * window(x) = clamp(1 - x^4, 0, 1)^2. */
+#define SBFX_LIGHT_MIN_D2 0.25
+double sbfx_light_falloff(double d2, double radius);
+
+/* A gathered light's radius of influence: where colour x exposure / d^2 falls below
+ * SBFX_LIGHT_NEGLIGIBLE (about an eighth of an 8-bit step on a white surface), at least its
+ * extent + 0.5 m. colour_max: the largest channel of the light's host colour (I / pi). */
+#define SBFX_LIGHT_NEGLIGIBLE (1.0 / 2048.0)
+double sbfx_fire_light_radius(double colour_max, double exposure, double extent);
+
+#endif

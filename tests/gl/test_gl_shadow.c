@@ -1,0 +1,238 @@
+/* The host's transmittance shadow map (sbfx_render_shadow_map, RTR 13.8.1): a known smoke puff
+ * against the CPU reference (ref/shadow_ref.h), the map only where asked for (counters), and
+ * bad input refused with nothing changed. Its GL state: test_gl_state's shadow_map_leaves_state. */
+#include "gl_fixture.h"
+#include "module.h" /* fx->shadow */
+#include "shadow_ref.h"
+
+#define SIZE 128
+
+static sbfx *module_with_map(gl_fixture *f, int size)
+{
+    return fixture_module(f, (sbfx_desc){.ignore_timeline = true, .max_particles = 256, .shadow_map_size = size});
+}
+
+/* A world point that the map's texel (i, j) covers: the map's rows 0 and 1 are the light view's
+ * (orthogonal) rows scaled, so a point a e0 + b e1 in their plane lands where it is asked. */
+static void texel_point(const float vp[16], int size, int i, int j, double p[3])
+{
+    double ndc[2] = {2.0 * (i + 0.5) / size - 1.0, 2.0 * (j + 0.5) / size - 1.0};
+    for (int k = 0; k < 3; k++) p[k] = 0.0;
+    for (int row = 0; row < 2; row++) {
+        double e[3] = {vp[row], vp[4 + row], vp[8 + row]};
+        double s2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+        double a = (ndc[row] - vp[12 + row]) / s2; /* (ndc - t) / s along the unit row, over s again */
+        for (int k = 0; k < 3; k++) p[k] += a * e[k];
+    }
+}
+
+/* Six smoke particles overlapping around (0, 1.5, 0), different sizes and intensities. */
+static int puff(sbfx *fx, sbfx_view_particle out[], sbfx_ref_particle ref[])
+{
+    static const float spec[][5] = {
+        {0.0f, 1.5f, 0.0f, 1.0f, 1.0f},  {0.6f, 1.8f, 0.2f, 0.7f, 0.8f},  {-0.5f, 1.2f, -0.3f, 0.8f, 0.6f},
+        {0.2f, 2.2f, -0.4f, 0.5f, 1.0f}, {-0.3f, 1.9f, 0.5f, 0.6f, 0.4f}, {0.9f, 1.0f, -0.6f, 0.4f, 0.9f},
+    };
+    float tau = sbfx_media(fx)[SBFX_SMOKE].tau;
+    int n = (int)ARRAY_SIZE(spec);
+    for (int i = 0; i < n; i++) {
+        out[i] = (sbfx_view_particle){.center = {spec[i][0], spec[i][1], spec[i][2]}, .radius = spec[i][3],
+                                      .intensity = spec[i][4], .medium = SBFX_SMOKE};
+        ref[i] = (sbfx_ref_particle){{spec[i][0], spec[i][1], spec[i][2]}, spec[i][3], (double)tau * spec[i][4]};
+    }
+    return n;
+}
+
+CHECK_TEST(smoke_puff_matches_the_reference)
+{
+    gl_fixture f;
+    fixture_open(&f, 32, 32);
+    sbfx *fx = module_with_map(&f, SIZE);
+    sbfx_view_particle particles[8];
+    sbfx_ref_particle ref[8];
+    int n = puff(fx, particles, ref);
+    const float direction[3] = {0.4f, -1.0f, 0.3f};
+    sbfx_shadow_map map;
+    CHECK(sbfx_render_shadow_particles(fx, direction, particles, n, &map) == SBFX_OK, "%s", sbfx_last_error(fx));
+    CHECK(map.particles == n && map.size == SIZE && map.texture == fx->shadow.map.texture[0]);
+    static float texels[SIZE * SIZE * 4];
+    CHECK(sbfx_read_shadow_map(fx, texels, ARRAY_SIZE(texels)) == SBFX_OK, "%s", sbfx_last_error(fx));
+    /* Each blend rounds the product to the map's format, in a rounding mode GL leaves open (llvmpipe
+     * truncates): up to one unit in the last place per particle over the texel, at most n. A unit
+     * of R16F is 2^-11 for values in [0.5, 1) and less below; of RGBA8 1/255. The shader's exp and
+     * log in highp add ~1e-6. */
+    bool rgba8 = fx->shadow.map.bytes == (size_t)SIZE * SIZE * 4;
+    double per_particle = rgba8 ? 1.0 / 255.0 : 1.0 / 2048.0, tol = n * per_particle + 1e-5;
+    double len = sqrt(0.16 + 1.0 + 0.09), unit[3] = {0.4 / len, -1.0 / len, 0.3 / len};
+    double worst = 0.0, darkest = 1.0, border_min = 1.0;
+    for (int j = 0; j < SIZE; j++)
+        for (int i = 0; i < SIZE; i++) {
+            double p[3];
+            texel_point(map.view_projection, SIZE, i, j, p);
+            double want = sbfx_ref_shadow_transmittance(ref, (size_t)n, unit, p);
+            double got = texels[(j * SIZE + i) * 4];
+            CHECK_FINITE(got);
+            worst = fmax(worst, fabs(got - want));
+            darkest = fmin(darkest, got);
+            if (i < 2 || j < 2 || i >= SIZE - 2 || j >= SIZE - 2) border_min = fmin(border_min, got);
+        }
+    printf("# %s map: max |map - reference| %.2e (allowed %.2e), darkest %.4f\n", rgba8 ? "RGBA8" : "R16F", worst,
+           tol, darkest);
+    CHECK(worst <= tol, "max error %g > %g", worst, tol);
+    CHECK(darkest < 0.7, "the puff casts no real shadow: darkest %g", darkest);
+    CHECK(border_min == 1.0, "the border is shaded (%g): CLAMP_TO_EDGE would smear the shadow", border_min);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
+/* The RGBA8 map where half floats are not renderable: the tested fallback. */
+CHECK_TEST(rgba8_fallback_matches_the_reference)
+{
+    setenv("MESA_EXTENSION_OVERRIDE", "-GL_EXT_color_buffer_half_float -GL_EXT_color_buffer_float", 1);
+    gl_fixture f;
+    fixture_open(&f, 32, 32);
+    if (sbfx_half_float_renderable()) CHECK_SKIP("this driver does not hide the extensions (not Mesa)");
+    sbfx *fx = module_with_map(&f, 64);
+    CHECK(fx->shadow.map.bytes == 64 * 64 * 4, "%zu bytes: not RGBA8", fx->shadow.map.bytes);
+    sbfx_view_particle particles[8];
+    sbfx_ref_particle ref[8];
+    int n = puff(fx, particles, ref);
+    sbfx_shadow_map map;
+    const float direction[3] = {0.0f, -1.0f, 0.0f};
+    CHECK(sbfx_render_shadow_particles(fx, direction, particles, n, &map) == SBFX_OK, "%s", sbfx_last_error(fx));
+    static float texels[64 * 64 * 4];
+    CHECK(sbfx_read_shadow_map(fx, texels, ARRAY_SIZE(texels)) == SBFX_OK);
+    double unit[3] = {0, -1, 0}, worst = 0.0, tol = n / 255.0 + 1e-5; /* as above */
+    for (int j = 0; j < 64; j++)
+        for (int i = 0; i < 64; i++) {
+            double p[3];
+            texel_point(map.view_projection, 64, i, j, p);
+            worst = fmax(worst, fabs(texels[(j * 64 + i) * 4] - sbfx_ref_shadow_transmittance(ref, (size_t)n, unit, p)));
+        }
+    printf("# RGBA8 map: max |map - reference| %.2e (allowed %.2e)\n", worst, tol);
+    CHECK(worst <= tol, "max error %g > %g", worst, tol);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
+/* Nothing of it without the desc or scene asking; one texture, framebuffer and program with it;
+ * one pass with live particles, none idle; post.cfg (no host_shadows) has none, a scene with
+ * host_shadows a 256 map. */
+CHECK_TEST(the_map_exists_only_when_asked_for)
+{
+    gl_fixture f;
+    fixture_open(&f, 32, 32);
+    sbfx *plain = module_with_map(&f, 0), *mapped = module_with_map(&f, 64);
+    sbfx_counters a, b;
+    sbfx_stats(plain, &a);
+    sbfx_stats(mapped, &b);
+    CHECK(b.textures == a.textures + 1 && b.framebuffers == a.framebuffers + 1 && b.programs == a.programs + 1,
+          "textures %d -> %d, framebuffers %d -> %d, programs %d -> %d", a.textures, b.textures, a.framebuffers,
+          b.framebuffers, a.programs, b.programs);
+    CHECK(plain->shadow.size == 0 && !plain->shadow.map.framebuffer && !plain->shadow.program && !plain->shadow.buffer);
+    sbfx_shadow_map map;
+    const float sun[3] = {0.3f, -1.0f, 0.2f};
+    CHECK(sbfx_render_shadow_map(plain, sun, &map) == SBFX_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(sbfx_last_error(plain), "shadow_map_size") != NULL, "%s", sbfx_last_error(plain));
+    CHECK(sbfx_render_shadow_map(mapped, sun, &map) == SBFX_OK, "%s", sbfx_last_error(mapped));
+    sbfx_stats(mapped, &b);
+    CHECK(b.shadow_passes == 0 && map.particles == 0, "idle: %d passes, %d particles", b.shadow_passes, map.particles);
+    CHECK(sbfx_trigger(mapped, "explosion", (const float[3]){0, 0, 0}) == SBFX_OK);
+    CHECK(sbfx_update(mapped, 0.5) == SBFX_OK);
+    CHECK(sbfx_render_shadow_map(mapped, sun, &map) == SBFX_OK, "%s", sbfx_last_error(mapped));
+    sbfx_stats(mapped, &b);
+    CHECK(b.shadow_passes == 1 && map.particles > 0, "live: %d passes, %d particles", b.shadow_passes, map.particles);
+    uint64_t allocs = b.heap_allocs_after_load;
+    for (int i = 0; i < 5; i++) {
+        CHECK(sbfx_update(mapped, 1.0 / 60) == SBFX_OK);
+        CHECK(sbfx_render_shadow_map(mapped, sun, &map) == SBFX_OK);
+    }
+    sbfx_stats(mapped, &b);
+    CHECK(b.heap_allocs_after_load == allocs, "%llu heap allocations per map", (unsigned long long)(b.heap_allocs_after_load - allocs));
+    sbfx_destroy(plain);
+    sbfx_destroy(mapped);
+
+    sbfx_scene *scene = fixture_load_scene("post");
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.scene = scene});
+    CHECK(fx->shadow.size == 0 && !fx->shadow.map.framebuffer, "post.cfg has a %d map", fx->shadow.size);
+    sbfx_destroy(fx);
+    sbfx_scene_free(scene);
+    char err[512];
+    CHECK(sbfx_scene_parse("render = { host_shadows = true; }; media = { smoke = {}; };\n"
+                           "effects = { puff = { steps = ( { type = \"emitter\"; medium = \"smoke\"; count = 4; } ); }; };",
+                           "inline", &scene, err, sizeof(err)) == SBFX_OK, "%s", err);
+    if (scene) {
+        sbfx_scene_host host;
+        sbfx_scene_host_get(scene, &host);
+        CHECK(host.host_shadows && !host.host_lights && !host.has_sky && host.has_sun);
+        fx = fixture_module(&f, (sbfx_desc){.scene = scene});
+        CHECK(fx->shadow.size == 256, "host_shadows made a %d map", fx->shadow.size);
+        sbfx_destroy(fx);
+        sbfx_scene_free(scene);
+    }
+    fixture_close(&f);
+}
+
+static char last_error[512];
+
+static void keep_error(sbfx_log_level level, const char *message, void *user)
+{
+    (void)user;
+    if (level == SBFX_LOG_ERROR) snprintf(last_error, sizeof(last_error), "%s", message);
+}
+
+/* A zero-length or non-finite direction: an error naming it, *out and the map untouched, no GL
+ * call; sizes that are not renderable refused at create (and in the scene file). */
+CHECK_TEST(bad_input_is_refused_and_changes_nothing)
+{
+    gl_fixture f;
+    fixture_open(&f, 32, 32);
+    sbfx *fx = module_with_map(&f, 64);
+    CHECK(sbfx_trigger(fx, "explosion", (const float[3]){0, 0, 0}) == SBFX_OK);
+    CHECK(sbfx_update(fx, 0.5) == SBFX_OK);
+    sbfx_shadow_map map;
+    CHECK(sbfx_render_shadow_map(fx, (const float[3]){0.3f, -1.0f, 0.2f}, &map) == SBFX_OK);
+    static float before[64 * 64 * 4], after[64 * 64 * 4];
+    CHECK(sbfx_read_shadow_map(fx, before, ARRAY_SIZE(before)) == SBFX_OK);
+    sbfx_counters c0, c1;
+    sbfx_stats(fx, &c0);
+    const float bad[][3] = {{0, 0, 0}, {NAN, -1, 0}, {0, INFINITY, 0}, {1e-30f, 0, 0}};
+    for (size_t i = 0; i < ARRAY_SIZE(bad); i++) {
+        sbfx_shadow_map out, sentinel;
+        memset(&out, 0xa5, sizeof(out));
+        memcpy(&sentinel, &out, sizeof(out));
+        CHECK(sbfx_render_shadow_map(fx, bad[i], &out) == SBFX_ERR_INVALID_ARGUMENT, "direction %zu accepted", i);
+        CHECK(memcmp(&out, &sentinel, sizeof(out)) == 0, "direction %zu wrote *out", i);
+        const char *e = sbfx_last_error(fx);
+        CHECK(strstr(e, i == 0 || i == 3 ? "zero length" : "not finite") != NULL, "%s", e);
+    }
+    CHECK(sbfx_render_shadow_map(fx, (const float[3]){0, -1, 0}, NULL) == SBFX_ERR_INVALID_ARGUMENT);
+    CHECK(sbfx_render_shadow_map(NULL, (const float[3]){0, -1, 0}, &map) == SBFX_ERR_INVALID_ARGUMENT);
+    sbfx_stats(fx, &c1);
+    CHECK(c1.shadow_passes == c0.shadow_passes && c1.textures == c0.textures);
+    CHECK(sbfx_read_shadow_map(fx, after, ARRAY_SIZE(after)) == SBFX_OK);
+    CHECK(memcmp(before, after, sizeof(before)) == 0, "a refused call changed the map");
+    sbfx_destroy(fx);
+
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    const int sizes[] = {-1, 1, 15, max_size + 1, 1 << 30};
+    for (size_t i = 0; i < ARRAY_SIZE(sizes); i++) {
+        sbfx *none = NULL;
+        last_error[0] = '\0';
+        sbfx_desc d = {.shadow_map_size = sizes[i], .log = keep_error};
+        sbfx_result r = sbfx_create(&d, &none);
+        CHECK(r == SBFX_ERR_INVALID_ARGUMENT && none == NULL, "size %d: %s", sizes[i], sbfx_result_string(r));
+        CHECK(strstr(last_error, "shadow_map_size") != NULL, "size %d: \"%s\"", sizes[i], last_error);
+    }
+    sbfx_scene *scene = NULL;
+    char err[512] = "";
+    CHECK(sbfx_scene_parse("render = { shadow_map_size = 8; };", "inline", &scene, err, sizeof(err)) != SBFX_OK);
+    CHECK(strstr(err, "shadow_map_size") != NULL, "%s", err);
+    CHECK(sbfx_scene_parse("render = { host_shadows = 1; };", "inline", &scene, err, sizeof(err)) != SBFX_OK);
+    CHECK(strstr(err, "host_shadows") != NULL && strstr(err, "true or false") != NULL, "%s", err);
+    CHECK(sbfx_scene_parse("sky = [0.1, 0.2];", "inline", &scene, err, sizeof(err)) != SBFX_OK);
+    fixture_close(&f);
+}
+
+int main(int argc, char **argv) { return check_main_args(argc, argv); }
