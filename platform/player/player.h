@@ -2,7 +2,8 @@
  *   player.c         main, setup and teardown, results
  *   player_inputs.c  board profile, GPIO trigger lines, the V4L2 detail source
  *   player_loop.c    the frame loop: poll, inputs, simulate, render, present, stats line
- *   player_reset.c   GPU resets: a new context, its GL objects and sbfx, and the run goes on */
+ *   player_reset.c   GPU resets: a new context, its GL objects and sbfx, and the run goes on
+ *   player_watch.c   the authoring loop: --watch, SIGHUP and --loop reload the scene */
 #ifndef SBFX_PLAYER_H
 #define SBFX_PLAYER_H
 
@@ -19,6 +20,7 @@
 #include "sbfx.h"
 #include "host/test_scene.h"
 #include "player/player_notify.h"
+#include "player/player_watch.h"
 
 struct frame_times {
     double sbfx_sum, sbfx_max;   /* sbfx_update + sbfx_render (+ glFinish when headless) */
@@ -66,6 +68,11 @@ struct player {
     double fx_time_lost;      /* the lost module's time: --trigger entries up to it had fired */
     double fx_clock_lost;     /* its absolute clock (sbfx_time): the new module starts there */
     double fx_created_at;     /* the player's time when the current module was made */
+    /* the authoring loop (player_watch.c) */
+    struct player_watch watch;
+    sbfx_scene *scene_kept;   /* --loop: the scene it replays */
+    double timeline_start;    /* sbfx_elapsed() when the timeline last started */
+    int64_t take_first;       /* headless: the first frame of this take (a reload starts one) */
 };
 
 int64_t player_now_ns(void);
