@@ -147,7 +147,7 @@ int player_create_fx(struct player *p, char *err, size_t n)
         return -EIO;
     }
     if (rc) return rc;
-    p->timeline_start = 0.0;
+    p->timeline_start = p->sim_time; /* --loop counts from here */
     p->fx_created_at = p->recovering ? p->sim_time : 0.0;
     return schedule_triggers(p, err, n);
 }

@@ -71,7 +71,7 @@ struct player {
     /* the authoring loop (player_watch.c) */
     struct player_watch watch;
     sbfx_scene *scene_kept;   /* --loop: the scene it replays */
-    double timeline_start;    /* sbfx_elapsed() when the timeline last started */
+    double timeline_start;    /* sim_time when the timeline last started (--loop) */
     int64_t take_first;       /* headless: the first frame of this take (a reload starts one) */
 };
 

@@ -116,6 +116,8 @@ static const char usage_text[] =
     "      within 8 ms of sbfx GPU time per frame: the quality ladder (quality, gpu_ms)\n"
     "  sbfx-play --display drm --board boards/rpi4.cfg --scene scenes/explosion.cfg\n"
     "      a kiosk: full screen through DRM/KMS, the board's camera and GPIO buttons\n"
+    "  sbfx-play --headless --watch --scene my.cfg --frames 24 --contact-sheet --out /tmp/my\n"
+    "      the authoring loop without a display: each save renders the frames and sheet again\n"
     "\n"
     "Timeline: frame i shows simulated time i/F. Frame 0 is rendered before any update, so\n"
     "it shows the scene alone (effects start at the first simulation step); before frame\n"

@@ -168,7 +168,7 @@ static void schedule_triggers_again(struct player *p)
         if (sbfx_schedule(p->fx, t->effect, now + t->seconds, t->position) != SBFX_OK)
             fprintf(stderr, "sbfx-play: --trigger %s@%g: %s\n", t->effect, t->seconds, sbfx_last_error(p->fx));
     }
-    p->timeline_start = now;
+    p->timeline_start = p->sim_time;
 }
 
 /* The scene's detail clip again (the new module's volume starts procedural). */
@@ -218,11 +218,12 @@ static int replay(struct player *p)
     sbfx_result r = sbfx_set_scene(p->fx, p->scene_kept);
     if (r != SBFX_OK) {
         fprintf(stderr, "sbfx-play: replaying the timeline: %s: %s\n", sbfx_result_string(r), sbfx_last_error(p->fx));
-        p->timeline_start = sbfx_elapsed(p->fx); /* tried again a period later */
+        p->timeline_start = p->sim_time; /* tried again a period later */
         return 0;
     }
     schedule_triggers_again(p);
     reopen_clip(p);
+    if (!p->opt->quiet) printf("sbfx-play: timeline replayed at %.3f s\n", p->sim_time);
     return PLAYER_REPLAYED;
 }
 
@@ -236,7 +237,9 @@ int player_watch_service(struct player *p)
         return replay(p);
     }
     double loop = p->opt->loop_seconds;
-    if (loop > 0 && sbfx_elapsed(p->fx) - p->timeline_start >= loop) return replay(p);
+    /* the player's clock (frame i at i/F exactly, or the wall clock), not the module's, which
+     * counts whole steps and may be most of one behind it */
+    if (loop > 0 && p->sim_time - p->timeline_start >= loop) return replay(p);
     return 0;
 }
 
