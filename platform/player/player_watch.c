@@ -196,6 +196,8 @@ static int reload_scene(struct player *p)
         return 0;
     }
     if (player_watch_files(p, scene, why, sizeof(why)) != 0) fprintf(stderr, "sbfx-play: %s\n", why);
+    sbfx_counters before, after;
+    sbfx_stats(p->fx, &before);
     sbfx_result r = sbfx_set_scene(p->fx, scene);
     if (r != SBFX_OK) {
         fprintf(stderr, "sbfx-play: scene not reloaded: %s: %s: %s (the previous scene plays on)\n", path,
@@ -208,6 +210,11 @@ static int reload_scene(struct player *p)
     schedule_triggers_again(p);
     reopen_clip(p);
     fprintf(stderr, "sbfx-play: scene reloaded: %s (%.0f ms)\n", path, ms_since(start));
+    sbfx_stats(p->fx, &after);
+    if (!p->opt->quiet) /* what the edit cost: nothing for a change of numbers */
+        printf("sbfx-play: the new scene compiled %d shader programs and made %d targets\n",
+               after.programs_compiled - before.programs_compiled, after.targets_created - before.targets_created);
+    fflush(stdout);
     return 1;
 }
 
