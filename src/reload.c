@@ -119,6 +119,9 @@ static void carry_over(sbfx *next, const sbfx *live)
     next->counters.programs_compiled += live->counters.programs_compiled;
     next->counters.targets_created += live->counters.targets_created;
     next->counters.scene_reloads = live->counters.scene_reloads + 1;
+    /* a detail volume taken over keeps what a live source pushed: its ring goes on where it was */
+    if (next->gl.detail_texture && next->gl.detail_texture == live->gl.detail_texture)
+        next->detail_ring_next = live->detail_ring_next;
 }
 
 static sbfx_result fail_back(sbfx *fx, sbfx *next, sbfx_result r)
