@@ -274,12 +274,14 @@ static bool reload_cycle(gl_fixture *f, sbfx *fx, const edit *edits, int count, 
     return true;
 }
 
-/* 200 reloads of number-only edits: the GL objects are those of the start, exactly; the heap is
- * where it was after a first round, within a 16 KiB allowance for the C library's arenas (a leak
- * of one block per reload would be 200 of them: the scene alone is 40 KB). Then 20 reloads that
- * change variants and targets (each compiles programs): GL objects exactly as before again.
- * (Compiling on Mesa keeps memory of its own, so the heap is checked on the first part only;
- * the ASan run of this test checks sbfx's allocations in both.) */
+/* 200 reloads of number-only edits: the GL objects are those of the start, exactly. The heap is
+ * measured over four blocks of 50 reloads: a leak grows it in every block, while the C library's
+ * and Mesa's arenas step once in a while (llvmpipe here: 0 or about 64 KB once in 200). A leak of
+ * one block of 41 bytes or more per reload (the scene alone is 40 KB) would grow each block by
+ * 2 KiB at least, so the quietest block must stay below that. Then 20 reloads that change
+ * variants and targets (each compiles programs): GL objects exactly as before again. (Compiling
+ * on Mesa keeps memory of its own, so the heap is checked on the first part; the ASan run of this
+ * test checks sbfx's allocations in both.) */
 CHECK_TEST(two_hundred_reloads_leak_nothing)
 {
     gl_fixture f;
@@ -291,12 +293,18 @@ CHECK_TEST(two_hundred_reloads_leak_nothing)
     if (!reload_cycle(&f, fx, numbers, 3, 6)) goto out; /* a first round: the arenas reach their size */
     gl_census objects = census();
     sbfx_counters start = stats(fx);
-    int64_t heap = heap_bytes();
-    if (!reload_cycle(&f, fx, numbers, 3, 200)) goto out;
+    int64_t quietest = INT64_MAX, total = 0;
+    for (int block = 0; block < 4; block++) {
+        int64_t heap = heap_bytes();
+        if (!reload_cycle(&f, fx, numbers, 3, 50)) goto out;
+        int64_t grown = heap_bytes() - heap;
+        total += grown;
+        if (grown < quietest) quietest = grown;
+    }
     sbfx_counters end = stats(fx);
-    int64_t grown = heap_bytes() - heap;
-    printf("# 200 number-only reloads: heap %+lld bytes, programs compiled %d, targets created %d\n",
-           (long long)grown, end.programs_compiled - start.programs_compiled, end.targets_created - start.targets_created);
+    printf("# 200 number-only reloads: heap %+lld bytes (quietest block of 50: %+lld), programs compiled %d, "
+           "targets created %d\n", (long long)total, (long long)quietest,
+           end.programs_compiled - start.programs_compiled, end.targets_created - start.targets_created);
     census_equal(objects, census(), "after 200 number-only reloads");
     CHECK(end.programs == start.programs && end.textures == start.textures && end.framebuffers == start.framebuffers &&
           end.gpu_bytes == start.gpu_bytes && end.heap_allocs_after_load == start.heap_allocs_after_load,
@@ -305,7 +313,7 @@ CHECK_TEST(two_hundred_reloads_leak_nothing)
           "%d programs compiled, %d targets made", end.programs_compiled - start.programs_compiled,
           end.targets_created - start.targets_created);
     CHECK(end.scene_reloads - start.scene_reloads == 200, "%d reloads", end.scene_reloads - start.scene_reloads);
-    CHECK(grown < 16 * 1024, "the heap grew %lld bytes over 200 reloads", (long long)grown);
+    CHECK(quietest < 2048, "the heap grew in every block of 50 reloads, %lld bytes in the quietest", (long long)quietest);
     edit variants[4] = {base, base, base, base};
     variants[1].fire = true, variants[1].detail = 0.0f;
     variants[2].target_scale = 2;
