@@ -110,7 +110,6 @@ static void carry_over(sbfx *next, const sbfx *live)
     next->host_desc = live->host_desc;
     memcpy(next->host_ladder, live->host_ladder, sizeof(next->host_ladder));
     next->heap_allocs_after_load = live->heap_allocs_after_load;
-    next->host_errors.logged |= live->host_errors.logged;
     next->warned_format = next->warned_format || live->warned_format;
     next->warned_polygon_mode = next->warned_polygon_mode || live->warned_polygon_mode;
     memcpy(next->previous_view, live->previous_view, sizeof(next->previous_view));
@@ -143,6 +142,7 @@ sbfx_result sbfx_set_scene(sbfx *fx, const sbfx_scene *scene)
     next->time = fx->time;
     next->step_index = fx->step_index;
     next->accumulator = fx->accumulator;
+    next->host_errors.logged = fx->host_errors.logged; /* what the host left pending: said once */
     next->donor = fx;
     const char *ladder[SBFX_LADDER_MAX];
     sbfx_desc desc = host_desc(fx, scene, ladder);

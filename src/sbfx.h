@@ -263,12 +263,13 @@ typedef struct sbfx sbfx;
 /* GL errors the host left pending. GL keeps an error until someone calls glGetError, so an
  * error a host (or its toolkit: Qt 6.4 leaves GL_INVALID_OPERATION after glPolygonMode on ES
  * contexts) leaves behind is not sbfx's failure. Each entry point that makes GL calls and checks
- * them (sbfx_create, sbfx_render when it draws, sbfx_set_quality, sbfx_detail_push_slice) first
- * reads the pending errors off (up to 8 distinct codes), so its checks see only its own, and
- * before it returns posts them again for the host, in the order they were read, by a call that
- * fails with that error and has no other effect: GL_INVALID_ENUM by glEnable(GL_NONE),
- * GL_INVALID_VALUE by glLineWidth(0), GL_INVALID_OPERATION by glBeginQuery(GL_ANY_SAMPLES_PASSED,
- * 0). GL_INVALID_FRAMEBUFFER_OPERATION, GL_OUT_OF_MEMORY and GL_CONTEXT_LOST cannot be posted
+ * them (sbfx_create, sbfx_set_scene, sbfx_render when it draws, sbfx_set_quality,
+ * sbfx_detail_push_slice) first reads the pending errors off (up to 8 distinct codes), so its
+ * checks see only its own, and before it returns posts them again for the host, in the order
+ * they were read, by a call that fails with that error and has no other effect:
+ * GL_INVALID_ENUM by glEnable(GL_NONE), GL_INVALID_VALUE by glLineWidth(0),
+ * GL_INVALID_OPERATION by glBeginQuery(GL_ANY_SAMPLES_PASSED, 0).
+ * GL_INVALID_FRAMEBUFFER_OPERATION, GL_OUT_OF_MEMORY and GL_CONTEXT_LOST cannot be posted
  * that way: they are dropped. Either way the log says so once per module and kind (INFO when
  * posted again, WARN when dropped). sbfx_render with nothing to draw, sbfx_update,
  * sbfx_trigger and the other calls make no GL call and leave pending errors alone; sbfx_destroy
