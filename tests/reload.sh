@@ -4,8 +4,9 @@
 #   - in place (truncate and write the same inode), by write-and-rename, in a burst of writes,
 #     and in the included file: each gives exactly one "scene reloaded" line, and the contact
 #     sheet is written again;
-#   - a broken edit: logged with the file, the line and the reason; no reload, the player runs on
-#     (the next good edit reloads), the sheet of the old scene stays;
+#   - a broken edit: logged with the file, the line and the reason (in an included file: that
+#     file); no reload, the player runs on (the next good edit reloads), the sheet of the old
+#     scene stays; made while frames are rendered, the take finishes on the old scene;
 #   - SIGHUP reloads; SIGTERM ends the run with status 0;
 #   - --loop SECONDS replays the timeline every SECONDS (counted in the log);
 #   - --watch without --scene is refused.
@@ -146,6 +147,19 @@ else ok "broken-edit ('${err#sbfx-play: }'; the player runs on)"; fi
 fix() { printf '%s\n' "$good" >"$scene"; }
 edit fixed-after-broken fix
 
+# a broken edit in the included file is named by that file and its line
+before_n=$(grep -c 'scene not reloaded' "$tmp/log")
+media_good=$(cat "$media")
+printf '%s\n' "$media_good" | sed 's/^};$/  fog = { density = 1.0; };\n};/' >"$media"
+fog_line=$(grep -n 'fog = ' "$media" | cut -d: -f1)
+deadline=$(($(now_ms) + WAIT_S * 1000))
+until [ "$(grep -c 'scene not reloaded' "$tmp/log")" -gt "$before_n" ] || [ "$(now_ms)" -gt "$deadline" ]; do sleep 0.02; done
+err=$(grep 'scene not reloaded' "$tmp/log" | tail -n 1)
+if echo "$err" | grep -qF "$media:$fog_line: unknown key 'fog' in media"; then ok "broken-include ('${err#sbfx-play: }')"
+else fail broken-include "logged '$err' (want $media:$fog_line)"; fi
+fix_media() { printf '%s\n' "$media_good" >"$media"; }
+edit fixed-include fix_media
+
 # SIGHUP: `systemctl reload` on a kiosk
 hup() { kill -HUP "$pid"; }
 edit sighup hup
@@ -157,6 +171,31 @@ rc=$?
 pid=""
 if [ "$rc" -eq 0 ] && grep -q 'contact sheet: ' "$tmp/log"; then ok "sigterm (exit 0)"
 else fail sigterm "exit $rc: $(tail -n 2 "$tmp/log" | tr '\n' ' ')"; fi
+
+# a broken edit while frames are being rendered: the take goes on with the old scene to its last
+# frame (no exit, no frame missing), the error logged before the take ends
+good=$(cat "$scene")
+timeout -k 5 $((WAIT_S * 10)) "$PLAYER" --headless --watch --scene "$scene" --size 64x36 --frames 240 \
+    --out "$tmp/long" >"$tmp/long.log" 2>&1 </dev/null &
+pid=$!
+deadline=$(($(now_ms) + WAIT_S * 1000))
+until [ -f "$tmp/long/frame-0001.png" ] || [ "$(now_ms)" -gt "$deadline" ]; do sleep 0.02; done
+printf '%s\nsky = 1;\n' "$good" >"$scene"
+long_takes() { grep -c 'frames written; waiting for a change' "$tmp/long.log"; }
+wait_for long_takes 1
+kill -TERM "$pid"
+wait "$pid"
+rc=$?
+pid=""
+printf '%s\n' "$good" >"$scene"
+err_at=$(grep -n 'scene not reloaded' "$tmp/long.log" | head -n 1 | cut -d: -f1)
+take_at=$(grep -n 'frames written' "$tmp/long.log" | head -n 1 | cut -d: -f1)
+if [ -z "$err_at" ] || [ -z "$take_at" ]; then
+    fail broken-edit-mid-take "error line ${err_at:-none}, take ${take_at:-none}: $(tail -n 2 "$tmp/long.log" | tr '\n' ' ')"
+elif [ "$err_at" -gt "$take_at" ]; then echo "skip - $SUITE/broken-edit-mid-take: the 240 frames were done before the edit settled"
+elif [ ! -f "$tmp/long/frame-0239.png" ] || [ "$(grep -c 'scene reloaded' "$tmp/long.log")" -ne 0 ] || [ "$rc" -ne 0 ]; then
+    fail broken-edit-mid-take "exit $rc, last frame $(ls "$tmp/long" | tail -n 1)"
+else ok "broken-edit-mid-take (the error logged during the take; its 240 frames finished on the old scene)"; fi
 
 # --loop: 30 frames at 12 fps (2.5 simulated seconds) replay a 1 s timeline at 1 s and 2 s
 timeout -k 5 $((WAIT_S * 6)) "$PLAYER" --scene scenes/smoke.cfg --loop 1 --size 64x36 --frames 30 \
