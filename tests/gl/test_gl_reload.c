@@ -327,6 +327,44 @@ out:
     fixture_close(&f);
 }
 
+/* The host's desc is the plan of every reload: its ladder (names copied at create: the host's
+ * array is gone) is declared again, so switching to its level after a reload compiles nothing. */
+static sbfx *module_with_ladder(gl_fixture *f)
+{
+    char name[32];
+    snprintf(name, sizeof(name), "%s", "spherical/8/bl");
+    const char *ladder[] = {name};
+    sbfx_scene *scene = scene_of(base);
+    sbfx *fx = fixture_module(f, (sbfx_desc){.scene = scene, .ladder = ladder, .ladder_count = 1});
+    sbfx_scene_free(scene);
+    memset(name, 'x', sizeof(name) - 1); /* the host's names change after create */
+    return fx;
+}
+
+CHECK_TEST(reload_keeps_the_host_desc)
+{
+    gl_fixture f;
+    fixture_open_far(&f, 96, 64);
+    sbfx *fx = module_with_ladder(&f);
+    frames(&f, fx, 2);
+    edit e = base;
+    e.fire = true; /* a new medium: the ladder's level needs its program too */
+    CHECK(reload(fx, e) == SBFX_OK, "%s", sbfx_last_error(fx));
+    frames(&f, fx, 2);
+    sbfx_counters before = stats(fx);
+    sbfx_quality q;
+    CHECK(sbfx_quality_parse("spherical/8/bl", &q, NULL, 0) == SBFX_OK);
+    CHECK(sbfx_set_quality(fx, &q) == SBFX_OK, "%s", sbfx_last_error(fx));
+    frames(&f, fx, 2);
+    sbfx_counters after = stats(fx);
+    CHECK(strcmp(after.quality, "spherical/8/bl") == 0, "quality %s", after.quality);
+    CHECK(after.programs_compiled == before.programs_compiled && after.targets_created == before.targets_created,
+          "the ladder's level was not declared by the reload: %d programs compiled, %d targets made",
+          after.programs_compiled - before.programs_compiled, after.targets_created - before.targets_created);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
 CHECK_TEST(reload_leaves_the_host_gl_state_alone)
 {
     gl_fixture f;
