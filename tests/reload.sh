@@ -175,14 +175,16 @@ else fail sigterm "exit $rc: $(tail -n 2 "$tmp/log" | tr '\n' ' ')"; fi
 # a broken edit while frames are being rendered: the take goes on with the old scene to its last
 # frame (no exit, no frame missing), the error logged before the take ends
 good=$(cat "$scene")
-timeout -k 5 $((WAIT_S * 10)) "$PLAYER" --headless --watch --scene "$scene" --size 64x36 --frames 240 \
+timeout -k 5 $((WAIT_S * 10)) "$PLAYER" --headless --watch --scene "$scene" --size 160x90 --frames 240 \
     --out "$tmp/long" >"$tmp/long.log" 2>&1 </dev/null &
 pid=$!
 deadline=$(($(now_ms) + WAIT_S * 1000))
 until [ -f "$tmp/long/frame-0001.png" ] || [ "$(now_ms)" -gt "$deadline" ]; do sleep 0.02; done
 printf '%s\nsky = 1;\n' "$good" >"$scene"
 long_takes() { grep -c 'frames written; waiting for a change' "$tmp/long.log"; }
+long_errors() { grep -c 'scene not reloaded' "$tmp/long.log"; }
 wait_for long_takes 1
+wait_for long_errors 1
 kill -TERM "$pid"
 wait "$pid"
 rc=$?
@@ -196,6 +198,37 @@ elif [ "$err_at" -gt "$take_at" ]; then echo "skip - $SUITE/broken-edit-mid-take
 elif [ ! -f "$tmp/long/frame-0239.png" ] || [ "$(grep -c 'scene reloaded' "$tmp/long.log")" -ne 0 ] || [ "$rc" -ne 0 ]; then
     fail broken-edit-mid-take "exit $rc, last frame $(ls "$tmp/long" | tail -n 1)"
 else ok "broken-edit-mid-take (the error logged during the take; its 240 frames finished on the old scene)"; fi
+
+# a scene that the module cannot build (a shader the driver refuses: SBFX_INJECT_SHADER_FAILURE
+# makes the fire's fail): logged with the reason, the old scene plays on, the next take renders
+good=$(cat "$scene")
+media_good=$(cat "$media")
+SBFX_INJECT_SHADER_FAILURE=MEDIUM_EMITS timeout -k 5 $((WAIT_S * 10)) "$PLAYER" --headless --watch \
+    --scene "$scene" --size 64x36 --frames 3 --out "$tmp/gl" >"$tmp/log" 2>&1 </dev/null &
+pid=$!
+wait_for takes 1
+fire_medium() { # defined, not used: nothing to compile
+    printf '%s\n' "$media_good" | sed 's/^};$/  fire = { albedo = 0.0; density = 0.8; temperature = [1300.0, 900.0]; };\n};/' >"$media"
+}
+edit fire-defined fire_medium
+before_n=$(grep -c 'scene not reloaded' "$tmp/log")
+sed 's/medium = "smoke"; count = 30;/medium = "fire"; count = 30;/' "$scene" >"$tmp/scene/.new" && mv "$tmp/scene/.new" "$scene"
+deadline=$(($(now_ms) + WAIT_S * 1000))
+until [ "$(grep -c 'scene not reloaded' "$tmp/log")" -gt "$before_n" ] || [ "$(now_ms)" -gt "$deadline" ]; do sleep 0.02; done
+err=$(grep 'scene not reloaded' "$tmp/log" | tail -n 1)
+sleep 0.3
+if ! echo "$err" | grep -q "shader compile or link failed: compiling particle.* failed: SBFX_INJECT_SHADER_FAILURE"; then
+    fail build-failure "logged '$err'"
+elif ! kill -0 "$pid" 2>/dev/null; then fail build-failure "the player exited"
+else ok "build-failure ('$(echo "${err#sbfx-play: }" | cut -c 1-120)...')"; fi
+restore() { printf '%s\n' "$good" >"$scene"; }
+edit rebuilt-after-failure restore
+kill -TERM "$pid"
+wait "$pid"
+rc=$?
+pid=""
+[ "$rc" -eq 0 ] && ok "build-failure-exit (0)" || fail build-failure-exit "exit $rc"
+printf '%s\n' "$media_good" >"$media"
 
 # --loop: 30 frames at 12 fps (2.5 simulated seconds) replay a 1 s timeline at 1 s and 2 s
 timeout -k 5 $((WAIT_S * 6)) "$PLAYER" --scene scenes/smoke.cfg --loop 1 --size 64x36 --frames 30 \
