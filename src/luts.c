@@ -258,6 +258,7 @@ sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int si
                         half_texels);
     }
     sbfx_gl_state_restore(&saved);
+    sbfx_object_forget_recipe(fx, SBFX_OBJECT_TEXTURE, fx->gl.detail_texture); /* not procedural now */
     fx->detail_ring_next = (fx->detail_ring_next + 1) % fx->desc.detail_frames;
     sbfx_result r = sbfx_gl_check(fx, "writing a detail slice") ? SBFX_OK : SBFX_ERR_GL;
     sbfx_gl_leave(fx, "sbfx_detail_push_slice");

@@ -426,6 +426,9 @@ void sbfx_object_note(sbfx *fx, sbfx_object_kind kind, GLuint id, uint64_t key, 
 bool sbfx_object_borrow(sbfx *fx, sbfx_object_kind kind, uint64_t key, GLuint *id, sbfx_rt *rt);
 /* Forgets an object; true when the caller is to delete it (the module's own, or unknown). */
 bool sbfx_object_release(sbfx *fx, sbfx_object_kind kind, GLuint id);
+/* The object no longer holds what its recipe makes (detail pushed into the procedural volume):
+ * no reload takes it over. */
+void sbfx_object_forget_recipe(sbfx *fx, sbfx_object_kind kind, GLuint id);
 void sbfx_program_delete(sbfx *fx, GLuint program);
 void sbfx_texture_delete(sbfx *fx, GLuint *texture);
 

@@ -60,6 +60,12 @@ void sbfx_program_delete(sbfx *fx, GLuint program)
     if (program && sbfx_object_release(fx, SBFX_OBJECT_PROGRAM, program)) glDeleteProgram(program);
 }
 
+void sbfx_object_forget_recipe(sbfx *fx, sbfx_object_kind kind, GLuint id)
+{
+    for (int i = 0; i < fx->object_count; i++)
+        if (fx->objects[i].kind == kind && fx->objects[i].id == id) fx->objects[i].key = 0;
+}
+
 void sbfx_texture_delete(sbfx *fx, GLuint *texture)
 {
     if (*texture && sbfx_object_release(fx, SBFX_OBJECT_TEXTURE, *texture)) glDeleteTextures(1, texture);
@@ -118,9 +124,6 @@ static void carry_over(sbfx *next, const sbfx *live)
     next->counters.programs_compiled += live->counters.programs_compiled;
     next->counters.targets_created += live->counters.targets_created;
     next->counters.scene_reloads = live->counters.scene_reloads + 1;
-    /* a detail volume taken over keeps what a live source pushed: its ring goes on where it was */
-    if (next->gl.detail_texture && next->gl.detail_texture == live->gl.detail_texture)
-        next->detail_ring_next = live->detail_ring_next;
 }
 
 static sbfx_result fail_back(sbfx *fx, sbfx *next, sbfx_result r)

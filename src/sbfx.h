@@ -288,7 +288,8 @@ SBFX_API void sbfx_destroy(sbfx *fx);
  * The new scene takes over at once (call it between frames): the clock (sbfx_time,
  * sbfx_elapsed) goes on; the scene's timeline starts again from now; live particles, pending
  * sbfx_schedule triggers and live light flashes are dropped, and the quality is the new plan's
- * top. Detail pushed with sbfx_detail_push_slice is not kept: push it again.
+ * top. Detail pushed with sbfx_detail_push_slice is not kept (the new volume is procedural):
+ * push it again.
  * A reload is a load: it may allocate; frames after it allocate nothing. It saves and restores
  * the GL state it changes, like sbfx_create. On failure (a shader that does not build, a GL
  * error, a render setting out of range) the module goes on with its old scene, unchanged, and

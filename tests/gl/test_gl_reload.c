@@ -365,6 +365,33 @@ CHECK_TEST(reload_keeps_the_host_desc)
     fixture_close(&f);
 }
 
+/* The procedural detail volume is taken over while it holds what it was made with; once a host
+ * pushed a slice into it, a reload makes a procedural one again (the host pushes again). */
+CHECK_TEST(pushed_detail_is_not_taken_over)
+{
+    gl_fixture f;
+    fixture_open_far(&f, 96, 64);
+    sbfx *fx = module_of(&f, base);
+    GLuint volume = fx->gl.detail_texture;
+    CHECK(reload(fx, base) == SBFX_OK, "%s", sbfx_last_error(fx));
+    CHECK(fx->gl.detail_texture == volume, "an untouched procedural volume was made again");
+    int size = 0, slices = 0;
+    sbfx_detail_dimensions(fx, &size, &slices);
+    uint16_t *slice = calloc((size_t)size * size, sizeof(uint16_t));
+    CHECK(sbfx_detail_push_slice(fx, slice, size) == SBFX_OK, "%s", sbfx_last_error(fx));
+    free(slice);
+    sbfx_counters before = stats(fx);
+    CHECK(reload(fx, base) == SBFX_OK, "%s", sbfx_last_error(fx));
+    sbfx_counters after = stats(fx);
+    CHECK(fx->gl.detail_texture != volume && !glIsTexture(volume), "the pushed volume %u was kept (now %u)", volume,
+          fx->gl.detail_texture);
+    CHECK(after.textures == before.textures && after.programs_compiled == before.programs_compiled,
+          "textures %d -> %d, %d programs compiled", before.textures, after.textures,
+          after.programs_compiled - before.programs_compiled);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
 CHECK_TEST(reload_leaves_the_host_gl_state_alone)
 {
     gl_fixture f;
