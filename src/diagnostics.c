@@ -56,7 +56,7 @@ static sbfx_result ensure_probe_program(sbfx *fx, sbfx_medium m)
     if (gl->lut_program && gl->lut_medium == (int)m && gl->lut_blackbody_analytic == t->blackbody_analytic &&
         gl->lut_phase_analytic == t->phase_analytic[m])
         return SBFX_OK; /* remade when the medium or the level's table/analytic choice changed */
-    if (gl->lut_program) glDeleteProgram(gl->lut_program);
+    sbfx_program_delete(fx, gl->lut_program);
     char defines[256];
     snprintf(defines, sizeof(defines), "#define TABLE_PROBE\n#define MEDIUM_EMITS\n#define MEDIUM_SCATTERS\n%s%s",
              fx->tables.blackbody_analytic ? "#define BLACKBODY_ANALYTIC\n" : "",

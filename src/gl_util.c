@@ -118,6 +118,15 @@ GLuint sbfx_texture_create(sbfx *fx, GLenum target, GLenum filter, GLenum wrap)
     return tex;
 }
 
+/* SBFX_INJECT_SHADER_FAILURE=WORD (tests): a stage whose defines contain WORD fails as a driver's
+ * compiler would refuse it, so the tests can see what a failed build leaves behind (a reload
+ * that needs a new variant: the old scene goes on, tests/gl/test_gl_reload.c). */
+static bool injected_failure(const char *defines)
+{
+    const char *word = getenv("SBFX_INJECT_SHADER_FAILURE");
+    return word && *word && defines && strstr(defines, word);
+}
+
 /* Compiles one stage: the embedded source with `defines` inserted after its #version line (and,
  * on a software rasteriser, mediump defined as highp: context.c). */
 static GLuint compile_stage(sbfx *fx, GLenum stage, const char *name, const char *defines)
@@ -130,6 +139,11 @@ static GLuint compile_stage(sbfx *fx, GLenum stage, const char *name, const char
     const char *body = strchr(text, '\n');
     body = body ? body + 1 : text;
     const char *precision = fx->mediump_as_highp ? "#define mediump highp\n" : "";
+    if (injected_failure(defines)) {
+        sbfx_fail(fx, SBFX_ERR_SHADER, "compiling %s failed: SBFX_INJECT_SHADER_FAILURE names one of its defines "
+                  "(%s)", name, getenv("SBFX_INJECT_SHADER_FAILURE"));
+        return 0;
+    }
     const char *parts[] = {"#version 300 es\n", precision, defines ? defines : "", "#line 2\n", body};
     GLuint shader = glCreateShader(stage);
     if (!shader) {
@@ -181,7 +195,32 @@ static bool shader_log_on(void)
 
 static GLuint build_program(sbfx *fx, const char *vert_name, const char *frag_name, const char *defines);
 
+/* How a program is made: its stages' names, defines and precision (sbfx_object_key). */
+static uint64_t program_key(const sbfx *fx, const char *vert_name, const char *frag_name, const char *defines)
+{
+    uint64_t key = sbfx_object_key(0, vert_name, strlen(vert_name) + 1);
+    key = sbfx_object_key(key, frag_name, strlen(frag_name) + 1);
+    key = sbfx_object_key(key, defines ? defines : "", defines ? strlen(defines) + 1 : 1);
+    return sbfx_object_key(key, &fx->mediump_as_highp, sizeof(fx->mediump_as_highp));
+}
+
+static GLuint build_logged(sbfx *fx, const char *vert_name, const char *frag_name, const char *defines);
+
+/* A program made the same way by the module being replaced is taken over, not compiled again. */
 GLuint sbfx_program_build(sbfx *fx, const char *vert_name, const char *frag_name, const char *defines)
+{
+    uint64_t key = program_key(fx, vert_name, frag_name, defines);
+    GLuint program = 0;
+    if (sbfx_object_borrow(fx, SBFX_OBJECT_PROGRAM, key, &program, NULL)) {
+        fx->counters.programs++;
+        return program;
+    }
+    program = build_logged(fx, vert_name, frag_name, defines);
+    if (program) sbfx_object_note(fx, SBFX_OBJECT_PROGRAM, program, key, NULL);
+    return program;
+}
+
+static GLuint build_logged(sbfx *fx, const char *vert_name, const char *frag_name, const char *defines)
 {
     if (!shader_log_on()) return build_program(fx, vert_name, frag_name, defines);
     char name[512];
@@ -217,5 +256,6 @@ static GLuint build_program(sbfx *fx, const char *vert_name, const char *frag_na
         return 0;
     }
     fx->counters.programs++;
+    fx->counters.programs_compiled++;
     return program;
 }

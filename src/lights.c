@@ -44,7 +44,7 @@ void sbfx_light_slots_reserve(sbfx *fx, int count)
         sbfx_variant *var = &fx->gl.variants[v];
         for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) {
             if (!var->particle[m].id) continue;
-            glDeleteProgram(var->particle[m].id);
+            sbfx_program_delete(fx, var->particle[m].id);
             var->particle[m].id = 0;
             fx->counters.programs--;
         }

@@ -52,18 +52,43 @@ sbfx_result sbfx_blackbody_constants_load(sbfx *fx)
     return prepare_analytic_blackbody(fx, &sbfx_cie1931_2deg);
 }
 
+/* The procedural volumes are made from the seed and sizes alone: a reload that keeps them takes
+ * the texture over (generating 128 x 128 x 32 values is most of a load's CPU time). */
+static uint64_t generated_key(const char *what, int a, int b, int c, uint32_t seed)
+{
+    int recipe[4] = {a, b, c, (int)seed};
+    return sbfx_object_key(sbfx_object_key(0, what, strlen(what)), recipe, sizeof(recipe));
+}
+
+static bool borrow_texture(sbfx *fx, uint64_t key, GLuint *texture, size_t bytes)
+{
+    if (!sbfx_object_borrow(fx, SBFX_OBJECT_TEXTURE, key, texture, NULL)) return false;
+    fx->counters.textures++;
+    fx->counters.gpu_bytes += bytes;
+    return true;
+}
+
+static sbfx_result make_detail(sbfx *fx, int size, int frames, size_t n);
+
 static sbfx_result upload_detail(sbfx *fx)
 {
     int size = fx->desc.detail_size, frames = fx->desc.detail_frames;
     size_t n = (size_t)size * size * frames;
+    bool r32f = fx->desc.detail_format == SBFX_DETAIL_R32F;
+    uint64_t key = generated_key("detail", size, frames, r32f, fx->desc.seed);
+    if (r32f && !(fx->detail_scratch = sbfx_calloc(fx, (size_t)size * size, sizeof(float))))
+        return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
+    if (borrow_texture(fx, key, &fx->gl.detail_texture, n * (r32f ? 4 : 2))) return SBFX_OK;
+    sbfx_result r = make_detail(fx, size, frames, n);
+    if (r == SBFX_OK) sbfx_object_note(fx, SBFX_OBJECT_TEXTURE, fx->gl.detail_texture, key, NULL);
+    return r;
+}
+
+static sbfx_result make_detail(sbfx *fx, int size, int frames, size_t n)
+{
     float *values = sbfx_calloc(fx, n, sizeof(float));
     _Float16 *texels = sbfx_calloc(fx, n, sizeof(_Float16));
     sbfx_result r = SBFX_ERR_OUT_OF_MEMORY;
-    if (fx->desc.detail_format == SBFX_DETAIL_R32F &&
-        !(fx->detail_scratch = sbfx_calloc(fx, (size_t)size * size, sizeof(float)))) {
-        sbfx_free(fx, values);
-        values = NULL; /* reported as out of memory below */
-    }
     if (values && texels) {
         sbfx_detail_generate(size, frames, fx->desc.seed, values);
         sbfx_fire_detail_levels(values, size, frames, fx->fire_detail); /* what fire's light averages over */
@@ -88,7 +113,22 @@ static sbfx_result upload_detail(sbfx *fx)
 
 /* A lit medium's smoke textures (tables.h): 2 RGBA8 layers per variant in one array, so a
  * particle picks its variant by layer, all under one binding. Made at load from the seed. */
+static sbfx_result make_smoke(sbfx *fx, sbfx_medium m);
+
 static sbfx_result upload_smoke(sbfx *fx, sbfx_medium m)
+{
+    const sbfx_medium_params *mp = &fx->media[m];
+    uint32_t seed = sbfx_smoke_texture_seed(fx->desc.seed, m);
+    uint64_t key = generated_key("smoke", mp->texture_size, mp->texture_variants, 0, seed);
+    if (borrow_texture(fx, key, &fx->gl.smoke_texture[m], sbfx_smoke_texture_bytes(mp->texture_size,
+                                                                                   mp->texture_variants)))
+        return SBFX_OK;
+    sbfx_result r = make_smoke(fx, m);
+    if (r == SBFX_OK) sbfx_object_note(fx, SBFX_OBJECT_TEXTURE, fx->gl.smoke_texture[m], key, NULL);
+    return r;
+}
+
+static sbfx_result make_smoke(sbfx *fx, sbfx_medium m)
 {
     const sbfx_medium_params *mp = &fx->media[m];
     int size = mp->texture_size, variants = mp->texture_variants;
@@ -148,9 +188,8 @@ sbfx_result sbfx_luts_create(sbfx *fx)
 void sbfx_luts_destroy(sbfx *fx)
 {
     sbfx_tables_destroy(fx);
-    glDeleteTextures(1, &fx->gl.detail_texture);
-    glDeleteTextures(SBFX_MEDIUM_COUNT, fx->gl.smoke_texture);
-    memset(fx->gl.smoke_texture, 0, sizeof(fx->gl.smoke_texture));
+    sbfx_texture_delete(fx, &fx->gl.detail_texture);
+    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) sbfx_texture_delete(fx, &fx->gl.smoke_texture[m]);
     sbfx_free(fx, fx->cmf_rgb);
     sbfx_free(fx, fx->cmf_band);
     sbfx_free(fx, fx->detail_scratch);
@@ -220,6 +259,7 @@ sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int si
                         half_texels);
     }
     sbfx_gl_state_restore(&saved);
+    sbfx_object_forget_recipe(fx, SBFX_OBJECT_TEXTURE, fx->gl.detail_texture); /* not procedural now */
     fx->detail_ring_next = (fx->detail_ring_next + 1) % fx->desc.detail_frames;
     sbfx_result r = sbfx_gl_check(fx, "writing a detail slice") ? SBFX_OK : SBFX_ERR_GL;
     sbfx_gl_leave(fx, "sbfx_detail_push_slice");

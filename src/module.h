@@ -103,6 +103,21 @@ typedef struct sbfx_rt {
     size_t bytes;
 } sbfx_rt;
 
+/* GL objects a module made, known by how they were made (a 64-bit hash of the shader names and
+ * defines, or of a target's size, formats and filter): a module built to replace another
+ * (sbfx_set_scene, reload.c) takes over those it would make the same way instead of making them
+ * again. The donor lends them; if the new module fails, they go back to it. Deleting an object
+ * that is lent or borrowed leaves it to the module that keeps it. */
+typedef enum sbfx_object_kind { SBFX_OBJECT_PROGRAM = 1, SBFX_OBJECT_TARGET, SBFX_OBJECT_TEXTURE } sbfx_object_kind;
+typedef enum sbfx_object_state { SBFX_OBJECT_OWN, SBFX_OBJECT_LENT, SBFX_OBJECT_BORROWED } sbfx_object_state;
+typedef struct sbfx_object {
+    uint8_t kind, state;
+    GLuint id;          /* the program, the target's framebuffer, the texture */
+    uint64_t key;
+    sbfx_rt rt;         /* targets: the whole of it */
+} sbfx_object;
+#define SBFX_OBJECTS 256
+
 /* Post-effect state: programs at load, targets with the output size. */
 #define SBFX_POST_PROGRAMS 9
 #define SBFX_POST_UNIFORMS 40
@@ -314,6 +329,13 @@ struct sbfx {
     int cmf_bands;
     float *cmf_rgb, *cmf_band;
     float *detail_scratch;       /* one R32F slice, only with SBFX_DETAIL_R32F */
+    /* reload.c: what the module made (lendable), the module it borrows from while a
+     * sbfx_set_scene builds it, and the host's desc as given (the plan of every reload) */
+    sbfx_object objects[SBFX_OBJECTS];
+    int object_count;
+    struct sbfx *donor;
+    sbfx_desc host_desc;         /* scene and ladder pointers cleared: the names are below */
+    char host_ladder[SBFX_LADDER_MAX][64];
     particle_lod lod;            /* level of detail (lodN levels): work memory made with the */
     void *lod_work;              /* first level that needs it (at load for declared ones) */
     /* fire as light (emitted_lights.c): work memory made at load when the scene has fire */
@@ -408,6 +430,25 @@ GLuint sbfx_post_composite_texture(const sbfx *fx);
 
 /* sbfx.c */
 sbfx_result sbfx_fire(sbfx *fx, int effect, const float position[3]);
+/* Load in two steps, shared by sbfx_create and sbfx_set_scene: plan (the desc with its defaults
+ * and the scene's settings, checked; the declared levels) and build (the scene adopted, the pool,
+ * the GL objects: borrowed from fx->donor where it has them). */
+sbfx_result sbfx_module_build(sbfx *fx, const sbfx_desc *desc);
+/* Everything a module holds but its own allocation (GL objects it lent are left alone). */
+void sbfx_module_release(sbfx *fx);
+
+/* reload.c */
+uint64_t sbfx_object_key(uint64_t key, const void *data, size_t size);
+void sbfx_object_note(sbfx *fx, sbfx_object_kind kind, GLuint id, uint64_t key, const sbfx_rt *rt);
+/* Takes over the donor's object of that kind and key (true), or finds none (false). */
+bool sbfx_object_borrow(sbfx *fx, sbfx_object_kind kind, uint64_t key, GLuint *id, sbfx_rt *rt);
+/* Forgets an object; true when the caller is to delete it (the module's own, or unknown). */
+bool sbfx_object_release(sbfx *fx, sbfx_object_kind kind, GLuint id);
+/* The object no longer holds what its recipe makes (detail pushed into the procedural volume):
+ * no reload takes it over. */
+void sbfx_object_forget_recipe(sbfx *fx, sbfx_object_kind kind, GLuint id);
+void sbfx_program_delete(sbfx *fx, GLuint program);
+void sbfx_texture_delete(sbfx *fx, GLuint *texture);
 
 /* The clock's phase in a cycle of |period| seconds, in [0, 1), reduced in double precision
  * (docs/design.md §7): what every periodic value starts from. */

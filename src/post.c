@@ -173,8 +173,7 @@ void sbfx_post_destroy(sbfx *fx)
     GLuint programs[] = {p->velocity_program, p->tile_program, p->neighbor_program, p->blur_program,
                          p->history_program, p->copy_program, p->dof_setup_program, p->dof_blur_program,
                          p->dof_composite_program};
-    for (size_t i = 0; i < ARRAY_SIZE(programs); i++)
-        if (programs[i]) glDeleteProgram(programs[i]);
+    for (size_t i = 0; i < ARRAY_SIZE(programs); i++) sbfx_program_delete(fx, programs[i]);
 }
 
 /* ---- targets (first render, size changes) ---- */

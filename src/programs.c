@@ -229,12 +229,10 @@ void sbfx_programs_destroy(sbfx *fx)
     sbfx_gl *gl = &fx->gl;
     for (int v = 0; v < SBFX_VARIANTS; v++)
         for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
-            if (gl->variants[v].particle[m].id) glDeleteProgram(gl->variants[v].particle[m].id);
-    for (int u = 0; u < SBFX_UPSAMPLE_COUNT; u++)
-        if (gl->composites[u]) glDeleteProgram(gl->composites[u]);
+            sbfx_program_delete(fx, gl->variants[v].particle[m].id);
+    for (int u = 0; u < SBFX_UPSAMPLE_COUNT; u++) sbfx_program_delete(fx, gl->composites[u]);
     GLuint programs[] = {gl->depth_program, gl->corners_program, gl->lut_program};
-    for (size_t i = 0; i < ARRAY_SIZE(programs); i++)
-        if (programs[i]) glDeleteProgram(programs[i]);
+    for (size_t i = 0; i < ARRAY_SIZE(programs); i++) sbfx_program_delete(fx, programs[i]);
     if (gl->instance_buffer) glDeleteBuffers(1, &gl->instance_buffer);
     if (gl->probe_texture) glDeleteTextures(1, &gl->probe_texture);
     if (gl->probe_fbo) glDeleteFramebuffers(1, &gl->probe_fbo);

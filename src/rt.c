@@ -30,9 +30,23 @@ static void count(sbfx *fx, const sbfx_rt *rt, int sign)
     else fx->counters.gpu_bytes -= rt->bytes;
 }
 
+/* How a target is made: size, attachments' formats, filter (sbfx_object_key). */
+static uint64_t target_key(int w, int h, const sbfx_rt_format *const colors[SBFX_RT_MAX], const sbfx_rt_format *depth,
+                           GLenum filter)
+{
+    GLenum recipe[SBFX_RT_MAX + 4] = {(GLenum)w, (GLenum)h, filter, depth ? depth->internal : GL_NONE};
+    for (int i = 0; i < SBFX_RT_MAX; i++) recipe[4 + i] = colors && colors[i] ? colors[i]->internal : GL_NONE;
+    return sbfx_object_key(0, recipe, sizeof(recipe));
+}
+
 bool sbfx_rt_create(sbfx *fx, sbfx_rt *rt, int w, int h, const sbfx_rt_format *const colors[SBFX_RT_MAX],
                     const sbfx_rt_format *depth, GLenum filter)
 {
+    uint64_t key = target_key(w, h, colors, depth, filter);
+    if (sbfx_object_borrow(fx, SBFX_OBJECT_TARGET, key, NULL, rt)) {
+        count(fx, rt, +1);
+        return true;
+    }
     *rt = (sbfx_rt){.width = w, .height = h};
     GLenum buffers[SBFX_RT_MAX];
     int last = -1;
@@ -59,7 +73,9 @@ bool sbfx_rt_create(sbfx *fx, sbfx_rt *rt, int w, int h, const sbfx_rt_format *c
     while (glGetError() != GL_NO_ERROR) {
     }
     count(fx, rt, +1);
-    if (!complete) sbfx_rt_destroy(fx, rt);
+    fx->counters.targets_created++;
+    if (complete) sbfx_object_note(fx, SBFX_OBJECT_TARGET, rt->framebuffer, key, rt);
+    else sbfx_rt_destroy(fx, rt);
     return complete;
 }
 
@@ -67,6 +83,10 @@ void sbfx_rt_destroy(sbfx *fx, sbfx_rt *rt)
 {
     if (!rt->framebuffer) return;
     count(fx, rt, -1);
+    if (!sbfx_object_release(fx, SBFX_OBJECT_TARGET, rt->framebuffer)) { /* another module's now */
+        *rt = (sbfx_rt){0};
+        return;
+    }
     for (int i = 0; i < SBFX_RT_MAX; i++)
         if (rt->texture[i]) glDeleteTextures(1, &rt->texture[i]);
     if (rt->depth) glDeleteTextures(1, &rt->depth);

@@ -177,7 +177,7 @@ static void adopt_scene(sbfx *fx, const sbfx_scene *scene)
     if (!fx->desc.ignore_timeline)
         for (int i = 0; i < scene->timeline_count; i++) {
             const sbfx_timeline_entry *t = &scene->timeline[i];
-            sbfx_schedule(fx, fx->effects[t->effect].name, t->time, t->position);
+            sbfx_schedule(fx, fx->effects[t->effect].name, fx->time + t->time, t->position); /* from now: a reload's timeline starts again */
         }
 }
 
@@ -215,6 +215,7 @@ sbfx_result sbfx_reload(sbfx *fx)
 {
     destroy_gl(fx);
     memset(&fx->gl, 0, sizeof(fx->gl));
+    fx->object_count = 0;
     fx->counters.programs = fx->counters.textures = fx->counters.framebuffers = 0;
     fx->counters.gpu_bytes = 0;
     return load_gl(fx);
@@ -244,18 +245,60 @@ static sbfx_result load(sbfx *fx)
     return r;
 }
 
+/* Plan: the desc with its defaults and the scene's render settings, checked, and the levels it
+ * declares. */
+static sbfx_result plan(sbfx *fx, const sbfx_desc *desc)
+{
+    fx->desc = desc_with_defaults(desc);
+    sbfx_result r = validate_desc(fx, &fx->desc);
+    if (r == SBFX_OK) r = sbfx_budget_init(fx);
+    fx->desc.ladder = NULL; /* parsed: the scene's names may go away */
+    fx->desc.ladder_count = 0;
+    return r;
+}
+
+sbfx_result sbfx_module_build(sbfx *fx, const sbfx_desc *desc)
+{
+    sbfx_result r = plan(fx, desc);
+    return r == SBFX_OK ? load(fx) : r;
+}
+
+void sbfx_module_release(sbfx *fx)
+{
+    destroy_gl(fx);
+    sbfx_fire_lights_destroy(fx);
+    sbfx_pool_destroy(fx);
+}
+
+/* What sbfx_set_scene plans each reload from: the desc as given, without the scene (it may be
+ * freed) and with the ladder's names copied (so may they). */
+static sbfx_result keep_host_desc(sbfx *fx, const sbfx_desc *desc)
+{
+    fx->host_desc = desc ? *desc : (sbfx_desc){0};
+    fx->host_desc.scene = NULL;
+    fx->host_desc.ladder = NULL;
+    if (!desc || !desc->ladder) {
+        fx->host_desc.ladder_count = 0;
+        return SBFX_OK;
+    }
+    for (int i = 0; i < desc->ladder_count && i < SBFX_LADDER_MAX; i++) {
+        if (!desc->ladder[i] || strlen(desc->ladder[i]) >= sizeof(fx->host_ladder[i]))
+            return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "ladder[%d]: not a quality level name", i);
+        strcpy(fx->host_ladder[i], desc->ladder[i]);
+    }
+    return SBFX_OK;
+}
+
 sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out)
 {
     if (!out) return SBFX_ERR_INVALID_ARGUMENT;
     *out = NULL;
     sbfx *fx = calloc(1, sizeof(*fx));
     if (!fx) return SBFX_ERR_OUT_OF_MEMORY;
-    fx->desc = desc_with_defaults(desc);
-    sbfx_result r = validate_desc(fx, &fx->desc);
-    if (r == SBFX_OK) r = sbfx_budget_init(fx);
-    fx->desc.ladder = NULL; /* parsed: the scene's names may go away */
-    fx->desc.ladder_count = 0;
-    if (r == SBFX_OK) r = load(fx);
+    fx->desc.log = desc ? desc->log : NULL; /* for keep_host_desc's message */
+    fx->desc.log_user = desc ? desc->log_user : NULL;
+    sbfx_result r = keep_host_desc(fx, desc);
+    if (r == SBFX_OK) r = sbfx_module_build(fx, desc);
     if (r != SBFX_OK) {
         /* Hand the message to the caller's log before the handle goes away. */
         sbfx_destroy(fx);
@@ -269,9 +312,7 @@ sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out)
 void sbfx_destroy(sbfx *fx)
 {
     if (!fx) return;
-    destroy_gl(fx);
-    sbfx_fire_lights_destroy(fx);
-    sbfx_pool_destroy(fx);
+    sbfx_module_release(fx);
     free(fx);
 }
 

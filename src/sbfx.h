@@ -259,6 +259,11 @@ typedef struct sbfx_counters {
                                  nobody asked: sbfx_emitted_lights, fire-lit particles) */
     int shadow_passes;        /* passes of the last sbfx_render_shadow_map (0: no particle cast
                                  a shadow, or the map was not asked for) */
+    /* since sbfx_create, reloads (sbfx_set_scene) included: what was made, not what was
+     * taken over from the scene before */
+    int programs_compiled;    /* GL programs compiled and linked */
+    int targets_created;      /* framebuffers created (particle, depth and post targets) */
+    int scene_reloads;        /* scenes taken over by sbfx_set_scene */
 } sbfx_counters;
 
 typedef struct sbfx sbfx;
@@ -266,12 +271,13 @@ typedef struct sbfx sbfx;
 /* GL errors the host left pending. GL keeps an error until someone calls glGetError, so an
  * error a host (or its toolkit: Qt 6.4 leaves GL_INVALID_OPERATION after glPolygonMode on ES
  * contexts) leaves behind is not sbfx's failure. Each entry point that makes GL calls and checks
- * them (sbfx_create, sbfx_render when it draws, sbfx_set_quality, sbfx_detail_push_slice) first
- * reads the pending errors off (up to 8 distinct codes), so its checks see only its own, and
- * before it returns posts them again for the host, in the order they were read, by a call that
- * fails with that error and has no other effect: GL_INVALID_ENUM by glEnable(GL_NONE),
- * GL_INVALID_VALUE by glLineWidth(0), GL_INVALID_OPERATION by glBeginQuery(GL_ANY_SAMPLES_PASSED,
- * 0). GL_INVALID_FRAMEBUFFER_OPERATION, GL_OUT_OF_MEMORY and GL_CONTEXT_LOST cannot be posted
+ * them (sbfx_create, sbfx_set_scene, sbfx_render when it draws, sbfx_set_quality,
+ * sbfx_detail_push_slice) first reads the pending errors off (up to 8 distinct codes), so its
+ * checks see only its own, and before it returns posts them again for the host, in the order
+ * they were read, by a call that fails with that error and has no other effect:
+ * GL_INVALID_ENUM by glEnable(GL_NONE), GL_INVALID_VALUE by glLineWidth(0),
+ * GL_INVALID_OPERATION by glBeginQuery(GL_ANY_SAMPLES_PASSED, 0).
+ * GL_INVALID_FRAMEBUFFER_OPERATION, GL_OUT_OF_MEMORY and GL_CONTEXT_LOST cannot be posted
  * that way: they are dropped. Either way the log says so once per module and kind (INFO when
  * posted again, WARN when dropped). sbfx_render with nothing to draw, sbfx_update,
  * sbfx_trigger and the other calls make no GL call and leave pending errors alone; sbfx_destroy
@@ -279,6 +285,29 @@ typedef struct sbfx sbfx;
 
 SBFX_API sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out);
 SBFX_API void sbfx_destroy(sbfx *fx);
+
+/* Replaces the scene of a live module (an authoring loop that reloads a file as it is edited, a
+ * kiosk's `systemctl reload`); scene NULL is the built-in explosion. The module is planned again
+ * from the desc given to sbfx_create with this scene in place of its scene, and built: what the
+ * new scene needs the same way as the old one — shader programs with the same defines, targets of
+ * the same size and formats — is taken over, so a change of numbers only (a temperature, a count,
+ * a colour) compiles no shader and creates no target (sbfx_counters.programs_compiled and
+ * targets_created say so); what it needs anew is made, and what it no longer needs is deleted.
+ * The new scene takes over at once (call it between frames): the clock (sbfx_time,
+ * sbfx_elapsed) goes on; the scene's timeline starts again from now; live particles, pending
+ * sbfx_schedule triggers and live light flashes are dropped, and the quality is the new plan's
+ * top. Detail pushed with sbfx_detail_push_slice is not kept (the new volume is procedural):
+ * push it again.
+ * A reload is a load: it may allocate; frames after it allocate nothing. It saves and restores
+ * the GL state it changes, like sbfx_create. On failure (a shader that does not build, a GL
+ * error, a render setting out of range) the module goes on with its old scene, unchanged, and
+ * the error is returned with a message (sbfx_last_error, the log). The scene may be freed once
+ * the call returns. */
+SBFX_API sbfx_result sbfx_set_scene(sbfx *fx, const sbfx_scene *scene);
+/* The files a loaded scene was read from: index 0 is the file sbfx_scene_load was given, then
+ * every file its @include directives brought in (a watcher reloads when one of them changes);
+ * NULL past the last, and for scenes parsed from memory. */
+SBFX_API const char *sbfx_scene_file(const sbfx_scene *scene, int index);
 SBFX_API const char *sbfx_last_error(const sbfx *fx);
 
 /* Starts an instance of a named effect at a world position now (at the next simulation step).

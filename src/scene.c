@@ -26,7 +26,9 @@ static int fail_at(parser *p, const config_setting_t *s, const char *fmt, ...)
     vsnprintf(message, sizeof(message), fmt, ap);
     va_end(ap);
     int line = s ? (int)config_setting_source_line(s) : 0;
-    if (line > 0) snprintf(p->err, p->err_size, "%s:%d: %s", p->name, line, message);
+    /* a setting read from an @included file is named by that file */
+    const char *file = s && config_setting_source_file(s) ? config_setting_source_file(s) : p->name;
+    if (line > 0) snprintf(p->err, p->err_size, "%s:%d: %s", file, line, message);
     else snprintf(p->err, p->err_size, "%s: %s", p->name, message); /* the file as a whole */
     return -1;
 }
@@ -744,7 +746,8 @@ static sbfx_result parse_config(config_t *cfg, int read_ok, const char *name, sb
         if (config_error_type(cfg) == CONFIG_ERR_FILE_IO)
             snprintf(err, err_size, "%s: cannot read the file", name);
         else
-            snprintf(err, err_size, "%s:%d: syntax error: %s", name, config_error_line(cfg), config_error_text(cfg));
+            snprintf(err, err_size, "%s:%d: syntax error: %s", config_error_file(cfg) ? config_error_file(cfg) : name,
+                     config_error_line(cfg), config_error_text(cfg));
         return SBFX_ERR_INVALID_ARGUMENT;
     }
     sbfx_scene *scene = calloc(1, sizeof(*scene));
@@ -762,6 +765,25 @@ static sbfx_result parse_config(config_t *cfg, int read_ok, const char *name, sb
     return SBFX_OK;
 }
 
+static void note_file(sbfx_scene *scene, const char *file)
+{
+    if (!file) return;
+    for (int i = 0; i < scene->file_count; i++)
+        if (strcmp(scene->files[i], file) == 0) return;
+    if (scene->file_count < SBFX_SCENE_FILES && strlen(file) < sizeof(scene->files[0]))
+        strcpy(scene->files[scene->file_count++], file);
+}
+
+/* libconfig 1.5 has no include hook, but every setting knows the file it was read from: the
+ * files a scene @includes are those its settings come from. */
+static void note_files(sbfx_scene *scene, const config_setting_t *s)
+{
+    note_file(scene, config_setting_source_file(s));
+    if (config_setting_is_aggregate(s))
+        for (int i = 0; i < config_setting_length(s); i++)
+            note_files(scene, config_setting_get_elem(s, (unsigned)i));
+}
+
 sbfx_result sbfx_scene_load(const char *path, sbfx_scene **out, char *err, size_t err_size)
 {
     if (!out || !path || !err || !err_size) return SBFX_ERR_INVALID_ARGUMENT;
@@ -769,8 +791,17 @@ sbfx_result sbfx_scene_load(const char *path, sbfx_scene **out, char *err, size_
     config_t cfg;
     config_init(&cfg);
     sbfx_result r = parse_config(&cfg, config_read_file(&cfg, path), path, out, err, err_size);
+    if (r == SBFX_OK) {
+        note_file(*out, path);
+        note_files(*out, config_root_setting(&cfg));
+    }
     config_destroy(&cfg);
     return r;
+}
+
+const char *sbfx_scene_file(const sbfx_scene *scene, int index)
+{
+    return scene && index >= 0 && index < scene->file_count ? scene->files[index] : NULL;
 }
 
 sbfx_result sbfx_scene_parse(const char *text, const char *name, sbfx_scene **out, char *err, size_t err_size)

@@ -8,6 +8,7 @@
 #define SBFX_MAX_TIMELINE 64
 #define SBFX_MAX_GPIO 16
 #define SBFX_MAX_EMITTER_COUNT 100000 /* particles of one emitter step */
+#define SBFX_SCENE_FILES 16           /* the file and the files it includes, as reported */
 
 typedef enum sbfx_light_type { SBFX_LIGHT_DIRECTIONAL, SBFX_LIGHT_POINT } sbfx_light_type;
 
@@ -47,6 +48,8 @@ struct sbfx_scene {
     float sky[3];       /* the host's sky colour, linear RGB (sbfx_scene_host) */
     bool has_camera;
     sbfx_scene_camera camera; /* sbfx-play's view; the module does not use it */
+    int file_count;           /* the file loaded, then the files it @included (sbfx_scene_file) */
+    char files[SBFX_SCENE_FILES][1024];
 };
 
 /* The scene sbfx uses when the desc names none: the seed's explosion, fired at t = 0. */

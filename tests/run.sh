@@ -193,6 +193,7 @@ run_suite "" no-data-files tests/no_data_files.sh "$BUILD"
 run_suite "" gen-cmf tests/gen_cmf.sh "$BUILD"
 run_suite "" kiosk-unit tests/kiosk_unit.sh "$BUILD"
 run_suite "" wayland tests/wayland.sh "$BUILD"
+run_suite "" reload tests/reload.sh "$BUILD/sbfx-play"
 run_suite "" install tests/install.sh "$BUILD"
 run_suite "" docs tests/docs.sh
 run_suite "" soak tests/soak.sh "$BUILD"

@@ -35,8 +35,14 @@ void SbfxItem::setScene(const QString &scene)
     const QString path = url.isLocalFile() ? url.toLocalFile() : scene;
     if (path == settings_.scene_path) return;
     settings_.scene_path = path;
-    settings_.module_generation++;
+    settings_.scene_generation++;
     emit sceneChanged();
+    settings_changed();
+}
+
+void SbfxItem::reloadScene()
+{
+    settings_.scene_generation++;
     settings_changed();
 }
 

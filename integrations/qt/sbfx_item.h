@@ -28,7 +28,10 @@ class SbfxItem : public QQuickItem
 {
     Q_OBJECT
     /* A scene file (docs/scene-format.md): a path or a file: URL; empty: the built-in explosion.
-     * Changing it (or the budget) makes the module again: live effects end. */
+     * Changing it replaces the live module's scene (sbfx_set_scene): what both scenes use the
+     * same way is kept (a change of numbers compiles no shader), the clock goes on, live effects
+     * end and the new timeline starts. A file that does not load leaves the old scene playing,
+     * the reason in `error`. (The budget's change makes the module again.) */
     Q_PROPERTY(QString scene READ scene WRITE setScene NOTIFY sceneChanged)
     /* A quality level (sbfx_quality_parse: "exact/4/nd", "spherical/8/bl/lod256"); empty: the
      * scene's. Switched between frames without losing the simulation. */
@@ -59,6 +62,8 @@ public:
      * Qt.vector3d(0, 0, 0))). An unknown effect is reported in `error`; a trigger the full
      * particle pool refuses only in sbfx's log (qWarning), as sbfx_trigger does. */
     Q_INVOKABLE void trigger(const QString &effect, const QVector3D &position = QVector3D());
+    /* Reads the scene file again into the live module (an editor saved it): as setting `scene`. */
+    Q_INVOKABLE void reloadScene();
 
     /* Called on Qt's render thread before every frame with the item's size in pixels and
      * sbfx_time(): fills view and projection (column-major, src/sbfx.h conventions). */

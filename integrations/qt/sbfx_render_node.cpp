@@ -143,13 +143,42 @@ bool SbfxRenderNode::target_rect(const RenderState *state, PixelRect *out, bool 
     return true;
 }
 
-/* The module, made again when the scene or the budget changed; a failure is not retried until
- * they change again. */
+/* A new scene (or the same file again) in the live module: what it shares with the old one is
+ * kept (no shader compiled for a change of numbers), the clock goes on, its timeline starts now.
+ * A scene that does not load or build leaves the old one playing, the reason in `error`. */
+void SbfxRenderNode::reload_scene()
+{
+    loaded_scene_generation_ = settings_.scene_generation;
+    char err[512] = "";
+    sbfx_scene *scene = nullptr;
+    const QByteArray path = settings_.scene_path.toLocal8Bit();
+    if (!path.isEmpty() && sbfx_scene_load(path.constData(), &scene, err, sizeof(err)) != SBFX_OK) {
+        fail(QString::fromLocal8Bit(err));
+        return;
+    }
+    if (sbfx_set_scene(fx_, scene) == SBFX_OK) {
+        sbfx_scene_camera_get(scene, &scene_camera_);
+        set_quality_generation_ = 0; /* the item's quality level, again over the new scene's */
+        idle_draws_nothing_ = false;
+        status_.error.clear();
+    } else {
+        fail(QStringLiteral("sbfx_set_scene: %1").arg(QString::fromLocal8Bit(sbfx_last_error(fx_))));
+    }
+    sbfx_scene_free(scene);
+}
+
+/* The module, made again when the budget changed (or while there is none: a failure is not
+ * retried until the scene or the budget change); a new scene goes into the live module. */
 bool SbfxRenderNode::ensure_module()
 {
-    if (made_generation_ == settings_.module_generation) return fx_ != nullptr;
+    bool scene_changed = loaded_scene_generation_ != settings_.scene_generation;
+    if (made_generation_ == settings_.module_generation && !(scene_changed && !fx_)) {
+        if (scene_changed) reload_scene();
+        return fx_ != nullptr;
+    }
     releaseResources();
     made_generation_ = settings_.module_generation;
+    loaded_scene_generation_ = settings_.scene_generation;
     char err[512] = "";
     sbfx_scene *scene = nullptr;
     const QByteArray path = settings_.scene_path.toLocal8Bit();
@@ -270,6 +299,7 @@ void SbfxRenderNode::draw(const PixelRect &r, bool whole)
     sbfx_stats(fx_, &c);
     status_.particles_alive = c.particles_alive;
     status_.triggers_fired = c.triggers_fired;
+    status_.scene_reloads = c.scene_reloads;
     status_.width = r.width;
     status_.height = r.height;
     if (c.particles_alive == 0 && idle_draws_nothing_) return; /* sbfx would draw nothing */

@@ -29,7 +29,9 @@ struct SbfxNodeSettings {
     unsigned generation = 0;   /* bumped by every change: the node copies the settings then */
     QString scene_path;        /* empty: the built-in explosion */
     double budget_ms = 0.0;
-    unsigned module_generation = 0; /* bumped when scene or budget change: the module is remade */
+    unsigned module_generation = 0; /* bumped when the budget changes: the module is remade */
+    unsigned scene_generation = 0;  /* bumped when the scene changes or is reloaded: the live
+                                       module takes it over (sbfx_set_scene) */
     bool has_quality = false;  /* quality: a level for sbfx_set_quality */
     sbfx_quality quality = {};
     unsigned quality_generation = 0;
@@ -51,6 +53,7 @@ struct SbfxNodeStatus {
     QString error;             /* the last failure, empty while all is well */
     int particles_alive = 0;
     int triggers_fired = 0;
+    int scene_reloads = 0;     /* scenes the live module took over (sbfx_counters.scene_reloads) */
     int frames = 0;            /* frames in which sbfx drew */
     bool own_target = false;   /* the last frame drew through the item's own target */
     int width = 0, height = 0; /* the item's size in the render target's pixels */
@@ -83,6 +86,7 @@ private:
     void advance();
     void camera(int width, int height, sbfx_frame *frame) const;
     void draw(const PixelRect &r, bool whole);
+    void reload_scene();
     void fail(const QString &message);
 
     SbfxNodeSettings settings_;
@@ -94,7 +98,7 @@ private:
     sbfx *fx_ = nullptr;
     QByteArray last_logged_error_; /* sbfx's last ERROR message (its log's user pointer) */
     sbfx_scene_camera scene_camera_ = {};
-    unsigned made_generation_ = ~0u, set_quality_generation_ = 0;
+    unsigned made_generation_ = ~0u, set_quality_generation_ = 0, loaded_scene_generation_ = 0;
     bool idle_draws_nothing_ = false; /* an idle frame made no pass: no copy needed while idle */
     QElapsedTimer clock_;
 

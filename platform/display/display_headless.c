@@ -73,6 +73,7 @@ static int headless_present(struct display *d, int index, char *err, size_t n)
     char path[PATH_MAX + 32];
     snprintf(path, sizeof(path), "%s/frame-%04d.png", h->desc.out_dir, index);
     rc = png_write_rgba(path, h->pixels, w, hgt, true, err, n);
+    if (index == 0) h->sheet.count = 0; /* a new take (sbfx-play --watch): a new sheet */
     if (rc == 0 && h->desc.contact_sheet) rc = contact_sheet_add(&h->sheet, h->pixels, true);
     if (rc == 0) d->counts.presented++;
     return rc;

@@ -141,11 +141,14 @@ int player_create_fx(struct player *p, char *err, size_t n)
         .log_user = (void *)opt,
     };
     sbfx_result r = sbfx_create(&desc, &p->fx);
-    sbfx_scene_free(scene); /* the module keeps what it needs */
+    rc = r == SBFX_OK ? player_watch_files(p, scene, err, n) : 0; /* --watch: the file and its includes */
+    player_keep_scene(p, scene); /* the module keeps what it needs; --loop replays the scene */
     if (r != SBFX_OK) { /* the reason went through the log callback */
         snprintf(err, n, "sbfx_create failed: %s", sbfx_result_string(r));
         return -EIO;
     }
+    if (rc) return rc;
+    p->timeline_start = p->sim_time; /* --loop counts from here */
     p->fx_created_at = p->recovering ? p->sim_time : 0.0;
     return schedule_triggers(p, err, n);
 }
@@ -238,6 +241,8 @@ static int setup(struct player *p, char *err, size_t n)
 static void teardown(struct player *p)
 {
     player_close_inputs(p);
+    player_watch_close(p);
+    player_keep_scene(p, NULL);
     if (p->fx) sbfx_destroy(p->fx);
     if (p->scene_made) test_scene_destroy(&p->scene);
     if (p->display) p->display->ops->destroy(p->display);
@@ -275,9 +280,10 @@ static const char *format_name(sbfx_target_format format)
 static void print_headless_summary(const struct player *p)
 {
     const struct frame_times *t = &p->times;
-    int frames = (int)p->frames_done; /* headless runs are limited by --frames */
+    int frames = (int)p->frames_done; /* headless runs are limited by --frames (per take: --watch) */
+    int take = (int)(p->frames_done - p->take_first);
     printf("sbfx-play: %d frames of %dx%d in %s (frame-0000.png .. frame-%04d.png)\n", frames,
-           p->opt->width, p->opt->height, p->out_dir, frames - 1);
+           p->opt->width, p->opt->height, p->out_dir, take - 1);
     if (p->opt->contact_sheet) printf("sbfx-play: contact sheet: %s/contact-sheet.png\n", p->out_dir);
     printf("sbfx-play: sbfx update+render+glFinish: mean %.2f ms, max %.2f ms per frame "
            "(particle target %s)\n", t->sbfx_sum / frames, t->sbfx_max,
@@ -346,11 +352,14 @@ static int play(const struct player_options *opt)
     struct player *p = &player;
     memset(p, 0, sizeof(*p));
     p->opt = opt;
+    p->watch.fd = -1;
     char err[1024] = "";
     int rc = setup(p, err, sizeof(err));
     if (rc == 0) {
         if (!opt->quiet) print_banner(p);
         if (player_on_screen(opt)) player_catch_signals();
+        if (opt->watch && !player_on_screen(opt)) player_catch_signals(); /* runs until stopped */
+        if (opt->watch || player_on_screen(opt)) player_catch_hup();       /* a reload */
         rc = player_run_frames(p, err, sizeof(err));
     }
     if (rc == 0) rc = finish(p, err, sizeof(err));

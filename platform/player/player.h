@@ -2,7 +2,8 @@
  *   player.c         main, setup and teardown, results
  *   player_inputs.c  board profile, GPIO trigger lines, the V4L2 detail source
  *   player_loop.c    the frame loop: poll, inputs, simulate, render, present, stats line
- *   player_reset.c   GPU resets: a new context, its GL objects and sbfx, and the run goes on */
+ *   player_reset.c   GPU resets: a new context, its GL objects and sbfx, and the run goes on
+ *   player_watch.c   the authoring loop: --watch, SIGHUP and --loop reload the scene */
 #ifndef SBFX_PLAYER_H
 #define SBFX_PLAYER_H
 
@@ -19,6 +20,7 @@
 #include "sbfx.h"
 #include "host/test_scene.h"
 #include "player/player_notify.h"
+#include "player/player_watch.h"
 
 /* sbfx-play's exit status (main): 0 a finished or stopped run (--frames done, SIGINT, SIGTERM,
  * the Wayland window closed), 1 a bad argument or a failure, and this one when the display
@@ -75,6 +77,11 @@ struct player {
     double fx_time_lost;      /* the lost module's time: --trigger entries up to it had fired */
     double fx_clock_lost;     /* its absolute clock (sbfx_time): the new module starts there */
     double fx_created_at;     /* the player's time when the current module was made */
+    /* the authoring loop (player_watch.c) */
+    struct player_watch watch;
+    sbfx_scene *scene_kept;   /* --loop: the scene it replays */
+    double timeline_start;    /* sim_time when the timeline last started (--loop) */
+    int64_t take_first;       /* headless: the first frame of this take (a reload starts one) */
 };
 
 int64_t player_now_ns(void);

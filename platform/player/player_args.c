@@ -161,6 +161,23 @@ static int set_scene(struct player_options *opt, const char *value, char *err, s
     return set_path("--scene", &opt->scene_path, value, err, n);
 }
 
+static int set_watch(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    opt->watch = true;
+    return 0;
+}
+
+static int set_loop(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    double v = 0;
+    if (!parse_number(value, NULL, &v, NULL) || !(v >= 0.1) || v > 1e6) {
+        snprintf(err, n, "--loop: expected a period in seconds from 0.1 to 1e6 (e.g. 3), got '%s'", value);
+        return -EINVAL;
+    }
+    opt->loop_seconds = v;
+    return 0;
+}
+
 static int set_trigger(struct player_options *opt, const char *value, char *err, size_t n)
 {
     if (opt->trigger_count >= PLAYER_MAX_TRIGGERS) {
@@ -416,6 +433,8 @@ static const struct flag flags[] = {
     {"--budget-ms", "MS (0 < MS <= 10000)", set_budget},
     {"--seed", "N (0..4294967295)", set_seed},
     {"--scene", "FILE", set_scene},
+    {"--watch", NULL, set_watch},
+    {"--loop", "SECONDS (0.1..1e6)", set_loop},
     {"--quiet", NULL, set_quiet},
     {"--version", NULL, set_version},
     {"--help", NULL, set_help}, /* last: -h finds it there */
@@ -502,6 +521,10 @@ int player_parse_args(struct player_options *opt, int argc, char **argv, char *e
 {
     int rc = parse_flags(opt, argc, argv, err, n);
     if (rc || opt->help || opt->version) return rc;
+    if (opt->watch && !opt->scene_path) {
+        snprintf(err, n, "--watch reloads the scene file: give it with --scene FILE");
+        return -EINVAL;
+    }
     return check_display(opt, err, n);
 }
 

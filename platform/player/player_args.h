@@ -58,6 +58,8 @@ struct player_options {
     double start_time;        /* --start-time: desc.start_time, the clock's start (0) */
     float budget_ms;          /* --budget-ms: desc.frame_budget_ms; 0 = the scene's or none */
     const char *scene_path;   /* NULL: the built-in timeline */
+    bool watch;               /* --watch: reload the scene file (and its includes) on change */
+    double loop_seconds;      /* --loop: replay the timeline every SECONDS (0: never) */
     bool quiet;
     bool help;
     bool version;             /* --version */

@@ -213,7 +213,8 @@ static int play_frame(struct player *p, int64_t index, char *err, size_t n)
     int64_t fx_end = player_now_ns();
     sbfx_stats(p->fx, &p->last);
     /* headless runs stop at --frames (int); a kiosk's display does not name its frames */
-    rc = p->display->ops->present(p->display, index < INT_MAX ? (int)index : INT_MAX, err, n);
+    int64_t shown = index - p->take_first; /* headless --watch: each take writes frame-0000.png on */
+    rc = p->display->ops->present(p->display, shown < INT_MAX ? (int)shown : INT_MAX, err, n);
     if (rc) return rc;
     report_time(p, (double)(fx_end - fx_start) / 1e6);
     record_times(&p->times, (double)(fx_end - fx_start) / 1e6, (double)(player_now_ns() - start) / 1e6);
@@ -281,15 +282,16 @@ static void stats_tick(struct player *p)
 
 /* ---- the loop --------------------------------------------------------------------------- */
 
-int player_run_frames(struct player *p, char *err, size_t n)
+/* Frames from *next on: until --frames (a take: a reload starts another one headless), or
+ * until stopped. */
+static int run_take(struct player *p, int64_t *next, char *err, size_t n)
 {
     const struct player_options *opt = p->opt;
     bool limited = !player_on_screen(opt) || opt->frames_set;
-    p->run_start_ns = player_now_ns();
-    second_reset(p, p->run_start_ns);
-    player_notify_init(&p->notify);
-    for (int64_t i = 0; !limited || i < opt->frames; i++) {
+    bool takes = opt->watch && !player_on_screen(opt);
+    for (int64_t i = *next; !limited || i < p->take_first + opt->frames; i++, *next = i) {
         char why[1024];
+        if (player_watch_service(p) == PLAYER_RELOADED && takes) p->take_first = i; /* the new scene from frame 0000 */
         int rc = wait_ready(p, why, sizeof(why));
         if (rc == 0 && (player_stop_requested() || p->display->closed)) {
             player_notify_stopping();
@@ -305,5 +307,23 @@ int player_run_frames(struct player *p, char *err, size_t n)
         player_notify_test_hang(&p->notify, p->frames_done);
         stats_tick(p);
     }
-    return p->display->ops->finish(p->display, err, n);
+    return 0;
+}
+
+int player_run_frames(struct player *p, char *err, size_t n)
+{
+    p->run_start_ns = player_now_ns();
+    second_reset(p, p->run_start_ns);
+    player_notify_init(&p->notify);
+    bool takes = p->opt->watch && !player_on_screen(p->opt);
+    for (int64_t next = 0;;) {
+        int rc = run_take(p, &next, err, n);
+        if (rc == 0) rc = p->display->ops->finish(p->display, err, n); /* headless: the contact sheet */
+        if (rc || !takes || player_stop_requested()) return rc;
+        if (!p->opt->quiet) printf("sbfx-play: %lld frames written; waiting for a change of %s\n",
+                                   (long long)(next - p->take_first), p->opt->scene_path);
+        fflush(stdout);
+        if ((rc = player_watch_wait(p, err, n)) <= 0) return rc; /* stopped (0) or an error */
+        p->take_first = next;
+    }
 }

@@ -301,4 +301,45 @@ CHECK_TEST(scene_quality_and_budget_properties)
     check_gl_contract();
 }
 
+/* The scene property replaces the live module's scene (sbfx_set_scene, issue 29): each new file is
+ * a reload of the same module (scene_reloads counts them), its timeline fires; a file that does
+ * not load is named in `error` while the old scene plays on; reloadScene() reads the file again. */
+CHECK_TEST(scene_property_reloads_the_live_module)
+{
+    const Box item = {0, 0, W, H}, nowhere = {-1, -1, 0, 0};
+    Harness h;
+    if (!h.open(item, nowhere)) return;
+    h.frames(2); /* the module, with the built-in explosion */
+    const QString dir = QDir::current().absoluteFilePath("scenes/");
+    h.fx->setScene(QUrl::fromLocalFile(dir + "explosion.cfg").toString());
+    h.frames(4);
+    SbfxNodeStatus s = h.fx->status();
+    CHECK(h.fx->error().isEmpty(), "%s", qPrintable(h.fx->error()));
+    CHECK(s.scene_reloads == 1 && s.triggers_fired == 1, "explosion.cfg: %d reloads, %d triggers", s.scene_reloads,
+          s.triggers_fired);
+    h.fx->setScene(dir + "smoke.cfg");
+    h.frames(4);
+    s = h.fx->status();
+    printf("# smoke.cfg into the live module: %d reloads, %d triggers, %d particles\n", s.scene_reloads,
+           s.triggers_fired, s.particles_alive);
+    CHECK(h.fx->error().isEmpty(), "%s", qPrintable(h.fx->error()));
+    CHECK(s.scene_reloads == 2 && s.triggers_fired == 1 && s.particles_alive > 0,
+          "smoke.cfg: %d reloads, %d triggers, %d particles", s.scene_reloads, s.triggers_fired, s.particles_alive);
+    h.fx->setScene(dir + "no-such-scene.cfg");
+    h.frames(3);
+    QCoreApplication::processEvents();
+    const SbfxNodeStatus kept = h.fx->status();
+    printf("# a missing file: %s\n", qPrintable(h.fx->error()));
+    CHECK(h.fx->error().contains("no-such-scene.cfg"), "a missing scene gave the error \"%s\"", qPrintable(h.fx->error()));
+    CHECK(kept.scene_reloads == 2 && kept.particles_alive > 0 && kept.frames > s.frames,
+          "the old scene stopped: %d reloads, %d particles", kept.scene_reloads, kept.particles_alive);
+    h.fx->setScene(dir + "smoke.cfg");
+    h.fx->reloadScene();
+    h.frames(3);
+    QCoreApplication::processEvents();
+    CHECK(h.fx->error().isEmpty() && h.fx->status().scene_reloads == 3, "%s; %d reloads", qPrintable(h.fx->error()),
+          h.fx->status().scene_reloads);
+    check_gl_contract();
+}
+
 int main(int argc, char **argv) { return check_main_args(argc, argv); }

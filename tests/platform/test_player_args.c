@@ -99,6 +99,24 @@ CHECK_TEST(wayland_display)
     CHECK(player_board_display(&opt, "", err, sizeof(err)) == 0 && opt.display == PLAYER_DISPLAY_HEADLESS);
 }
 
+/* The authoring loop's flags (issue 29): --watch needs a scene file; --loop's period. */
+CHECK_TEST(watch_and_loop_flags)
+{
+    static struct player_options opt;
+    char err[512];
+    CHECK(parse(&opt, err, sizeof(err), "--scene", "s.cfg", "--watch", NULL) == 0, "%s", err);
+    CHECK(opt.watch && opt.loop_seconds == 0.0);
+    CHECK(parse(&opt, err, sizeof(err), "--watch", "--display", "drm", NULL) == -EINVAL);
+    CHECK(strstr(err, "--watch reloads the scene file: give it with --scene FILE") != NULL, "%s", err);
+    CHECK(parse(&opt, err, sizeof(err), "--loop", "2.5", NULL, NULL) == 0, "%s", err);
+    CHECK(opt.loop_seconds == 2.5);
+    const char *bad[] = {"0", "0.05", "-1", "1e7", "x", "nan"};
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
+        CHECK(parse(&opt, err, sizeof(err), "--loop", bad[i], NULL, NULL) == -EINVAL, "--loop %s accepted", bad[i]);
+        CHECK(strstr(err, "--loop: expected a period in seconds from 0.1 to 1e6") != NULL, "%s", err);
+    }
+}
+
 int main(int argc, char **argv)
 {
     return check_main_args(argc, argv);
