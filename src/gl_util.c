@@ -130,7 +130,17 @@ static GLuint compile_stage(sbfx *fx, GLenum stage, const char *name, const char
     const char *body = strchr(text, '\n');
     body = body ? body + 1 : text;
     const char *precision = fx->mediump_as_highp ? "#define mediump highp\n" : "";
-    const char *parts[] = {"#version 300 es\n", precision, defines ? defines : "", "#line 2\n", body};
+    char filter[48] = "";
+    const char *library = "";
+    if (fx->filter_bits > 0 && stage == GL_FRAGMENT_SHADER) { /* SBFX_FILTER_BITS (precision.c) */
+        snprintf(filter, sizeof(filter), "#define FILTER_BITS %d\n#define FILTER_LIBRARY\n", fx->filter_bits);
+        library = sbfx_filter_library();
+        if (!library) {
+            sbfx_fail(fx, SBFX_ERR_SHADER, "shader filtered.frag is not embedded in this build");
+            return 0;
+        }
+    }
+    const char *parts[] = {"#version 300 es\n", precision, filter, library, defines ? defines : "", "#line 2\n", body};
     GLuint shader = glCreateShader(stage);
     if (!shader) {
         sbfx_gl_check(fx, "glCreateShader");

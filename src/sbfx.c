@@ -245,6 +245,7 @@ sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out)
     if (!fx) return SBFX_ERR_OUT_OF_MEMORY;
     fx->desc = desc_with_defaults(desc);
     sbfx_result r = validate_desc(fx, &fx->desc);
+    if (r == SBFX_OK) r = sbfx_precision_from_env(fx);
     if (r == SBFX_OK) r = sbfx_budget_init(fx);
     fx->desc.ladder = NULL; /* parsed: the scene's names may go away */
     fx->desc.ladder_count = 0;
