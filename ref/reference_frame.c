@@ -120,11 +120,6 @@ static double detail_lookup(const sbfx_rf_frame *f, const double uvw[3], double 
     return slice[0] * (1 - ft) + slice[1] * ft;
 }
 
-/* Round-to-nearest of a weight to `bits` fractional bits is off by at most half a step. */
-static double weight_rounding(const sbfx_rf_frame *f)
-{
-    return f->filter_bits > 0 ? ldexp(1.0, -(f->filter_bits + 1)) : 0.0;
-}
 
 /* detail_sample(): the particle's window of the volume, 0..1 across its billboard. */
 static double detail_sample(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const sbfx_rf_medium *m,
@@ -139,7 +134,7 @@ static double detail_sample(const sbfx_rf_frame *f, const sbfx_rf_particle *p, c
         uvw[k] = p->detail[k] + local * m->detail_window;
     }
     uvw[2] = p->detail[2] + f->detail_time;
-    return detail_lookup(f, uvw, weight_rounding(f), spread);
+    return detail_lookup(f, uvw, f->filter_weight_error, spread);
 }
 
 static double phase(const sbfx_rf_frame *f, sbfx_medium medium, double cos_theta, double g)

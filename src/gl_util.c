@@ -130,7 +130,7 @@ static GLuint compile_stage(sbfx *fx, GLenum stage, const char *name, const char
     const char *body = strchr(text, '\n');
     body = body ? body + 1 : text;
     const char *precision = fx->mediump_as_highp ? "#define mediump highp\n" : "";
-    char filter[48] = "";
+    char filter[64] = "";
     const char *library = "";
     if (fx->filter_bits > 0 && stage == GL_FRAGMENT_SHADER) { /* SBFX_FILTER_BITS (precision.c) */
         snprintf(filter, sizeof(filter), "#define FILTER_BITS %d\n#define FILTER_LIBRARY\n", fx->filter_bits);
