@@ -26,6 +26,11 @@ precision highp sampler3D;
 #define filtered_3d_repeat(s, p) texture(s, p)
 #define filtered_array_lod(s, p, lod) textureLod(s, p, lod)
 #endif
+#if defined(FILTER_BITS) && defined(DETAIL_NEAREST)
+#define detail_fetch(s, p) texture(s, p)   // an R32F volume is sampled NEAREST: nothing to filter
+#else
+#define detail_fetch(s, p) filtered_3d_repeat(s, p)
+#endif
 
 #ifndef TABLE_PROBE
 flat in vec4 v_center_radius;
@@ -177,7 +182,7 @@ float detail_sample(vec3 c, float r, vec3 ray)
     vec2 q = ray.xy * (-c.z);
     vec2 local = (q - c.xy) / (2.0 * r) + 0.5;   // 0..1 across the particle
     vec3 uvw = vec3(v_detail.xy + local * u_detail_window, v_detail.z + u_time);
-    return filtered_3d_repeat(u_detail, uvw).r;
+    return detail_fetch(u_detail, uvw).r;
 }
 #endif
 
