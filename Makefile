@@ -7,6 +7,8 @@
 #   make test-hosts   the SDL2, desktop OpenGL and Qt Quick hosts and their tests (docs/hosts/;
 #                     make test runs them)
 #   make test-qt-quick  the Qt Quick item, its example and test where Qt 6 is installed (test-hosts)
+#   make test-precision  the accuracy suites at GPU precision: SBFX_MEDIUMP=native SBFX_FILTER_BITS=8
+#                     (and 6 bits for NVIDIA's cases; tests/precision.sh; make test runs it)
 #   make bench        timings into build/bench/
 #   make figures      the seed's figures rendered into docs/figures/ (docs/figures.md)
 #   make ladder       src/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
@@ -293,6 +295,10 @@ $(BUILD)/tests/gl/test_gl_state: PLATFORM_LIBS += -Wl,--no-as-needed $(OPENGL_LI
 
 test-unit: $(UNIT_TESTS)
 test-gl: $(GL_TESTS) $(BUILD)/sbfx-play $(BUILD)/sbfx-probe
+
+.PHONY: test-precision
+test-precision: test-gl
+	@tests/precision.sh $(BUILD)
 
 test:
 	@tools/deps.sh test

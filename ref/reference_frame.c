@@ -90,28 +90,42 @@ static double detail_texel(const sbfx_rf_frame *f, int x, int y, int t)
     return f->detail[((size_t)t * n + (size_t)y) * n + (size_t)x];
 }
 
-/* texture(u_detail, uvw).r, trilinear with REPEAT on all three axes. */
-static double detail_lookup(const sbfx_rf_frame *f, const double uvw[3])
+/* texture(u_detail, uvw).r, trilinear with REPEAT on all three axes. *spread (when not NULL):
+ * the most that rounding each weight by `rounding` can move it. The value is multilinear in the
+ * three weights, so along one axis it moves by at most rounding x the largest difference of the
+ * cell's edges along that axis; the axes add. */
+static double detail_lookup(const sbfx_rf_frame *f, const double uvw[3], double rounding, double *spread)
 {
     int x0, x1, y0, y1, t0, t1;
     double fx, fy, ft;
     linear_taps(uvw[0], f->detail_size, &x0, &x1, &fx);
     linear_taps(uvw[1], f->detail_size, &y0, &y1, &fy);
     linear_taps(uvw[2], f->detail_frames, &t0, &t1, &ft);
-    double slice[2];
+    double slice[2], edge[3] = {0.0, 0.0, 0.0}, v[2][2][2];
+    for (int s = 0; s < 2; s++)
+        for (int j = 0; j < 2; j++)
+            for (int i = 0; i < 2; i++) v[s][j][i] = detail_texel(f, i ? x1 : x0, j ? y1 : y0, s ? t1 : t0);
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++) {
+            edge[0] = fmax(edge[0], fabs(v[a][b][1] - v[a][b][0]));
+            edge[1] = fmax(edge[1], fabs(v[a][1][b] - v[a][0][b]));
+            edge[2] = fmax(edge[2], fabs(v[1][a][b] - v[0][a][b]));
+        }
+    if (spread) *spread = rounding * (edge[0] + edge[1] + edge[2]);
     for (int s = 0; s < 2; s++) {
-        int t = s ? t1 : t0;
-        double a = detail_texel(f, x0, y0, t) * (1 - fx) + detail_texel(f, x1, y0, t) * fx;
-        double b = detail_texel(f, x0, y1, t) * (1 - fx) + detail_texel(f, x1, y1, t) * fx;
+        double a = v[s][0][0] * (1 - fx) + v[s][0][1] * fx;
+        double b = v[s][1][0] * (1 - fx) + v[s][1][1] * fx;
         slice[s] = a * (1 - fy) + b * fy;
     }
     return slice[0] * (1 - ft) + slice[1] * ft;
 }
 
+
 /* detail_sample(): the particle's window of the volume, 0..1 across its billboard. */
 static double detail_sample(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const sbfx_rf_medium *m,
-                            const double ray[3])
+                            const double ray[3], double *spread)
 {
+    if (spread) *spread = 0.0;
     if (!f->detail || f->detail_size < 1 || f->detail_frames < 1) return 0.5;
     const double *c = p->center;
     double zc = -c[2], uvw[3];
@@ -120,7 +134,7 @@ static double detail_sample(const sbfx_rf_frame *f, const sbfx_rf_particle *p, c
         uvw[k] = p->detail[k] + local * m->detail_window;
     }
     uvw[2] = p->detail[2] + f->detail_time;
-    return detail_lookup(f, uvw);
+    return detail_lookup(f, uvw, f->filter_weight_error, spread);
 }
 
 static double phase(const sbfx_rf_frame *f, sbfx_medium medium, double cos_theta, double g)
@@ -206,18 +220,22 @@ static double particle_rho(const sbfx_rf_particle *p, const double ray[3])
     return sqrt(qx * qx + qy * qy) / p->radius;
 }
 
-void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
-                   double opaque_distance, double rgb[3], double *alpha)
+/* Only dust, smoke and fire add light and opacity; other media (heat) displace the scene in the
+ * composite instead, which this reference does not model. */
+static bool shaded(const sbfx_rf_frame *f, const sbfx_rf_particle *p)
+{
+    return sbfx_rf_particle_valid(p) && f->opacity != SBFX_OPACITY_FLOOR &&
+           (p->medium == SBFX_DUST || p->medium == SBFX_SMOKE || p->medium == SBFX_FIRE);
+}
+
+/* The particle at one pixel given the detail volume's value there. */
+static void shade_with_detail(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
+                              double opaque_distance, double detail, double rgb[3], double *alpha)
 {
     rgb[0] = rgb[1] = rgb[2] = 0.0;
     *alpha = 0.0;
-    if (!sbfx_rf_particle_valid(p) || f->opacity == SBFX_OPACITY_FLOOR) return;
-    /* Only dust, smoke and fire add light and opacity; other media (heat) displace the scene
-     * in the composite instead, which this reference does not model. */
-    if (p->medium != SBFX_DUST && p->medium != SBFX_SMOKE && p->medium != SBFX_FIRE) return;
     const sbfx_rf_medium *m = &f->media[p->medium];
     bool scatters = m->albedo > 0.0, emits = p->medium == SBFX_FIRE;
-    double detail = m->has_detail ? detail_sample(f, p, m, ray) : 0.5;
     double tau_scale = 1.0;
     if (m->has_detail) {
         tau_scale = detail_density_scale(detail, p->intensity, m->detail_strength);
@@ -244,6 +262,38 @@ void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const doub
     }
     for (int k = 0; k < 3; k++) rgb[k] = light[k] * a;
     *alpha = a;
+}
+
+void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
+                   double opaque_distance, double rgb[3], double *alpha)
+{
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    *alpha = 0.0;
+    if (!shaded(f, p)) return;
+    const sbfx_rf_medium *m = &f->media[p->medium];
+    double detail = m->has_detail ? detail_sample(f, p, m, ray, NULL) : 0.5;
+    shade_with_detail(f, p, ray, opaque_distance, detail, rgb, alpha);
+}
+
+/* sbfx_rf_shade, and in d[] how far the filter's rounded weights can move rgb and alpha: the
+ * particle shaded at detail -+ the lookup's spread (every step after the lookup is monotone in
+ * the detail over so small a change, so the ends bound it). */
+static void shade_bounded(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
+                          double opaque_distance, double rgb[3], double *alpha, double d[4])
+{
+    rgb[0] = rgb[1] = rgb[2] = *alpha = 0.0;
+    d[0] = d[1] = d[2] = d[3] = 0.0;
+    if (!shaded(f, p)) return;
+    const sbfx_rf_medium *m = &f->media[p->medium];
+    double spread = 0.0, detail = m->has_detail ? detail_sample(f, p, m, ray, &spread) : 0.5;
+    shade_with_detail(f, p, ray, opaque_distance, detail, rgb, alpha);
+    if (!(spread > 0.0)) return;
+    for (int s = -1; s <= 1; s += 2) {
+        double end[3], a;
+        shade_with_detail(f, p, ray, opaque_distance, detail + s * spread, end, &a);
+        for (int k = 0; k < 3; k++) d[k] = fmax(d[k], fabs(end[k] - rgb[k]));
+        d[3] = fmax(d[3], fabs(a - *alpha));
+    }
 }
 
 /* ---- whole frame ------------------------------------------------------------------------ */
@@ -299,22 +349,29 @@ static bool ray_hits_sphere(const sbfx_rf_particle *p, const double ray[3])
 static void render_pixel(const sbfx_rf_frame *f, const sbfx_rf_particle *v, const int *order,
                          const pixel_rect *rects, int n, int x, int y, double *out, uint8_t *footprint)
 {
-    double ray[3], c[3] = {0.0, 0.0, 0.0}, t = 1.0;
+    double ray[3], c[3] = {0.0, 0.0, 0.0}, t = 1.0, dc[4] = {0.0, 0.0, 0.0, 0.0};
     sbfx_rf_pixel_ray(f, x, y, ray);
-    double zs = f->opaque_distance[(size_t)y * f->width + x];
+    size_t at = (size_t)y * f->width + x;
+    double zs = f->opaque_distance[at];
     bool hit = false;
     for (int i = 0; i < n; i++) {
         const pixel_rect *r = &rects[order[i]];
         if (x < r->x0 || x > r->x1 || y < r->y0 || y > r->y1) continue;
         const sbfx_rf_particle *p = &v[order[i]];
-        double rgb[3], a;
-        sbfx_rf_shade(f, p, ray, zs, rgb, &a);
+        double rgb[3], a, d[4];
+        shade_bounded(f, p, ray, zs, rgb, &a, d);
+        /* the bound through "over": C' = rgb + (1 - a) C moves by at most
+         * d_rgb + (1 - a + d_a) d_C + d_a |C|; T' = (1 - a) T by d_a T + (1 - a + d_a) d_T */
+        double keep = 1.0 - a + d[3];
+        for (int k = 0; k < 3; k++) dc[k] = d[k] + keep * dc[k] + d[3] * fabs(c[k]);
+        dc[3] = d[3] * t + keep * dc[3];
         for (int k = 0; k < 3; k++) c[k] = rgb[k] + c[k] * (1.0 - a);
         t *= 1.0 - a;
         if (footprint && !hit) hit = ray_hits_sphere(p, ray);
     }
     memcpy(out, c, sizeof(c));
     out[3] = t;
+    if (f->filter_bound) memcpy(&f->filter_bound[4 * at], dc, sizeof(dc));
     if (footprint) footprint[(size_t)y * f->width + x] = hit;
 }
 

@@ -96,6 +96,16 @@ typedef struct sbfx_rf_frame {
     int phase_table_size;
 
     sbfx_rf_precision precision;
+    /* The detail volume as a GPU's texture unit filters it: each weight off by at most
+     * filter_weight_error (2^-(N+1) for N-bit rounding, SBFX_FILTER_BITS; 2^-N for a coordinate
+     * snapped down to N bits; 0: in float, like llvmpipe; DESIGN §9). The reference keeps the
+     * exact weights; with filter_bound set (width*height*4, like the layer) it also gets, per
+     * pixel and channel, how far those weights can move the result: each lookup's value moves by
+     * at most filter_weight_error x its cell's largest texel difference along each axis, each
+     * particle is shaded at detail -+ that, and the spread is carried through the blending
+     * (render_pixel). */
+    double filter_weight_error;
+    double *filter_bound;
     double exposure;               /* desc.exposure, applied where light is made (0: 1) */
 } sbfx_rf_frame;
 

@@ -18,6 +18,9 @@
 //                 mirrors it; docs/look-fire.md)
 precision highp float;
 precision highp sampler2D;
+#ifndef FILTER_BITS   // SBFX_FILTER_BITS (shaders_es/filtered.frag): else the texture unit filters
+#define filtered_2d(s, uv) textureLod(s, uv, 0.0)
+#endif
 
 // mediump: the particle target is read at half precision, which is what an RGBA16F target holds
 // and what sanitize() clamps an RGBA32F one to (docs/gpus.md, "Precision"); a Mali keeps two
@@ -211,11 +214,11 @@ void main()
 #ifdef HAS_SHIMMER
     // bilinear, like the particles (nearest low-res offsets would tear the image into blocks), by
     // the sampler: the offsets are RGBA16F (filterable) and read through a LINEAR sampler
-    vec2 offset = textureLod(u_distortion, uv + f * t, 0.0).rg;
+    vec2 offset = filtered_2d(u_distortion, uv + f * t).rg;
     if (!(abs(offset.x) < 1.0 && abs(offset.y) < 1.0)) offset = vec2(0.0);   // NaN, Inf, absurd
     scene_uv = clamp(scene_uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);
 #endif
-    vec3 scene = texture(u_scene_color, scene_uv).rgb;
+    vec3 scene = filtered_2d(u_scene_color, scene_uv).rgb;
     result = tone_map(result, scene);
 #ifdef TRANSMITTANCE_ALPHA
     o_color = vec4(scene * result.a + result.rgb, result.a);

@@ -13,6 +13,9 @@
 // The blurred fields are read bilinearly by their LINEAR sampler (RGBA16F or RGBA8).
 precision highp float;
 precision highp sampler2D;
+#ifndef FILTER_BITS   // SBFX_FILTER_BITS (shaders_es/filtered.frag): else the texture unit filters
+#define filtered_2d(s, uv) textureLod(s, uv, 0.0)
+#endif
 
 uniform sampler2D u_color;         // full resolution; alpha: the particles' transmittance
 uniform sampler2D u_far_field;     // blurred, LINEAR
@@ -45,11 +48,11 @@ vec3 scene_behind(vec2 particle_uv)
 {
     vec2 scene_uv = gl_FragCoord.xy / u_full_size;
 #ifdef HAS_SHIMMER
-    vec2 offset = textureLod(u_distortion, particle_uv, 0.0).rg;
+    vec2 offset = filtered_2d(u_distortion, particle_uv).rg;
     if (!(abs(offset.x) < 1.0 && abs(offset.y) < 1.0)) offset = vec2(0.0);
     scene_uv = clamp(scene_uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);
 #endif
-    return textureLod(u_scene_color, scene_uv, 0.0).rgb;
+    return filtered_2d(u_scene_color, scene_uv).rgb;
 }
 
 void main()
@@ -68,8 +71,8 @@ void main()
         x = mix(scene_behind(particle_uv), x, keep);
     }
     vec2 uv = gl_FragCoord.xy * u_low_texel;
-    vec4 far_blur = textureLod(u_far_field, uv, 0.0);
-    vec4 near_blur = textureLod(u_near_field, uv, 0.0);
+    vec4 far_blur = filtered_2d(u_far_field, uv);
+    vec4 near_blur = filtered_2d(u_near_field, uv);
     vec3 color = sharp.rgb + far_coc * (far_blur.rgb - x);
     float coverage = clamp(near_blur.a * 2.0, 0.0, 1.0);   // a blurred edge at half coverage is opaque
     vec3 near_color = near_blur.a > 1e-4 ? near_blur.rgb / near_blur.a : color;

@@ -10,6 +10,9 @@
 //              (without it: blocks of u_scale, loops as long as the largest, 4)
 precision highp float;
 precision highp sampler2D;
+#ifndef FILTER_BITS   // SBFX_FILTER_BITS (shaders_es/filtered.frag): else the texture unit filters
+#define filtered_2d(s, uv) textureLod(s, uv, 0.0)
+#endif
 
 #ifdef DOF_SCALE
 #define SCALE DOF_SCALE
@@ -77,7 +80,7 @@ vec3 block_mean(sampler2D t, vec2 base, vec2 texel)
         for (int i = 0; i < DOF_SCALE; i += 2) {
             if (i >= SCALE) break;
             vec2 size = min(vec2(float(SCALE - i), float(SCALE - j)), 2.0);
-            sum += size.x * size.y * textureLod(t, (base + vec2(i, j) + 0.5 * (size - 1.0)) * texel, 0.0).rgb;
+            sum += size.x * size.y * filtered_2d(t, (base + vec2(i, j) + 0.5 * (size - 1.0)) * texel).rgb;
         }
     }
     return sum / float(SCALE * SCALE);

@@ -22,6 +22,15 @@
 precision highp float;
 precision highp sampler2D;
 precision highp sampler3D;
+#ifndef FILTER_BITS   // SBFX_FILTER_BITS (shaders_es/filtered.frag): else the texture unit filters
+#define filtered_3d_repeat(s, p) texture(s, p)
+#define filtered_array_lod(s, p, lod) textureLod(s, p, lod)
+#endif
+#if defined(FILTER_BITS) && defined(DETAIL_NEAREST)
+#define detail_fetch(s, p) texture(s, p)   // an R32F volume is sampled NEAREST: nothing to filter
+#else
+#define detail_fetch(s, p) filtered_3d_repeat(s, p)
+#endif
 
 #ifndef TABLE_PROBE
 flat in vec4 v_center_radius;
@@ -173,7 +182,7 @@ float detail_sample(vec3 c, float r, vec3 ray)
     vec2 q = ray.xy * (-c.z);
     vec2 local = (q - c.xy) / (2.0 * r) + 0.5;   // 0..1 across the particle
     vec3 uvw = vec3(v_detail.xy + local * u_detail_window, v_detail.z + u_time);
-    return texture(u_detail, uvw).r;
+    return detail_fetch(u_detail, uvw).r;
 }
 #endif
 
@@ -289,7 +298,7 @@ float lit_shadow(vec3 start, vec3 l, float layer, float lod, float n_dot_v, floa
     vec3 step = dt * l, p = start + 0.5 * step;
     for (int k = 0; k < MAX_STEPS; k++) {
         if (float(k) >= n) break;
-        sum += max(textureLod(u_smoke, vec3(p.xy, layer), lod).w - 2.0 * abs(p.z), 0.0);
+        sum += max(filtered_array_lod(u_smoke, vec3(p.xy, layer), lod).w - 2.0 * abs(p.z), 0.0);
         if (w * sum > 20.0) break;
         p += step;
     }
@@ -312,8 +321,8 @@ vec3 lit_scattered(vec3 ray, vec3 c, float r, float tau_scale)
     vec2 q = ray.xy * (-c.z);
     vec2 st = (q - c.xy) / (2.0 * r) + 0.5;
     float layer = v_lit.x, lod = v_lit.y;
-    vec4 a = textureLod(u_smoke, vec3(st, layer), lod);   // normal * 0.5 + 0.5, height
-    vec2 maps = textureLod(u_smoke, vec3(st, layer + 1.0), lod).xy;   // brightness, translucency
+    vec4 a = filtered_array_lod(u_smoke, vec3(st, layer), lod);   // normal * 0.5 + 0.5, height
+    vec2 maps = filtered_array_lod(u_smoke, vec3(st, layer + 1.0), lod).xy;   // brightness, translucency
     vec3 wn = a.xyz * (2.0 * u_wrap.x) - u_wrap.x;     // N / (1 + w)
     float translucency = u_translucency * maps.y;
     vec3 sum = vec3(0.0);

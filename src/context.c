@@ -70,7 +70,7 @@ static bool software_rasteriser(void)
 
 static sbfx_result context_accepted(sbfx *fx)
 {
-    fx->mediump_as_highp = software_rasteriser();
+    fx->mediump_as_highp = software_rasteriser() && !fx->mediump_native; /* SBFX_MEDIUMP=native: precision.c */
     if (fx->mediump_as_highp && !fx->donor) /* said once, not again on each sbfx_set_scene */
         sbfx_log(fx, SBFX_LOG_INFO, "renderer \"%s\" is a software rasteriser: shaders compile their mediump as "
                  "highp (half precision is emulated there, and slower)", (const char *)glGetString(GL_RENDERER));

@@ -144,7 +144,17 @@ static GLuint compile_stage(sbfx *fx, GLenum stage, const char *name, const char
                   "(%s)", name, getenv("SBFX_INJECT_SHADER_FAILURE"));
         return 0;
     }
-    const char *parts[] = {"#version 300 es\n", precision, defines ? defines : "", "#line 2\n", body};
+    char filter[64] = "";
+    const char *library = "";
+    if (fx->filter_bits > 0 && stage == GL_FRAGMENT_SHADER) { /* SBFX_FILTER_BITS (precision.c) */
+        snprintf(filter, sizeof(filter), "#define FILTER_BITS %d\n#define FILTER_LIBRARY\n", fx->filter_bits);
+        library = sbfx_filter_library();
+        if (!library) {
+            sbfx_fail(fx, SBFX_ERR_SHADER, "shader filtered.frag is not embedded in this build");
+            return 0;
+        }
+    }
+    const char *parts[] = {"#version 300 es\n", precision, filter, library, defines ? defines : "", "#line 2\n", body};
     GLuint shader = glCreateShader(stage);
     if (!shader) {
         sbfx_gl_check(fx, "glCreateShader");

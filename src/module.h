@@ -281,6 +281,8 @@ struct sbfx {
     sbfx_host_errors host_errors; /* GL errors the host left pending (gl_util.c) */
     unsigned context_parts;       /* SBFX_GL_SAVE_DESKTOP / _COMPAT on desktop OpenGL (context.c) */
     bool mediump_as_highp;        /* a software rasteriser: shaders' mediump compiled as highp (context.c) */
+    bool mediump_native;          /* SBFX_MEDIUMP=native: mediump as written, also there (precision.c) */
+    int filter_bits;              /* SBFX_FILTER_BITS=N: filtered fetches by hand, N-bit weights; 0: off */
     bool warned_polygon_mode;
 
     sbfx_medium_params media[SBFX_MEDIUM_COUNT];
@@ -467,6 +469,9 @@ void sbfx_builtin_explosion(sbfx_effect *out);
 
 /* context.c: OpenGL ES 3.0+, or desktop OpenGL that runs GLSL ES 3.00 (issue 18) */
 sbfx_result sbfx_context_check(sbfx *fx);
+/* precision.c: the diagnostics SBFX_MEDIUMP and SBFX_FILTER_BITS, read once by sbfx_create */
+sbfx_result sbfx_precision_from_env(sbfx *fx);
+const char *sbfx_filter_library(void);
 int sbfx_context_version(bool *desktop); /* major * 10 + minor of the current context */
 bool sbfx_context_desktop(void);
 

@@ -30,9 +30,12 @@ void sbfx_particle_defines(const sbfx *fx, const sbfx_variant_key *key, sbfx_med
                                    fx->plan.distortion && float_targets ? "#define HAS_DISTORTION_TARGET\n" : "",
                                    fx->plan.motion_target ? "#define HAS_MOTION_TARGET\n" : "");
     out += used, size -= used;
-    snprintf(out, size, "%s%s%s%s%s%s%s%s", opacity_defines[key->opacity],
+    /* SBFX_FILTER_BITS filters in the shader what the texture unit would: not an R32F volume,
+     * which is sampled NEAREST (luts.c) */
+    bool detail_nearest = fx->filter_bits > 0 && fx->desc.detail_format == SBFX_DETAIL_R32F;
+    snprintf(out, size, "%s%s%s%s%s%s%s%s%s", opacity_defines[key->opacity],
              scatters ? "#define MEDIUM_SCATTERS\n" : "", emits ? "#define MEDIUM_EMITS\n" : "",
-             p->detail_strength > 0 ? "#define HAS_DETAIL\n" : "",
+             p->detail_strength > 0 ? "#define HAS_DETAIL\n" : "", detail_nearest ? "#define DETAIL_NEAREST\n" : "",
              emits && key->abb ? "#define BLACKBODY_ANALYTIC\n" : "",
              scatters && !lit && (key->aph || fx->tables.phase_missed[m]) ? "#define PHASE_ANALYTIC\n" : "",
              lit ? "#define LIGHTING_LIT\n" : "", lit && p->steps_max > 0 ? "#define LIT_SHADOW\n" : "");

@@ -145,6 +145,8 @@ sbfx_result sbfx_set_scene(sbfx *fx, const sbfx_scene *scene)
     next->time = fx->time;
     next->step_index = fx->step_index;
     next->accumulator = fx->accumulator;
+    next->mediump_native = fx->mediump_native; /* SBFX_MEDIUMP, SBFX_FILTER_BITS: read once, at create */
+    next->filter_bits = fx->filter_bits;
     next->host_errors.logged = fx->host_errors.logged; /* what the host left pending: said once */
     next->donor = fx;
     const char *ladder[SBFX_LADDER_MAX];

@@ -298,6 +298,7 @@ sbfx_result sbfx_create(const sbfx_desc *desc, sbfx **out)
     fx->desc.log = desc ? desc->log : NULL; /* for keep_host_desc's message */
     fx->desc.log_user = desc ? desc->log_user : NULL;
     sbfx_result r = keep_host_desc(fx, desc);
+    if (r == SBFX_OK) r = sbfx_precision_from_env(fx); /* once: a reload keeps what create read */
     if (r == SBFX_OK) r = sbfx_module_build(fx, desc);
     if (r != SBFX_OK) {
         /* Hand the message to the caller's log before the handle goes away. */

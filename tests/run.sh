@@ -188,6 +188,7 @@ validate_shaders
 check_version_lines
 run_cli "" "$BUILD/sbfx-play"
 run_suite "" probe tests/probe.sh "$BUILD/sbfx-probe"
+TIMEOUT=$((4 * TIMEOUT)) run_suite "precision:" precision tests/precision.sh "$BUILD"
 run_suite "" exports tests/exports.sh "$BUILD"
 run_suite "" no-data-files tests/no_data_files.sh "$BUILD"
 run_suite "" gen-cmf tests/gen_cmf.sh "$BUILD"

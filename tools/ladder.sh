@@ -7,7 +7,8 @@
 # below the rung above it — the Pareto front of error against time, thinned so that every rung
 # pays for its error with a saving larger than the noise of a shared machine (every rung kept is
 # on the front: nothing more accurate is as cheap). Below the cheapest rung come its particle
-# levels of detail (the bench's `lod` rows: at most N particles, src/lod.h), fewest last.
+# levels of detail (the bench's `lod` rows: at most N particles, src/lod.h), fewest last. Errors
+# are the `gpu` precision rows' (mediump as written, 8-bit filter weights: what GPUs compute).
 # Level names: <opacity>/<divisor>/<nd|bl>[/rgba8|/rgba32f][/lpp][/lodN].
 set -euo pipefail
 csv=${1:?usage: tools/ladder.sh ACCURACY_CSV OUT_HEADER}
@@ -34,8 +35,10 @@ NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next }
     ups[n] = $col["upsample"]; lut[n] = $col["lut"]; ms[n] = $col["ms"] + 0
     err[n] = $col["mean_abs_err"] + 0; edge[n] = $col["edge_mean_abs_err"] + 0
     lod[n] = ("lod" in col) ? $col["lod"] + 0 : 0
+    # chosen at GPU precision (issue 25): the gpu rows, where the bench wrote both
     quality[n] = mode[n] != "floor" && $col["density"] == "scene" && $col["detail"] == "R16F" &&
-                 (lut[n] == "table" || lut[n] == "light-per-particle")
+                 (lut[n] == "table" || lut[n] == "light-per-particle") &&
+                 (!("precision" in col) || $col["precision"] == "gpu")
 }
 END {
     m = 0

@@ -23,6 +23,7 @@ file == 2 {
     next
 }
 file == 3 {
+    if ($30 == "float") next # the error at GPU precision: the gpu row (issue 25)
     key = $1 FS $2 FS $3 FS $4 FS $5 FS $6 FS $22 FS $23
     if (!(key in part_frags)) next
     printf "%s,%s,%.0f,%.0f", key, $15, part_frags[key], comp_frags[key]

@@ -64,17 +64,18 @@ BEGIN {
 }
 NR == 1 {
     for (i = 1; i <= NF; i++) col[$i] = i
-    print "| mode | scale | target | upsample | LUT | detail | density | particles | ms (min–max) | particle pass ms | mean err | max err | PSNR dB | edge mean | edge PSNR dB | Pareto | detail kept 2–8 px | 8–32 px | β 4–16 px |" \
+    print "| mode | scale | target | upsample | LUT | detail | density | particles | precision | ms (min–max) | particle pass ms | mean err | max err | PSNR dB | edge mean | edge PSNR dB | Pareto | detail kept 2–8 px | 8–32 px | β 4–16 px |" \
         (have ? " G52 cycles/fragment particle / composite | G610 cycles/fragment particle / composite | G610 particle pass ms (est.) |" : "")
-    print "| --- | ---: | --- | --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: | ---: | ---: | ---: |" (have ? " ---: | ---: | ---: |" : "")
+    print "| --- | ---: | --- | --- | --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: | ---: | ---: | ---: |" (have ? " ---: | ---: | ---: |" : "")
     next
 }
 {
     k = $col["mode"] FS $col["scale"] FS $col["format"] FS $col["upsample"] FS $col["lut"] FS $col["detail"] FS $col["density"] FS $col["lod"]
     tail = have ? (k in m ? m[k] : " | | |") : ""
-    printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.1f (%.1f–%.1f) | %.1f | %.3f | %.0f | %.1f | %.2f | %.1f | %s | %s | %s | %s |%s\n",
+    printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %.1f (%.1f–%.1f) | %.1f | %.3f | %.0f | %.1f | %.2f | %.1f | %s | %s | %s | %s |%s\n",
         $col["mode"], $col["scale"], $col["format"], $col["upsample"], $col["lut"], $col["detail"],
         $col["density"] == "matched" ? "τ/2" : "scene", ("lod" in col && $col["lod"] > 0) ? "lod" $col["lod"] : "all",
+        ("precision" in col) ? $col["precision"] : "float",
         $col["ms"], $col["ms_min"], $col["ms_max"], $col["particle_ms"], $col["mean_abs_err"],
         $col["max_abs_err"], $col["psnr"], $col["edge_mean_abs_err"], $col["edge_psnr"],
         $col["pareto"] == 1 ? "★" : "", kept($col["band_2_8"]), kept($col["band_8_32"]), kept($col["beta_4_16"]), tail
