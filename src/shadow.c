@@ -99,7 +99,7 @@ void sbfx_shadow_destroy(sbfx *fx)
 {
     sbfx_shadow *s = &fx->shadow;
     sbfx_rt_destroy(fx, &s->map);
-    if (s->program) glDeleteProgram(s->program);
+    sbfx_program_delete(fx, s->program); /* it may be lent to the scene that replaces this one */
     if (s->vao) glDeleteVertexArrays(1, &s->vao);
     if (s->buffer) {
         glDeleteBuffers(1, &s->buffer);

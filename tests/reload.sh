@@ -132,14 +132,14 @@ edit include include
 sheet_before=$(md5sum <"$tmp/out/contact-sheet.png")
 before_r=$(reloads)
 good=$(cat "$scene")
-printf '%s\nsky = 1;\n' "$good" >"$scene"
-bad_line=$(grep -n '^sky = 1;' "$scene" | cut -d: -f1)
+printf '%s\nhaze = 1;\n' "$good" >"$scene"
+bad_line=$(grep -n '^haze = 1;' "$scene" | cut -d: -f1)
 deadline=$(($(now_ms) + WAIT_S * 1000))
 until grep -q 'scene not reloaded' "$tmp/log" || [ "$(now_ms)" -gt "$deadline" ]; do sleep 0.02; done
 sleep 0.6
 err=$(grep 'scene not reloaded' "$tmp/log" | tail -n 1)
 if [ -z "$err" ]; then fail broken-edit "nothing logged: $(tail -n 2 "$tmp/log" | tr '\n' ' ')"
-elif ! echo "$err" | grep -qF "$scene:$bad_line: unknown key 'sky'"; then fail broken-edit "logged '$err' (line $bad_line)"
+elif ! echo "$err" | grep -qF "$scene:$bad_line: unknown key 'haze'"; then fail broken-edit "logged '$err' (line $bad_line)"
 elif [ "$(reloads)" -ne "$before_r" ]; then fail broken-edit "it reloaded"
 elif ! kill -0 "$pid" 2>/dev/null; then fail broken-edit "the player exited"
 elif [ "$(md5sum <"$tmp/out/contact-sheet.png")" != "$sheet_before" ]; then fail broken-edit "the contact sheet changed"
@@ -180,7 +180,7 @@ timeout -k 5 $((WAIT_S * 10)) "$PLAYER" --headless --watch --scene "$scene" --si
 pid=$!
 deadline=$(($(now_ms) + WAIT_S * 1000))
 until [ -f "$tmp/long/frame-0001.png" ] || [ "$(now_ms)" -gt "$deadline" ]; do sleep 0.02; done
-printf '%s\nsky = 1;\n' "$good" >"$scene"
+printf '%s\nhaze = 1;\n' "$good" >"$scene"
 long_takes() { grep -c 'frames written; waiting for a change' "$tmp/long.log"; }
 long_errors() { grep -c 'scene not reloaded' "$tmp/long.log"; }
 wait_for long_takes 1
