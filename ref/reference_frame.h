@@ -23,6 +23,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include "reference.h"
+#include "fire_light.h"
 
 /* particle.frag's per-fragment radiance ceiling (RADIANCE_CEILING). */
 #define SBFX_RF_RADIANCE_CEILING 16384.0
@@ -45,6 +46,9 @@ typedef struct sbfx_rf_particle {
     double detail[3];  /* detail window origin (u, v) and time offset */
     double intensity;  /* density scale; fire also cools as it falls */
     sbfx_medium medium;
+    /* The frame's fire light in-scattered at its centre (sbfx_fire_scatter, src/fire_light.h):
+     * filled by sbfx_rf_render_layer when the frame's fire_light is on; zero otherwise. */
+    sbfx_fire_scatter fire;
 } sbfx_rf_particle;
 
 /* One medium's parameters, as sbfx_medium_params (internal.h) holds them. */
@@ -97,6 +101,10 @@ typedef struct sbfx_rf_frame {
 
     sbfx_rf_precision precision;
     double exposure;               /* desc.exposure, applied where light is made (0: 1) */
+    /* The frame's fire lights its dust and smoke (the module's plan.fire_light: emitting fire and
+     * dust or smoke of the phase model in the scene): sbfx_rf_render_layer gathers the frame's
+     * fire particles into point lights (sbfx_rf_fire_lights) and in-scatters them. */
+    bool fire_light;
 } sbfx_rf_frame;
 
 #define SBFX_RF_MAX_LIGHTS 8
@@ -116,6 +124,12 @@ void sbfx_rf_pixel_ray(const sbfx_rf_frame *f, int x, int y, double ray[3]);
  * alpha) and alpha. A particle the ray misses gives alpha 0, rgb 0. */
 void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
                    double opaque_distance, double rgb[3], double *alpha);
+
+/* The frame's fire particles gathered into at most max point lights in view space (src/fire_light.h,
+ * as the module gathers them): the fire model of f->media[SBFX_FIRE], its black body (f's table or
+ * analytic), the detail volume's levels. Returns the count, -1 if out of memory. */
+int sbfx_rf_fire_lights(const sbfx_rf_frame *f, const sbfx_rf_particle *particles, int count, sbfx_fire_gathered *out,
+                        int max);
 
 /* The particle layer of the whole grid: layer[4 * (y * width + x)] = premultiplied light rgb,
  * transmittance. Invalid particles are skipped; returns how many were. If footprint is not

@@ -11,6 +11,8 @@
 //   OPACITY_FLOOR    benchmark only: the same quads, a trivial shader (the fill-rate floor)
 //   BLACKBODY_ANALYTIC, PHASE_ANALYTIC   evaluate per fragment instead of fetching the tables
 //   LIGHT_PER_PARTICLE  (phase model) in-scattering computed once per particle on the CPU
+//   FIRE_LIGHT       (with MEDIUM_SCATTERS, not LIGHTING_LIT) the frame's fire light, in-scattered
+//                    at the particle's centre on the CPU, falling off across it from the fire
 //   LIGHTING_LIT     (with MEDIUM_SCATTERS) the lit-smoke seed instead of the phase function:
 //                    per-pixel normals, wrap-around Lambert, back-lighting, up to 4 lights
 //   LIT_SHADOW       (with LIGHTING_LIT) ray-marched self-shadowing through the height field,
@@ -32,6 +34,10 @@ flat in vec3 v_light;            // in-scattered light evaluated once at the par
 #endif
 #ifdef HAS_MOTION_TARGET
 flat in vec2 v_velocity;
+#endif
+#ifdef FIRE_LIGHT
+flat in mediump vec3 v_fire;          // fire light in-scattered at the centre (phase model)
+flat in mediump vec2 v_fire_gradient; // its relative change per metre across the particle
 #endif
 #ifdef MEDIUM_HEAT
 uniform float u_heat_strength;   // largest shimmer offset, UV units
@@ -63,7 +69,7 @@ uniform vec3 u_albedo_color;     // albedo * tint
 #endif
 uniform int u_light_count;
 uniform vec4 u_light_vector[MAX_LIGHTS]; // view space: w = 0 direction of travel, w = 1 position
-uniform vec3 u_light_color[MAX_LIGHTS];  // irradiance (point lights: at 1 m)
+uniform vec3 u_light_color[MAX_LIGHTS];  // irradiance (point lights: at 1 m) x 4 pi (passes.c)
 uniform vec3 u_ambient;
 #endif
 #ifdef LIGHTING_LIT
@@ -247,8 +253,8 @@ mediump float phase(float cos_theta)
 #endif
 }
 
-// Single scattering of every light toward the eye at point p; the 4π makes a light of colour E
-// scattered isotropically give back E. Point lights fall off as 1/d², no closer than 0.5 m
+// Single scattering of every light toward the eye at point p; the 4π (folded into the colours
+// by the CPU) makes a light of colour E scattered isotropically give back E. Point lights fall off as 1/d², no closer than 0.5 m
 // (a flash inside the particle stays finite).
 mediump vec3 in_scattered(vec3 ray, vec3 p)
 {
@@ -265,9 +271,21 @@ mediump vec3 in_scattered(vec3 ray, vec3 p)
             travel = d * inversesqrt(d2);
             falloff = 1.0 / d2;
         }
-        sum += u_light_color[i] * (falloff * phase(dot(travel, to_eye)) * 12.566370614);
+        sum += u_light_color[i] * (falloff * phase(dot(travel, to_eye)));
     }
     return sum;
+}
+#endif
+
+#ifdef FIRE_LIGHT
+// The fire's light (src/fire_light.h, sbfx_fire_scatter_instance): the phase model evaluated at
+// the centre on the CPU; across the particle (its centre's depth plane) the first-order change of
+// 1/d² from the fire, so smoke above a fireball glows from below. Zero without live fire. In
+// mediump, like the light it adds to (the gradient is at most 1 / radius: never negative).
+mediump vec3 fire_scattered(vec3 ray, vec3 c)
+{
+    mediump vec2 e = ray.xy * (-c.z) - c.xy;
+    return v_fire * (1.0 + dot(e, v_fire_gradient));
 }
 #endif
 
@@ -446,12 +464,16 @@ void main()
 #if defined(MEDIUM_SCATTERS) && defined(HAS_DETAIL) && !defined(LIGHTING_LIT)
     shade = detail_light_scale(detail, u_detail_strength);   // lit smoke shades by its own maps
 #endif
+    mediump vec3 fire = vec3(0.0);
+#ifdef FIRE_LIGHT
+    fire = fire_scattered(ray, c);
+#endif
 #if defined(MEDIUM_SCATTERS) && defined(LIGHT_PER_PARTICLE)
-    light += u_albedo_color * (shade * v_light);
+    light += u_albedo_color * (shade * (v_light + fire));
 #elif defined(MEDIUM_SCATTERS) && defined(LIGHTING_LIT)
     light += u_albedo_color * lit_scattered(ray, c, r, tau_scale);
 #elif defined(MEDIUM_SCATTERS)
-    light += u_albedo_color * (shade * in_scattered(ray, c));
+    light += u_albedo_color * (shade * (in_scattered(ray, c) + fire));
 #endif
 #ifdef MEDIUM_EMITS
     float cooled = 1.0 - u_temperature.z * (1.0 - intensity);

@@ -4,6 +4,7 @@
 #include <stdint.h>
 #include <string.h>
 #include "fire_light.h"
+#include "tables.h"
 
 /* particle.frag's constants (EROSION_*, FIRE_CORE), at the detail's mean value 0.5 */
 #define EROSION_THRESHOLD 0.30
@@ -87,7 +88,10 @@ static double disc_at_detail(const sbfx_fire_model *m, double radius, double int
         double coordinate = mix(0.5, clamp01(0.5 + FIRE_DETAIL * (detail - 0.5) + FIRE_CORE * (0.5 - rho)), s);
         double bb[3];
         m->blackbody(m->blackbody_ctx, (m->t0 + m->t1 * coordinate) * cooled, bb);
-        for (int k = 0; k < 3; k++) rgb[k] += ring * bb[k] * m->emission_scale;
+        for (int k = 0; k < 3; k++) {
+            double radiance = bb[k] * m->emission_scale;
+            rgb[k] += ring * (m->ceiling > 0.0 && radiance > m->ceiling ? m->ceiling : radiance);
+        }
         area += ring;
     }
     return area;
@@ -223,4 +227,47 @@ double sbfx_fire_light_radius(double colour_max, double exposure, double extent)
     double reach = sqrt(colour_max * exposure / SBFX_LIGHT_NEGLIGIBLE);
     double least = extent + 0.5;
     return reach > least ? reach : least;
+}
+
+double sbfx_fire_gathered_radius(const sbfx_fire_gathered *g, double exposure)
+{
+    double top = fmax(g->intensity[0], fmax(g->intensity[1], g->intensity[2])) / M_PI;
+    return sbfx_fire_light_radius(top, exposure, g->extent);
+}
+
+void sbfx_fire_scatter_at(const sbfx_fire_gathered *lights, int count, double exposure, const double c[3], double g,
+                          sbfx_fire_scatter *out)
+{
+    memset(out, 0, sizeof(*out));
+    double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), weight = 0.0;
+    double to_eye[3] = {len > 0.0 ? -c[0] / len : 0.0, len > 0.0 ? -c[1] / len : 0.0, len > 0.0 ? -c[2] / len : 1.0};
+    for (int i = 0; i < count; i++) {
+        const sbfx_fire_gathered *l = &lights[i];
+        double d[3] = {c[0] - l->position[0], c[1] - l->position[1], c[2] - l->position[2]};
+        double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        double falloff = sbfx_light_falloff(d2, sbfx_fire_gathered_radius(l, exposure));
+        if (!(falloff > 0.0)) continue;
+        double inverse = 1.0 / sqrt(d2 > SBFX_LIGHT_MIN_D2 ? d2 : SBFX_LIGHT_MIN_D2);
+        double cos_theta = (d[0] * to_eye[0] + d[1] * to_eye[1] + d[2] * to_eye[2]) * inverse;
+        double scattered = falloff * sbfx_phase(cos_theta, g), rgb[3];
+        for (int k = 0; k < 3; k++) out->rgb[k] += rgb[k] = l->intensity[k] * scattered;
+        double w = luminance(rgb);
+        for (int k = 0; k < 3; k++) out->position[k] += w * l->position[k];
+        weight += w;
+    }
+    for (int k = 0; k < 3; k++) out->position[k] = weight > 0.0 ? out->position[k] / weight : c[k];
+    double d2 = distance2(c, out->position);
+    out->d2 = d2 > SBFX_LIGHT_MIN_D2 ? d2 : SBFX_LIGHT_MIN_D2;
+}
+
+void sbfx_fire_scatter_instance(const sbfx_fire_scatter *s, const double c[3], double radius, double out[8])
+{
+    memset(out, 0, 8 * sizeof(double));
+    for (int k = 0; k < 3; k++) out[k] = s->rgb[k];
+    if (!(s->d2 > 0.0)) return;   /* no fire light */
+    double g[2] = {2.0 * (s->position[0] - c[0]) / s->d2, 2.0 * (s->position[1] - c[1]) / s->d2};
+    double length = sqrt(g[0] * g[0] + g[1] * g[1]), most = radius > 0.0 ? 1.0 / radius : 0.0;
+    double scale = length > most ? most / length : 1.0;
+    out[4] = g[0] * scale;
+    out[5] = g[1] * scale;
 }

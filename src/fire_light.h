@@ -16,6 +16,7 @@ typedef struct sbfx_fire_model {
     double tau, t0, t1, cooling, detail_strength;
     double detail[SBFX_FIRE_DETAIL_LEVELS]; /* the detail volume's quantiles (j + 1/2) / LEVELS */
     double emission_scale;  /* radiance per unit of the normalised black body, times (1 - albedo) */
+    double ceiling;         /* the radiance ceiling / exposure (particle.frag); 0: none */
     void (*blackbody)(const void *ctx, double kelvin, double rgb[3]);
     const void *blackbody_ctx;
 } sbfx_fire_model;
@@ -53,6 +54,7 @@ typedef struct sbfx_fire_gathered {
     double extent;          /* rms distance of its light from the centre + mean particle radius */
 } sbfx_fire_gathered;
 
+#define SBFX_RADIANCE_CEILING 16384.0 /* particle.frag's, pre-exposed */
 #define SBFX_FIRE_CLUSTER_M 2.0    /* particles this close to a cluster's seed join it */
 #define SBFX_FIRE_GATHER_MAX 16    /* = SBFX_MAX_POINT_LIGHTS */
 
@@ -77,5 +79,31 @@ double sbfx_light_falloff(double d2, double radius);
  * extent + 0.5 m. colour_max: the largest channel of the light's host colour (I / pi). */
 #define SBFX_LIGHT_NEGLIGIBLE (1.0 / 2048.0)
 double sbfx_fire_light_radius(double colour_max, double exposure, double extent);
+
+/* A gathered light's radius of influence at a given exposure (sbfx_fire_light_radius of its
+ * host colour I / pi). */
+double sbfx_fire_gathered_radius(const sbfx_fire_gathered *g, double exposure);
+
+/* Fire light in-scattered by a dust or smoke particle (issue 27): the gathered lights, in the
+ * frame's view space (eye at the origin), through the medium's phase function (asymmetry g,
+ * sbfx_phase) at the particle's centre c, with the host's falloff (sbfx_light_falloff at each
+ * light's radius):  rgb = sum_l I_l falloff_l(|c - x_l|) phase(cos theta_l)
+ * (radiance per unit albedo: a light of intensity I at d gives I / d^2 of irradiance, which a
+ * scatterer sends toward the eye times the phase function), the same model as the scene's point
+ * lights (evaluated at the centre, as they are). `position`: the lights' luminance-weighted
+ * position seen from c, d2 = max(|c - position|^2, SBFX_LIGHT_MIN_D2). */
+typedef struct sbfx_fire_scatter {
+    double rgb[3], d2, position[3];
+} sbfx_fire_scatter;
+void sbfx_fire_scatter_at(const sbfx_fire_gathered *lights, int count, double exposure, const double c[3], double g,
+                          sbfx_fire_scatter *out);
+/* What particle.frag's fire_scattered gets per particle: rgb, 0, then the gradient gx, gy, 0, 0.
+ * Across the particle the light changes as 1/d^2 from `position` does to first order: a pixel
+ * whose ray meets the centre's depth plane at c + (u, v, 0) gets
+ *     rgb (1 + gx u + gy v),   (gx, gy) = 2 (position - c)_xy / d2,
+ * the gradient shortened to at most 1 / radius so that it stays >= 0 on the disc. So smoke
+ * above a fireball glows from below. (The exact 1/d^2 per pixel cost 0.03 Mali-G610 cycles more
+ * than the budget left: docs/gpus.md.) */
+void sbfx_fire_scatter_instance(const sbfx_fire_scatter *s, const double c[3], double radius, double out[8]);
 
 #endif

@@ -147,6 +147,9 @@ double sbfx_window_distance(const sbfx_frame *frame, float window);
  * the glGet / glIs calls it made. */
 int sbfx_host_state_roundtrip(sbfx *fx, bool particles);
 
+/* Whether the frame's fire lights its dust and smoke (the CPU reference's fire_light). */
+bool sbfx_fire_lit(const sbfx *fx);
+
 /* Hash of the live particles' simulation state (determinism tests). */
 uint64_t sbfx_state_hash(const sbfx *fx);
 

@@ -192,6 +192,7 @@ static void cpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, sbfx_opacity_
         if (t->phase_table[m]) rf.phase_tables[m] = t->phase + (size_t)m * SBFX_PHASE_SIZE;
     rf.phase_table_size = SBFX_PHASE_SIZE;
     rf_media(fx, has_detail, &rf);
+    rf.fire_light = sbfx_fire_lit(fx);
     rf.light_count = rf_lights(fx, f->frame.view, lights, rf.ambient);
     sbfx_rf_particle *v = calloc(MAX_P, sizeof(*v));
     for (int i = 0; i < s->count; i++) {
