@@ -194,18 +194,25 @@ static double detail_light_scale(double detail, double strength)
     return 1.0 + SBFX_RF_DETAIL_SHADE * (0.5 - detail) * strength;
 }
 
-/* particle.frag's detail_fire_temperature: the detail at half amplitude, hotter core, cooler edge. */
-static double detail_fire_temperature(double detail, double rho, double strength)
-{
-    double v = fmin(fmax(0.5 + SBFX_RF_FIRE_DETAIL * (detail - 0.5) + SBFX_RF_FIRE_CORE * (0.5 - rho), 0.0), 1.0);
-    return 0.5 + (v - 0.5) * strength;
-}
-
 /* particle.frag's particle_rho: distance from the centre in its depth plane / radius. */
 static double particle_rho(const sbfx_rf_particle *p, const double ray[3])
 {
     double qx = ray[0] * -p->center[2] - p->center[0], qy = ray[1] * -p->center[2] - p->center[1];
     return sqrt(qx * qx + qy * qy) / p->radius;
+}
+
+/* Fire's coverage with its soot: 1 - e^-(depth + soot x chord^2 / 2r), soft mode's fade on it as on the
+ * emitting alpha a (particle.frag). */
+static double fire_coverage(sbfx_opacity_mode mode, const sbfx_ref_particle *rp, const sbfx_ref_pixel *px, double a,
+                            double soot)
+{
+    double chord = sbfx_ref_chord(mode, rp, px), extra = soot * (chord * chord / (2.0 * rp->radius));
+    if (mode != SBFX_OPACITY_SOFT) return -expm1(-(sbfx_ref_optical_depth(mode, rp, px) + extra));
+    sbfx_ref_pixel unclipped = *px;   /* soft: the planar alpha times the fade */
+    unclipped.opaque_depth = INFINITY;
+    double planar = -expm1(-sbfx_ref_optical_depth(SBFX_OPACITY_PLANAR, rp, &unclipped));
+    double fade = planar > 0.0 ? a / planar : 0.0;
+    return -expm1(-(sbfx_ref_optical_depth(SBFX_OPACITY_PLANAR, rp, &unclipped) + extra)) * fade;
 }
 
 /* particle.frag's fire_scattered (mediump): the fire light at the centre, changing across the
@@ -237,14 +244,19 @@ void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const doub
     double tau_scale = 1.0;
     if (m->has_detail) {
         tau_scale = detail_density_scale(detail, p->intensity, m->detail_strength);
-        if (emits) detail = detail_fire_temperature(detail, particle_rho(p, ray), m->detail_strength);
+        if (emits) detail = sbfx_fire_coordinate(detail, particle_rho(p, ray), p->intensity, m->detail_strength);
     }
     tau_scale *= p->intensity;
     /* optical depth is linear in tau in every mode: the scale folds into the particle's tau */
     sbfx_ref_particle rp = {{p->center[0], p->center[1], p->center[2]}, p->radius, m->tau * tau_scale};
     sbfx_ref_pixel px = {{ray[0], ray[1], ray[2]}, opaque_distance, f->near, f->soft_scale};
-    double a = sbfx_ref_opacity(f->opacity, &rp, &px);
+    double a = sbfx_ref_opacity(f->opacity, &rp, &px), coverage = a;
     if (!(a > 0.0)) return; /* the shader multiplies its light by 0 */
+    double cooled = 1.0 - m->cooling * (1.0 - p->intensity);
+    /* soot: absorbs without glowing where cool (particle.frag's fire_soot), with the detail */
+    if (emits && m->has_detail)
+        coverage = fire_coverage(f->opacity, &rp, &px, a, m->detail_strength * m->tau * tau_scale *
+                                                             sbfx_fire_soot(detail, cooled, particle_rho(p, ray), p->intensity));
     double light[3] = {0.0, 0.0, 0.0};
     if (scatters) {
         double s[3], fire[3];
@@ -255,12 +267,12 @@ void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const doub
             light[k] = mp(f, light[k] + m->albedo * frame_exposure(f) * m->color[k] * (shade * mp(f, s[k] + fire[k])));
     }
     if (emits) {
-        double cooled = 1.0 - m->cooling * (1.0 - p->intensity), e[3];
+        double e[3];
         emitted(f, m, (m->t0 + m->t1 * detail) * cooled, e);
         for (int k = 0; k < 3; k++) light[k] = mp(f, light[k] + e[k]);
     }
     for (int k = 0; k < 3; k++) rgb[k] = light[k] * a;
-    *alpha = a;
+    *alpha = coverage;
 }
 
 /* ---- whole frame ------------------------------------------------------------------------ */

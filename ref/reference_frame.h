@@ -33,8 +33,8 @@
 #define SBFX_RF_EROSION_AGE 0.25
 #define SBFX_RF_EROSION_SHARPNESS 1.8
 #define SBFX_RF_EROSION_GAIN 2.2
-#define SBFX_RF_FIRE_CORE 0.6
-#define SBFX_RF_FIRE_DETAIL 0.5
+#define SBFX_RF_FIRE_CORE SBFX_FIRE_CORE     /* src/fire_light.h: sbfx_fire_coordinate */
+#define SBFX_RF_FIRE_DETAIL SBFX_FIRE_DETAIL
 #define SBFX_RF_DETAIL_SHADE 1.8
 /* The shader's light falloff floor: point lights act no closer than 0.5 m (d² >= 0.25). */
 #define SBFX_RF_MIN_LIGHT_D2 0.25
@@ -121,7 +121,7 @@ void sbfx_rf_sort(const sbfx_rf_particle *particles, int count, int *order);
 void sbfx_rf_pixel_ray(const sbfx_rf_frame *f, int x, int y, double ray[3]);
 
 /* One particle at one pixel, as particle.frag computes it: premultiplied light rgb (light x
- * alpha) and alpha. A particle the ray misses gives alpha 0, rgb 0. */
+ * the emitting alpha) and alpha (what it covers: for fire with its soot, sbfx_fire_soot). A particle the ray misses gives alpha 0, rgb 0. */
 void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
                    double opaque_distance, double rgb[3], double *alpha);
 

@@ -6,13 +6,11 @@
 #include "fire_light.h"
 #include "tables.h"
 
-/* particle.frag's constants (EROSION_*, FIRE_CORE), at the detail's mean value 0.5 */
+/* particle.frag's constants (EROSION_*) */
 #define EROSION_THRESHOLD 0.30
 #define EROSION_AGE 0.25
 #define EROSION_SHARPNESS 1.8
 #define EROSION_GAIN 2.2
-#define FIRE_CORE 0.6
-#define FIRE_DETAIL 0.5
 #define RINGS 8 /* midpoint rule over rho: 0.5 % of the exact integral for the defaults */
 #define BINS 1024
 #define SHADE_REACH 4.0 /* m */
@@ -72,7 +70,21 @@ void sbfx_fire_detail_levels(const float *volume, int size, int frames, double o
     }
 }
 
-/* One pixel's disc of light at one detail value: sum over rings of L_e alpha dA. */
+double sbfx_fire_coordinate(double detail, double rho, double intensity, double strength)
+{
+    double fresh = clamp01(intensity);
+    double spread = SBFX_FIRE_DETAIL * (1.0 + SBFX_FIRE_DETAIL_AGE * (1.0 - fresh));
+    return mix(0.5, clamp01(0.5 + spread * (detail - 0.5) + SBFX_FIRE_CORE * fresh * (0.5 - rho)), strength);
+}
+
+double sbfx_fire_soot(double coordinate, double cooled, double rho, double intensity)
+{
+    double cool = (1.0 - coordinate * cooled) * rho * (1.0 - clamp01(intensity));
+    return SBFX_FIRE_SOOT * cool * cool;
+}
+
+/* One pixel's disc of light at one detail value: sum over rings of L_e alpha dA; returns the
+ * area it covers (with its soot). */
 static double disc_at_detail(const sbfx_fire_model *m, double radius, double intensity, double detail, double rgb[3])
 {
     double s = m->detail_strength;
@@ -83,16 +95,18 @@ static double disc_at_detail(const sbfx_fire_model *m, double radius, double int
     double area = 0.0;
     for (int i = 0; i < RINGS; i++) {
         double rho = (i + 0.5) / RINGS;
-        double alpha = -expm1(-tau * radius * chord_depth(rho));
-        double ring = 2.0 * M_PI * rho * radius * radius / RINGS * alpha;
-        double coordinate = mix(0.5, clamp01(0.5 + FIRE_DETAIL * (detail - 0.5) + FIRE_CORE * (0.5 - rho)), s);
+        double depth = tau * radius * chord_depth(rho), alpha = -expm1(-depth);
+        double ring = 2.0 * M_PI * rho * radius * radius / RINGS;
+        double coordinate = sbfx_fire_coordinate(detail, rho, intensity, s);
+        double soot_path = 2.0 * radius * (1.0 - rho) * (1.0 + rho); /* chord^2 / 2r */
+        area += ring * -expm1(-(depth + s * tau * soot_path * sbfx_fire_soot(coordinate, cooled, rho, intensity)));
+        ring *= alpha;
         double bb[3];
         m->blackbody(m->blackbody_ctx, (m->t0 + m->t1 * coordinate) * cooled, bb);
         for (int k = 0; k < 3; k++) {
             double radiance = bb[k] * m->emission_scale;
             rgb[k] += ring * (m->ceiling > 0.0 && radiance > m->ceiling ? m->ceiling : radiance);
         }
-        area += ring;
     }
     return area;
 }

@@ -21,6 +21,20 @@ typedef struct sbfx_fire_model {
     const void *blackbody_ctx;
 } sbfx_fire_model;
 
+/* Fire's temperature coordinate (T = T0 + T1 x this) at one pixel: particle.frag's
+ * detail_fire_temperature (the CPU reference calls this one). */
+#define SBFX_FIRE_CORE 0.6
+#define SBFX_FIRE_DETAIL 0.5
+#define SBFX_FIRE_DETAIL_AGE 1.0
+double sbfx_fire_coordinate(double detail, double rho, double intensity, double strength);
+
+/* Fire's soot (particle.frag's fire_soot): optical depth that absorbs and does not glow, where the
+ * fire is cool: the particle's peak extinction (tau x density scale) x chord^2 / 2r x this,
+ * FIRE_SOOT (1 - coordinate x cooled)^2, coordinate the temperature's (T = T0 + T1
+ * coordinate) and cooled = 1 - cooling (1 - intensity). */
+#define SBFX_FIRE_SOOT 16.0
+double sbfx_fire_soot(double coordinate, double cooled, double rho, double intensity);
+
 /* The quantiles of the values a pixel samples from the detail volume (size x size x frames, x
  * fastest): trilinear between texels, as the GPU filters a magnified window (which narrows the
  * texels' spread), at 65536 fixed pseudo-random points; a 1024-bin histogram, no memory. */
@@ -28,7 +42,7 @@ void sbfx_fire_detail_levels(const float *volume, int size, int frames, double o
 
 /* Radiant intensity rgb (linear radiance units x m^2: light per steradian, the same in every
  * direction) of one fire particle of the given radius and intensity, and its emitting area
- * (m^2, the integral of its opacity over its disc):
+ * (m^2, the integral over its disc of its opacity with its soot, what it covers):
  *     I = E_detail ∫ L_e(T(rho, detail)) alpha(rho, detail) dA   over the disc, rho = distance from the centre / radius,
  * alpha the exact model's opacity of the chord at rho (docs/design.md §2.1), L_e what the shader
  * emits there. Zero for a particle that is not finite or has no radius or intensity. */
@@ -64,7 +78,7 @@ typedef struct sbfx_fire_gathered {
  * the rest join the nearest seed. Each particle adds its intensity times the share that leaves
  * the fire: the other fire particles in front of it, averaged over directions, pass
  * prod_j (1 - f_j a_j) of it (f_j: the fraction of directions j's sphere covers seen from it,
- * a_j: j's mean opacity over its disc). */
+ * a_j: j's mean opacity over its disc, with its soot). */
 int sbfx_fire_gather(const sbfx_fire_model *m, const sbfx_fire_particle *particles, int count,
                      sbfx_fire_work *work, sbfx_fire_gathered *out, int max);
 
