@@ -237,6 +237,33 @@ double sbfx_ref_optical_depth(sbfx_opacity_mode mode, const sbfx_ref_particle *p
     }
 }
 
+double sbfx_ref_chord(sbfx_opacity_mode mode, const sbfx_ref_particle *p, const sbfx_ref_pixel *px)
+{
+    if (!inputs_valid(p, px)) return 0.0;
+    double near = px->near > 0.0 ? px->near : 0.0;
+    if (mode == SBFX_OPACITY_EXACT || mode == SBFX_OPACITY_DEFAULT) { /* od_exact's chord */
+        const double *c = p->center;
+        double u[3];
+        unit_ray(px->ray, u);
+        double t0 = c[0] * u[0] + c[1] * u[1] + c[2] * u[2];
+        double e[3] = {c[0] - t0 * u[0], c[1] - t0 * u[1], c[2] - t0 * u[2]};
+        double dist = hypot(hypot(e[0], e[1]), e[2]), r = p->radius;
+        if (!(dist < r)) return 0.0;
+        double cos_z = -u[2], w = half_chord(r, dist) / r;
+        double a = clamp((near / cos_z - t0) / r, -w, w);
+        double b = clamp((px->opaque_depth / cos_z - t0) / r, -w, w);
+        return b > a ? (b - a) * r : 0.0;
+    }
+    double zc, d, w;
+    if (!parallel_geometry(p, px, &zc, &d, &w)) return 0.0;
+    if (mode == SBFX_OPACITY_PLANAR || mode == SBFX_OPACITY_SOFT) {
+        if (zc < near || (mode == SBFX_OPACITY_PLANAR && px->opaque_depth < zc)) return 0.0;
+        return 2.0 * w;
+    }
+    double ds = clamp(px->opaque_depth - zc, -w, w) - clamp(near - zc, -w, w);
+    return ds > 0.0 ? ds : 0.0;
+}
+
 double sbfx_ref_opacity(sbfx_opacity_mode mode, const sbfx_ref_particle *p, const sbfx_ref_pixel *px)
 {
     if (!inputs_valid(p, px)) return 0.0;

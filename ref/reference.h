@@ -37,6 +37,10 @@ double sbfx_ref_opacity(sbfx_opacity_mode mode, const sbfx_ref_particle *p, cons
 /* Optical depth (the exponent) instead of alpha; +inf never returned (clamped to 1e30). */
 double sbfx_ref_optical_depth(sbfx_opacity_mode mode, const sbfx_ref_particle *p,
                               const sbfx_ref_pixel *px);
+/* The length of the pixel's ray inside the particle, clipped as the mode clips it (exact: near
+ * plane and opaque surface along the true ray; spherical: the parallel ray's chord; planar and
+ * soft: the whole chord 2w where the billboard is drawn). particle.frag's `chord`. */
+double sbfx_ref_chord(sbfx_opacity_mode mode, const sbfx_ref_particle *p, const sbfx_ref_pixel *px);
 /* ∫_a^b sqrt(h + u^2) du, stable as h -> 0 (h >= 0). */
 double sbfx_ref_chord_integral(double h, double a, double b);
 /* RTR soft-particle contrast curve: 0.5*(2x)^p for x<0.5 else 1-0.5*(2(1-x))^p, x clamped. */

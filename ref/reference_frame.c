@@ -163,7 +163,9 @@ static void in_scattered(const sbfx_rf_frame *f, sbfx_medium medium, const doubl
         }
         double cos_theta = travel[0] * to_eye[0] + travel[1] * to_eye[1] + travel[2] * to_eye[2];
         double ph = mp(f, phase(f, medium, cos_theta, f->media[medium].phase_g));
-        for (int k = 0; k < 3; k++) sum[k] = mp(f, sum[k] + l->color[k] * (falloff * ph * FOUR_PI));
+        /* the 4 pi is folded into the colours the shader gets (float uniforms) */
+        for (int k = 0; k < 3; k++)
+            sum[k] = mp(f, sum[k] + (double)((float)l->color[k] * (float)FOUR_PI) * (falloff * ph));
     }
 }
 
@@ -206,18 +208,39 @@ static double detail_light_scale(double detail, double strength)
     return 1.0 + SBFX_RF_DETAIL_SHADE * (0.5 - detail) * strength;
 }
 
-/* particle.frag's detail_fire_temperature: the detail at half amplitude, hotter core, cooler edge. */
-static double detail_fire_temperature(double detail, double rho, double strength)
-{
-    double v = fmin(fmax(0.5 + SBFX_RF_FIRE_DETAIL * (detail - 0.5) + SBFX_RF_FIRE_CORE * (0.5 - rho), 0.0), 1.0);
-    return 0.5 + (v - 0.5) * strength;
-}
-
 /* particle.frag's particle_rho: distance from the centre in its depth plane / radius. */
 static double particle_rho(const sbfx_rf_particle *p, const double ray[3])
 {
     double qx = ray[0] * -p->center[2] - p->center[0], qy = ray[1] * -p->center[2] - p->center[1];
     return sqrt(qx * qx + qy * qy) / p->radius;
+}
+
+/* Fire's coverage with its soot: 1 - e^-(depth + soot x chord^2 / 2r), soft mode's fade on it as on the
+ * emitting alpha a (particle.frag). */
+static double fire_coverage(sbfx_opacity_mode mode, const sbfx_ref_particle *rp, const sbfx_ref_pixel *px, double a,
+                            double soot)
+{
+    double chord = sbfx_ref_chord(mode, rp, px), extra = soot * (chord * chord / (2.0 * rp->radius));
+    if (mode != SBFX_OPACITY_SOFT) return -expm1(-(sbfx_ref_optical_depth(mode, rp, px) + extra));
+    sbfx_ref_pixel unclipped = *px;   /* soft: the planar alpha times the fade */
+    unclipped.opaque_depth = INFINITY;
+    double planar = -expm1(-sbfx_ref_optical_depth(SBFX_OPACITY_PLANAR, rp, &unclipped));
+    double fade = planar > 0.0 ? a / planar : 0.0;
+    return -expm1(-(sbfx_ref_optical_depth(SBFX_OPACITY_PLANAR, rp, &unclipped) + extra)) * fade;
+}
+
+/* particle.frag's fire_scattered (mediump): the fire light at the centre, changing across the
+ * particle (its centre's depth plane) with the gradient of 1/d² from the fire. */
+static void fire_scattered(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3], double out[3])
+{
+    out[0] = out[1] = out[2] = 0.0;
+    if (!f->fire_light || p->medium == SBFX_FIRE) return;
+    double v[8];
+    sbfx_fire_scatter_instance(&p->fire, p->center, p->radius, v);
+    for (int k = 0; k < 8; k++) v[k] = mp(f, (double)(float)v[k]); /* the instance data, a mediump varying */
+    double e[2] = {mp(f, ray[0] * -p->center[2] - p->center[0]), mp(f, ray[1] * -p->center[2] - p->center[1])};
+    double factor = mp(f, 1.0 + mp(f, e[0] * v[4] + e[1] * v[5]));
+    for (int k = 0; k < 3; k++) out[k] = mp(f, v[k] * factor);
 }
 
 /* Only dust, smoke and fire add light and opacity; other media (heat) displace the scene in the
@@ -239,29 +262,35 @@ static void shade_with_detail(const sbfx_rf_frame *f, const sbfx_rf_particle *p,
     double tau_scale = 1.0;
     if (m->has_detail) {
         tau_scale = detail_density_scale(detail, p->intensity, m->detail_strength);
-        if (emits) detail = detail_fire_temperature(detail, particle_rho(p, ray), m->detail_strength);
+        if (emits) detail = sbfx_fire_coordinate(detail, particle_rho(p, ray), p->intensity, m->detail_strength);
     }
     tau_scale *= p->intensity;
     /* optical depth is linear in tau in every mode: the scale folds into the particle's tau */
     sbfx_ref_particle rp = {{p->center[0], p->center[1], p->center[2]}, p->radius, m->tau * tau_scale};
     sbfx_ref_pixel px = {{ray[0], ray[1], ray[2]}, opaque_distance, f->near, f->soft_scale};
-    double a = sbfx_ref_opacity(f->opacity, &rp, &px);
+    double a = sbfx_ref_opacity(f->opacity, &rp, &px), coverage = a;
     if (!(a > 0.0)) return; /* the shader multiplies its light by 0 */
+    double cooled = 1.0 - m->cooling * (1.0 - p->intensity);
+    /* soot: absorbs without glowing where cool (particle.frag's fire_soot), with the detail */
+    if (emits && m->has_detail)
+        coverage = fire_coverage(f->opacity, &rp, &px, a, m->detail_strength * m->tau * tau_scale *
+                                                             sbfx_fire_soot(detail, cooled, particle_rho(p, ray), p->intensity));
     double light[3] = {0.0, 0.0, 0.0};
     if (scatters) {
-        double s[3];
+        double s[3], fire[3];
         in_scattered(f, p->medium, p->center, ray, s);
+        fire_scattered(f, p, ray, fire);
         double shade = m->has_detail ? detail_light_scale(detail, m->detail_strength) : 1.0;
         for (int k = 0; k < 3; k++)
-            light[k] = mp(f, light[k] + m->albedo * frame_exposure(f) * m->color[k] * (shade * s[k]));
+            light[k] = mp(f, light[k] + m->albedo * frame_exposure(f) * m->color[k] * (shade * mp(f, s[k] + fire[k])));
     }
     if (emits) {
-        double cooled = 1.0 - m->cooling * (1.0 - p->intensity), e[3];
+        double e[3];
         emitted(f, m, (m->t0 + m->t1 * detail) * cooled, e);
         for (int k = 0; k < 3; k++) light[k] = mp(f, light[k] + e[k]);
     }
     for (int k = 0; k < 3; k++) rgb[k] = light[k] * a;
-    *alpha = a;
+    *alpha = coverage;
 }
 
 void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
@@ -375,6 +404,51 @@ static void render_pixel(const sbfx_rf_frame *f, const sbfx_rf_particle *v, cons
     if (footprint) footprint[(size_t)y * f->width + x] = hit;
 }
 
+static void model_blackbody(const void *ctx, double kelvin, double rgb[3]) { blackbody(ctx, kelvin, rgb); }
+
+int sbfx_rf_fire_lights(const sbfx_rf_frame *f, const sbfx_rf_particle *particles, int count, sbfx_fire_gathered *out,
+                        int max)
+{
+    const sbfx_rf_medium *m = &f->media[SBFX_FIRE];
+    sbfx_fire_model model = {.tau = m->tau, .t0 = m->t0, .t1 = m->t1, .cooling = m->cooling,
+                             .detail_strength = m->has_detail ? m->detail_strength : 0.0,
+                             .emission_scale = (double)(float)m->emission_scale * (1.0 - (double)(float)m->albedo),
+                             .ceiling = SBFX_RF_RADIANCE_CEILING / frame_exposure(f),
+                             .blackbody = model_blackbody, .blackbody_ctx = f};
+    sbfx_fire_detail_levels(f->detail, f->detail ? f->detail_size : 0, f->detail_frames, model.detail);
+    size_t n = count > 0 ? (size_t)count : 1;
+    sbfx_fire_particle *fire = calloc(n, sizeof(*fire));
+    sbfx_fire_work *work = calloc(n, sizeof(*work));
+    int fires = 0, lights = -1;
+    if (fire && work) {
+        for (int i = 0; i < count; i++) {
+            const sbfx_rf_particle *p = &particles[i];
+            if (p->medium != SBFX_FIRE || !sbfx_rf_particle_valid(p)) continue;
+            fire[fires++] = (sbfx_fire_particle){{p->center[0], p->center[1], p->center[2]}, p->radius, p->intensity};
+        }
+        lights = sbfx_fire_gather(&model, fire, fires, work, out, max);
+    }
+    free(fire), free(work);
+    return lights;
+}
+
+/* The frame's fire light at each dust or smoke particle of the phase model (the module's
+ * particle_fire, src/passes.c). */
+static int light_by_fire(const sbfx_rf_frame *f, sbfx_rf_particle *valid, int count)
+{
+    sbfx_fire_gathered lights[SBFX_FIRE_GATHER_MAX];
+    int n = sbfx_rf_fire_lights(f, valid, count, lights, SBFX_FIRE_GATHER_MAX);
+    if (n < 0) return -1;
+    for (int i = 0; i < count; i++) {
+        sbfx_rf_particle *p = &valid[i];
+        const sbfx_rf_medium *m = &f->media[p->medium];
+        memset(&p->fire, 0, sizeof(p->fire));
+        if (p->medium == SBFX_FIRE || !(m->albedo > 0.0) || n == 0) continue;
+        sbfx_fire_scatter_at(lights, n, frame_exposure(f), p->center, m->phase_g, &p->fire);
+    }
+    return 0;
+}
+
 int sbfx_rf_render_layer(const sbfx_rf_frame *f, const sbfx_rf_particle *particles, int count,
                          double *layer, uint8_t *footprint)
 {
@@ -390,6 +464,10 @@ int sbfx_rf_render_layer(const sbfx_rf_frame *f, const sbfx_rf_particle *particl
     for (int i = 0; i < count; i++) {
         if (!sbfx_rf_particle_valid(&particles[i])) skipped++;
         else valid[kept++] = particles[i]; /* the module keeps input order, then sorts */
+    }
+    if (f->fire_light && light_by_fire(f, valid, kept) < 0) {
+        free(valid), free(order), free(rects);
+        return -1;
     }
     sbfx_rf_sort(valid, kept, order);
     for (int i = 0; i < kept; i++)

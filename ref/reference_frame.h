@@ -23,6 +23,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include "reference.h"
+#include "fire_light.h"
 
 /* particle.frag's per-fragment radiance ceiling (RADIANCE_CEILING). */
 #define SBFX_RF_RADIANCE_CEILING 16384.0
@@ -32,8 +33,8 @@
 #define SBFX_RF_EROSION_AGE 0.25
 #define SBFX_RF_EROSION_SHARPNESS 1.8
 #define SBFX_RF_EROSION_GAIN 2.2
-#define SBFX_RF_FIRE_CORE 0.6
-#define SBFX_RF_FIRE_DETAIL 0.5
+#define SBFX_RF_FIRE_CORE SBFX_FIRE_CORE     /* src/fire_light.h: sbfx_fire_coordinate */
+#define SBFX_RF_FIRE_DETAIL SBFX_FIRE_DETAIL
 #define SBFX_RF_DETAIL_SHADE 1.8
 /* The shader's light falloff floor: point lights act no closer than 0.5 m (d² >= 0.25). */
 #define SBFX_RF_MIN_LIGHT_D2 0.25
@@ -45,6 +46,9 @@ typedef struct sbfx_rf_particle {
     double detail[3];  /* detail window origin (u, v) and time offset */
     double intensity;  /* density scale; fire also cools as it falls */
     sbfx_medium medium;
+    /* The frame's fire light in-scattered at its centre (sbfx_fire_scatter, src/fire_light.h):
+     * filled by sbfx_rf_render_layer when the frame's fire_light is on; zero otherwise. */
+    sbfx_fire_scatter fire;
 } sbfx_rf_particle;
 
 /* One medium's parameters, as sbfx_medium_params (internal.h) holds them. */
@@ -107,6 +111,10 @@ typedef struct sbfx_rf_frame {
     double filter_weight_error;
     double *filter_bound;
     double exposure;               /* desc.exposure, applied where light is made (0: 1) */
+    /* The frame's fire lights its dust and smoke (the module's plan.fire_light: emitting fire and
+     * dust or smoke of the phase model in the scene): sbfx_rf_render_layer gathers the frame's
+     * fire particles into point lights (sbfx_rf_fire_lights) and in-scatters them. */
+    bool fire_light;
 } sbfx_rf_frame;
 
 #define SBFX_RF_MAX_LIGHTS 8
@@ -123,9 +131,15 @@ void sbfx_rf_sort(const sbfx_rf_particle *particles, int count, int *order);
 void sbfx_rf_pixel_ray(const sbfx_rf_frame *f, int x, int y, double ray[3]);
 
 /* One particle at one pixel, as particle.frag computes it: premultiplied light rgb (light x
- * alpha) and alpha. A particle the ray misses gives alpha 0, rgb 0. */
+ * the emitting alpha) and alpha (what it covers: for fire with its soot, sbfx_fire_soot). A particle the ray misses gives alpha 0, rgb 0. */
 void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
                    double opaque_distance, double rgb[3], double *alpha);
+
+/* The frame's fire particles gathered into at most max point lights in view space (src/fire_light.h,
+ * as the module gathers them): the fire model of f->media[SBFX_FIRE], its black body (f's table or
+ * analytic), the detail volume's levels. Returns the count, -1 if out of memory. */
+int sbfx_rf_fire_lights(const sbfx_rf_frame *f, const sbfx_rf_particle *particles, int count, sbfx_fire_gathered *out,
+                        int max);
 
 /* The particle layer of the whole grid: layer[4 * (y * width + x)] = premultiplied light rgb,
  * transmittance. Invalid particles are skipped; returns how many were. If footprint is not

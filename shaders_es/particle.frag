@@ -11,6 +11,8 @@
 //   OPACITY_FLOOR    benchmark only: the same quads, a trivial shader (the fill-rate floor)
 //   BLACKBODY_ANALYTIC, PHASE_ANALYTIC   evaluate per fragment instead of fetching the tables
 //   LIGHT_PER_PARTICLE  (phase model) in-scattering computed once per particle on the CPU
+//   FIRE_LIGHT       (with MEDIUM_SCATTERS, not LIGHTING_LIT) the frame's fire light, in-scattered
+//                    at the particle's centre on the CPU, falling off across it from the fire
 //   LIGHTING_LIT     (with MEDIUM_SCATTERS) the lit-smoke seed instead of the phase function:
 //                    per-pixel normals, wrap-around Lambert, back-lighting, up to 4 lights
 //   LIT_SHADOW       (with LIGHTING_LIT) ray-marched self-shadowing through the height field,
@@ -42,6 +44,10 @@ flat in vec3 v_light;            // in-scattered light evaluated once at the par
 #ifdef HAS_MOTION_TARGET
 flat in vec2 v_velocity;
 #endif
+#ifdef FIRE_LIGHT
+flat in mediump vec3 v_fire;          // fire light in-scattered at the centre (phase model)
+flat in mediump vec2 v_fire_gradient; // its relative change per metre across the particle
+#endif
 #ifdef MEDIUM_HEAT
 uniform float u_heat_strength;   // largest shimmer offset, UV units
 #endif
@@ -72,7 +78,7 @@ uniform vec3 u_albedo_color;     // albedo * tint
 #endif
 uniform int u_light_count;
 uniform vec4 u_light_vector[MAX_LIGHTS]; // view space: w = 0 direction of travel, w = 1 position
-uniform vec3 u_light_color[MAX_LIGHTS];  // irradiance (point lights: at 1 m)
+uniform vec3 u_light_color[MAX_LIGHTS];  // irradiance (point lights: at 1 m) x 4 pi (passes.c)
 uniform vec3 u_ambient;
 #endif
 #ifdef LIGHTING_LIT
@@ -141,9 +147,11 @@ float chord_integral(float h, float a, float b)
 }
 
 // Optical depth along this pixel's ray; `ray` has z = -1, zs = opaque distance along -z.
-float optical_depth(vec3 c, float r, vec3 ray, float zs)
+// `chord`: the length of the ray inside the particle, clipped the same way (fire's soot).
+float optical_depth(vec3 c, float r, vec3 ray, float zs, out float chord)
 {
     float zc = -c.z;
+    chord = 0.0;
 #ifdef OPACITY_EXACT
     vec3 u = normalize(ray);
     float t0 = dot(c, u);
@@ -156,6 +164,7 @@ float optical_depth(vec3 c, float r, vec3 ray, float zs)
     float a = clamp(u_near * to_t - t0, -w, w);
     float b = clamp(zs * to_t - t0, -w, w);
     if (b <= a) return 0.0;
+    chord = b - a;
     return u_tau * max((b - a) - chord_integral(h, a, b) / r, 0.0);
 #else
     vec2 q = ray.xy * zc;                  // the ray's point in the centre's depth plane
@@ -168,9 +177,11 @@ float optical_depth(vec3 c, float r, vec3 ray, float zs)
 #ifdef OPACITY_PLANAR
     if (zs < zc) return 0.0;               // the depth test of a flat billboard
 #endif
+    chord = 2.0 * w;
     return profile * 2.0 * w;
 #else
     float ds = max(0.0, clamp(zs - zc, -w, w) - clamp(u_near - zc, -w, w));
+    chord = ds;
     return profile * ds;
 #endif
 #endif
@@ -205,12 +216,32 @@ float detail_density_scale(float detail, float intensity, float strength)
 // amplitude (FIRE_DETAIL), hotter toward the particle's core and cooler toward its edge (rho =
 // distance from the centre / radius, in the centre's depth plane); 0.5 without detail
 // (strength 0). Black-body luminance is steep in T: the full fluctuation made speckle whose
-// spectrum was flatter than turbulent fire's (docs/look.md).
+// spectrum was flatter than turbulent fire's (docs/look.md). As the fire cools (its intensity
+// falls) the hot core fades and the detail's share grows (FIRE_DETAIL_AGE): cooling fire breaks
+// into the detail's glowing and sooty parts instead of reading as a disc with a bright centre
+// (docs/look-fire.md).
 const float FIRE_CORE = 0.6;
 const float FIRE_DETAIL = 0.5;
-float detail_fire_temperature(float detail, float rho, float strength)
+const float FIRE_DETAIL_AGE = 1.0;
+float detail_fire_temperature(float detail, float rho, float intensity, float strength)
 {
-    return mix(0.5, clamp(0.5 + FIRE_DETAIL * (detail - 0.5) + FIRE_CORE * (0.5 - rho), 0.0, 1.0), strength);
+    float fresh = clamp(intensity, 0.0, 1.0);
+    float spread = FIRE_DETAIL * (1.0 + FIRE_DETAIL_AGE * (1.0 - fresh));
+    return mix(0.5, clamp(0.5 + spread * (detail - 0.5) + FIRE_CORE * fresh * (0.5 - rho), 0.0, 1.0), strength);
+}
+
+// Fire's soot (docs/look-fire.md): where the fire is cool — at its edges, in the detail's cooler
+// parts, more as it cools — it holds soot that absorbs and does not glow, spread further out
+// than the glowing part (optical depth FIRE_SOOT (1 - hot)² times the peak extinction times
+// chord² / 2r: 2r (1 - rho²) for a whole chord, falling to the edge as 1 - rho, where the glowing
+// part's falls as (1 - rho)^1.5; an even spread, the chord itself, drew the spheres' edges). So a thin fire edge over the sky darkens the
+// sky behind it instead of tinting it pink, and cooling fire shows dark soot between its glowing
+// parts. hot = the temperature coordinate times the cooling factor (1: the fresh, hottest core).
+const float FIRE_SOOT = 16.0;
+float fire_soot(float coordinate, float cooled, float rho, float intensity)
+{
+    float cool = (1.0 - coordinate * cooled) * rho * (1.0 - clamp(intensity, 0.0, 1.0));
+    return FIRE_SOOT * cool * cool;
 }
 
 // The scattered light's share of the detail: denser detail is darker (it shades itself), so the
@@ -256,8 +287,8 @@ mediump float phase(float cos_theta)
 #endif
 }
 
-// Single scattering of every light toward the eye at point p; the 4π makes a light of colour E
-// scattered isotropically give back E. Point lights fall off as 1/d², no closer than 0.5 m
+// Single scattering of every light toward the eye at point p; the 4π (folded into the colours
+// by the CPU) makes a light of colour E scattered isotropically give back E. Point lights fall off as 1/d², no closer than 0.5 m
 // (a flash inside the particle stays finite).
 mediump vec3 in_scattered(vec3 ray, vec3 p)
 {
@@ -274,9 +305,21 @@ mediump vec3 in_scattered(vec3 ray, vec3 p)
             travel = d * inversesqrt(d2);
             falloff = 1.0 / d2;
         }
-        sum += u_light_color[i] * (falloff * phase(dot(travel, to_eye)) * 12.566370614);
+        sum += u_light_color[i] * (falloff * phase(dot(travel, to_eye)));
     }
     return sum;
+}
+#endif
+
+#ifdef FIRE_LIGHT
+// The fire's light (src/fire_light.h, sbfx_fire_scatter_instance): the phase model evaluated at
+// the centre on the CPU; across the particle (its centre's depth plane) the first-order change of
+// 1/d² from the fire, so smoke above a fireball glows from below. Zero without live fire. In
+// mediump, like the light it adds to (the gradient is at most 1 / radius: never negative).
+mediump vec3 fire_scattered(vec3 ray, vec3 c)
+{
+    mediump vec2 e = ray.xy * (-c.z) - c.xy;
+    return v_fire * (1.0 + dot(e, v_fire_gradient));
 }
 #endif
 
@@ -441,29 +484,44 @@ void main()
     tau_scale = detail_density_scale(detail, intensity, u_detail_strength);
 #endif
 #ifdef MEDIUM_EMITS
-    detail = detail_fire_temperature(detail, particle_rho(c, r, ray), u_detail_strength);
+    detail = detail_fire_temperature(detail, particle_rho(c, r, ray), intensity, u_detail_strength);
 #endif
 #endif
     tau_scale *= intensity;
-    float alpha = opacity_from_depth(optical_depth(c, r, ray, zs) * tau_scale);
+    float chord;
+    float depth = optical_depth(c, r, ray, zs, chord) * tau_scale;
+    float alpha = opacity_from_depth(depth);   // what emits (and scatters)
+    float coverage = alpha;                    // what absorbs: the same, but for fire's soot
+#ifdef MEDIUM_EMITS
+    float cooled = 1.0 - u_temperature.z * (1.0 - intensity);
+#ifdef HAS_DETAIL   // soot is part of the detail's look: strength 0 (or no detail) has none
+    float soot = u_detail_strength * fire_soot(detail, cooled, particle_rho(c, r, ray), intensity);
+    coverage = opacity_from_depth(depth + soot * u_tau * tau_scale * (chord * chord / (2.0 * r)));
+#endif
+#endif
 #ifdef OPACITY_SOFT
     // RTR's soft particle: the flat billboard's alpha faded by the depth left behind it.
-    alpha *= soft_fade((zs + c.z) / (u_soft_scale > 0.0 ? u_soft_scale : r));
+    float fade = soft_fade((zs + c.z) / (u_soft_scale > 0.0 ? u_soft_scale : r));
+    alpha *= fade;
+    coverage *= fade;
 #endif
     mediump vec3 light = vec3(0.0);
     float shade = 1.0;
 #if defined(MEDIUM_SCATTERS) && defined(HAS_DETAIL) && !defined(LIGHTING_LIT)
     shade = detail_light_scale(detail, u_detail_strength);   // lit smoke shades by its own maps
 #endif
+    mediump vec3 fire = vec3(0.0);
+#ifdef FIRE_LIGHT
+    fire = fire_scattered(ray, c);
+#endif
 #if defined(MEDIUM_SCATTERS) && defined(LIGHT_PER_PARTICLE)
-    light += u_albedo_color * (shade * v_light);
+    light += u_albedo_color * (shade * (v_light + fire));
 #elif defined(MEDIUM_SCATTERS) && defined(LIGHTING_LIT)
     light += u_albedo_color * lit_scattered(ray, c, r, tau_scale);
 #elif defined(MEDIUM_SCATTERS)
-    light += u_albedo_color * (shade * in_scattered(ray, c));
+    light += u_albedo_color * (shade * (in_scattered(ray, c) + fire));
 #endif
 #ifdef MEDIUM_EMITS
-    float cooled = 1.0 - u_temperature.z * (1.0 - intensity);
     light += emitted((u_temperature.x + u_temperature.y * detail) * cooled);
 #endif
 #ifdef MEDIUM_HEAT
@@ -484,12 +542,12 @@ void main()
     o_velocity = vec4(0.0);
 #endif
 #else
-    o_color = vec4(light * alpha, alpha);
+    o_color = vec4(light * alpha, coverage);
 #ifdef HAS_DISTORTION_TARGET
-    o_distortion = vec4(0.0, 0.0, 0.0, alpha);   // shimmer behind this particle is covered
+    o_distortion = vec4(0.0, 0.0, 0.0, coverage);   // shimmer behind this particle is covered
 #endif
 #ifdef HAS_MOTION_TARGET
-    o_velocity = vec4(v_velocity * alpha, -c.z * alpha, alpha);
+    o_velocity = vec4(v_velocity * coverage, -c.z * coverage, coverage);
 #endif
 #endif
 }

@@ -11,6 +11,12 @@ layout(location = 1) in vec4 a_detail;        // detail window u, v, time offset
 layout(location = 3) in vec4 a_light;           // in-scattered light at the centre (CPU)
 flat out vec3 v_light;
 #endif
+#ifdef FIRE_LIGHT
+layout(location = 4) in vec4 a_fire;            // fire light in-scattered at the centre (CPU)
+layout(location = 5) in vec4 a_fire_gradient;   // its relative change per metre across the particle
+flat out mediump vec3 v_fire;
+flat out mediump vec2 v_fire_gradient;
+#endif
 #ifdef HAS_MOTION_TARGET
 flat out vec2 v_velocity;                       // screen motion of the centre, full-res pixels
 #endif
@@ -62,6 +68,10 @@ void main()
     v_detail = a_detail;
 #ifdef LIGHT_PER_PARTICLE
     v_light = a_light.rgb;
+#endif
+#ifdef FIRE_LIGHT
+    v_fire = a_fire.rgb;
+    v_fire_gradient = a_fire_gradient.xy;
 #endif
 #ifdef HAS_MOTION_TARGET
     v_velocity = vec2(0.0);

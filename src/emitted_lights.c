@@ -17,6 +17,7 @@ sbfx_fire_model sbfx_fire_model_of(const sbfx *fx)
     sbfx_fire_model model = {.tau = m->tau, .t0 = m->t0, .t1 = m->t1, .cooling = m->cooling,
                              .detail_strength = m->detail_strength,
                              .emission_scale = (double)m->emission_scale * (1.0 - m->albedo),
+                             .ceiling = SBFX_RADIANCE_CEILING / fx->desc.exposure,
                              .blackbody = table_blackbody, .blackbody_ctx = &fx->tables};
     memcpy(model.detail, fx->fire_detail, sizeof(model.detail));
     return model;
@@ -73,13 +74,40 @@ int sbfx_emitted_lights(sbfx *fx, sbfx_point_light *out, int max)
     int n = fx->emitted_count < max ? fx->emitted_count : max;
     for (int i = 0; i < n; i++) {
         const sbfx_fire_gathered *g = &fx->emitted[i];
-        double top = 0.0;
         for (int k = 0; k < 3; k++) {
             out[i].position[k] = (float)g->position[k];
             out[i].color[k] = (float)(g->intensity[k] / M_PI);
-            top = fmax(top, g->intensity[k] / M_PI);
         }
-        out[i].radius = (float)sbfx_fire_light_radius(top, fx->desc.exposure, g->extent);
+        out[i].radius = (float)sbfx_fire_gathered_radius(g, fx->desc.exposure);
     }
     return n;
 }
+
+/* Fire lights its dust and smoke where it emits and they scatter through the phase model (lit
+ * media shade by their own maps: not lit by fire). */
+bool sbfx_fire_lights_media(const sbfx *fx)
+{
+    const sbfx_medium_params *fire = &fx->media[SBFX_FIRE];
+    if (!fx->uses_medium[SBFX_FIRE] || !(fire->emissivity > 0.0f || fire->emission_scale > 0.0f)) return false;
+    for (int m = SBFX_DUST; m <= SBFX_SMOKE; m++)
+        if (fx->uses_medium[m] && fx->media[m].albedo > 0.0f && !fx->media[m].lit) return true;
+    return false;
+}
+
+void sbfx_fire_lights_of_frame(sbfx *fx, int count)
+{
+    int n = 0;
+    for (int i = 0; i < count; i++) {
+        const sbfx_view_particle *v = &fx->view[i];
+        if (v->medium != SBFX_FIRE) continue;
+        sbfx_fire_particle *f = &fx->fire_particles[n++];
+        for (int k = 0; k < 3; k++) f->position[k] = v->center[k];
+        f->radius = v->radius;
+        f->intensity = v->intensity;
+    }
+    sbfx_fire_model model = sbfx_fire_model_of(fx);
+    fx->frame_fire_count = sbfx_fire_gather(&model, fx->fire_particles, n, fx->fire_work, fx->frame_fire,
+                                            SBFX_MAX_POINT_LIGHTS);
+}
+
+bool sbfx_fire_lit(const sbfx *fx) { return fx->plan.fire_light; }

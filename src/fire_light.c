@@ -4,14 +4,13 @@
 #include <stdint.h>
 #include <string.h>
 #include "fire_light.h"
+#include "tables.h"
 
-/* particle.frag's constants (EROSION_*, FIRE_CORE), at the detail's mean value 0.5 */
+/* particle.frag's constants (EROSION_*) */
 #define EROSION_THRESHOLD 0.30
 #define EROSION_AGE 0.25
 #define EROSION_SHARPNESS 1.8
 #define EROSION_GAIN 2.2
-#define FIRE_CORE 0.6
-#define FIRE_DETAIL 0.5
 #define RINGS 8 /* midpoint rule over rho: 0.5 % of the exact integral for the defaults */
 #define BINS 1024
 #define SHADE_REACH 4.0 /* m */
@@ -71,7 +70,21 @@ void sbfx_fire_detail_levels(const float *volume, int size, int frames, double o
     }
 }
 
-/* One pixel's disc of light at one detail value: sum over rings of L_e alpha dA. */
+double sbfx_fire_coordinate(double detail, double rho, double intensity, double strength)
+{
+    double fresh = clamp01(intensity);
+    double spread = SBFX_FIRE_DETAIL * (1.0 + SBFX_FIRE_DETAIL_AGE * (1.0 - fresh));
+    return mix(0.5, clamp01(0.5 + spread * (detail - 0.5) + SBFX_FIRE_CORE * fresh * (0.5 - rho)), strength);
+}
+
+double sbfx_fire_soot(double coordinate, double cooled, double rho, double intensity)
+{
+    double cool = (1.0 - coordinate * cooled) * rho * (1.0 - clamp01(intensity));
+    return SBFX_FIRE_SOOT * cool * cool;
+}
+
+/* One pixel's disc of light at one detail value: sum over rings of L_e alpha dA; returns the
+ * area it covers (with its soot). */
 static double disc_at_detail(const sbfx_fire_model *m, double radius, double intensity, double detail, double rgb[3])
 {
     double s = m->detail_strength;
@@ -82,13 +95,18 @@ static double disc_at_detail(const sbfx_fire_model *m, double radius, double int
     double area = 0.0;
     for (int i = 0; i < RINGS; i++) {
         double rho = (i + 0.5) / RINGS;
-        double alpha = -expm1(-tau * radius * chord_depth(rho));
-        double ring = 2.0 * M_PI * rho * radius * radius / RINGS * alpha;
-        double coordinate = mix(0.5, clamp01(0.5 + FIRE_DETAIL * (detail - 0.5) + FIRE_CORE * (0.5 - rho)), s);
+        double depth = tau * radius * chord_depth(rho), alpha = -expm1(-depth);
+        double ring = 2.0 * M_PI * rho * radius * radius / RINGS;
+        double coordinate = sbfx_fire_coordinate(detail, rho, intensity, s);
+        double soot_path = 2.0 * radius * (1.0 - rho) * (1.0 + rho); /* chord^2 / 2r */
+        area += ring * -expm1(-(depth + s * tau * soot_path * sbfx_fire_soot(coordinate, cooled, rho, intensity)));
+        ring *= alpha;
         double bb[3];
         m->blackbody(m->blackbody_ctx, (m->t0 + m->t1 * coordinate) * cooled, bb);
-        for (int k = 0; k < 3; k++) rgb[k] += ring * bb[k] * m->emission_scale;
-        area += ring;
+        for (int k = 0; k < 3; k++) {
+            double radiance = bb[k] * m->emission_scale;
+            rgb[k] += ring * (m->ceiling > 0.0 && radiance > m->ceiling ? m->ceiling : radiance);
+        }
     }
     return area;
 }
@@ -223,4 +241,47 @@ double sbfx_fire_light_radius(double colour_max, double exposure, double extent)
     double reach = sqrt(colour_max * exposure / SBFX_LIGHT_NEGLIGIBLE);
     double least = extent + 0.5;
     return reach > least ? reach : least;
+}
+
+double sbfx_fire_gathered_radius(const sbfx_fire_gathered *g, double exposure)
+{
+    double top = fmax(g->intensity[0], fmax(g->intensity[1], g->intensity[2])) / M_PI;
+    return sbfx_fire_light_radius(top, exposure, g->extent);
+}
+
+void sbfx_fire_scatter_at(const sbfx_fire_gathered *lights, int count, double exposure, const double c[3], double g,
+                          sbfx_fire_scatter *out)
+{
+    memset(out, 0, sizeof(*out));
+    double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), weight = 0.0;
+    double to_eye[3] = {len > 0.0 ? -c[0] / len : 0.0, len > 0.0 ? -c[1] / len : 0.0, len > 0.0 ? -c[2] / len : 1.0};
+    for (int i = 0; i < count; i++) {
+        const sbfx_fire_gathered *l = &lights[i];
+        double d[3] = {c[0] - l->position[0], c[1] - l->position[1], c[2] - l->position[2]};
+        double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        double falloff = sbfx_light_falloff(d2, sbfx_fire_gathered_radius(l, exposure));
+        if (!(falloff > 0.0)) continue;
+        double inverse = 1.0 / sqrt(d2 > SBFX_LIGHT_MIN_D2 ? d2 : SBFX_LIGHT_MIN_D2);
+        double cos_theta = (d[0] * to_eye[0] + d[1] * to_eye[1] + d[2] * to_eye[2]) * inverse;
+        double scattered = falloff * sbfx_phase(cos_theta, g), rgb[3];
+        for (int k = 0; k < 3; k++) out->rgb[k] += rgb[k] = l->intensity[k] * scattered;
+        double w = luminance(rgb);
+        for (int k = 0; k < 3; k++) out->position[k] += w * l->position[k];
+        weight += w;
+    }
+    for (int k = 0; k < 3; k++) out->position[k] = weight > 0.0 ? out->position[k] / weight : c[k];
+    double d2 = distance2(c, out->position);
+    out->d2 = d2 > SBFX_LIGHT_MIN_D2 ? d2 : SBFX_LIGHT_MIN_D2;
+}
+
+void sbfx_fire_scatter_instance(const sbfx_fire_scatter *s, const double c[3], double radius, double out[8])
+{
+    memset(out, 0, 8 * sizeof(double));
+    for (int k = 0; k < 3; k++) out[k] = s->rgb[k];
+    if (!(s->d2 > 0.0)) return;   /* no fire light */
+    double g[2] = {2.0 * (s->position[0] - c[0]) / s->d2, 2.0 * (s->position[1] - c[1]) / s->d2};
+    double length = sqrt(g[0] * g[0] + g[1] * g[1]), most = radius > 0.0 ? 1.0 / radius : 0.0;
+    double scale = length > most ? most / length : 1.0;
+    out[4] = g[0] * scale;
+    out[5] = g[1] * scale;
 }

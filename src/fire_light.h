@@ -16,9 +16,24 @@ typedef struct sbfx_fire_model {
     double tau, t0, t1, cooling, detail_strength;
     double detail[SBFX_FIRE_DETAIL_LEVELS]; /* the detail volume's quantiles (j + 1/2) / LEVELS */
     double emission_scale;  /* radiance per unit of the normalised black body, times (1 - albedo) */
+    double ceiling;         /* the radiance ceiling / exposure (particle.frag); 0: none */
     void (*blackbody)(const void *ctx, double kelvin, double rgb[3]);
     const void *blackbody_ctx;
 } sbfx_fire_model;
+
+/* Fire's temperature coordinate (T = T0 + T1 x this) at one pixel: particle.frag's
+ * detail_fire_temperature (the CPU reference calls this one). */
+#define SBFX_FIRE_CORE 0.6
+#define SBFX_FIRE_DETAIL 0.5
+#define SBFX_FIRE_DETAIL_AGE 1.0
+double sbfx_fire_coordinate(double detail, double rho, double intensity, double strength);
+
+/* Fire's soot (particle.frag's fire_soot): optical depth that absorbs and does not glow, where the
+ * fire is cool: the particle's peak extinction (tau x density scale) x chord^2 / 2r x this,
+ * FIRE_SOOT (1 - coordinate x cooled)^2, coordinate the temperature's (T = T0 + T1
+ * coordinate) and cooled = 1 - cooling (1 - intensity). */
+#define SBFX_FIRE_SOOT 16.0
+double sbfx_fire_soot(double coordinate, double cooled, double rho, double intensity);
 
 /* The quantiles of the values a pixel samples from the detail volume (size x size x frames, x
  * fastest): trilinear between texels, as the GPU filters a magnified window (which narrows the
@@ -27,7 +42,7 @@ void sbfx_fire_detail_levels(const float *volume, int size, int frames, double o
 
 /* Radiant intensity rgb (linear radiance units x m^2: light per steradian, the same in every
  * direction) of one fire particle of the given radius and intensity, and its emitting area
- * (m^2, the integral of its opacity over its disc):
+ * (m^2, the integral over its disc of its opacity with its soot, what it covers):
  *     I = E_detail ∫ L_e(T(rho, detail)) alpha(rho, detail) dA   over the disc, rho = distance from the centre / radius,
  * alpha the exact model's opacity of the chord at rho (docs/design.md §2.1), L_e what the shader
  * emits there. Zero for a particle that is not finite or has no radius or intensity. */
@@ -53,6 +68,7 @@ typedef struct sbfx_fire_gathered {
     double extent;          /* rms distance of its light from the centre + mean particle radius */
 } sbfx_fire_gathered;
 
+#define SBFX_RADIANCE_CEILING 16384.0 /* particle.frag's, pre-exposed */
 #define SBFX_FIRE_CLUSTER_M 2.0    /* particles this close to a cluster's seed join it */
 #define SBFX_FIRE_GATHER_MAX 16    /* = SBFX_MAX_POINT_LIGHTS */
 
@@ -62,7 +78,7 @@ typedef struct sbfx_fire_gathered {
  * the rest join the nearest seed. Each particle adds its intensity times the share that leaves
  * the fire: the other fire particles in front of it, averaged over directions, pass
  * prod_j (1 - f_j a_j) of it (f_j: the fraction of directions j's sphere covers seen from it,
- * a_j: j's mean opacity over its disc). */
+ * a_j: j's mean opacity over its disc, with its soot). */
 int sbfx_fire_gather(const sbfx_fire_model *m, const sbfx_fire_particle *particles, int count,
                      sbfx_fire_work *work, sbfx_fire_gathered *out, int max);
 
@@ -77,5 +93,31 @@ double sbfx_light_falloff(double d2, double radius);
  * extent + 0.5 m. colour_max: the largest channel of the light's host colour (I / pi). */
 #define SBFX_LIGHT_NEGLIGIBLE (1.0 / 2048.0)
 double sbfx_fire_light_radius(double colour_max, double exposure, double extent);
+
+/* A gathered light's radius of influence at a given exposure (sbfx_fire_light_radius of its
+ * host colour I / pi). */
+double sbfx_fire_gathered_radius(const sbfx_fire_gathered *g, double exposure);
+
+/* Fire light in-scattered by a dust or smoke particle (issue 27): the gathered lights, in the
+ * frame's view space (eye at the origin), through the medium's phase function (asymmetry g,
+ * sbfx_phase) at the particle's centre c, with the host's falloff (sbfx_light_falloff at each
+ * light's radius):  rgb = sum_l I_l falloff_l(|c - x_l|) phase(cos theta_l)
+ * (radiance per unit albedo: a light of intensity I at d gives I / d^2 of irradiance, which a
+ * scatterer sends toward the eye times the phase function), the same model as the scene's point
+ * lights (evaluated at the centre, as they are). `position`: the lights' luminance-weighted
+ * position seen from c, d2 = max(|c - position|^2, SBFX_LIGHT_MIN_D2). */
+typedef struct sbfx_fire_scatter {
+    double rgb[3], d2, position[3];
+} sbfx_fire_scatter;
+void sbfx_fire_scatter_at(const sbfx_fire_gathered *lights, int count, double exposure, const double c[3], double g,
+                          sbfx_fire_scatter *out);
+/* What particle.frag's fire_scattered gets per particle: rgb, 0, then the gradient gx, gy, 0, 0.
+ * Across the particle the light changes as 1/d^2 from `position` does to first order: a pixel
+ * whose ray meets the centre's depth plane at c + (u, v, 0) gets
+ *     rgb (1 + gx u + gy v),   (gx, gy) = 2 (position - c)_xy / d2,
+ * the gradient shortened to at most 1 / radius so that it stays >= 0 on the disc. So smoke
+ * above a fireball glows from below. (The exact 1/d^2 per pixel cost 0.03 Mali-G610 cycles more
+ * than the budget left: docs/gpus.md.) */
+void sbfx_fire_scatter_instance(const sbfx_fire_scatter *s, const double c[3], double radius, double out[8]);
 
 #endif

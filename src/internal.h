@@ -152,6 +152,8 @@ sbfx_result sbfx_render_shadow_particles(sbfx *fx, const float direction[3], con
                                          int count, sbfx_shadow_map *out);
 /* Reads the shadow map back as float RGBA, size * size * 4 floats (row 0 first). */
 sbfx_result sbfx_read_shadow_map(sbfx *fx, float *values, size_t capacity);
+/* Whether the frame's fire lights its dust and smoke (the CPU reference's fire_light). */
+bool sbfx_fire_lit(const sbfx *fx);
 
 /* Hash of the live particles' simulation state (determinism tests). */
 uint64_t sbfx_state_hash(const sbfx *fx);

@@ -148,6 +148,8 @@ typedef struct sbfx_plan {
     bool motion_target;        /* velocity blur or depth of field: particles write premultiplied
                                   velocity and depth into attachment 2 */
     bool owns_scene;           /* any post effect: sbfx reads the scene colour and writes out */
+    bool fire_light;           /* emitting fire and dust or smoke of the phase model: the fire's
+                                  light in-scatters there (FIRE_LIGHT, emitted_lights.c) */
 } sbfx_plan;
 
 /* Uniform locations of the full-screen passes, looked up once at load. */
@@ -318,6 +320,7 @@ struct sbfx {
     int instance_floats;         /* 8, + 4 previous centre (velocity blur), + 4 light */
     int instance_previous;       /* float offset of the previous centre, 0 = none */
     int instance_light;          /* float offset of the per-particle light, 0 = none */
+    int instance_fire;           /* float offset of the fire light (8 floats), 0 = none */
 
     sbfx_gl gl;
     sbfx_shadow shadow;
@@ -347,6 +350,8 @@ struct sbfx {
     sbfx_fire_gathered emitted[SBFX_MAX_POINT_LIGHTS]; /* world space, after the last update */
     int emitted_count;
     bool emitted_current;        /* emitted[] gathered since the last sbfx_update */
+    sbfx_fire_gathered frame_fire[SBFX_MAX_POINT_LIGHTS]; /* view space, the frame rendered */
+    int frame_fire_count;
 };
 
 /* projection.c: what a frame's projection says (docs/design.md §5). View distance from window depth d:
@@ -589,6 +594,10 @@ sbfx_result sbfx_fire_lights_create(sbfx *fx);
 void sbfx_fire_lights_destroy(sbfx *fx);
 /* The fire model of the loaded scene (its black body: the module's table). */
 sbfx_fire_model sbfx_fire_model_of(const sbfx *fx);
+/* Whether the scene's fire lights its dust and smoke (the plan's fire_light). */
+bool sbfx_fire_lights_media(const sbfx *fx);
+/* The frame's fire (fx->view[0..count), view space) gathered into fx->frame_fire. */
+void sbfx_fire_lights_of_frame(sbfx *fx, int count);
 
 /* shadow.c: the host's transmittance shadow map (sbfx_render_shadow_map) */
 sbfx_result sbfx_shadow_create(sbfx *fx);

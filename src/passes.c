@@ -7,6 +7,7 @@
 #define UNIT_DEPTH 0
 #define UNIT_DETAIL 1
 #define UNIT_SMOKE 4 /* a lit medium's smoke texture array */
+#define SBFX_FOUR_PI_F 12.566370614f
 
 /* Heat shimmer in the composite: heat particles and a float target to hold their offsets. */
 static bool shimmer(const sbfx *fx) { return fx->plan.distortion && fx->gl.particles.texture[1]; }
@@ -163,7 +164,12 @@ static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m, 
     glUniform3f(p->albedo_color, scatter * mp->color[0], scatter * mp->color[1], scatter * mp->color[2]);
     glUniform1i(p->light_count, lights->count);
     glUniform4fv(p->light_vector, lights->count, &lights->vector[0][0]);
-    glUniform3fv(p->light_color, lights->count, &lights->color[0][0]);
+    /* the phase model's 4 pi (a light of colour E scattered isotropically gives back E) folded in
+     * here, not per fragment; lit media take the colours as they are */
+    float color[SBFX_SHADER_LIGHTS][3];
+    for (int i = 0; i < lights->count; i++)
+        for (int k = 0; k < 3; k++) color[i][k] = lights->color[i][k] * (mp->lit ? 1.0f : SBFX_FOUR_PI_F);
+    glUniform3fv(p->light_color, lights->count, &color[0][0]);
     glUniform3fv(p->ambient, 1, fx->ambient);
     glUniform3f(p->temperature, mp->t0, mp->t1, mp->cooling);
     glUniform1f(p->emission_scale, mp->emission_scale * (1.0f - mp->albedo) * exposure);
@@ -208,6 +214,22 @@ static void particle_light(const sbfx *fx, const frame_lights *lights, const sbf
     for (int k = 0; k < 3; k++) out[k] = (float)sum[k];
 }
 
+/* The frame's fire light in-scattered at a dust or smoke particle (fire_light.h): colour at the
+ * centre and d2, then where it falls off from (sbfx_fire_scatter_instance). */
+static void particle_fire(sbfx *fx, const sbfx_view_particle *v, float out[8])
+{
+    memset(out, 0, 8 * sizeof(float));
+    const sbfx_medium_params *m = &fx->media[v->medium];
+    if (v->medium == SBFX_FIRE || !(m->albedo > 0.0f) || m->lit || fx->frame_fire_count == 0) return;
+    const double c[3] = {v->center[0], v->center[1], v->center[2]};
+    sbfx_fire_scatter s;
+    sbfx_fire_scatter_at(fx->frame_fire, fx->frame_fire_count, fx->desc.exposure, c, m->phase_g, &s);
+    double values[8];
+    sbfx_fire_scatter_instance(&s, c, v->radius, values);
+    for (int k = 0; k < 8; k++) out[k] = (float)values[k];
+    if (s.rgb[0] > 0.0 || s.rgb[1] > 0.0 || s.rgb[2] > 0.0) fx->counters.fire_lit_particles++;
+}
+
 static void upload_instances(sbfx *fx, const frame_lights *lights, int count)
 {
     const int stride = fx->instance_floats;
@@ -226,6 +248,7 @@ static void upload_instances(sbfx *fx, const frame_lights *lights, int count)
             particle_light(fx, lights, v, dst + fx->instance_light);
             dst[fx->instance_light + 3] = 0.0f;
         }
+        if (fx->instance_fire) particle_fire(fx, v, dst + fx->instance_fire);
     }
     glBindBuffer(GL_ARRAY_BUFFER, fx->gl.instance_buffer);
     glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)((size_t)count * stride * sizeof(float)), fx->instances);
@@ -241,6 +264,10 @@ static void draw_run(sbfx *fx, int first, int count)
         glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride, base + fx->instance_previous * sizeof(float));
     if (fx->instance_light)
         glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, stride, base + fx->instance_light * sizeof(float));
+    if (fx->instance_fire) {
+        glVertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, stride, base + fx->instance_fire * sizeof(float));
+        glVertexAttribPointer(5, 4, GL_FLOAT, GL_FALSE, stride, base + (fx->instance_fire + 4) * sizeof(float));
+    }
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count);
     fx->counters.draw_calls++;
 }
@@ -264,6 +291,9 @@ static void pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp
     glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
     sbfx_bind_texture(UNIT_DEPTH, GL_TEXTURE_2D, gl->low_depth.depth, 0);
     if (gl->detail_texture) sbfx_bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture, 0);
+    fx->counters.fire_lit_particles = 0;
+    fx->frame_fire_count = 0;
+    if (fx->plan.fire_light) sbfx_fire_lights_of_frame(fx, count);
     upload_instances(fx, &lights, count);
     glBindVertexArray(gl->particle_vao);
     for (int first = 0; first < count;) {

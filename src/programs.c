@@ -24,7 +24,8 @@ void sbfx_particle_defines(const sbfx *fx, const sbfx_variant_key *key, sbfx_med
         size_t n = (size_t)snprintf(out, size, "#define LIGHT_SLOTS %d\n", slots);
         out += n, size -= n;
     }
-    size_t used = (size_t)snprintf(out, size, "%s%s%s%s%s", heat ? "#define MEDIUM_HEAT\n" : "",
+    size_t used = (size_t)snprintf(out, size, "%s%s%s%s%s%s", heat ? "#define MEDIUM_HEAT\n" : "",
+                                   scatters && !lit && fx->plan.fire_light ? "#define FIRE_LIGHT\n" : "",
                                    scatters && !lit && key->lpp ? "#define LIGHT_PER_PARTICLE\n" : "",
                                    fx->plan.particle_velocity ? "#define HAS_PARTICLE_MOTION\n" : "",
                                    fx->plan.distortion && float_targets ? "#define HAS_DISTORTION_TARGET\n" : "",
@@ -188,9 +189,11 @@ static sbfx_result create_buffers(sbfx *fx)
     glBindBuffer(GL_ARRAY_BUFFER, gl->instance_buffer);
     size_t bytes = (size_t)fx->pool.capacity * fx->instance_floats * sizeof(float);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_DRAW);
-    /* 0 centre + radius, 1 detail + intensity, 2 previous centre, 3 per-particle light */
-    bool used[4] = {true, true, fx->instance_previous > 0, fx->instance_light > 0};
-    for (GLuint a = 0; a < 4; a++) {
+    /* 0 centre + radius, 1 detail + intensity, 2 previous centre, 3 per-particle light, 4 and 5
+     * fire light (colour and d2, position) */
+    bool used[6] = {true, true, fx->instance_previous > 0, fx->instance_light > 0, fx->instance_fire > 0,
+                    fx->instance_fire > 0};
+    for (GLuint a = 0; a < 6; a++) {
         if (!used[a]) continue;
         glEnableVertexAttribArray(a);
         glVertexAttribDivisor(a, 1);

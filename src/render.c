@@ -94,6 +94,7 @@ sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame)
     fx->counters.passes = 0;
     fx->counters.draw_calls = 0;
     fx->counters.gl_state_queries = 0;
+    fx->counters.fire_lit_particles = 0;
     sbfx_depth_model depth;
     if (!frame_valid(fx, frame, &depth)) return SBFX_ERR_INVALID_ARGUMENT;
     int count = sbfx_collect_view_particles(fx, frame->view);
@@ -120,6 +121,7 @@ sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
     fx->counters.draw_calls = 0;
     fx->counters.particles_skipped = 0;
     fx->counters.gl_state_queries = 0;
+    fx->counters.fire_lit_particles = 0;
     sbfx_depth_model depth;
     if (!frame_valid(fx, frame, &depth)) return SBFX_ERR_INVALID_ARGUMENT;
     if (count > fx->pool.capacity)

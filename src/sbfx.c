@@ -174,6 +174,8 @@ static void adopt_scene(sbfx *fx, const sbfx_scene *scene)
     /* a slot for the per-particle light when a declared level uses it (bit-identical frames
      * either way: levels without it do not read it) */
     fx->instance_light = sbfx_declared_any(fx, sbfx_quality_uses_light_slot) ? (fx->instance_floats += 4) - 4 : 0;
+    fx->plan.fire_light = sbfx_fire_lights_media(fx);
+    fx->instance_fire = fx->plan.fire_light ? (fx->instance_floats += 8) - 8 : 0;
     if (!fx->desc.ignore_timeline)
         for (int i = 0; i < scene->timeline_count; i++) {
             const sbfx_timeline_entry *t = &scene->timeline[i];

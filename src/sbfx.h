@@ -255,8 +255,10 @@ typedef struct sbfx_counters {
     float gpu_ms;             /* smoothed GPU time of sbfx's work per frame (budget only) */
     int frames_over_budget;   /* measured frames whose GPU time exceeded the budget */
     int quality_changes;      /* level changes the budget made */
-    int emitted_lights;       /* point lights gathered from fire for the last frame (0: none, or
-                                 nobody asked: sbfx_emitted_lights, fire-lit particles) */
+    int emitted_lights;       /* point lights sbfx_emitted_lights gathered from the fire after the
+                                 last update (0: none, or not asked) */
+    int fire_lit_particles;   /* dust and smoke particles the fire lit in the last render (0
+                                 without emitting fire, or without dust or smoke to light) */
     int shadow_passes;        /* passes of the last sbfx_render_shadow_map (0: no particle cast
                                  a shadow, or the map was not asked for) */
     /* since sbfx_create, reloads (sbfx_set_scene) included: what was made, not what was

@@ -3,6 +3,8 @@
 #include "sbfx_item.h"
 
 #include <QtCore/QUrl>
+#include <QtCore/QVariantMap>
+#include <cstring>
 #include <QtQml/QQmlEngine>
 #include <QtQuick/QQuickWindow>
 #include <QtQuick/QSGRendererInterface>
@@ -119,6 +121,21 @@ void SbfxItem::setError(const QString &error)
     emit errorChanged();
 }
 
+static bool same_lights(const std::vector<sbfx_point_light> &a, const std::vector<sbfx_point_light> &b)
+{
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+}
+
+QVariantList SbfxItem::emittedLights() const
+{
+    QVariantList list;
+    for (const sbfx_point_light &l : status_.emitted_lights)
+        list.append(QVariantMap{{QStringLiteral("position"), QVector3D(l.position[0], l.position[1], l.position[2])},
+                                {QStringLiteral("color"), QVector3D(l.color[0], l.color[1], l.color[2])},
+                                {QStringLiteral("radius"), double(l.radius)}});
+    return list;
+}
+
 /* Hands the node this frame's settings and triggers, takes its report of the last frame; the
  * signals and the next frame's request go to the GUI thread. */
 QSGNode *SbfxItem::updatePaintNode(QSGNode *old, UpdatePaintNodeData *)
@@ -146,12 +163,14 @@ QSGNode *SbfxItem::updatePaintNode(QSGNode *old, UpdatePaintNodeData *)
     const SbfxNodeStatus report = node->status();
     const bool more_triggers = report.triggers_fired != status_.triggers_fired;
     const bool new_error = report.error != status_.error; /* also cleared: a new scene loaded */
+    const bool lights_changed = !same_lights(report.emitted_lights, status_.emitted_lights);
     status_ = report;
     QMetaObject::invokeMethod(
         this,
-        [this, more_triggers, new_error, error = report.error] {
+        [this, more_triggers, new_error, lights_changed, error = report.error] {
             if (new_error) setError(error);
             if (more_triggers) emit triggersChanged();
+            if (lights_changed) emit emittedLightsChanged();
             if (settings_.running) update();
         },
         Qt::QueuedConnection);

@@ -16,6 +16,7 @@
 #ifndef SBFX_QT_ITEM_H
 #define SBFX_QT_ITEM_H
 
+#include <QtCore/QVariantList>
 #include <QtGui/QMatrix4x4>
 #include <QtGui/QVector3D>
 #include <QtQuick/QQuickItem>
@@ -51,6 +52,11 @@ class SbfxItem : public QQuickItem
     Q_PROPERTY(QString error READ error NOTIFY errorChanged)
     /* Effect instances started since the module was made (sbfx_counters.triggers_fired). */
     Q_PROPERTY(int triggers READ triggers NOTIFY triggersChanged)
+    /* The point lights the fire emitted in the last frame (sbfx_emitted_lights, brightest first),
+     * for lighting the rest of the scene (docs/embedding.md "Fire lights your scene"): a list of
+     * { position: vector3d (world), color: vector3d (I / pi, the scene's linear units), radius }.
+     * Empty without live fire. One frame behind the picture (taken at the next sync). */
+    Q_PROPERTY(QVariantList emittedLights READ emittedLights NOTIFY emittedLightsChanged)
 
 public:
     explicit SbfxItem(QQuickItem *parent = nullptr);
@@ -92,6 +98,9 @@ public:
     void setRunning(bool running);
     QString error() const { return error_; }
     int triggers() const { return status_.triggers_fired; }
+    QVariantList emittedLights() const;
+    /* The same for C++ hosts, as sbfx gives them. */
+    const std::vector<sbfx_point_light> &emittedPointLights() const { return status_.emitted_lights; }
 
 signals:
     void sceneChanged();
@@ -103,6 +112,7 @@ signals:
     void runningChanged();
     void errorChanged();
     void triggersChanged();
+    void emittedLightsChanged();
 
 protected:
     QSGNode *updatePaintNode(QSGNode *node, UpdatePaintNodeData *) override;

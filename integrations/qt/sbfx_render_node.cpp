@@ -227,6 +227,11 @@ void SbfxRenderNode::advance()
     clock_.start();
     if (dt <= 0.0) dt = real;
     if (settings_.running && sbfx_update(fx_, dt) != SBFX_OK) fail(QString::fromLocal8Bit(sbfx_last_error(fx_)));
+    /* the fire's lights for the host's own scene (SbfxItem::emittedLights): a fixed array, no
+     * allocation once the vector has grown to its largest */
+    sbfx_point_light lights[SBFX_MAX_POINT_LIGHTS];
+    int n = sbfx_emitted_lights(fx_, lights, SBFX_MAX_POINT_LIGHTS);
+    status_.emitted_lights.assign(lights, lights + (n > 0 ? n : 0));
 }
 
 /* The C++ hook, else the scene's camera (its `camera` group, else sbfx-play's default orbit) with

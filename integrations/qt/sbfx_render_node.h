@@ -57,6 +57,8 @@ struct SbfxNodeStatus {
     int frames = 0;            /* frames in which sbfx drew */
     bool own_target = false;   /* the last frame drew through the item's own target */
     int width = 0, height = 0; /* the item's size in the render target's pixels */
+    /* the lights the fire emitted after the last update (sbfx_emitted_lights), brightest first */
+    std::vector<sbfx_point_light> emitted_lights;
 };
 
 class SbfxRenderNode : public QSGRenderNode

@@ -57,6 +57,7 @@ int bench_reference_render(const bench_reference *r, sbfx *fx, const sbfx_frame 
                        .blackbody_norm = sbfx_blackbody_norm(r->cmf, SBFX_DEFAULT_MAX_KELVIN)};
     fill_media(fx, &f);
     f.exposure = sbfx_get_desc(fx)->exposure;
+    f.fire_light = sbfx_fire_lit(fx);
     f.light_count = fill_lights(fx, frame->view, lights, f.ambient);
     sbfx_rf_particle *particles = fill_particles(fx, frame->view, &count);
     double *layer = calloc((size_t)w * h * 4, sizeof(double));

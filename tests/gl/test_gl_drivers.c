@@ -30,9 +30,14 @@
  * 0.002 .. 0.021 %, more than 4 levels 0 .. 0.016 %, mean 0.02 .. 0.13 levels. So the detail,
  * not a lost pass, makes the thirtyfold larger fractions: a low-bit difference of the filtered
  * detail is multiplied by the erosion ramp (slope 1.8 x 2.2 on the density) and by the fire's
- * black-body colour (steep in temperature). The bound is on fractions, about 1.5 times the
- * largest measured:
- *     >= 99 % of pixels within 2/255 and >= 99.5 % within 4/255 in every channel,
+ * black-body colour (steep in temperature). Issue 27's soot (docs/look-fire.md: old fire absorbs
+ * up to 16 times its glowing depth, with the detail strength) multiplies them once more, in the
+ * cooling fire: measured on 2026-11-26 (same Mesa, 6 frames, the same numbers on every run) more
+ * than 2 levels apart 0.17 .. 1.02 % of pixels, more than 4 levels 0.04 .. 0.47 %, mean
+ * 0.03 .. 0.14 levels, largest 24 .. 49; the same code with the soot off: 0.15 .. 0.66 %,
+ * 0.02 .. 0.26 %, 0.03 .. 0.15, 9 .. 46. The bound is on fractions, about 1.5 times the largest
+ * measured:
+ *     >= 98.5 % of pixels within 2/255 and >= 99.25 % within 4/255 in every channel,
  *     mean |diff| <= 0.25/255 (unchanged: the detail hardly moves the mean),
  * and, only as a backstop against garbage, no channel more than 96/255 apart. */
 #include <errno.h>
@@ -201,8 +206,8 @@ CHECK_TEST(llvmpipe_and_softpipe_agree)
         printf("# %s t=%.1f: mean |diff| %.4f levels, max %d, pixels > 2 levels %.4f %%, > 4 levels %.4f %%\n",
                i < FRAMES ? "defaults" : "exact 1/1 RGBA32F", times[i % FRAMES], d.mean, d.max, 100 * d.over_2,
                100 * d.over_4);
-        CHECK(d.over_2 <= 0.010, "frame %d: %.3f %% of pixels differ by more than 2 levels", i, 100 * d.over_2);
-        CHECK(d.over_4 <= 0.005, "frame %d: %.3f %% of pixels differ by more than 4 levels", i, 100 * d.over_4);
+        CHECK(d.over_2 <= 0.015, "frame %d: %.3f %% of pixels differ by more than 2 levels", i, 100 * d.over_2);
+        CHECK(d.over_4 <= 0.0075, "frame %d: %.3f %% of pixels differ by more than 4 levels", i, 100 * d.over_4);
         CHECK(d.mean <= 0.25, "frame %d: mean difference %.3f levels", i, d.mean);
         CHECK(d.max <= 96, "frame %d: a channel differs by %d levels", i, d.max);
     }

@@ -229,6 +229,7 @@ static void cpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, sbfx_opacity_
     r->bound = calloc(SIZE * SIZE * 4, sizeof(double));
     rf.filter_weight_error = filter_weight_error(), rf.filter_bound = r->bound;
     rf_media(fx, has_detail, &rf);
+    rf.fire_light = sbfx_fire_lit(fx);
     rf.light_count = rf_lights(fx, f->frame.view, lights, rf.ambient);
     sbfx_rf_particle *v = calloc(MAX_P, sizeof(*v));
     for (int i = 0; i < s->count; i++) {

@@ -14,15 +14,16 @@ typedef struct plan {
     bool blackbody, phase;
     int max_particles;
     int shadow_map;        /* render.host_shadows: the host's shadow map, texels per side (0: none) */
+    bool fire_light;       /* emitting fire lights dust or smoke: + its light per particle */
 } plan;
 
 static const plan plans[] = {
-    {"explosion", 3, 0, true, true, 2048, 256},
-    {"smoke", 1, 0, false, true, 512, 256},
-    {"campfire", 3, 1, true, true, 1024, 256},   /* heat: shimmer owns the scene, a copy program */
-    {"dust-storm", 1, 0, false, true, 1024, 256},
-    {"barrage", 3, 0, true, true, 4096, 256},
-    {"post", 4, 1 + 4 + 3, true, true, 2048, 0},
+    {"explosion", 3, 0, true, true, 2048, 256, true},
+    {"smoke", 1, 0, false, true, 512, 256, false},
+    {"campfire", 3, 1, true, true, 1024, 256, true},   /* heat: shimmer owns the scene, a copy program */
+    {"dust-storm", 1, 0, false, true, 1024, 256, false},
+    {"barrage", 3, 0, true, true, 4096, 256, true},
+    {"post", 4, 1 + 4 + 3, true, true, 2048, 0, true},
 };
 
 CHECK_TEST(plan_holds_only_what_each_scene_uses)
@@ -37,7 +38,8 @@ CHECK_TEST(plan_holds_only_what_each_scene_uses)
         sbfx_counters c;
         sbfx_stats(fx, &c);
         int textures = want->blackbody + want->phase + 1 + (want->shadow_map > 0); /* + the detail volume */
-        int instance_bytes = strcmp(want->scene, "post") == 0 ? 48 : 32; /* + previous centre */
+        int instance_bytes = (strcmp(want->scene, "post") == 0 ? 48 : 32) /* + previous centre */
+                             + (want->fire_light ? 32 : 0);                 /* + the fire's light */
         size_t bytes = (want->blackbody ? BLACKBODY_BYTES : 0) + (want->phase ? PHASE_BYTES : 0) +
                        DETAIL_BYTES + (size_t)want->max_particles * instance_bytes;
         /* the shadow map (made at load: R16F, or RGBA8 where half floats do not render) and its
@@ -54,6 +56,7 @@ CHECK_TEST(plan_holds_only_what_each_scene_uses)
         CHECK(c.textures == textures, "%s: %d textures, want %d", want->scene, c.textures, textures);
         CHECK(c.framebuffers == (want->shadow_map > 0), "%s: targets exist before the first frame", want->scene);
         CHECK(c.gpu_bytes == bytes, "%s: %zu GPU bytes, want %zu", want->scene, c.gpu_bytes, bytes);
+        CHECK(sbfx_fire_lit(fx) == want->fire_light, "%s: fire light %d", want->scene, sbfx_fire_lit(fx));
         sbfx_destroy(fx);
     }
     fixture_close(&f);

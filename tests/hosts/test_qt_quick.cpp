@@ -176,6 +176,28 @@ static void check_gl_contract(bool es = true)
     CHECK(checks.errors == 0, "GL error 0x%04x after the item's work in %d frames", checks.first_error, checks.errors);
 }
 
+/* The fire's lights for the host (sbfx_emitted_lights) as the item exposes them to QML. */
+static void check_emitted_lights(const SbfxItem *fx, int changes)
+{
+    const QVariantList lights = fx->emittedLights();
+    printf("# %lld emitted lights (%d changes)", (long long)lights.size(), changes);
+    CHECK(!lights.isEmpty() && lights.size() <= SBFX_MAX_POINT_LIGHTS, "%lld lights from a burning explosion",
+          (long long)lights.size());
+    CHECK(changes > 0, "emittedLightsChanged was not emitted");
+    CHECK(size_t(lights.size()) == fx->emittedPointLights().size(), "the QML and C++ lists differ");
+    for (const QVariant &v : lights) {
+        const QVariantMap l = v.toMap();
+        const QVector3D position = l.value("position").value<QVector3D>(), color = l.value("color").value<QVector3D>();
+        const double radius = l.value("radius").toDouble();
+        printf(" (%.2f %.2f %.2f | %.3g %.3g %.3g | %.1f)", position.x(), position.y(), position.z(), color.x(),
+               color.y(), color.z(), radius);
+        CHECK(position.length() < 3.0f, "a light %.2f m from the explosion", position.length());
+        CHECK(color.x() > 0.0f && color.x() >= color.y() && color.y() >= color.z(), "not fire's colour");
+        CHECK(radius > 0.5, "radius %g", radius);
+    }
+    printf("\n");
+}
+
 static void run_case(const Box &item, bool expect_own_target, bool es = true)
 {
     const Box overlay = {item.x + item.width / 2 - 60, item.y + item.height / 2 - 16, 120, 32};
@@ -184,9 +206,12 @@ static void run_case(const Box &item, bool expect_own_target, bool es = true)
     const QImage before = h.frame();
     /* eglfs makes the window as large as the screen: the scene is in its top left W x H */
     CHECK(before.width() >= W && before.height() >= H, "grabbed %dx%d", before.width(), before.height());
+    int lights_changed = 0;
+    QObject::connect(h.fx, &SbfxItem::emittedLightsChanged, [&] { lights_changed++; });
     h.fx->trigger("explosion", QVector3D(0, 0, 0));
     const QImage after = h.frames(6);
     const SbfxNodeStatus s = h.fx->status();
+    check_emitted_lights(h.fx, lights_changed);
     printf("# %s; item %dx%d at (%d, %d), %s; %d frames drawn, %d particles\n", checks.version, s.width, s.height, item.x, item.y,
            s.own_target ? "own target" : "Qt's framebuffer", s.frames, s.particles_alive);
     CHECK(h.fx->error().isEmpty() && s.error.isEmpty(), "%s", qPrintable(h.fx->error() + s.error));
