@@ -278,7 +278,7 @@ start_suite() {
     local i=$1
     {
         local t0=${EPOCHREALTIME/./} rc u s
-        eval "timeout -k 10 ${limits[i]} ${commands[i]}" >"$tmp/$i.log" 2>&1 </dev/null &
+        eval "exec timeout -k 10 ${limits[i]} ${commands[i]}" >"$tmp/$i.log" 2>&1 </dev/null &
         echo $! >"$tmp/$i.pid"
         wait $!
         rc=$?
