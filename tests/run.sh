@@ -149,7 +149,8 @@ detail_cache() {
 gl_suites() {
     local prefix=$1 build=$2 t
     shift 2
-    set -- "$@" "$(detail_cache "${prefix:-normal}")"
+    local tag=${prefix%:}
+    set -- "$@" "$(detail_cache "${tag:-normal}")"
     check_built "$prefix" gl "$build"
     run_dir "$prefix" "$build/tests/gl" "$@"
     for t in test_gl_state test_gl_host_errors; do
@@ -191,7 +192,7 @@ list_all() {
     WEIGHT=2
     check_built "" unit "$BUILD"
     run_dir "" "$BUILD/tests/unit"
-    WEIGHT=15
+    WEIGHT=5
     gl_suites "" "$BUILD"
     WEIGHT=2
     check_built "" platform "$BUILD"
@@ -226,9 +227,9 @@ list_all() {
         check_built "asan:" platform "$ASAN_BUILD"
         run_dir "asan:" "$ASAN_BUILD/tests/platform"
         if [ "$asan" = full ]; then
-            WEIGHT=30
+            WEIGHT=8
             gl_suites "asan:" "$ASAN_BUILD" "$NO_LEAKS"
-            WEIGHT=20
+            WEIGHT=30 # some 20 player runs, each generating its detail volume under ASan
             run_cli "asan:" "$ASAN_BUILD/sbfx-play" "$NO_LEAKS"
         else
             echo "# --asan=cpu: the ASan+UBSan tier runs the unit and platform suites only"
