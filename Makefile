@@ -3,7 +3,9 @@
 #   make help         this list of targets
 #   make demo         render the built-in explosion headless into build/demo/
 #   make gallery      one contact sheet per example scene into docs/gallery/ (docs/scene-format.md)
-#   make test         unit + GL (surfaceless Mesa) tests, shader validation, docs, then ASan+UBSan
+#   make test         unit + GL (surfaceless Mesa) tests, shader validation, docs, then ASan+UBSan,
+#                     every core (tests/run.sh; docs/testing.md: one suite, one case)
+#   make check        the edit-compile loop's tier: unit tests, a GL smoke test per pass, shaders
 #   make test-hosts   the SDL2, desktop OpenGL and Qt Quick hosts and their tests (docs/hosts/;
 #                     make test runs them)
 #   make test-qt-quick  the Qt Quick item, its example and test where Qt 6 is installed (test-hosts)
@@ -284,9 +286,17 @@ $(BUILD)/tests/unit/%: tests/unit/%.c $(REF_LIBS) tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(SRC_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(REF_LIBS) $(SRC_LIBS)
 
-$(BUILD)/tests/gl/%: tests/gl/%.c $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h
+# The GL tests take the module's procedural detail volume from a cache of this test run
+# (tests/gl/support/detail_cache.c says why it still tests what it did): every GL test links it.
+GL_TEST_SUPPORT := $(BUILD)/obj/tests/gl/support/detail_cache.o
+GL_TEST_WRAP := -Wl,--wrap=sbfx_detail_generate $(GL_TEST_SUPPORT)
+$(BUILD)/obj/tests/gl/support/%.o: tests/gl/support/%.c | deps
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
+	$(CC) $(PLATFORM_CFLAGS) -c -o $@ $<
+
+$(BUILD)/tests/gl/%: tests/gl/%.c $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h $(GL_TEST_SUPPORT)
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(GL_TEST_WRAP) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
 # The GL state test also runs on desktop OpenGL (tests/run.sh), where sbfx reaches glPolygonMode
 # through the process (src/gl_state.c): libOpenGL is in it, as in a desktop host.
@@ -300,11 +310,34 @@ test-gl: $(GL_TESTS) $(BUILD)/sbfx-play $(BUILD)/sbfx-probe
 test-precision: test-gl
 	@tests/precision.sh $(BUILD)
 
+# make test and make check use every core without -j: their builds run with -j(cores) unless
+# make was given a job server already (make -jN test), and tests/run.sh runs suites in parallel.
+NPROC := $(shell nproc 2>/dev/null || echo 1)
+JOBS_FLAG = $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(NPROC))
+
+# TEST_ASAN=cpu: the ASan+UBSan tier runs the unit and platform suites only, not the suites that
+# render on Mesa (make test-debian13: docs/testing.md says why that is no loss there).
+TEST_ASAN ?= full
+ASAN_TEST_TARGETS := $(if $(filter cpu,$(TEST_ASAN)),lib test-unit test-platform,all test-unit test-gl test-platform)
+
+# the normal and the ASan+UBSan build side by side, sharing the job server
+.PHONY: test-build test-build-normal test-build-asan check
+test-build: test-build-normal test-build-asan
+test-build-normal:
+	@$(MAKE) --no-print-directory all test-unit test-gl test-platform test-hosts
+test-build-asan:
+	@$(MAKE) --no-print-directory BUILD=build/asan SANITIZE=1 $(ASAN_TEST_TARGETS)
+
 test:
 	@tools/deps.sh test
-	@$(MAKE) --no-print-directory all test-unit test-gl test-platform test-hosts
-	@$(MAKE) --no-print-directory BUILD=build/asan SANITIZE=1 all test-unit test-gl test-platform
-	@tests/run.sh
+	@$(MAKE) --no-print-directory $(JOBS_FLAG) test-build
+	@tests/run.sh --asan=$(TEST_ASAN)
+
+# The edit-compile tier (docs/testing.md): unit tests, one GL smoke test per pass, the shaders.
+check:
+	@tools/deps.sh test
+	@$(MAKE) --no-print-directory $(JOBS_FLAG) test-unit $(BUILD)/tests/gl/test_gl_smoke
+	@tests/run.sh --check
 
 # The build's lines are left out (QUIET_LINES=0: tools/quiet-shell.sh); warnings still show.
 demo:
@@ -455,9 +488,10 @@ $(BUILD)/obj/look/%.o: tests/look/%.c | deps
 $(BUILD)/bench/bench_look_fire: tests/look/bench_look_fire.c $(FIRE_LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests/look $(LDSAN) -o $@ $< $(FIRE_LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
-$(BUILD)/tests/gl/test_gl_fire_look: tests/gl/test_gl_fire_look.c $(FIRE_LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h
+$(BUILD)/tests/gl/test_gl_fire_look: tests/gl/test_gl_fire_look.c $(FIRE_LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h \
+		$(GL_TEST_SUPPORT)
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(FIRE_LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(GL_TEST_WRAP) $(FIRE_LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
 bench: $(BUILD)/bench/bench_look_fire
 
@@ -518,9 +552,9 @@ $(BUILD)/tests/platform/test_clip_detail: tests/platform/test_clip_detail.c $(BU
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/video/clip_detail.o \
 		$(BUILD)/obj/platform/video/luma.o $(BUILD)/libsbfx.a $(PLATFORM_LIBS) $(CLIP_PKG_LIBS)
 $(BUILD)/tests/gl/test_gl_clip: tests/gl/test_gl_clip.c $(BUILD)/obj/platform/video/clip_detail.o \
-		$(BUILD)/obj/platform/video/luma.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h
+		$(BUILD)/obj/platform/video/luma.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h $(GL_TEST_SUPPORT)
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/video/clip_detail.o \
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(GL_TEST_WRAP) $(BUILD)/obj/platform/video/clip_detail.o \
 		$(BUILD)/obj/platform/video/luma.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS) $(CLIP_PKG_LIBS)
 .PHONY: test-platform test-vm cross-check
 test-platform: $(PLATFORM_TESTS)
@@ -709,11 +743,12 @@ uninstall-kiosk:
 
 # ---- Debian 13 beside Debian 12 (issue 20; docs/distributions.md) ---------------------------
 # make test in a Debian 13 root made with debootstrap (GCC 14, Mesa 25, libgpiod 2), cached in
-# build/debian13/ (tests/debian13/run.sh says how). As root.
+# build/debian13/ (tests/debian13/run.sh says how). As root. Its ASan+UBSan tier runs the unit
+# and platform suites and the fuzzer 10 s, not 60: docs/testing.md says why that loses nothing.
 .PHONY: test-debian13
 test-debian13:
 	@tools/deps.sh debian13
-	@tests/debian13/run.sh
+	@MAKE_TARGET="$${MAKE_TARGET:-test TEST_ASAN=cpu FUZZ_SECONDS=10}" tests/debian13/run.sh
 
 # ---- the look (issue 17): the β metric (tests/look/look_metrics.c, docs/look.md) ----------
 $(BUILD)/tests/unit/test_look_metrics: tests/unit/test_look_metrics.c $(BUILD)/obj/look/look_metrics.o $(REF_LIBS) \
@@ -726,7 +761,8 @@ $(BUILD)/bench/bench_look: $(BUILD)/obj/look/bench_look.o $(LOOK_OBJ) $(BUILD)/o
 	@mkdir -p $(@D)
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
 bench: $(BUILD)/bench/bench_look
-$(BUILD)/tests/gl/test_gl_look: tests/gl/test_gl_look.c $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h
+$(BUILD)/tests/gl/test_gl_look: tests/gl/test_gl_look.c $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h \
+		$(GL_TEST_SUPPORT)
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) \
+	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(GL_TEST_WRAP) $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) \
 		$(REF_LIBS) $(PLATFORM_LIBS)

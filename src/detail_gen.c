@@ -35,6 +35,12 @@ typedef struct octave {
     uint32_t salt;     /* decorrelates the octaves' gradients */
     bool nested_hash;  /* the first generator's hash (the smooth fBm keeps its textures) */
     double amplitude;
+    /* The last cell this octave was evaluated in and its corners' hashes: consecutive texels
+     * mostly fall in the same cell (2 or more texels per cell), so most evaluations skip the
+     * wrapping and the 8 hashes (same values: the output is bit for bit the same). */
+    bool cached;
+    int cell[3];
+    uint32_t corner_hash[2][2][2];
 } octave;
 
 /* "lowbias32" integer mixer (C. Wellons): good avalanche, cheap, portable. */
@@ -63,25 +69,21 @@ static uint32_t lattice_hash(const octave *o, uint32_t wx, uint32_t wy, uint32_t
     return mix32(o->salt + wx * 0x9E3779B1u + wy * 0x85EBCA77u + wt * 0xC2B2AE3Du);
 }
 
-/* Dot product of the pseudo-random gradient of hash h (one of the 12 cube-edge directions of
- * improved Perlin noise) with the offset (fx, fy, ft) from its lattice point. */
-static double lattice_dot(uint32_t h, double fx, double fy, double ft)
-{
-    switch (h % 12) {
-    case 0: return fx + fy;
-    case 1: return -fx + fy;
-    case 2: return fx - fy;
-    case 3: return -fx - fy;
-    case 4: return fx + ft;
-    case 5: return -fx + ft;
-    case 6: return fx - ft;
-    case 7: return -fx - ft;
-    case 8: return fy + ft;
-    case 9: return -fy + ft;
-    case 10: return fy - ft;
-    default: return -fy - ft;
-    }
-}
+/* The 12 cube-edge gradient directions of improved Perlin noise, gradient h % 12 of a lattice
+ * point: its dot product with the offset d = (dx, dy, dt) from the point is
+ * sign[0] * d[axis[0]] + sign[1] * d[axis[1]] (h 0: dx + dy, 1: -dx + dy, ... 11: -dy - dt).
+ * Multiplying by +-1 is exact, so this is bit for bit the sum written out per case, without the
+ * 12-way branch the CPU could not predict. */
+typedef struct gradient {
+    double sign[2];
+    int axis[2];
+} gradient;
+
+static const gradient gradients[12] = {
+    {{1, 1}, {0, 1}}, {{-1, 1}, {0, 1}}, {{1, -1}, {0, 1}}, {{-1, -1}, {0, 1}},
+    {{1, 1}, {0, 2}}, {{-1, 1}, {0, 2}}, {{1, -1}, {0, 2}}, {{-1, -1}, {0, 2}},
+    {{1, 1}, {1, 2}}, {{-1, 1}, {1, 2}}, {{1, -1}, {1, 2}}, {{-1, -1}, {1, 2}},
+};
 
 /* Quintic fade: C2-continuous across cells, so the fBm has no visible lattice creases. */
 static double fade(double t)
@@ -94,8 +96,24 @@ static double lerp(double a, double b, double t)
     return a + (b - a) * t;
 }
 
+/* The hashes of the 8 corners of cell i (its wrapped lattice indices), kept in the octave. */
+static void cell_hashes(octave *o, const int i[3])
+{
+    if (o->cached && o->cell[0] == i[0] && o->cell[1] == i[1] && o->cell[2] == i[2]) return;
+    uint32_t w[3][2]; /* wrapped lattice indices of the cell's two corners per axis */
+    for (int k = 0; k < 3; k++) {
+        w[k][0] = (uint32_t)wrap(i[k], o->cells[k]);
+        w[k][1] = (uint32_t)wrap(i[k] + 1, o->cells[k]);
+        o->cell[k] = i[k];
+    }
+    for (int dz = 0; dz < 2; dz++)
+        for (int dy = 0; dy < 2; dy++)
+            for (int dx = 0; dx < 2; dx++) o->corner_hash[dz][dy][dx] = lattice_hash(o, w[0][dx], w[1][dy], w[2][dz]);
+    o->cached = true;
+}
+
 /* Periodic gradient noise at lattice coordinates p (roughly in [-1, 1]). */
-static double gradient_noise(const octave *o, const double p[3])
+static double gradient_noise(octave *o, const double p[3])
 {
     int i[3];
     double f[3], s[3];
@@ -105,17 +123,15 @@ static double gradient_noise(const octave *o, const double p[3])
         f[k] = p[k] - fl;
         s[k] = fade(f[k]);
     }
-    uint32_t w[3][2]; /* wrapped lattice indices of the cell's two corners per axis */
-    for (int k = 0; k < 3; k++) {
-        w[k][0] = (uint32_t)wrap(i[k], o->cells[k]);
-        w[k][1] = (uint32_t)wrap(i[k] + 1, o->cells[k]);
-    }
+    cell_hashes(o, i);
     double c[2][2][2];
     for (int dz = 0; dz < 2; dz++)
         for (int dy = 0; dy < 2; dy++)
-            for (int dx = 0; dx < 2; dx++)
-                c[dz][dy][dx] = lattice_dot(lattice_hash(o, w[0][dx], w[1][dy], w[2][dz]), f[0] - dx, f[1] - dy,
-                                            f[2] - dz);
+            for (int dx = 0; dx < 2; dx++) {
+                const double d[3] = {f[0] - dx, f[1] - dy, f[2] - dz};
+                const gradient *g = &gradients[o->corner_hash[dz][dy][dx] % 12];
+                c[dz][dy][dx] = g->sign[0] * d[g->axis[0]] + g->sign[1] * d[g->axis[1]];
+            }
     double y0 = lerp(lerp(c[0][0][0], c[0][0][1], s[0]), lerp(c[0][1][0], c[0][1][1], s[0]), s[1]);
     double y1 = lerp(lerp(c[1][0][0], c[1][0][1], s[0]), lerp(c[1][1][0], c[1][1][1], s[0]), s[1]);
     return lerp(y0, y1, s[2]);
@@ -146,13 +162,14 @@ static int plan_octaves(int size, int frames, uint32_t seed, double gain, octave
         o[n].salt = sbfx_rng_u32(&rng);
         o[n].nested_hash = false;
         o[n].amplitude = amplitude;
+        o[n].cached = false;
         amplitude *= gain;
         n++;
     }
     return n;
 }
 
-static double fbm(const octave *o, int n, double x, double y, double t, int size, int frames)
+static double fbm(octave *o, int n, double x, double y, double t, int size, int frames)
 {
     double sum = 0.0;
     for (int k = 0; k < n; k++) {
@@ -166,7 +183,7 @@ static double fbm(const octave *o, int n, double x, double y, double t, int size
 
 /* The warped field at texel (x, y, t): the two warp fields q (their own octaves, with other
  * salts and offsets) displace x and y before the main fBm. */
-static double warped(const octave *o, int n, const octave *wx, const octave *wy, int nw, double x, double y,
+static double warped(octave *o, int n, octave *wx, octave *wy, int nw, double x, double y,
                      double t, int size, int frames)
 {
     double shift = WARP_TEXELS_PER_SIZE * size;

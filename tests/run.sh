@@ -1,32 +1,48 @@
 #!/usr/bin/env bash
-# The test runner of `make test` (which builds everything first, normal and ASan+UBSan).
+# The test runner of `make test` (which builds everything first, normal and ASan+UBSan) and of
+# `make check`. docs/testing.md says what each tier runs and how long it takes.
 #
-# Runs, in order, and prints every line they print:
+# A suite is one entry in the list below (run_suite PREFIX NAME COMMAND...): a test program or
+# script that prints "ok - x", "not ok - x[: reason]" or "skip - x[: reason]" lines
+# (tests/check.h). The list holds, in this order:
 #   1. every test binary in $BUILD/tests/unit/, $BUILD/tests/gl/, $BUILD/tests/platform/ and
-#      $BUILD/tests/hosts/ (the SDL2 host, docs/hosts/), the SDL2 and desktop OpenGL example
-#      programs, the Qt Quick item's test and example under Xvfb (tests/hosts/qt_quick.sh)
-#   2. glslangValidator on every shaders_es/*.vert and *.frag, plainly and once per line of
-#      tests/shader_variants.txt ("FILE -DNAME ..." : the defines of one variant)
-#   3. a check that every file in shaders_es/ begins with "#version 300 es"
-#   4. the sbfx-play command-line tests (tests/cli.sh), the probe's (tests/probe.sh), what
+#      $BUILD/tests/hosts/ (the SDL2 host, docs/hosts/), the GL state and host-error tests again
+#      on desktop OpenGL (core and compatibility), the SDL2 and desktop OpenGL example programs,
+#      the Qt Quick item's test and example under Xvfb (tests/hosts/qt_quick.sh)
+#   2. the shaders through glslangValidator and their "#version 300 es" line (tests/shaders.sh)
+#   3. the sbfx-play command-line tests (tests/cli.sh), the probe's (tests/probe.sh), what
 #      libsbfx.so exports (tests/exports.sh), that it reads no data file and renders fire with
 #      colord-data hidden (tests/no_data_files.sh), the CIE table generator (tests/gen_cmf.sh), the
-#      kiosk's unit, udev rule and their exposure (tests/kiosk_unit.sh), sbfx-play as a Wayland
-#      client of cage running headless (tests/wayland.sh), make install and the host
-#      example (examples/bare-egl/)
-#      built against the installed copy (tests/install.sh), a short soak and its leak
-#      detection (tests/soak.sh; make soak runs hours), the documentation's links and
-#      examples (tests/docs.sh)
-#   5. the same binaries (and the CLI tests) from build/asan/, suite names prefixed "asan:";
+#      kiosk's unit, udev rule and their exposure (tests/kiosk_unit.sh), make install and the host
+#      example (examples/bare-egl/) built against the installed copy (tests/install.sh), a short
+#      soak and its leak detection (tests/soak.sh; make soak runs hours), the documentation's
+#      links and examples (tests/docs.sh), sbfx-play under cage and weston (tests/wayland.sh), the
+#      authoring loop (tests/reload.sh), the accuracy suites at GPU precision, a suite per part
+#      (tests/precision.sh, "precision:"), a bounded libFuzzer run (tests/fuzz.sh)
+#   4. the same binaries (and the CLI tests) from build/asan/, suite names prefixed "asan:";
 #      leak detection stays on for unit tests and is off where Mesa is loaded
-# Test lines are "ok - x", "not ok - x[: reason]", "skip - x[: reason]" (see tests/check.h).
-# A binary that crashes, times out, fails without saying so or prints no result counts as a
-# failure with that reason. Ends with "N passed, M failed[, K skipped]"; exits 1 if M > 0.
+# The GL suites of each build share one folder of generated detail volumes for the run
+# (SBFX_TEST_CACHE, tests/gl/support/detail_cache.c).
 #
-# Environment: BUILD (default build), ASAN_BUILD (default build/asan), TEST_TIMEOUT (seconds
-# per binary, default 300), TEST_ASAN_TIMEOUT (the same for the ASan binaries, default twice
-# TEST_TIMEOUT: ASan runs the GL tests about twice as slowly, and test_gl_hard_cases took 228 s
-# alone and over 300 s on a loaded 2-core machine). The limits catch hangs; they time nothing.
+# Suites run in parallel, TEST_JOBS at a time (default: every core), the longest first (their
+# times from the last run, in $BUILD/test-times.txt). Each suite's output is kept and printed
+# whole, in the list's order, as soon as it and every suite before it are done, followed by
+# "# NAME: W s wall, C s CPU". A suite that crashes, runs past its limit, fails without saying
+# so or prints no result counts as a failure with that reason and its name. The end lists the
+# 10 slowest suites, then "N passed, M failed[, K skipped]"; exits 1 if M > 0.
+#
+# Usage: tests/run.sh [--gl-only | --check] [--asan=cpu] [-j N] [--list] [PATTERN...]
+#   --gl-only  the GL suites of $BUILD only (tests/gl/, on desktop OpenGL too), on whichever EGL
+#              driver the loader finds: Mesa here, a GPU's driver where there is one
+#   --check    the edit-compile tier of `make check`: unit tests, test_gl_smoke, the shaders
+#   --asan=cpu the ASan+UBSan tier without the suites that render on Mesa (make test TEST_ASAN=cpu,
+#              which make test-debian13 runs)
+#   --list     print the suites' names and stop
+#   PATTERN    only the suites whose name (with its "asan:" prefix) matches one of these shell
+#              patterns: tests/run.sh test_gl_module 'asan:*'
+# Environment: BUILD (default build), ASAN_BUILD (default build/asan), TEST_JOBS, TEST_TIMEOUT
+# (seconds per suite, default 300), TEST_ASAN_TIMEOUT (the same for the ASan suites, default
+# twice TEST_TIMEOUT). The limits catch hangs; they time nothing.
 set -u
 cd "$(dirname "$0")/.." || exit 1
 
@@ -34,6 +50,28 @@ BUILD=${BUILD:-build}
 ASAN_BUILD=${ASAN_BUILD:-build/asan}
 TIMEOUT=${TEST_TIMEOUT:-300}
 ASAN_TIMEOUT=${TEST_ASAN_TIMEOUT:-$((2 * TIMEOUT))}
+JOBS=${TEST_JOBS:-$(nproc 2>/dev/null || echo 2)}
+TIMES=$BUILD/test-times.txt
+
+mode=all
+asan=full
+list_only=0
+patterns=()
+while [ $# -gt 0 ]; do
+    case $1 in
+        --gl-only) mode=gl ;;
+        --check) mode=check ;;
+        --asan=full | --asan=cpu) asan=${1#--asan=} ;;
+        --list) list_only=1 ;;
+        -j) JOBS=$2; shift ;;
+        -j*) JOBS=${1#-j} ;;
+        -h | --help) sed -n '2,/^set -u/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0 ;;
+        -*) echo "tests/run.sh: unknown option $1 (--help)" >&2; exit 2 ;;
+        *) patterns+=("$1") ;;
+    esac
+    shift
+done
+
 passed=0
 failed=0
 skipped=0
@@ -48,17 +86,231 @@ emit() {
     esac
 }
 
-# run_suite PREFIX NAME COMMAND...: runs one test program under a timeout; its result lines
-# are counted (names prefixed with PREFIX), everything else it prints is passed through.
+# ---- the list ---------------------------------------------------------------------------
+# Each suite: its prefix, name, command (shell-quoted), time limit and the seconds it is
+# expected to take when $TIMES does not know it yet (WEIGHT when it was added).
+prefixes=() names=() commands=() limits=() weights=()
+WEIGHT=5
+
+selected() {
+    local name=$1 p
+    [ ${#patterns[@]} -eq 0 ] && return 0
+    for p in "${patterns[@]}"; do
+        # shellcheck disable=SC2053 # a pattern, on purpose
+        [[ $name == $p ]] && return 0
+    done
+    return 1
+}
+
+# run_suite PREFIX NAME COMMAND...: adds one suite to the list (run later, in parallel); its
+# result lines are counted with their names prefixed with PREFIX. Run with `env VAR=VALUE`
+# first for an environment of its own.
 run_suite() {
     local prefix=$1 name=$2
     shift 2
-    local log results=0 failures=0 rc line
-    log=$(mktemp)
-    local start=$SECONDS
-    # the group's 2>/dev/null only silences bash's own "Segmentation fault" notice
-    { timeout -k 10 "$TIMEOUT" "$@" >"$log" 2>&1 </dev/null; } 2>/dev/null
-    rc=$?
+    selected "$prefix$name" || return 0
+    prefixes+=("$prefix")
+    names+=("$name")
+    commands+=("$(printf '%q ' "$@")")
+    limits+=("$TIMEOUT")
+    weights+=("$WEIGHT")
+}
+
+# run_dir PREFIX DIR [VAR=VALUE...]: every executable in DIR, with that environment.
+run_dir() {
+    local prefix=$1 dir=$2 bin
+    shift 2
+    [ -d "$dir" ] || return 0
+    for bin in "$dir"/*; do
+        [ -f "$bin" ] && [ -x "$bin" ] || continue
+        run_suite "$prefix" "$(basename "$bin")" env "$@" "$bin"
+    done
+}
+
+# A test source whose binary is missing means the build skipped it: say so, not nothing.
+check_built() {
+    local prefix=$1 kind=$2 build=$3 src bin
+    for src in tests/"$kind"/*.c; do
+        [ -f "$src" ] || continue
+        bin="$build/tests/$kind/$(basename "$src" .c)"
+        selected "$prefix$(basename "$bin")" || continue
+        [ -x "$bin" ] || emit "not ok - $prefix$(basename "$bin"): $bin was not built (make test-$kind)"
+    done
+}
+
+# The GL tests' detail volumes, generated once per run and build (tests/gl/support/detail_cache.c):
+# a folder per build, made here, removed at the end of the run.
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+detail_cache() {
+    mkdir -p "$tmp/cache/$1"
+    echo "SBFX_TEST_CACHE=$tmp/cache/$1"
+}
+
+# the GL suites of BUILD, also on desktop OpenGL 4.5, core and compatibility profile (issue 18)
+gl_suites() {
+    local prefix=$1 build=$2 t
+    shift 2
+    local tag=${prefix%:}
+    set -- "$@" "$(detail_cache "${tag:-normal}")"
+    check_built "$prefix" gl "$build"
+    run_dir "$prefix" "$build/tests/gl" "$@"
+    for t in test_gl_state test_gl_host_errors; do
+        [ -x "$build/tests/gl/$t" ] || continue
+        run_suite "${prefix}desktop-core:" "$t" env "$@" SBFX_TEST_GL_API=core "$build/tests/gl/$t"
+        run_suite "${prefix}desktop-compat:" "$t" env "$@" SBFX_TEST_GL_API=compat "$build/tests/gl/$t"
+    done
+}
+
+run_cli() {
+    local prefix=$1 player=$2
+    shift 2
+    if [ ! -x "$player" ]; then
+        selected "${prefix}cli" && emit "not ok - ${prefix}cli: $player was not built"
+        return 0
+    fi
+    run_suite "$prefix" cli env "$@" tests/cli.sh "$player"
+}
+
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+# Mesa's drivers keep allocations until exit that LeakSanitizer would report as ours.
+NO_LEAKS=ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0
+
+list_check() {
+    WEIGHT=2
+    check_built "" unit "$BUILD"
+    run_dir "" "$BUILD/tests/unit"
+    WEIGHT=10
+    if [ -x "$BUILD/tests/gl/test_gl_smoke" ]; then
+        run_suite "" test_gl_smoke env "$(detail_cache normal)" "$BUILD/tests/gl/test_gl_smoke"
+    else
+        emit "not ok - test_gl_smoke: $BUILD/tests/gl/test_gl_smoke was not built (make check)"
+    fi
+    WEIGHT=3
+    run_suite "" shaders tests/shaders.sh
+}
+
+list_all() {
+    WEIGHT=2
+    check_built "" unit "$BUILD"
+    run_dir "" "$BUILD/tests/unit"
+    WEIGHT=5
+    gl_suites "" "$BUILD"
+    WEIGHT=2
+    check_built "" platform "$BUILD"
+    run_dir "" "$BUILD/tests/platform"
+    check_built "" hosts "$BUILD"
+    run_dir "" "$BUILD/tests/hosts"
+    WEIGHT=10
+    run_suite "" sdl2-example tests/hosts/sdl2_example.sh "$BUILD"
+    run_suite "" desktop-gl-example tests/hosts/desktop_gl_example.sh "$BUILD"
+    # the Qt Quick item's test and example under Xvfb (skipped, with the reason, without Qt 6)
+    run_suite "" qt-quick tests/hosts/qt_quick.sh "$BUILD"
+    run_suite "" shaders tests/shaders.sh
+    run_cli "" "$BUILD/sbfx-play"
+    run_suite "" probe tests/probe.sh "$BUILD/sbfx-probe"
+    run_suite "" exports tests/exports.sh "$BUILD"
+    run_suite "" no-data-files tests/no_data_files.sh "$BUILD"
+    run_suite "" gen-cmf tests/gen_cmf.sh "$BUILD"
+    run_suite "" kiosk-unit tests/kiosk_unit.sh "$BUILD"
+    # sbfx-play as a client of cage and weston, headless, as a plain user (issue 28)
+    WEIGHT=60
+    run_suite "" wayland tests/wayland.sh "$BUILD"
+    # the authoring loop: sbfx-play --headless --watch edited the ways editors save (issue 29)
+    WEIGHT=30
+    run_suite "" reload tests/reload.sh "$BUILD/sbfx-play"
+    WEIGHT=10
+    run_suite "" install tests/install.sh "$BUILD"
+    run_suite "" docs tests/docs.sh
+    run_suite "" soak tests/soak.sh "$BUILD"
+    # the accuracy suites at the precision GPUs compute at (issue 25, tests/precision.sh, make
+    # test-precision), each part a suite of its own
+    WEIGHT=20
+    local part
+    for part in $(tests/precision.sh --parts); do
+        run_suite "precision:" "$part" env "$(detail_cache normal)" tests/precision.sh "$BUILD" "$part"
+    done
+    # the scene parser under libFuzzer for FUZZ_SECONDS (60), the example scenes as corpus
+    WEIGHT=$((${FUZZ_SECONDS:-60} + 30))
+    run_suite "" fuzz tests/fuzz.sh "$BUILD"
+
+    if [ -d "$ASAN_BUILD" ]; then
+        local timeout=$TIMEOUT
+        TIMEOUT=$ASAN_TIMEOUT
+        WEIGHT=4
+        check_built "asan:" unit "$ASAN_BUILD"
+        run_dir "asan:" "$ASAN_BUILD/tests/unit"
+        check_built "asan:" platform "$ASAN_BUILD"
+        run_dir "asan:" "$ASAN_BUILD/tests/platform"
+        if [ "$asan" = full ]; then
+            WEIGHT=8
+            gl_suites "asan:" "$ASAN_BUILD" "$NO_LEAKS"
+            WEIGHT=30 # some 20 player runs, each generating its detail volume under ASan
+            run_cli "asan:" "$ASAN_BUILD/sbfx-play" "$NO_LEAKS"
+        else
+            echo "# --asan=cpu: the ASan+UBSan tier runs the unit and platform suites only"
+        fi
+        TIMEOUT=$timeout
+    else
+        emit "not ok - asan: $ASAN_BUILD is missing (make test builds it)"
+    fi
+}
+
+case $mode in
+    all) list_all ;;
+    check) list_check ;;
+    gl) gl_suites "" "$BUILD" ;;
+esac
+count=${#names[@]}
+
+if [ "$list_only" -eq 1 ]; then
+    for ((i = 0; i < count; i++)); do printf '%s%s\n' "${prefixes[i]}" "${names[i]}"; done
+    exit 0
+fi
+if [ "$count" -eq 0 ] && [ ${#patterns[@]} -gt 0 ]; then
+    echo "tests/run.sh: no suite matches ${patterns[*]} (tests/run.sh --list)" >&2
+    exit 2
+fi
+
+# ---- running them -----------------------------------------------------------------------
+stop_all() {
+    local f
+    for f in "$tmp"/*.pid; do [ -f "$f" ] && kill -TERM "$(cat "$f")" 2>/dev/null; done
+}
+trap 'stop_all; rm -rf "$tmp"' EXIT
+trap 'exit 130' INT TERM
+
+# Seconds as "12.3" from microseconds.
+seconds() { printf '%d.%d' $(($1 / 1000000)) $(($1 % 1000000 / 100000)); }
+# bash's `times` value (1m2.345s) in microseconds
+times_us() {
+    [[ $1 =~ ^([0-9]+)m([0-9]+)\.([0-9]+)s$ ]] || { echo 0; return; }
+    local frac=${BASH_REMATCH[3]}000000
+    echo $(((BASH_REMATCH[1] * 60 + 10#${BASH_REMATCH[2]}) * 1000000 + 10#${frac:0:6}))
+}
+
+# start_suite I: runs suite I in the background under its limit; its output goes to $tmp/I.log,
+# then "STATUS WALL_US CPU_US" to $tmp/I.end (CPU: user + system of the suite and its children).
+start_suite() {
+    local i=$1
+    {
+        local t0=${EPOCHREALTIME/./} rc u s
+        eval "exec timeout -k 10 ${limits[i]} ${commands[i]}" >"$tmp/$i.log" 2>&1 </dev/null &
+        echo $! >"$tmp/$i.pid"
+        wait $!
+        rc=$?
+        rm -f "$tmp/$i.pid"
+        times >"$tmp/$i.times" # in this shell: the suite's processes are its children
+        read -r _ _ u s < <(tr '\n' ' ' <"$tmp/$i.times")
+        echo "$rc $((${EPOCHREALTIME/./} - t0)) $(($(times_us "$u") + $(times_us "$s")))" >"$tmp/$i.end"
+    } 2>/dev/null & # the 2>/dev/null only silences bash's own "Segmentation fault" notice
+}
+
+# print_suite I: suite I's output whole, its results counted, its time, and the failure its
+# exit says when its lines do not.
+print_suite() {
+    local i=$1
+    local prefix=${prefixes[i]} name=${names[i]} limit=${limits[i]} results=0 failures=0 line rc wall cpu
     while IFS= read -r line || [ -n "$line" ]; do
         case "$line" in
             "ok - "*) emit "ok - $prefix${line#ok - }"; results=$((results + 1)) ;;
@@ -66,11 +318,12 @@ run_suite() {
             "skip - "*) emit "skip - $prefix${line#skip - }"; results=$((results + 1)) ;;
             *) printf '%s\n' "$line" ;;
         esac
-    done <"$log"
-    rm -f "$log"
-    printf '# %s%s: %d s\n' "$prefix" "$name" $((SECONDS - start))
+    done <"$tmp/$i.log"
+    read -r rc wall cpu <"$tmp/$i.end"
+    printf '# %s%s: %s s wall, %s s CPU\n' "$prefix" "$name" "$(seconds "$wall")" "$(seconds "$cpu")"
+    printf '%s %s %s%s\n' "$wall" "$cpu" "$prefix" "$name" >>"$tmp/times"
     if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then
-        emit "not ok - $prefix$name: timed out after $TIMEOUT s"
+        emit "not ok - $prefix$name: timed out after $limit s"
     elif [ "$rc" -ge 128 ]; then
         emit "not ok - $prefix$name: crashed (signal $((rc - 128)))"
     elif [ "$rc" -ne 0 ] && [ "$failures" -eq 0 ]; then
@@ -80,154 +333,57 @@ run_suite() {
     fi
 }
 
-# run_dir PREFIX DIR: every executable in DIR.
-run_dir() {
-    local prefix=$1 dir=$2 bin
-    [ -d "$dir" ] || return 0
-    for bin in "$dir"/*; do
-        [ -f "$bin" ] && [ -x "$bin" ] || continue
-        run_suite "$prefix" "$(basename "$bin")" "$bin"
-    done
-}
-
-# A test source whose binary is missing means the build skipped it: say so, not nothing.
-check_built() {
-    local prefix=$1 kind=$2 build=$3 src
-    for src in tests/"$kind"/*.c; do
-        [ -f "$src" ] || continue
-        local bin="$build/tests/$kind/$(basename "$src" .c)"
-        [ -x "$bin" ] || emit "not ok - $prefix$(basename "$bin"): $bin was not built (make test-$kind)"
-    done
-}
-
-# validate NAME GLSLANG-ARGS...: one shader validation as one test line.
-validate() {
-    local name=$1 out reason
-    shift
-    if out=$(glslangValidator "$@" 2>&1); then
-        emit "ok - $name"
-    else
-        reason=$(printf '%s\n' "$out" | grep -m1 -i 'error' || printf '%s\n' "$out" | tail -n1)
-        emit "not ok - $name: $reason"
-    fi
-}
-
-validate_shaders() {
-    local f line file words
-    local shaders=(shaders_es/*.vert shaders_es/*.frag)
-    if ! command -v glslangValidator >/dev/null 2>&1; then
-        for f in "${shaders[@]}"; do
-            [ -f "$f" ] && emit "skip - glslang/$(basename "$f"): glslangValidator not installed (tools/deps.sh test)"
-        done
-        return 0
-    fi
-    for f in "${shaders[@]}"; do
-        [ -f "$f" ] && validate "glslang/$(basename "$f")" "$f"
-    done
-    [ -f tests/shader_variants.txt ] || return 0
-    while IFS= read -r line || [ -n "$line" ]; do
-        line=${line%$'\r'}
-        case "$line" in "" | "#"*) continue ;; esac
-        read -r -a words <<<"$line"
-        file=${words[0]}
-        [ -f "$file" ] || file="shaders_es/$file"
-        if [ ! -f "$file" ]; then
-            emit "not ok - glslang-variant/$line: no such shader"
-            continue
-        fi
-        # glslangValidator takes -D only when linking (-l); one stage links on its own
-        validate "glslang-variant/$(basename "$file") ${words[*]:1}" -l "${words[@]:1}" "$file"
-    done <tests/shader_variants.txt
-}
-
-check_version_lines() {
-    local f first
-    for f in shaders_es/*; do
-        [ -f "$f" ] || continue
-        first=""
-        IFS= read -r first <"$f"
-        if [[ "$first" =~ ^"#version 300 es"[[:space:]]*$ ]]; then
-            emit "ok - shader-header/$(basename "$f")"
-        else
-            emit "not ok - shader-header/$(basename "$f"): first line is '$first', not '#version 300 es'"
-        fi
-    done
-}
-
-run_cli() {
-    local prefix=$1 player=$2
-    if [ ! -x "$player" ]; then
-        emit "not ok - ${prefix}cli: $player was not built"
-        return 0
-    fi
-    run_suite "$prefix" cli tests/cli.sh "$player"
-}
-
-export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-
-check_built "" unit "$BUILD"
-run_dir "" "$BUILD/tests/unit"
-check_built "" gl "$BUILD"
-run_dir "" "$BUILD/tests/gl"
-check_built "" platform "$BUILD"
-run_dir "" "$BUILD/tests/platform"
-# the host contract and the host's pending errors on desktop OpenGL 4.5, core and compatibility
-# profile (issue 18)
-for t in test_gl_state test_gl_host_errors; do
-    [ -x "$BUILD/tests/gl/$t" ] || continue
-    SBFX_TEST_GL_API=core run_suite "desktop-core:" "$t" "$BUILD/tests/gl/$t"
-    SBFX_TEST_GL_API=compat run_suite "desktop-compat:" "$t" "$BUILD/tests/gl/$t"
-done
-check_built "" hosts "$BUILD"
-run_dir "" "$BUILD/tests/hosts"
-run_suite "" sdl2-example tests/hosts/sdl2_example.sh "$BUILD"
-run_suite "" desktop-gl-example tests/hosts/desktop_gl_example.sh "$BUILD"
-# the Qt Quick item's test and example under Xvfb (skipped, with the reason, without Qt 6)
-run_suite "" qt-quick tests/hosts/qt_quick.sh "$BUILD"
-validate_shaders
-check_version_lines
-run_cli "" "$BUILD/sbfx-play"
-run_suite "" probe tests/probe.sh "$BUILD/sbfx-probe"
-TIMEOUT=$((4 * TIMEOUT)) run_suite "precision:" precision tests/precision.sh "$BUILD"
-run_suite "" exports tests/exports.sh "$BUILD"
-run_suite "" no-data-files tests/no_data_files.sh "$BUILD"
-run_suite "" gen-cmf tests/gen_cmf.sh "$BUILD"
-run_suite "" kiosk-unit tests/kiosk_unit.sh "$BUILD"
-run_suite "" wayland tests/wayland.sh "$BUILD"
-run_suite "" reload tests/reload.sh "$BUILD/sbfx-play"
-run_suite "" install tests/install.sh "$BUILD"
-run_suite "" docs tests/docs.sh
-run_suite "" soak tests/soak.sh "$BUILD"
-
-if [ -d "$ASAN_BUILD" ]; then
-    TIMEOUT=$ASAN_TIMEOUT
-    check_built "asan:" unit "$ASAN_BUILD"
-    run_dir "asan:" "$ASAN_BUILD/tests/unit"
-    # Mesa's drivers keep allocations until exit that LeakSanitizer would report as ours.
-    check_built "asan:" platform "$ASAN_BUILD"
-    run_dir "asan:" "$ASAN_BUILD/tests/platform"
-    check_built "asan:" gl "$ASAN_BUILD"
-    ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 run_dir "asan:" "$ASAN_BUILD/tests/gl"
-    ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 run_cli "asan:" "$ASAN_BUILD/sbfx-play"
-else
-    emit "not ok - asan: $ASAN_BUILD is missing (make test builds it)"
+# The order to start them in: longest first, by the last run's wall time, else by weight.
+declare -A known=()
+if [ -f "$TIMES" ]; then
+    while read -r wall _ full; do known[$full]=$wall; done <"$TIMES"
 fi
+order=()
+while read -r _ i; do order+=("$i"); done < <(
+    for ((i = 0; i < count; i++)); do
+        printf '%s %d\n' "${known[${prefixes[i]}${names[i]}]:-$((weights[i] * 1000000))}" "$i"
+    done | sort -k1,1nr -k2,2n)
 
-# The scene parser under libFuzzer for a bounded time, the example scenes as corpus (issue #3).
-run_fuzz() {
-    local seconds=${FUZZ_SECONDS:-60} log="$BUILD/fuzz/make.log"
-    if ! command -v clang >/dev/null 2>&1; then
-        emit "skip - fuzz/scene_parse: clang is not installed (apt-get install clang libclang-rt-14-dev)"
-        return
-    fi
-    mkdir -p "$BUILD/fuzz"
-    if make --no-print-directory BUILD="$BUILD" FUZZ_SECONDS="$seconds" fuzz >"$log" 2>&1; then
-        emit "ok - fuzz/scene_parse ($(grep -o 'Done [0-9]* runs' "$BUILD/fuzz/log" | head -n 1) in ${seconds} s)"
-    else
-        emit "not ok - fuzz/scene_parse: $(tail -n 5 "$log" | tr '\n' ' ')"
-    fi
-}
-run_fuzz
+declare -A running=()
+done_=()
+next=0 shown=0 t0=${EPOCHREALTIME/./}
+while [ "$shown" -lt "$count" ]; do
+    while [ "$next" -lt "$count" ] && [ ${#running[@]} -lt "$JOBS" ]; do
+        start_suite "${order[next]}"
+        running[$!]=${order[next]}
+        next=$((next + 1))
+    done
+    finished=""
+    wait -n -p finished "${!running[@]}"
+    [ -n "${finished:-}" ] || continue
+    done_[${running[$finished]}]=1
+    unset "running[$finished]"
+    finished_count=$((${finished_count:-0} + 1))
+    # on a terminal, how far it is (the suites print in order, so output can wait for a long one)
+    [ -t 2 ] && printf '\r\033[K# %d of %d suites done\r' "$finished_count" "$count" >&2
+    while [ "$shown" -lt "$count" ] && [ -n "${done_[shown]:-}" ]; do
+        [ -t 2 ] && printf '\r\033[K' >&2
+        print_suite "$shown"
+        shown=$((shown + 1))
+    done
+done
+total_wall=$((${EPOCHREALTIME/./} - t0))
+
+if [ "$count" -gt 0 ]; then
+    cpu_sum=0
+    while read -r _ cpu _; do cpu_sum=$((cpu_sum + cpu)); done <"$tmp/times"
+    echo "# the 10 slowest suites (wall, CPU):"
+    sort -k1,1nr "$tmp/times" | head -n 10 | while read -r wall cpu full; do
+        printf '#   %7s s %7s s  %s\n' "$(seconds "$wall")" "$(seconds "$cpu")" "$full"
+    done
+    printf '# %d suites in %s s wall, %d at a time (%s s CPU)\n' "$count" "$(seconds "$total_wall")" "$JOBS" \
+        "$(seconds "$cpu_sum")"
+    # this run's times replace the last run's, suite by suite
+    for full in "${!known[@]}"; do
+        awk -v n="$full" '$3 == n { f = 1 } END { exit !f }' "$tmp/times" || printf '%s 0 %s\n' "${known[$full]}" "$full" >>"$tmp/times"
+    done
+    mkdir -p "$BUILD" && cp "$tmp/times" "$TIMES" 2>/dev/null
+fi
 
 if [ "$skipped" -gt 0 ]; then
     echo "$passed passed, $failed failed, $skipped skipped"

@@ -180,6 +180,55 @@ static inline float *fixture_read_target(sbfx *fx, int *w, int *h)
     return rgba;
 }
 
+/* Whether the current context offers the GL extension `name` (glGetStringi, as src/ asks). */
+static inline bool fixture_has_extension(const char *name)
+{
+    GLint n = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+    for (GLint i = 0; i < n; i++) {
+        const char *ext = (const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i);
+        if (ext && strcmp(ext, name) == 0) return true;
+    }
+    return false;
+}
+
+/* Hides the GL extensions `names` (space-separated) from the contexts opened after this call, to
+ * test a fallback: Mesa's MESA_EXTENSION_OVERRIDE ("-NAME ..."). Other drivers ignore that
+ * variable: after opening, fixture_require_hidden() finds out. */
+static inline void fixture_hide_extensions(const char *names)
+{
+    char value[512] = "";
+    size_t used = 0;
+    char copy[512];
+    snprintf(copy, sizeof(copy), "%s", names);
+    for (char *save = NULL, *name = strtok_r(copy, " ", &save); name; name = strtok_r(NULL, " ", &save))
+        used += (size_t)snprintf(value + used, used < sizeof(value) ? sizeof(value) - used : 0, "%s-%s",
+                                 used ? " " : "", name);
+    setenv("MESA_EXTENSION_OVERRIDE", value, 1);
+}
+
+/* On the current context: skips the running test, saying why, where one of the extensions that
+ * fixture_hide_extensions() hid is still offered (the driver does not honour Mesa's variable),
+ * as the fallback under test cannot be forced there. */
+static inline void fixture_require_hidden(const char *names)
+{
+    char copy[512];
+    snprintf(copy, sizeof(copy), "%s", names);
+    for (char *save = NULL, *name = strtok_r(copy, " ", &save); name; name = strtok_r(NULL, " ", &save))
+        if (fixture_has_extension(name))
+            CHECK_SKIP("%s still offers %s with MESA_EXTENSION_OVERRIDE hiding it (only Mesa honours that "
+                       "variable): the fallback cannot be forced on this driver",
+                       (const char *)glGetString(GL_RENDERER), name);
+}
+
+/* Whether an 8-bit channel read back is the unsigned-normalised value v converted by the GL:
+ * within one level of v * 255 (a clear to 0.5 reads 128 on Mesa, 127 on NVIDIA; both are
+ * allowed, GLES 3.0 2.1.6.1 leaves the rounding to the implementation). */
+static inline bool fixture_unorm8_is(int level, float v)
+{
+    return fabs(level - (double)v * 255.0) < 1.0;
+}
+
 static inline bool all_finite(const float *v, size_t n)
 {
     for (size_t i = 0; i < n; i++)

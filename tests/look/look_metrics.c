@@ -95,7 +95,25 @@ static void chessboard_distance(const uint8_t *mask, int w, int h, int *d)
         }
 }
 
-/* Separable Gaussian of standard deviation sigma (radius 4 sigma, clamped at the border). */
+/* Separable Gaussian of standard deviation sigma (radius 4 sigma, clamped at the border).
+ * Both passes sweep whole rows per tap (tap outer, pixel inner): each pixel still sums its taps
+ * in the order -r..r, so the result is bit for bit the per-pixel loop's, but the vertical pass
+ * reads rows in order instead of a column per pixel (issue 26: test_gl_look spent most of its time
+ * here, 266 million strided reads per blur at the 32 px scale). */
+static void blur_row(const double *k, int r, const double *in, int w, double *acc)
+{
+    for (int x = 0; x < w; x++) acc[x] = 0.0;
+    for (int i = -r; i <= r; i++) {
+        double ki = k[i + r];
+        int lo = -i > 0 ? -i : 0, hi = w - i < w ? w - i : w; /* x + i inside [0, w) */
+        if (lo > w) lo = w;
+        if (hi < 0) hi = 0;
+        for (int x = 0; x < lo; x++) acc[x] += ki * in[0];
+        for (int x = lo; x < hi; x++) acc[x] += ki * in[x + i];
+        for (int x = hi > lo ? hi : lo; x < w; x++) acc[x] += ki * in[w - 1];
+    }
+}
+
 static void gaussian_blur(const double *in, int w, int h, double sigma, double *tmp, double *out)
 {
     int r = (int)ceil(4.0 * sigma);
@@ -103,24 +121,17 @@ static void gaussian_blur(const double *in, int w, int h, double sigma, double *
     if (!k) return;
     for (int i = -r; i <= r; i++) sum += k[i + r] = exp(-0.5 * i * i / (sigma * sigma));
     for (int i = 0; i <= 2 * r; i++) k[i] /= sum;
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            double acc = 0.0;
-            for (int i = -r; i <= r; i++) {
-                int xx = x + i < 0 ? 0 : x + i >= w ? w - 1 : x + i;
-                acc += k[i + r] * in[(size_t)y * w + xx];
-            }
-            tmp[(size_t)y * w + x] = acc;
+    for (int y = 0; y < h; y++) blur_row(k, r, in + (size_t)y * w, w, tmp + (size_t)y * w);
+    for (int y = 0; y < h; y++) {
+        double *acc = out + (size_t)y * w;
+        for (int x = 0; x < w; x++) acc[x] = 0.0;
+        for (int i = -r; i <= r; i++) {
+            int yy = y + i < 0 ? 0 : y + i >= h ? h - 1 : y + i;
+            const double *row = tmp + (size_t)yy * w;
+            double ki = k[i + r];
+            for (int x = 0; x < w; x++) acc[x] += ki * row[x];
         }
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            double acc = 0.0;
-            for (int i = -r; i <= r; i++) {
-                int yy = y + i < 0 ? 0 : y + i >= h ? h - 1 : y + i;
-                acc += k[i + r] * tmp[(size_t)yy * w + x];
-            }
-            out[(size_t)y * w + x] = acc;
-        }
+    }
     free(k);
 }
 
