@@ -4,7 +4,8 @@
  * sky's behind them and whose 90th percentile is at least 1.3 times it (tests/look/fire_metric.h),
  * at 480x270, the default 1/4 particle target; a cool fireball does not. And the units: the light
  * an optically thick 1500 K fire puts in the particle target is brighter than the daylight sky
- * (as the host's picture holds it), a thin, a cooled or a 1400 K one is not. */
+ * (as the host's picture holds it), a thin, a cooled or a 1400 K one is not. And thin fire edges
+ * over the sky are rarely pink (issue 27: only soot hot enough to glow emits). */
 #include "fire_look.h"
 #include "gl_fixture.h"
 
