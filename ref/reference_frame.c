@@ -274,7 +274,7 @@ static void shade_with_detail(const sbfx_rf_frame *f, const sbfx_rf_particle *p,
     /* soot: absorbs without glowing where cool (particle.frag's fire_soot), with the detail */
     if (emits && m->has_detail)
         coverage = fire_coverage(f->opacity, &rp, &px, a, m->detail_strength * m->tau * tau_scale *
-                                                             sbfx_fire_soot(detail, cooled, particle_rho(p, ray), p->intensity));
+                                                             sbfx_fire_soot(detail, cooled, p->intensity));
     double light[3] = {0.0, 0.0, 0.0};
     if (scatters) {
         double s[3], fire[3];
@@ -287,7 +287,9 @@ static void shade_with_detail(const sbfx_rf_frame *f, const sbfx_rf_particle *p,
     if (emits) {
         double e[3];
         emitted(f, m, (m->t0 + m->t1 * detail) * cooled, e);
-        for (int k = 0; k < 3; k++) light[k] = mp(f, light[k] + e[k]);
+        /* only the share of the opacity hot enough to glow emits (particle.frag's fire_glow_share) */
+        double glow = m->has_detail ? sbfx_fire_glow_share(detail, p->intensity, m->detail_strength) : 1.0;
+        for (int k = 0; k < 3; k++) light[k] = mp(f, light[k] + e[k] * glow);
     }
     for (int k = 0; k < 3; k++) rgb[k] = light[k] * a;
     *alpha = coverage;

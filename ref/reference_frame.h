@@ -131,7 +131,9 @@ void sbfx_rf_sort(const sbfx_rf_particle *particles, int count, int *order);
 void sbfx_rf_pixel_ray(const sbfx_rf_frame *f, int x, int y, double ray[3]);
 
 /* One particle at one pixel, as particle.frag computes it: premultiplied light rgb (light x
- * the emitting alpha) and alpha (what it covers: for fire with its soot, sbfx_fire_soot). A particle the ray misses gives alpha 0, rgb 0. */
+ * the emitting alpha; fire's emission times the share of its soot that glows,
+ * sbfx_fire_glow_share) and alpha (what it covers: for fire with its soot, sbfx_fire_soot). A
+ * particle the ray misses gives alpha 0, rgb 0. */
 void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
                    double opaque_distance, double rgb[3], double *alpha);
 

@@ -230,17 +230,35 @@ float detail_fire_temperature(float detail, float rho, float intensity, float st
     return mix(0.5, clamp(0.5 + spread * (detail - 0.5) + FIRE_CORE * fresh * (0.5 - rho), 0.0, 1.0), strength);
 }
 
-// Fire's soot (docs/look-fire.md): where the fire is cool — at its edges, in the detail's cooler
-// parts, more as it cools — it holds soot that absorbs and does not glow, spread further out
-// than the glowing part (optical depth FIRE_SOOT (1 - hot)² times the peak extinction times
-// chord² / 2r: 2r (1 - rho²) for a whole chord, falling to the edge as 1 - rho, where the glowing
-// part's falls as (1 - rho)^1.5; an even spread, the chord itself, drew the spheres' edges). So a thin fire edge over the sky darkens the
-// sky behind it instead of tinting it pink, and cooling fire shows dark soot between its glowing
-// parts. hot = the temperature coordinate times the cooling factor (1: the fresh, hottest core).
-const float FIRE_SOOT = 16.0;
-float fire_soot(float coordinate, float cooled, float rho, float intensity)
+// Fire's soot (docs/look-fire.md), by Kirchhoff: what glows also absorbs, and soot too cool to
+// glow still absorbs. Two parts, both keyed to the temperature coordinate (the detail-perturbed,
+// rim-cooled one that sets T) and to the particle's age, so they follow the same fields that cool
+// the fire:
+// - fire_glow_share: the share of the column's soot hot enough to glow. Soot whose coordinate is
+//   below a threshold (FIRE_GLOW_THRESHOLD, rising by FIRE_GLOW_AGE as the particle's intensity
+//   falls) is cold; the column's emission is that share times its opacity (a mixed column of hot
+//   and cold soot emits h (1 - e^-tau) and absorbs 1 - e^-tau). The thin, cool rim of a fireball
+//   then darkens the sky behind it instead of adding red light to it (the pink edges of issue 27).
+//   Over FIRE_GLOW_WIDTH of the coordinate the share rises from 0 to 1; strength 0: 1.
+// - fire_soot: extra optical depth that absorbs and does not glow, where the fire is old and
+//   cool: FIRE_SOOT ((1 - hot) (1 - intensity)^2)^2 times the peak extinction times chord^2 / 2r
+//   (2r (1 - rho^2) for a whole chord: it reaches further out than the glowing part, whose depth
+//   falls as (1 - rho)^1.5; an even spread, the chord itself, drew the spheres' edges). hot = the
+//   temperature coordinate times the cooling factor (1: the fresh, hottest core). Old fire turns
+//   into the smoke it makes; young fire carries little of it, so it stays light (DESIGN §8).
+const float FIRE_GLOW_THRESHOLD = 0.45;
+const float FIRE_GLOW_AGE = 0.4;
+const float FIRE_GLOW_WIDTH = 0.2;
+float fire_glow_share(float coordinate, float intensity, float strength)
 {
-    float cool = (1.0 - coordinate * cooled) * rho * (1.0 - clamp(intensity, 0.0, 1.0));
+    float threshold = FIRE_GLOW_THRESHOLD + FIRE_GLOW_AGE * (1.0 - clamp(intensity, 0.0, 1.0));
+    return mix(1.0, clamp((coordinate - threshold) / FIRE_GLOW_WIDTH, 0.0, 1.0), strength);
+}
+const float FIRE_SOOT = 16.0;
+float fire_soot(float coordinate, float cooled, float intensity)
+{
+    float age = 1.0 - clamp(intensity, 0.0, 1.0);
+    float cool = (1.0 - coordinate * cooled) * age * age;
     return FIRE_SOOT * cool * cool;
 }
 
@@ -494,9 +512,11 @@ void main()
     float coverage = alpha;                    // what absorbs: the same, but for fire's soot
 #ifdef MEDIUM_EMITS
     float cooled = 1.0 - u_temperature.z * (1.0 - intensity);
+    float glow = 1.0;                          // the share of the opacity that glows
 #ifdef HAS_DETAIL   // soot is part of the detail's look: strength 0 (or no detail) has none
-    float soot = u_detail_strength * fire_soot(detail, cooled, particle_rho(c, r, ray), intensity);
+    float soot = u_detail_strength * fire_soot(detail, cooled, intensity);
     coverage = opacity_from_depth(depth + soot * u_tau * tau_scale * (chord * chord / (2.0 * r)));
+    glow = fire_glow_share(detail, intensity, u_detail_strength);
 #endif
 #endif
 #ifdef OPACITY_SOFT
@@ -522,7 +542,7 @@ void main()
     light += u_albedo_color * (shade * (in_scattered(ray, c) + fire));
 #endif
 #ifdef MEDIUM_EMITS
-    light += emitted((u_temperature.x + u_temperature.y * detail) * cooled);
+    light += emitted((u_temperature.x + u_temperature.y * detail) * cooled) * glow;
 #endif
 #ifdef MEDIUM_HEAT
     // Heat neither absorbs nor lights: it adds a screen offset, two decorrelated detail

@@ -77,10 +77,17 @@ double sbfx_fire_coordinate(double detail, double rho, double intensity, double 
     return mix(0.5, clamp01(0.5 + spread * (detail - 0.5) + SBFX_FIRE_CORE * fresh * (0.5 - rho)), strength);
 }
 
-double sbfx_fire_soot(double coordinate, double cooled, double rho, double intensity)
+double sbfx_fire_soot(double coordinate, double cooled, double intensity)
 {
-    double cool = (1.0 - coordinate * cooled) * rho * (1.0 - clamp01(intensity));
+    double age = 1.0 - clamp01(intensity);
+    double cool = (1.0 - coordinate * cooled) * age * age;
     return SBFX_FIRE_SOOT * cool * cool;
+}
+
+double sbfx_fire_glow_share(double coordinate, double intensity, double strength)
+{
+    double threshold = SBFX_FIRE_GLOW_THRESHOLD + SBFX_FIRE_GLOW_AGE * (1.0 - clamp01(intensity));
+    return mix(1.0, clamp01((coordinate - threshold) / SBFX_FIRE_GLOW_WIDTH), strength);
 }
 
 /* One pixel's disc of light at one detail value: sum over rings of L_e alpha dA; returns the
@@ -99,8 +106,9 @@ static double disc_at_detail(const sbfx_fire_model *m, double radius, double int
         double ring = 2.0 * M_PI * rho * radius * radius / RINGS;
         double coordinate = sbfx_fire_coordinate(detail, rho, intensity, s);
         double soot_path = 2.0 * radius * (1.0 - rho) * (1.0 + rho); /* chord^2 / 2r */
-        area += ring * -expm1(-(depth + s * tau * soot_path * sbfx_fire_soot(coordinate, cooled, rho, intensity)));
-        ring *= alpha;
+        area += ring * -expm1(-(depth + s * tau * soot_path * sbfx_fire_soot(coordinate, cooled, intensity)));
+        ring *= alpha * sbfx_fire_glow_share(coordinate, intensity, s);
+        if (ring == 0.0) continue; /* soot too cool to glow: it only covers */
         double bb[3];
         m->blackbody(m->blackbody_ctx, (m->t0 + m->t1 * coordinate) * cooled, bb);
         for (int k = 0; k < 3; k++) {

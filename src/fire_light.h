@@ -11,7 +11,7 @@
  * the detail's values (one per pixel drives both the density and the temperature there; the
  * black body is steep in T, so the light at the mean detail would be far too little for cooling
  * fire). The black body is the module's normalised one (table or analytic). */
-#define SBFX_FIRE_DETAIL_LEVELS 8
+#define SBFX_FIRE_DETAIL_LEVELS 32
 typedef struct sbfx_fire_model {
     double tau, t0, t1, cooling, detail_strength;
     double detail[SBFX_FIRE_DETAIL_LEVELS]; /* the detail volume's quantiles (j + 1/2) / LEVELS */
@@ -29,11 +29,20 @@ typedef struct sbfx_fire_model {
 double sbfx_fire_coordinate(double detail, double rho, double intensity, double strength);
 
 /* Fire's soot (particle.frag's fire_soot): optical depth that absorbs and does not glow, where the
- * fire is cool: the particle's peak extinction (tau x density scale) x chord^2 / 2r x this,
- * FIRE_SOOT (1 - coordinate x cooled)^2, coordinate the temperature's (T = T0 + T1
- * coordinate) and cooled = 1 - cooling (1 - intensity). */
+ * fire is old and cool: the particle's peak extinction (tau x density scale) x chord^2 / 2r x this,
+ * FIRE_SOOT ((1 - coordinate x cooled) (1 - intensity)^2)^2, coordinate the temperature's (T = T0 +
+ * T1 coordinate) and cooled = 1 - cooling (1 - intensity). */
 #define SBFX_FIRE_SOOT 16.0
-double sbfx_fire_soot(double coordinate, double cooled, double rho, double intensity);
+double sbfx_fire_soot(double coordinate, double cooled, double intensity);
+
+/* The share of a fire column's opacity that glows (particle.frag's fire_glow_share): its soot
+ * whose temperature coordinate is above FIRE_GLOW_THRESHOLD + FIRE_GLOW_AGE (1 - intensity), rising
+ * over FIRE_GLOW_WIDTH of the coordinate; the rest is too cool to glow and only absorbs (Kirchhoff).
+ * mix(1, that, strength). The emission is this times the opacity; the coverage is the opacity. */
+#define SBFX_FIRE_GLOW_THRESHOLD 0.45
+#define SBFX_FIRE_GLOW_AGE 0.4
+#define SBFX_FIRE_GLOW_WIDTH 0.2
+double sbfx_fire_glow_share(double coordinate, double intensity, double strength);
 
 /* The quantiles of the values a pixel samples from the detail volume (size x size x frames, x
  * fastest): trilinear between texels, as the GPU filters a magnified window (which narrows the

@@ -55,3 +55,18 @@ int fire_metric_ratios(const uint8_t *out, const uint8_t *background, const uint
     free(ratios);
     return r->pixels > 0 ? 0 : -1;
 }
+
+double fire_metric_pink_share(const uint8_t *out, const uint8_t *background, const uint8_t *mask, int width,
+                              int height, long *pink, long *reddish)
+{
+    size_t n = (size_t)width * (size_t)height;
+    *pink = *reddish = 0;
+    for (size_t i = 0; i < n; i++) {
+        const uint8_t *p = out + 4 * i;
+        if ((mask && !mask[i]) || !changed(p, background + 4 * i)) continue;
+        if ((int)p[0] - (int)p[1] <= FIRE_METRIC_REDDISH) continue;
+        ++*reddish;
+        if (p[2] > p[1]) ++*pink;
+    }
+    return *reddish > 0 ? (double)*pink / (double)*reddish : NAN;
+}

@@ -32,4 +32,13 @@ void fire_metric_mask(const uint8_t *out, const uint8_t *no_fire, int width, int
 int fire_metric_ratios(const uint8_t *out, const uint8_t *background, const uint8_t *mask, int width, int height,
                        fire_ratios *r);
 
+/* Pink fire edges (issue 27): among the fire pixels (as for the ratios) that are reddish (red
+ * above green by more than FIRE_METRIC_REDDISH levels), the share whose blue exceeds their green.
+ * A black body below 6500 K, tone-mapped channel by channel, never has blue above green (the
+ * bound's derivation is in docs/look-fire.md), so these are red light added to a blue sky that
+ * the fire does not darken enough. pink / reddish counted; returns the share, NAN if no reddish. */
+#define FIRE_METRIC_REDDISH 24
+double fire_metric_pink_share(const uint8_t *out, const uint8_t *background, const uint8_t *mask, int width,
+                              int height, long *pink, long *reddish);
+
 #endif
