@@ -94,6 +94,20 @@ wait_for() {
     done
 }
 
+# cage rotates its output by 180 degrees (-r -r) so that it composites every frame instead of
+# scanning the player's buffer out directly. Direct scan-out (cage 0.1.4 does it for a full-screen
+# surface of the output's size and transform, i.e. here after the resize) leaves a stale picture
+# for grim: each grab locks out scan-out for one frame, and cage composites that frame into the
+# render buffer it used last (buffer age 1) with only the damage since the last output commit,
+# because wlr_output_damage (wlroots 0.15) files the damage committed while scanning out under
+# previous[] and adds previous[] only for buffers older than 1. A grab then shows the last frame
+# composited, i.e. the last grab's frame or the 320x180 one before the resize, for as long as no
+# new buffer happens to arrive during a grab: seconds when the player draws a few frames a
+# second, as it does on a loaded 2-core machine. Composited every frame, the render buffers age
+# normally and every grab is the newest buffer; 180 degrees keeps the output 1280x720 and maps
+# pixels one to one (grim turns the picture back), so grabs still equal headless frames.
+CAGE_FLAGS=(-r -r)
+
 # start_cage NAME: a cage of its own (XDG_RUNTIME_DIR $tmp/NAME) holding a placeholder client;
 # sets cage_pid and xdg. The player joins it as a second client.
 start_cage() {
@@ -101,7 +115,7 @@ start_cage() {
     mkdir -p "$xdg"
     [ "${#run_as[@]}" -gt 0 ] && chown "$(id -u nobody)" "$xdg"
     chmod 700 "$xdg"
-    (as_user "$xdg" cage -- sleep $((WAIT * 3))) >"$tmp/out/$1-cage.log" 2>&1 &
+    (as_user "$xdg" cage "${CAGE_FLAGS[@]}" -- sleep $((WAIT * 3))) >"$tmp/out/$1-cage.log" 2>&1 &
     cage_pid=$!
     pids+=("$cage_pid")
     wait_for 20 test -S "$xdg/wayland-0"
@@ -166,10 +180,9 @@ differing() {
 # writer hashes the same)
 raw_hash() { convert "$1" -alpha off rgb:- 2>/dev/null | md5sum | cut -d' ' -f1; }
 
-# Grabs every half second until three show different pictures or GRAB_SECONDS pass.
-# cage 0.1.4's headless output (wlroots 0.15, pixman) can show one frame of a wl_shm window for
-# seconds while it sends frame callbacks for the newer ones, so a fixed pair of grabs could
-# catch the same one.
+# Grabs every half second until three show different pictures or GRAB_SECONDS pass: on a loaded
+# machine the player may draw fewer frames a second than there are grabs (each grab is the newest
+# buffer the player committed, CAGE_FLAGS says why), so a fixed pair of grabs could catch one frame.
 GRAB_SECONDS=${WAYLAND_TEST_GRAB_SECONDS:-20}
 grab_until_two() {
     local deadline=$((SECONDS + GRAB_SECONDS)) i=0
