@@ -542,9 +542,10 @@ $(BUILD)/tests/platform/test_present_feedback: tests/platform/test_present_feedb
 		$(BUILD)/obj/platform/wayland/present_feedback.o tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/wayland/present_feedback.o $(PLATFORM_LIBS)
-$(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(BUILD)/obj/platform/egl/gl_reset.o tests/check.h
+GL_RESET_OBJ := $(BUILD)/obj/platform/egl/gl_reset.o $(BUILD)/obj/platform/egl/egl_headless.o
+$(BUILD)/tests/platform/test_gl_reset: tests/platform/test_gl_reset.c $(GL_RESET_OBJ) tests/check.h
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/egl/gl_reset.o $(PLATFORM_LIBS)
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(GL_RESET_OBJ) $(PLATFORM_LIBS)
 # Clip detail: decoding, loop and seam (tests/platform), into a module's volume (tests/gl)
 $(BUILD)/tests/platform/test_clip_detail: tests/platform/test_clip_detail.c $(BUILD)/obj/platform/video/clip_detail.o \
 		$(BUILD)/obj/platform/video/luma.o $(BUILD)/libsbfx.a tests/check.h

@@ -81,22 +81,10 @@ static int choose_config(struct gbm_egl *ge, char *err, size_t n)
     return -ENOTSUP;
 }
 
-/* An OpenGL ES 3 context, robust where offered (a plain one if the robust one is refused). */
 static int new_context(struct gbm_egl *ge, char *err, size_t n)
 {
-    EGLint attribs[GL_RESET_ATTRIBS_MAX];
-    ge->robust = gl_reset_context_attribs(ge->display, true, attribs);
-    ge->context = eglCreateContext(ge->display, ge->config, EGL_NO_CONTEXT, attribs);
-    if (ge->context == EGL_NO_CONTEXT && ge->robust) {
-        ge->robust = false;
-        gl_reset_context_attribs(ge->display, false, attribs);
-        ge->context = eglCreateContext(ge->display, ge->config, EGL_NO_CONTEXT, attribs);
-    }
-    if (ge->context == EGL_NO_CONTEXT) {
-        snprintf(err, n, "eglCreateContext(OpenGL ES 3): %s", egl_error());
-        return -ENOTSUP;
-    }
-    return 0;
+    ge->context = gl_reset_create_context(ge->display, ge->config, &ge->robust, err, n);
+    return ge->context == EGL_NO_CONTEXT ? -ENOTSUP : 0;
 }
 
 static int make_current(struct gbm_egl *ge, char *err, size_t n)
@@ -105,13 +93,7 @@ static int make_current(struct gbm_egl *ge, char *err, size_t n)
         snprintf(err, n, "eglMakeCurrent: %s", egl_error());
         return -EIO;
     }
-    const char *version = (const char *)glGetString(GL_VERSION);
-    int major = 0;
-    if (!version || sscanf(version, "OpenGL ES %d", &major) != 1 || major < 3) {
-        snprintf(err, n, "the context is '%s', not OpenGL ES 3.0 or later", version ? version : "?");
-        return -ENOTSUP;
-    }
-    return 0;
+    return gl_reset_check_gles3(err, n);
 }
 
 static int create_context(struct gbm_egl *ge, char *err, size_t n)

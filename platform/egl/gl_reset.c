@@ -1,9 +1,14 @@
-/* Reset notification: context attributes, the status query, the injected reset. */
+/* Reset notification: context attributes, the window contexts made with them, the status query,
+ * the injected reset. */
 #include "egl/gl_reset.h"
 
 #include <EGL/eglext.h>
+#include <errno.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <string.h>
+
+#include "egl/egl_headless.h" /* egl_headless_error_string */
 
 static bool has_word(const char *list, const char *word)
 {
@@ -26,6 +31,32 @@ bool gl_reset_context_attribs(EGLDisplay display, bool robust, EGLint *attribs)
     }
     attribs[i] = EGL_NONE;
     return add;
+}
+
+EGLContext gl_reset_create_context(EGLDisplay display, EGLConfig config, bool *robust, char *err, size_t n)
+{
+    EGLint attribs[GL_RESET_ATTRIBS_MAX];
+    *robust = gl_reset_context_attribs(display, true, attribs);
+    EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs);
+    if (context == EGL_NO_CONTEXT && *robust) { /* refused with the strategy: a plain one */
+        *robust = false;
+        gl_reset_context_attribs(display, false, attribs);
+        context = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs);
+    }
+    if (context == EGL_NO_CONTEXT)
+        snprintf(err, n, "eglCreateContext(OpenGL ES 3): %s", egl_headless_error_string(eglGetError()));
+    return context;
+}
+
+int gl_reset_check_gles3(char *err, size_t n)
+{
+    const char *version = (const char *)glGetString(GL_VERSION);
+    int major = 0;
+    if (!version || sscanf(version, "OpenGL ES %d", &major) != 1 || major < 3) {
+        snprintf(err, n, "the context is '%s', not OpenGL ES 3.0 or later", version ? version : "?");
+        return -ENOTSUP;
+    }
+    return 0;
 }
 
 void gl_reset_init(struct gl_reset *r, bool robust_context)

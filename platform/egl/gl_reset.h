@@ -14,6 +14,7 @@
 #include <EGL/egl.h>
 #include <GLES3/gl3.h>
 #include <stdbool.h>
+#include <stddef.h>
 
 #ifndef GL_GUILTY_CONTEXT_RESET
 #define GL_GUILTY_CONTEXT_RESET 0x8253
@@ -35,6 +36,11 @@ struct gl_reset {
  * notification strategy when the display offers EGL_EXT_create_context_robustness (and robust
  * is true). Returns true when the strategy was added. attribs holds GL_RESET_ATTRIBS_MAX. */
 bool gl_reset_context_attribs(EGLDisplay display, bool robust, EGLint *attribs);
+/* An OpenGL ES 3 context on `config` (a window's: DRM/GBM, Wayland), robust where the display
+ * offers it, else a plain one; *robust says which. EGL_NO_CONTEXT, with err, when neither is made. */
+EGLContext gl_reset_create_context(EGLDisplay display, EGLConfig config, bool *robust, char *err, size_t n);
+/* With a context current: 0 when it is OpenGL ES 3.0 or later, else -ENOTSUP with err. */
+int gl_reset_check_gles3(char *err, size_t n);
 /* With the new context current: finds the status query. robust_context: the context was
  * created with the notification strategy (without it the query is not told of resets). */
 void gl_reset_init(struct gl_reset *r, bool robust_context);

@@ -72,22 +72,10 @@ static int choose_config(struct wayland_egl *we, char *err, size_t n)
     return -ENOTSUP;
 }
 
-/* An OpenGL ES 3 context, robust where offered (a plain one if the robust one is refused). */
 static int new_context(struct wayland_egl *we, char *err, size_t n)
 {
-    EGLint attribs[GL_RESET_ATTRIBS_MAX];
-    we->robust = gl_reset_context_attribs(we->display, true, attribs);
-    we->context = eglCreateContext(we->display, we->config, EGL_NO_CONTEXT, attribs);
-    if (we->context == EGL_NO_CONTEXT && we->robust) {
-        we->robust = false;
-        gl_reset_context_attribs(we->display, false, attribs);
-        we->context = eglCreateContext(we->display, we->config, EGL_NO_CONTEXT, attribs);
-    }
-    if (we->context == EGL_NO_CONTEXT) {
-        snprintf(err, n, "eglCreateContext(OpenGL ES 3): %s", egl_error());
-        return -ENOTSUP;
-    }
-    return 0;
+    we->context = gl_reset_create_context(we->display, we->config, &we->robust, err, n);
+    return we->context == EGL_NO_CONTEXT ? -ENOTSUP : 0;
 }
 
 static int make_current(struct wayland_egl *we, char *err, size_t n)
@@ -96,12 +84,8 @@ static int make_current(struct wayland_egl *we, char *err, size_t n)
         snprintf(err, n, "eglMakeCurrent: %s", egl_error());
         return -EIO;
     }
-    const char *version = (const char *)glGetString(GL_VERSION);
-    int major = 0;
-    if (!version || sscanf(version, "OpenGL ES %d", &major) != 1 || major < 3) {
-        snprintf(err, n, "the context is '%s', not OpenGL ES 3.0 or later", version ? version : "?");
-        return -ENOTSUP;
-    }
+    int rc = gl_reset_check_gles3(err, n);
+    if (rc) return rc;
     if (!eglSwapInterval(we->display, 0)) {
         snprintf(err, n, "eglSwapInterval(0): %s", egl_error());
         return -EIO;
