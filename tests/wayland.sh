@@ -106,7 +106,10 @@ wait_for() {
 # second, as it does on a loaded 2-core machine. Composited every frame, the render buffers age
 # normally and every grab is the newest buffer; 180 degrees keeps the output 1280x720 and maps
 # pixels one to one (grim turns the picture back), so grabs still equal headless frames.
-CAGE_FLAGS=(-r -r)
+# cage 0.2 (Debian 13: wlroots 0.18, which accounts for that damage since wlroots MR 3883) has
+# no -r and composites what it must: the flags only where `cage -h` offers rotation.
+CAGE_FLAGS=()
+if cage -h 2>&1 | grep -q '^ *-r'; then CAGE_FLAGS=(-r -r); fi
 
 # start_cage NAME: a cage of its own (XDG_RUNTIME_DIR $tmp/NAME) holding a placeholder client;
 # sets cage_pid and xdg. The player joins it as a second client.

@@ -23,7 +23,8 @@ test_pkgs="$build_pkgs glslang-tools gnuplot-nox clang $clang_rt groff-base ffmp
 # they are C++, and g++ is not in a minimal Debian root (Debian 13's debootstrap minbase)
 test_pkgs="$test_pkgs g++ qt6-base-dev qt6-declarative-dev qml6-module-qtquick qml6-module-qtquick-window qml6-module-qtqml-workerscript qt6-qpa-plugins xvfb xauth"
 # systemd-analyze (security --offline, verify) and systemd-sysusers check the kiosk's unit
-test_pkgs="$test_pkgs systemd"
+# procps: /bin/kill, the unit's ExecReload (systemctl reload), which systemd-analyze verify looks for
+test_pkgs="$test_pkgs systemd procps"
 # tests/wayland.sh: sbfx-play under cage (wlroots, headless) read back by grim (wlr-screencopy),
 # and under weston (headless) for presentation-time feedback
 test_pkgs="$test_pkgs cage grim weston"
