@@ -11,7 +11,7 @@
 #   2. The source tree (what git tracks and what it does not ignore, not build/) is copied to
 #      /sbfx in the root; its build/ there is kept between runs, so a second run rebuilds only
 #      what changed.
-#   3. The root bound onto itself, proc, sysfs and /dev are mounted for the run and unmounted on
+#   3. The root bound onto itself, proc, sysfs, /dev and a /dev/shm of its own are mounted for the run and unmounted on
 #      every exit path (the trap), then `make -j$(nproc) test` runs in it; its exit status is
 #      the run's.
 # Environment: DEBIAN13_DIR (build/debian13), MAKE_TARGET (test).
@@ -69,6 +69,9 @@ mount_all() {
     mount_in /sys -t sysfs sysfs
     mount_in /dev --bind /dev
     mount_in /dev/pts --bind /dev/pts
+    # POSIX shared memory of its own (the bind above does not carry the host's /dev/shm): cage 0.2's
+    # wlroots 0.18 allocates its headless output's buffers there (tests/wayland.sh)
+    mount_in /dev/shm -t tmpfs -o mode=1777 tmpfs
 }
 in_root() { chroot "$ROOT" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root LANG=C.UTF-8 "$@"; }
 
