@@ -273,8 +273,12 @@ check_picture() {
     else
         fail full-screen "the summary does not say '$size full screen': $(grep 'frames in' "$tmp/out/run.out")"
     fi
+    # cage 0.1.4 configures the window's size after its first buffer (a resize from --size);
+    # cage 0.2 in its first configure, before any buffer: the window starts at the output's size
     if grep -q "Wayland wayland-0 320x180" "$tmp/out/run.out" && grep -q "wayland: the window is $size now" "$tmp/out/run.err"; then
         ok "resize (320x180 -> $size by the compositor's configure; the frames after it are the headless ones)"
+    elif grep -q "Wayland wayland-0 $size full screen" "$tmp/out/run.out"; then
+        ok "resize (--size 320x180, and the compositor's first configure, before any buffer, made it $size)"
     else
         fail resize "no resize from 320x180 to $size logged: $(grep -m1 'sbfx-play: .*Wayland' "$tmp/out/run.out")"
     fi
