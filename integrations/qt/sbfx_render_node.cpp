@@ -143,19 +143,27 @@ bool SbfxRenderNode::target_rect(const RenderState *state, PixelRect *out, bool 
     return true;
 }
 
+/* The item's scene file parsed (*out stays NULL without one: the built-in explosion); false, with
+ * the reason in `error`, when it does not parse. */
+bool SbfxRenderNode::load_scene(sbfx_scene **out)
+{
+    char err[512] = "";
+    const QByteArray path = settings_.scene_path.toLocal8Bit();
+    if (!path.isEmpty() && sbfx_scene_load(path.constData(), out, err, sizeof(err)) != SBFX_OK) {
+        fail(QString::fromLocal8Bit(err));
+        return false;
+    }
+    return true;
+}
+
 /* A new scene (or the same file again) in the live module: what it shares with the old one is
  * kept (no shader compiled for a change of numbers), the clock goes on, its timeline starts now.
  * A scene that does not load or build leaves the old one playing, the reason in `error`. */
 void SbfxRenderNode::reload_scene()
 {
     loaded_scene_generation_ = settings_.scene_generation;
-    char err[512] = "";
     sbfx_scene *scene = nullptr;
-    const QByteArray path = settings_.scene_path.toLocal8Bit();
-    if (!path.isEmpty() && sbfx_scene_load(path.constData(), &scene, err, sizeof(err)) != SBFX_OK) {
-        fail(QString::fromLocal8Bit(err));
-        return;
-    }
+    if (!load_scene(&scene)) return;
     if (sbfx_set_scene(fx_, scene) == SBFX_OK) {
         sbfx_scene_camera_get(scene, &scene_camera_);
         set_quality_generation_ = 0; /* the item's quality level, again over the new scene's */
@@ -179,13 +187,8 @@ bool SbfxRenderNode::ensure_module()
     releaseResources();
     made_generation_ = settings_.module_generation;
     loaded_scene_generation_ = settings_.scene_generation;
-    char err[512] = "";
     sbfx_scene *scene = nullptr;
-    const QByteArray path = settings_.scene_path.toLocal8Bit();
-    if (!path.isEmpty() && sbfx_scene_load(path.constData(), &scene, err, sizeof(err)) != SBFX_OK) {
-        fail(QString::fromLocal8Bit(err));
-        return false;
-    }
+    if (!load_scene(&scene)) return false;
     sbfx_scene_camera_get(scene, &scene_camera_);
     sbfx_desc desc = {};
     desc.scene = scene;

@@ -88,6 +88,7 @@ private:
     void advance();
     void camera(int width, int height, sbfx_frame *frame) const;
     void draw(const PixelRect &r, bool whole);
+    bool load_scene(sbfx_scene **out);
     void reload_scene();
     void fail(const QString &message);
 
