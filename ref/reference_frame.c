@@ -215,18 +215,18 @@ static double particle_rho(const sbfx_rf_particle *p, const double ray[3])
     return sqrt(qx * qx + qy * qy) / p->radius;
 }
 
-/* Fire's coverage with its soot: 1 - e^-(depth + soot x chord^2 / 2r), soft mode's fade on it as on the
- * emitting alpha a (particle.frag). */
+/* Fire's coverage with its soot: 1 - e^-(scale x depth + soot x chord^2 / 2r), scale = 1 + the cool
+ * share's soot, soft mode's fade on it as on the emitting alpha a (particle.frag). */
 static double fire_coverage(sbfx_opacity_mode mode, const sbfx_ref_particle *rp, const sbfx_ref_pixel *px, double a,
-                            double soot)
+                            double scale, double soot)
 {
     double chord = sbfx_ref_chord(mode, rp, px), extra = soot * (chord * chord / (2.0 * rp->radius));
-    if (mode != SBFX_OPACITY_SOFT) return -expm1(-(sbfx_ref_optical_depth(mode, rp, px) + extra));
+    if (mode != SBFX_OPACITY_SOFT) return -expm1(-(scale * sbfx_ref_optical_depth(mode, rp, px) + extra));
     sbfx_ref_pixel unclipped = *px;   /* soft: the planar alpha times the fade */
     unclipped.opaque_depth = INFINITY;
     double planar = -expm1(-sbfx_ref_optical_depth(SBFX_OPACITY_PLANAR, rp, &unclipped));
     double fade = planar > 0.0 ? a / planar : 0.0;
-    return -expm1(-(sbfx_ref_optical_depth(SBFX_OPACITY_PLANAR, rp, &unclipped) + extra)) * fade;
+    return -expm1(-(scale * sbfx_ref_optical_depth(SBFX_OPACITY_PLANAR, rp, &unclipped) + extra)) * fade;
 }
 
 /* particle.frag's fire_scattered (mediump): the fire light at the centre, changing across the
@@ -271,10 +271,13 @@ static void shade_with_detail(const sbfx_rf_frame *f, const sbfx_rf_particle *p,
     double a = sbfx_ref_opacity(f->opacity, &rp, &px), coverage = a;
     if (!(a > 0.0)) return; /* the shader multiplies its light by 0 */
     double cooled = 1.0 - m->cooling * (1.0 - p->intensity);
-    /* soot: absorbs without glowing where cool (particle.frag's fire_soot), with the detail */
+    /* only the share of the opacity hot enough to glow emits (particle.frag's fire_glow_share) */
+    double glow = emits && m->has_detail ? sbfx_fire_glow_share(detail, p->intensity, m->detail_strength) : 1.0;
+    /* soot: absorbs without glowing where cool (particle.frag's fire_soot and the cool share's
+     * soot, media.fire.soot), with the detail */
     if (emits && m->has_detail)
-        coverage = fire_coverage(f->opacity, &rp, &px, a, m->detail_strength * m->tau * tau_scale *
-                                                             sbfx_fire_soot(detail, cooled, p->intensity));
+        coverage = fire_coverage(f->opacity, &rp, &px, a, 1.0 + sbfx_fire_cool_soot(1.0, glow, m->soot),
+                                 m->detail_strength * m->tau * tau_scale * sbfx_fire_soot(detail, cooled, p->intensity));
     double light[3] = {0.0, 0.0, 0.0};
     if (scatters) {
         double s[3], fire[3];
@@ -287,8 +290,6 @@ static void shade_with_detail(const sbfx_rf_frame *f, const sbfx_rf_particle *p,
     if (emits) {
         double e[3];
         emitted(f, m, (m->t0 + m->t1 * detail) * cooled, e);
-        /* only the share of the opacity hot enough to glow emits (particle.frag's fire_glow_share) */
-        double glow = m->has_detail ? sbfx_fire_glow_share(detail, p->intensity, m->detail_strength) : 1.0;
         for (int k = 0; k < 3; k++) light[k] = mp(f, light[k] + e[k] * glow);
     }
     for (int k = 0; k < 3; k++) rgb[k] = light[k] * a;
@@ -376,11 +377,38 @@ static bool ray_hits_sphere(const sbfx_rf_particle *p, const double ray[3])
     return dist < p->radius && t0 > -p->radius;
 }
 
+/* What a pixel carries through "over" besides its colour: the filter's bound and the target's
+ * rounding bound (sbfx_rf_frame's filter_bound and rounding_bound). */
+typedef struct pixel_bounds {
+    double filter[4], rounding[4];
+} pixel_bounds;
+
+/* One blend, C' = rgb + (1 - a) C and T' = (1 - a) T, and what it does to the bounds. The
+ * filter's: C' moves by at most d_rgb + (1 - a + d_a) d_C + d_a |C|, T' by d_a T + (1 - a + d_a)
+ * d_T. The target's rounding e: C' by e (|rgb| + |C| + |C'|) + (1 - a)(1 + 2e) r_C, T' by
+ * e (2 T + T') + (1 - a)(1 + 2e) r_T. */
+static void blend_over(double e, const double rgb[3], double a, const double d[4], double c[3], double *t,
+                       pixel_bounds *b)
+{
+    double keep = 1.0 - a + d[3], carry = (1.0 - a) * (1.0 + 2.0 * e);
+    for (int k = 0; k < 3; k++) {
+        double next = rgb[k] + c[k] * (1.0 - a);
+        b->filter[k] = d[k] + keep * b->filter[k] + d[3] * fabs(c[k]);
+        b->rounding[k] = e * (fabs(rgb[k]) + fabs(c[k]) + fabs(next)) + carry * b->rounding[k];
+        c[k] = next;
+    }
+    double next = *t * (1.0 - a);
+    b->filter[3] = d[3] * *t + keep * b->filter[3];
+    b->rounding[3] = e * (2.0 * *t + next) + carry * b->rounding[3];
+    *t = next;
+}
+
 /* One pixel: the sorted particles that may touch it, blended back to front. */
 static void render_pixel(const sbfx_rf_frame *f, const sbfx_rf_particle *v, const int *order,
                          const pixel_rect *rects, int n, int x, int y, double *out, uint8_t *footprint)
 {
-    double ray[3], c[3] = {0.0, 0.0, 0.0}, t = 1.0, dc[4] = {0.0, 0.0, 0.0, 0.0};
+    double ray[3], c[3] = {0.0, 0.0, 0.0}, t = 1.0;
+    pixel_bounds bounds = {{0.0}, {0.0}};
     sbfx_rf_pixel_ray(f, x, y, ray);
     size_t at = (size_t)y * f->width + x;
     double zs = f->opaque_distance[at];
@@ -391,18 +419,13 @@ static void render_pixel(const sbfx_rf_frame *f, const sbfx_rf_particle *v, cons
         const sbfx_rf_particle *p = &v[order[i]];
         double rgb[3], a, d[4];
         shade_bounded(f, p, ray, zs, rgb, &a, d);
-        /* the bound through "over": C' = rgb + (1 - a) C moves by at most
-         * d_rgb + (1 - a + d_a) d_C + d_a |C|; T' = (1 - a) T by d_a T + (1 - a + d_a) d_T */
-        double keep = 1.0 - a + d[3];
-        for (int k = 0; k < 3; k++) dc[k] = d[k] + keep * dc[k] + d[3] * fabs(c[k]);
-        dc[3] = d[3] * t + keep * dc[3];
-        for (int k = 0; k < 3; k++) c[k] = rgb[k] + c[k] * (1.0 - a);
-        t *= 1.0 - a;
+        blend_over(f->target_rounding, rgb, a, d, c, &t, &bounds);
         if (footprint && !hit) hit = ray_hits_sphere(p, ray);
     }
     memcpy(out, c, sizeof(c));
     out[3] = t;
-    if (f->filter_bound) memcpy(&f->filter_bound[4 * at], dc, sizeof(dc));
+    if (f->filter_bound) memcpy(&f->filter_bound[4 * at], bounds.filter, sizeof(bounds.filter));
+    if (f->rounding_bound) memcpy(&f->rounding_bound[4 * at], bounds.rounding, sizeof(bounds.rounding));
     if (footprint) footprint[(size_t)y * f->width + x] = hit;
 }
 
@@ -413,7 +436,7 @@ int sbfx_rf_fire_lights(const sbfx_rf_frame *f, const sbfx_rf_particle *particle
 {
     const sbfx_rf_medium *m = &f->media[SBFX_FIRE];
     sbfx_fire_model model = {.tau = m->tau, .t0 = m->t0, .t1 = m->t1, .cooling = m->cooling,
-                             .detail_strength = m->has_detail ? m->detail_strength : 0.0,
+                             .soot = m->soot, .detail_strength = m->has_detail ? m->detail_strength : 0.0,
                              .emission_scale = (double)(float)m->emission_scale * (1.0 - (double)(float)m->albedo),
                              .ceiling = SBFX_RF_RADIANCE_CEILING / frame_exposure(f),
                              .blackbody = model_blackbody, .blackbody_ctx = f};

@@ -56,6 +56,7 @@ typedef struct sbfx_rf_medium {
     double albedo, tau, phase_g, color[3];
     double detail_strength, detail_window;
     double t0, t1, cooling, emission_scale;
+    double soot; /* fire: the cool share's soot (sbfx_fire_cool_soot) */
     /* The GPU program samples the detail volume (it was built with detail_strength > 0); the
      * strength then scales both perturbations (0: none, though the volume is still sampled). */
     bool has_detail;
@@ -110,6 +111,15 @@ typedef struct sbfx_rf_frame {
      * (render_pixel). */
     double filter_weight_error;
     double *filter_bound;
+    /* The particle target's storage as the GPU blends into it: every blend's result is stored at
+     * that precision. target_rounding is the relative error of one rounding (2^-10 for a half
+     * float whose rounding may go to either neighbour; 0: exact, as the reference is). With
+     * rounding_bound set (width*height*4) it gets, per pixel and channel, how far those roundings
+     * can move the result. A blend C' = rgb + (1 - a) C may round the source, the factor, the
+     * product and the sum: it moves by at most e (|rgb| + |C| + |C'|) + (1 - a)(1 + 2e) d_C, and
+     * T' = (1 - a) T by e (2 T + T') + (1 - a)(1 + 2e) d_T (render_pixel). */
+    double target_rounding;
+    double *rounding_bound;
     double exposure;               /* desc.exposure, applied where light is made (0: 1) */
     /* The frame's fire lights its dust and smoke (the module's plan.fire_light: emitting fire and
      * dust or smoke of the phase model in the scene): sbfx_rf_render_layer gathers the frame's

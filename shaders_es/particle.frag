@@ -107,7 +107,7 @@ uniform float u_cmf_band[MAX_BANDS]; // wavelength [µm]
 #ifdef MEDIUM_EMITS
 uniform sampler2D u_blackbody;   // RGBA32F, uniform in 1/T: rgb / Y, ln(Y / T) (src/blackbody.c)
 uniform vec3 u_blackbody_map;    // 1/T at entry 0, entries per unit of 1/T, entries - 2
-uniform vec3 u_temperature;      // T0, T1, cooling
+uniform vec4 u_temperature;      // T0, T1, cooling, the cool share's soot (media.fire.soot)
 uniform float u_emission_scale;   // includes (1 - albedo)
 // Per-fragment radiance ceiling, in pre-exposed units: back-to-front "over" never sums layers
 // above their largest one, so the target stays inside half-float's 65504 (docs/look-fire.md).
@@ -246,6 +246,12 @@ float detail_fire_temperature(float detail, float rho, float intensity, float st
 //   falls as (1 - rho)^1.5; an even spread, the chord itself, drew the spheres' edges). hot = the
 //   temperature coordinate times the cooling factor (1: the fresh, hottest core). Old fire turns
 //   into the smoke it makes; young fire carries little of it, so it stays light (DESIGN §8).
+// - the cool share's soot (u_temperature.w, media.fire.soot, default 2): the share of the column
+//   too cool to glow (1 - glow share) carries that many times the column's optical depth on top,
+//   absorbing and not glowing: the soot that wraps a luminous flame. Where a young fireball's rim
+//   starts to glow its column is thin, and red light 50 times the sky's added to sky that nothing
+//   absorbs turns it pink; this soot darkens the sky there instead. An effect whose soot is smoke
+//   particles (the seed's explosion) sets 0.
 const float FIRE_GLOW_THRESHOLD = 0.45;
 const float FIRE_GLOW_AGE = 0.4;
 const float FIRE_GLOW_WIDTH = 0.2;
@@ -514,9 +520,10 @@ void main()
     float cooled = 1.0 - u_temperature.z * (1.0 - intensity);
     float glow = 1.0;                          // the share of the opacity that glows
 #ifdef HAS_DETAIL   // soot is part of the detail's look: strength 0 (or no detail) has none
-    float soot = u_detail_strength * fire_soot(detail, cooled, intensity);
-    coverage = opacity_from_depth(depth + soot * u_tau * tau_scale * (chord * chord / (2.0 * r)));
     glow = fire_glow_share(detail, intensity, u_detail_strength);
+    float soot = u_detail_strength * fire_soot(detail, cooled, intensity);
+    coverage = opacity_from_depth(depth * (1.0 + u_temperature.w * (1.0 - glow)) +
+                                  soot * u_tau * tau_scale * (chord * chord / (2.0 * r)));
 #endif
 #endif
 #ifdef OPACITY_SOFT

@@ -16,7 +16,7 @@ void sbfx_default_media(sbfx_medium_params media[SBFX_MEDIUM_COUNT])
     media[SBFX_FIRE] = (sbfx_medium_params){
         .albedo = 0.0f, .tau = 0.4f, .phase_g = 0.0f, .color = {1.0f, 1.0f, 1.0f},
         .detail_strength = 1.0f, .detail_window = 0.8f,
-        .t0 = 1100.0f, .t1 = 900.0f, .cooling = 0.45f, .emissivity = 1.0f};
+        .t0 = 1100.0f, .t1 = 900.0f, .cooling = 0.45f, .emissivity = 1.0f, .soot = SBFX_FIRE_SOOT_DEFAULT};
     /* Heat: shimmer of up to 1% of the image, noise a quarter of the volume per particle. */
     media[SBFX_HEAT] = (sbfx_medium_params){
         .albedo = 0.0f, .tau = 1.0f, .color = {1.0f, 1.0f, 1.0f}, .detail_strength = 1.0f,

@@ -15,7 +15,7 @@ sbfx_fire_model sbfx_fire_model_of(const sbfx *fx)
 {
     const sbfx_medium_params *m = &fx->media[SBFX_FIRE];
     sbfx_fire_model model = {.tau = m->tau, .t0 = m->t0, .t1 = m->t1, .cooling = m->cooling,
-                             .detail_strength = m->detail_strength,
+                             .soot = m->soot, .detail_strength = m->detail_strength,
                              .emission_scale = (double)m->emission_scale * (1.0 - m->albedo),
                              .ceiling = SBFX_RADIANCE_CEILING / fx->desc.exposure,
                              .blackbody = table_blackbody, .blackbody_ctx = &fx->tables};

@@ -90,6 +90,11 @@ double sbfx_fire_glow_share(double coordinate, double intensity, double strength
     return mix(1.0, clamp01((coordinate - threshold) / SBFX_FIRE_GLOW_WIDTH), strength);
 }
 
+double sbfx_fire_cool_soot(double depth, double glow, double soot)
+{
+    return depth * soot * (1.0 - glow);
+}
+
 /* One pixel's disc of light at one detail value: sum over rings of L_e alpha dA; returns the
  * area it covers (with its soot). */
 static double disc_at_detail(const sbfx_fire_model *m, double radius, double intensity, double detail, double rgb[3])
@@ -106,8 +111,10 @@ static double disc_at_detail(const sbfx_fire_model *m, double radius, double int
         double ring = 2.0 * M_PI * rho * radius * radius / RINGS;
         double coordinate = sbfx_fire_coordinate(detail, rho, intensity, s);
         double soot_path = 2.0 * radius * (1.0 - rho) * (1.0 + rho); /* chord^2 / 2r */
-        area += ring * -expm1(-(depth + s * tau * soot_path * sbfx_fire_soot(coordinate, cooled, intensity)));
-        ring *= alpha * sbfx_fire_glow_share(coordinate, intensity, s);
+        double glow = sbfx_fire_glow_share(coordinate, intensity, s);
+        area += ring * -expm1(-(depth + sbfx_fire_cool_soot(depth, glow, m->soot) +
+                                s * tau * soot_path * sbfx_fire_soot(coordinate, cooled, intensity)));
+        ring *= alpha * glow;
         if (ring == 0.0) continue; /* soot too cool to glow: it only covers */
         double bb[3];
         m->blackbody(m->blackbody_ctx, (m->t0 + m->t1 * coordinate) * cooled, bb);

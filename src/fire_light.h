@@ -14,6 +14,7 @@
 #define SBFX_FIRE_DETAIL_LEVELS 32
 typedef struct sbfx_fire_model {
     double tau, t0, t1, cooling, detail_strength;
+    double soot;            /* the cool share's soot per unit of the column's depth (sbfx_fire_cool_soot) */
     double detail[SBFX_FIRE_DETAIL_LEVELS]; /* the detail volume's quantiles (j + 1/2) / LEVELS */
     double emission_scale;  /* radiance per unit of the normalised black body, times (1 - albedo) */
     double ceiling;         /* the radiance ceiling / exposure (particle.frag); 0: none */
@@ -43,6 +44,15 @@ double sbfx_fire_soot(double coordinate, double cooled, double intensity);
 #define SBFX_FIRE_GLOW_AGE 0.4
 #define SBFX_FIRE_GLOW_WIDTH 0.2
 double sbfx_fire_glow_share(double coordinate, double intensity, double strength);
+
+/* Soot that wraps the glowing soot (particle.frag, media.fire.soot; docs/look-fire.md "Pink
+ * edges"): the share of a column too cool to glow (1 - glow share) carries `soot` times the
+ * column's optical depth on top of it, so the coverage's depth is depth (1 + soot (1 - glow)); it
+ * absorbs the background and emits nothing. A luminous flame's soot forms and lingers where the
+ * fire is too cool to glow, on the fringe of the luminous zone: that is what darkens the sky
+ * behind a fireball's thin, glowing rim instead of letting red light add to it. 0: none. */
+#define SBFX_FIRE_SOOT_DEFAULT 2.0
+double sbfx_fire_cool_soot(double depth, double glow, double soot);
 
 /* The quantiles of the values a pixel samples from the detail volume (size x size x frames, x
  * fastest): trilinear between texels, as the GPU filters a magnified window (which narrows the

@@ -50,6 +50,9 @@ typedef struct sbfx_medium_params {
     float detail_window;   /* size of a particle's detail window, in volume widths */
     float t0, t1;          /* fire: T = (t0 + t1 * detail) * (1 - cooling * (1 - intensity)) */
     float cooling;         /* fire: fraction of the temperature lost as intensity reaches 0 */
+    float soot;            /* fire: optical depth of a column's soot too cool to glow, per unit of
+                              its own, in the cool share (1 - glow share): what wraps the glowing
+                              soot and absorbs the background (docs/look-fire.md); 0: none */
     bool live_detail;      /* detail source "v4l2": slices come from sbfx_detail_push_slice */
     char detail_clip[256]; /* detail source a video clip (path resolved against the scene file's
                               folder; "" none): the host decodes it and pushes its slices

@@ -171,7 +171,7 @@ static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m, 
         for (int k = 0; k < 3; k++) color[i][k] = lights->color[i][k] * (mp->lit ? 1.0f : SBFX_FOUR_PI_F);
     glUniform3fv(p->light_color, lights->count, &color[0][0]);
     glUniform3fv(p->ambient, 1, fx->ambient);
-    glUniform3f(p->temperature, mp->t0, mp->t1, mp->cooling);
+    glUniform4f(p->temperature, mp->t0, mp->t1, mp->cooling, mp->soot);
     glUniform1f(p->emission_scale, mp->emission_scale * (1.0f - mp->albedo) * exposure);
     sbfx_tables_bind(fx, p, m);
     if (fx->gl.smoke_texture[m]) set_lit_uniforms(fx, p, m);

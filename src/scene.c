@@ -449,7 +449,7 @@ static int parse_emission(parser *p, const config_setting_t *g, sbfx_medium_para
 static int parse_medium(parser *p, const config_setting_t *g, sbfx_medium which)
 {
     static const char *const keys[] = {"albedo", "density", "phase_g", "color", "temperature",
-                                       "cooling", "emission", "emissivity", "detail", "lighting", "wrap",
+                                       "cooling", "soot", "emission", "emissivity", "detail", "lighting", "wrap",
                                        "translucency", "dampening", "steps", "texture", "strength", NULL};
     sbfx_medium_params *m = &p->scene->media[which];
     float temperature[2] = {m->t0, m->t1};
@@ -459,7 +459,7 @@ static int parse_medium(parser *p, const config_setting_t *g, sbfx_medium which)
         get_float(p, g, "density", 0, 1e6, &m->tau) || get_float(p, g, "phase_g", -0.99, 0.99, &m->phase_g) ||
         get_vector(p, g, "color", 3, 0, 100, m->color) ||
         get_vector(p, g, "temperature", 2, 0, 1e5, temperature) ||
-        get_float(p, g, "cooling", 0, 1, &m->cooling) || get_float(p, g, "emission", 0, 1e4, &m->emission_scale) ||
+        get_float(p, g, "cooling", 0, 1, &m->cooling) || get_float(p, g, "soot", 0, 64, &m->soot) || get_float(p, g, "emission", 0, 1e4, &m->emission_scale) ||
         get_float(p, g, "strength", 0, 0.2, &m->heat_strength) || parse_emission(p, g, m, what))
         return -1;
     m->t0 = temperature[0], m->t1 = temperature[1];
@@ -734,6 +734,8 @@ void sbfx_scene_builtin(sbfx_scene *scene)
 {
     scene_defaults(scene, "built-in explosion");
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) scene->has_medium[m] = true;
+    /* the seed's explosion carries its soot as smoke particles: its fire has none of its own */
+    scene->media[SBFX_FIRE].soot = 0.0f;
     sbfx_builtin_explosion(&scene->effects[0]);
     scene->effect_count = 1;
     scene->timeline_count = 1; /* explosion at t = 0 at the origin */

@@ -11,7 +11,7 @@ static void fill_media(sbfx *fx, sbfx_rf_frame *f)
             .albedo = m[i].albedo, .tau = m[i].tau, .phase_g = m[i].phase_g,
             .color = {m[i].color[0], m[i].color[1], m[i].color[2]},
             .detail_strength = m[i].detail_strength, .detail_window = m[i].detail_window,
-            .t0 = m[i].t0, .t1 = m[i].t1, .cooling = m[i].cooling, .emission_scale = m[i].emission_scale,
+            .t0 = m[i].t0, .t1 = m[i].t1, .cooling = m[i].cooling, .soot = m[i].soot, .emission_scale = m[i].emission_scale,
             .has_detail = m[i].detail_strength > 0};
 }
 

@@ -82,7 +82,7 @@ static double *cpu_layer(gl_fixture *f, sbfx *fx, const float *detail, const sbf
         rf.media[i] = (sbfx_rf_medium){.albedo = m[i].albedo, .tau = m[i].tau, .phase_g = m[i].phase_g,
                                        .color = {m[i].color[0], m[i].color[1], m[i].color[2]},
                                        .detail_strength = m[i].detail_strength, .detail_window = m[i].detail_window,
-                                       .t0 = m[i].t0, .t1 = m[i].t1, .cooling = m[i].cooling,
+                                       .t0 = m[i].t0, .t1 = m[i].t1, .cooling = m[i].cooling, .soot = m[i].soot,
                                        .emission_scale = m[i].emission_scale, .has_detail = m[i].detail_strength > 0};
         if (t->phase_table[i]) rf.phase_tables[i] = t->phase + (size_t)i * SBFX_PHASE_SIZE;
     }

@@ -187,6 +187,32 @@ CHECK_TEST(fire_units_keys)
     expect_error("render = { white_luminance = 0.0; };\n" FIRE_EFFECT, 1, "'white_luminance' = 0 is out of range");
 }
 
+/* media.fire.soot (docs/look-fire.md "Pink edges"): the cool share's soot, 0..64; a scene file
+ * that leaves it out gets the default (2), the built-in explosion none (its soot is smoke). */
+CHECK_TEST(fire_soot_key)
+{
+    char err[256];
+    sbfx_scene *scene = NULL;
+    CHECK(sbfx_scene_parse("media = { fire = { soot = 0.5; }; };\n" FIRE_EFFECT, "soot.cfg", &scene, err,
+                           sizeof(err)) == SBFX_OK, "%s", err);
+    if (scene) {
+        CHECK(scene->media[SBFX_FIRE].soot == 0.5f);
+        sbfx_scene_free(scene);
+    }
+    CHECK(sbfx_scene_parse("media = { fire = { emissivity = 1.0; }; };\n" FIRE_EFFECT, "default.cfg", &scene, err,
+                           sizeof(err)) == SBFX_OK, "%s", err);
+    if (scene) {
+        CHECK(scene->media[SBFX_FIRE].soot == (float)SBFX_FIRE_SOOT_DEFAULT);
+        sbfx_scene_free(scene);
+    }
+    sbfx_scene builtin;
+    sbfx_scene_builtin(&builtin);
+    CHECK(builtin.media[SBFX_FIRE].soot == 0.0f);
+    expect_error("media = { fire = { soot = -1.0; }; };\n" FIRE_EFFECT, 1, "'soot' = -1 is out of range");
+    expect_error("media = { fire = { soot = 65.0; }; };\n" FIRE_EFFECT, 1, "'soot' = 65 is out of range");
+    expect_error("media = { fire = { soot = \"black\"; }; };\n" FIRE_EFFECT, 1, "'soot' must be a number");
+}
+
 /* render.budget_ms and render.ladder (issue 11): a positive time, known level names. */
 CHECK_TEST(budget_and_ladder_errors_name_line_and_token)
 {
