@@ -169,3 +169,14 @@ void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, 
     for (int k = 0; k < 3; k++)
         rgb[k] = m->albedo_color[k] * maps.brightness * (ambient[k] + (1.0 - m->dampening) * sum[k]);
 }
+
+void sbfx_lit_fire_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, int variant, double lod,
+                            const double center[3], double radius, const double ray[3], const double fire[3],
+                            double rgb[3])
+{
+    double zc = -center[2];
+    double st[2] = {(ray[0] * zc - center[0]) / (2 * radius) + 0.5, (ray[1] * zc - center[1]) / (2 * radius) + 0.5};
+    sbfx_lit_maps maps;
+    sbfx_lit_maps_at(tex, variant, st[0], st[1], lod, &maps);
+    for (int k = 0; k < 3; k++) rgb[k] = m->albedo_color[k] * maps.brightness * (1.0 - m->dampening) * fire[k];
+}

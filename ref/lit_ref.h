@@ -93,4 +93,15 @@ void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, 
                        const sbfx_lit_light *lights, int light_count, const double ambient[3],
                        double rgb[3]);
 
+/* The fire's light on a lit particle through this pixel's ray (particle.frag's FIRE_LIGHT with
+ * LIGHTING_LIT), before the opacity multiplies it: albedo * B * (1 - dampening) * fire, fire the
+ * fire's light at the particle's centre (src/fire_light.h's in-scattering, isotropic: per
+ * particle, like the fill lights) and B the brightness map at the pixel's st. The fire is
+ * gathered per particle without a direction: it lights the relief through the brightness map,
+ * as a light wrapped all around it would, not through the normals, and unshadowed.
+ * sbfx_lit_radiance plus this is the shader's light. */
+void sbfx_lit_fire_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, int variant, double lod,
+                            const double center[3], double radius, const double ray[3], const double fire[3],
+                            double rgb[3]);
+
 #endif

@@ -11,8 +11,9 @@
 //   OPACITY_FLOOR    benchmark only: the same quads, a trivial shader (the fill-rate floor)
 //   BLACKBODY_ANALYTIC, PHASE_ANALYTIC   evaluate per fragment instead of fetching the tables
 //   LIGHT_PER_PARTICLE  (phase model) in-scattering computed once per particle on the CPU
-//   FIRE_LIGHT       (with MEDIUM_SCATTERS, not LIGHTING_LIT) the frame's fire light, in-scattered
-//                    at the particle's centre on the CPU, falling off across it from the fire
+//   FIRE_LIGHT       (with MEDIUM_SCATTERS) the frame's fire light, in-scattered at the
+//                    particle's centre on the CPU, falling off across it from the fire; lit
+//                    media take it shaded by their brightness map, as a light without direction
 //   LIGHTING_LIT     (with MEDIUM_SCATTERS) the lit-smoke seed instead of the phase function:
 //                    per-pixel normals, wrap-around Lambert, back-lighting, up to 4 lights
 //   LIT_SHADOW       (with LIGHTING_LIT) ray-marched self-shadowing through the height field,
@@ -44,7 +45,7 @@ flat in vec3 v_light;            // in-scattered light evaluated once at the par
 #ifdef HAS_MOTION_TARGET
 flat in vec2 v_velocity;
 #endif
-#ifdef FIRE_LIGHT
+#if defined(FIRE_LIGHT) && !defined(LIGHTING_LIT)
 flat in mediump vec3 v_fire;          // fire light in-scattered at the centre (phase model)
 flat in mediump vec2 v_fire_gradient; // its relative change per metre across the particle
 #endif
@@ -84,8 +85,13 @@ uniform vec3 u_ambient;
 #ifdef LIGHTING_LIT
 precision highp sampler2DArray;
 uniform sampler2DArray u_smoke;  // per variant v: layer 2v normal*0.5+0.5, height; 2v+1 brightness, translucency
+#ifdef FIRE_LIGHT   // with the fire's light at the centre in the free components (particle.vert)
+flat in vec4 v_lit;              // layer 2v, level of detail, the fire's light's red and green
+flat in vec4 v_view;             // unit, from the centre toward the eye; the fire's light's blue
+#else
 flat in vec2 v_lit;              // the particle's layer 2v and level of detail (particle.vert)
 flat in vec3 v_view;             // unit, from the particle's centre toward the eye
+#endif
 uniform vec3 u_wrap;             // wrap-around scale 1/(1+w), bias w/(1+w); 1+w
 uniform float u_translucency;
 uniform float u_direct;          // 1 - dampening: the lights' direct term is scaled by it
@@ -335,7 +341,7 @@ mediump vec3 in_scattered(vec3 ray, vec3 p)
 }
 #endif
 
-#ifdef FIRE_LIGHT
+#if defined(FIRE_LIGHT) && !defined(LIGHTING_LIT)
 // The fire's light (src/fire_light.h, sbfx_fire_scatter_instance): the phase model evaluated at
 // the centre on the CPU; across the particle (its centre's depth plane) the first-order change of
 // 1/d² from the fire, so smoke above a fireball glows from below. Zero without live fire. In
@@ -383,6 +389,14 @@ float lit_shadow(vec3 start, vec3 l, float layer, float lod, float n_dot_v, floa
 // only the wrap's bias lights it) and self-shadowed (S_0, the march). The others (S_i = 1) are
 // seen from the particle's centre: direction, falloff and back-light per particle
 // (particle.vert), the wrap per pixel.
+// With FIRE_LIGHT the fire's light at the particle's centre (isotropic for lit media: no phase
+// function) joins the lights' sum, per particle like the fill lights. It rides in v_lit and
+// v_view's free components: that keeps 32 registers on both Malis (a vec3 varying of its own
+// took the G52 to 64, the per-pixel gradient both), at 9.29 G52 / 3.00 G610 cycles against the
+// lit variant's 9.29 / 2.48 (docs/gpus.md; the G610's varying unit bounds it). The fire is
+// gathered per particle without a direction, so it lights the relief the way a light wrapped
+// all around it would: through the brightness map, not the normals, unshadowed, with the
+// lights' dampening (ref/lit_ref.c, sbfx_lit_fire_radiance).
 vec3 lit_scattered(vec3 ray, vec3 c, float r, float tau_scale)
 {
     vec2 q = ray.xy * (-c.z);
@@ -407,12 +421,15 @@ vec3 lit_scattered(vec3 ray, vec3 c, float r, float tau_scale)
         float s = inversesqrt(max(dot(d, d), 1e-24));
         vec3 l = d * s;
         float key = (point ? min(s * s, 4.0) : 1.0) *
-                    (max(dot(wn, l) + u_wrap.y, 0.0) + translucency * max(-dot(v_view, l), 0.0));
+                    (max(dot(wn, l) + u_wrap.y, 0.0) + translucency * max(-dot(v_view.xyz, l), 0.0));
 #ifdef LIT_SHADOW
-        key *= lit_shadow(vec3(st, 0.5 * a.w), l, layer, lod, dot(wn, v_view) * u_wrap.z, u_tau * tau_scale * 2.0 * r);
+        key *= lit_shadow(vec3(st, 0.5 * a.w), l, layer, lod, dot(wn, v_view.xyz) * u_wrap.z, u_tau * tau_scale * 2.0 * r);
 #endif
         sum += u_light_color[0] * key;
     }
+#ifdef FIRE_LIGHT
+    sum += vec3(v_lit.zw, v_view.w);   // the fire's light at the centre, like the fill lights
+#endif
     return maps.x * (u_ambient + u_direct * sum);
 }
 #endif
@@ -538,7 +555,7 @@ void main()
     shade = detail_light_scale(detail, u_detail_strength);   // lit smoke shades by its own maps
 #endif
     mediump vec3 fire = vec3(0.0);
-#ifdef FIRE_LIGHT
+#if defined(FIRE_LIGHT) && !defined(LIGHTING_LIT)   // lit media add it in lit_scattered
     fire = fire_scattered(ray, c);
 #endif
 #if defined(MEDIUM_SCATTERS) && defined(LIGHT_PER_PARTICLE)

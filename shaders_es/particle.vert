@@ -14,8 +14,10 @@ flat out vec3 v_light;
 #ifdef FIRE_LIGHT
 layout(location = 4) in vec4 a_fire;            // fire light in-scattered at the centre (CPU)
 layout(location = 5) in vec4 a_fire_gradient;   // its relative change per metre across the particle
+#ifndef LIGHTING_LIT   // lit media take it at the centre, in v_lit and v_view
 flat out mediump vec3 v_fire;
 flat out mediump vec2 v_fire_gradient;
+#endif
 #endif
 #ifdef HAS_MOTION_TARGET
 flat out vec2 v_velocity;                       // screen motion of the centre, full-res pixels
@@ -34,8 +36,13 @@ flat out vec4 v_detail;
 #ifdef LIGHTING_LIT
 uniform float u_smoke_size;     // texels across level 0
 uniform float u_smoke_variants;
+#ifdef FIRE_LIGHT   // the fire's light at the centre rides in the free components: no varying more
+flat out vec4 v_lit;            // layer, level of detail (below), the fire's light's red and green
+flat out vec4 v_view;           // the direction below, the fire's light's blue
+#else
 flat out vec2 v_lit;            // the particle's smoke texture layer and level of detail
 flat out vec3 v_view;           // unit, from the particle's centre toward the eye
+#endif
 #define MAX_LIGHTS 8             // as particle.frag's
 #ifndef LIGHT_SLOTS
 #define LIGHT_SLOTS MAX_LIGHTS
@@ -69,7 +76,7 @@ void main()
 #ifdef LIGHT_PER_PARTICLE
     v_light = a_light.rgb;
 #endif
-#ifdef FIRE_LIGHT
+#if defined(FIRE_LIGHT) && !defined(LIGHTING_LIT)
     v_fire = a_fire.rgb;
     v_fire_gradient = a_fire_gradient.xy;
 #endif
@@ -91,9 +98,16 @@ void main()
     // texels per target pixel at the centre's depth (explicit: the march's fetches sit in a loop
     // where derivatives are undefined)
     float texels = u_smoke_size * (u_pixel.x / u_projection.x) * zc / (2.0 * r);
-    v_view = -normalize(c);
-    v_lit = vec2(2.0 * min(floor(clamp(a_detail.x, 0.0, 1.0) * u_smoke_variants), u_smoke_variants - 1.0),
-                 texels > 1.0 ? min(log2(texels), 30.0) : 0.0);
+    vec3 view = -normalize(c);
+    vec2 lit = vec2(2.0 * min(floor(clamp(a_detail.x, 0.0, 1.0) * u_smoke_variants), u_smoke_variants - 1.0),
+                    texels > 1.0 ? min(log2(texels), 30.0) : 0.0);
+#ifdef FIRE_LIGHT
+    v_view = vec4(view, a_fire.b);
+    v_lit = vec4(lit, a_fire.rg);
+#else
+    v_view = view;
+    v_lit = lit;
+#endif
 #if LIGHT_SLOTS > 1
     // the lights after the key light, seen from the centre: a point light at the centre lights
     // it from the eye's side (+z); falloff 1/max(d², 1/4)
@@ -104,7 +118,7 @@ void main()
         vec3 l = d2 > 1e-12 ? d * inversesqrt(d2) : vec3(0.0, 0.0, 1.0);
         float falloff = lv.w > 0.5 ? 1.0 / max(d2, 0.25) : 1.0;
         v_fill[i - 1] = vec4(l, falloff);
-        v_fill_back[i - 1] = falloff * max(-dot(v_view, l), 0.0);
+        v_fill_back[i - 1] = falloff * max(-dot(view, l), 0.0);
     }
 #endif
 #endif

@@ -83,14 +83,14 @@ int sbfx_emitted_lights(sbfx *fx, sbfx_point_light *out, int max)
     return n;
 }
 
-/* Fire lights its dust and smoke where it emits and they scatter through the phase model (lit
- * media shade by their own maps: not lit by fire). */
+/* Fire lights its dust and smoke where it emits and they scatter (the phase model's and lit
+ * media alike). */
 bool sbfx_fire_lights_media(const sbfx *fx)
 {
     const sbfx_medium_params *fire = &fx->media[SBFX_FIRE];
     if (!fx->uses_medium[SBFX_FIRE] || !(fire->emissivity > 0.0f || fire->emission_scale > 0.0f)) return false;
     for (int m = SBFX_DUST; m <= SBFX_SMOKE; m++)
-        if (fx->uses_medium[m] && fx->media[m].albedo > 0.0f && !fx->media[m].lit) return true;
+        if (fx->uses_medium[m] && fx->media[m].albedo > 0.0f) return true;
     return false;
 }
 

@@ -215,15 +215,16 @@ static void particle_light(const sbfx *fx, const frame_lights *lights, const sbf
 }
 
 /* The frame's fire light in-scattered at a dust or smoke particle (fire_light.h): colour at the
- * centre and d2, then where it falls off from (sbfx_fire_scatter_instance). */
+ * centre and d2, then where it falls off from (sbfx_fire_scatter_instance). Lit media have no
+ * phase function: theirs is isotropic (g = 0), shaded by their maps in the shader. */
 static void particle_fire(sbfx *fx, const sbfx_view_particle *v, float out[8])
 {
     memset(out, 0, 8 * sizeof(float));
     const sbfx_medium_params *m = &fx->media[v->medium];
-    if (v->medium == SBFX_FIRE || !(m->albedo > 0.0f) || m->lit || fx->frame_fire_count == 0) return;
+    if (v->medium == SBFX_FIRE || !(m->albedo > 0.0f) || fx->frame_fire_count == 0) return;
     const double c[3] = {v->center[0], v->center[1], v->center[2]};
     sbfx_fire_scatter s;
-    sbfx_fire_scatter_at(fx->frame_fire, fx->frame_fire_count, fx->desc.exposure, c, m->phase_g, &s);
+    sbfx_fire_scatter_at(fx->frame_fire, fx->frame_fire_count, fx->desc.exposure, c, m->lit ? 0.0 : m->phase_g, &s);
     double values[8];
     sbfx_fire_scatter_instance(&s, c, v->radius, values);
     for (int k = 0; k < 8; k++) out[k] = (float)values[k];

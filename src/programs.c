@@ -25,7 +25,7 @@ void sbfx_particle_defines(const sbfx *fx, const sbfx_variant_key *key, sbfx_med
         out += n, size -= n;
     }
     size_t used = (size_t)snprintf(out, size, "%s%s%s%s%s%s", heat ? "#define MEDIUM_HEAT\n" : "",
-                                   scatters && !lit && fx->plan.fire_light ? "#define FIRE_LIGHT\n" : "",
+                                   scatters && fx->plan.fire_light ? "#define FIRE_LIGHT\n" : "",
                                    scatters && !lit && key->lpp ? "#define LIGHT_PER_PARTICLE\n" : "",
                                    fx->plan.particle_velocity ? "#define HAS_PARTICLE_MOTION\n" : "",
                                    fx->plan.distortion && float_targets ? "#define HAS_DISTORTION_TARGET\n" : "",

@@ -238,6 +238,107 @@ CHECK_TEST(gpu_matches_cpu_lit)
     fixture_close(&f);
 }
 
+/* Fire lights lit smoke too (issue 27): the frame's fire, gathered into point lights, reaches a lit
+ * particle as the phase model's isotropic in-scattering at its centre (src/fire_light.h), per
+ * particle like the fill lights, shaded by the brightness map and dampened like the lights
+ * (ref/lit_ref.c, sbfx_lit_fire_radiance). A lit puff above a fireball: the light the fire adds
+ * (the frame with the fire's emission less the frame with it at 0) against the reference's,
+ * pixel by pixel, within the random configurations' tolerance (RADIANCE_TOLERANCE of the pixel's
+ * own value plus 1 % of the puff's brightest). */
+static const char *const lit_fire_scene =
+    "render = { white_luminance = 100.0; };\n"
+    "media = { smoke = { albedo = 0.7; density = 0.8; lighting = \"lit\"; steps = [4, 16];\n"
+    "  texture = { size = 64; variants = 3; }; detail = { strength = 0.0; }; };\n"
+    "  fire = { albedo = 0.0; density = 0.6; temperature = [1500.0, 500.0]; emissivity = 1.0;\n"
+    "  detail = { strength = 0.0; }; }; };\n"
+    "effects = { puff = { steps = ( { type = \"emitter\"; medium = \"smoke\"; count = 4; },\n"
+    "  { type = \"emitter\"; medium = \"fire\"; count = 4; } ); }; };\n";
+
+static float *lit_fire_frame(gl_fixture *f, sbfx *fx, const sbfx_view_particle *p, int count, int *lit_particles)
+{
+    CHECK(sbfx_render_view_particles(fx, &f->frame, p, count) == SBFX_OK, "%s", sbfx_last_error(fx));
+    sbfx_counters c;
+    sbfx_stats(fx, &c);
+    *lit_particles = c.fire_lit_particles;
+    int w, h;
+    return fixture_read_target(fx, &w, &h);
+}
+
+/* The fire's light on the puff: the module's gathered fire (fx->frame_fire, the frame just
+ * rendered) in-scattered at the centre, isotropic. */
+static void fire_at_centre(sbfx *fx, const sbfx_view_particle *p, double out[3])
+{
+    const double c[3] = {p->center[0], p->center[1], p->center[2]};
+    sbfx_fire_scatter s;
+    sbfx_fire_scatter_at(fx->frame_fire, fx->frame_fire_count, sbfx_get_desc(fx)->exposure, c, 0.0, &s);
+    for (int k = 0; k < 3; k++) out[k] = s.rgb[k];
+}
+
+CHECK_TEST(fire_lights_lit_smoke_by_the_references_amount)
+{
+    gl_fixture f;
+    open_lit(&f);
+    sbfx *fx = lit_module(&f, lit_fire_scene);
+    CHECK(sbfx_fire_lit(fx), "a scene of fire and lit smoke: the fire does not light the smoke");
+    sbfx_set_lights(fx, (const sbfx_view_light[]){{{-0.3f, -1.0f, -0.2f, 0.0f}, {0.05f, 0.05f, 0.06f}}}, 1,
+                    (const float[3]){0.01f, 0.012f, 0.02f});
+    cpu_texture t = cpu_smoke(fx);
+    const sbfx_view_particle p[] = {
+        {.center = {0.0f, 0.6f, -4.5f}, .radius = 1.0f, .detail = {0.4f, 0, 0}, .intensity = 1.0f, .medium = SBFX_SMOKE},
+        {.center = {0.0f, -1.2f, -5.0f}, .radius = 0.45f, .detail = {0.2f, 0.5f, 0.1f}, .intensity = 1.0f,
+         .medium = SBFX_FIRE},
+    };
+    int lit_on, lit_off;
+    float *on = lit_fire_frame(&f, fx, p, 2, &lit_on);
+    double fire_centre[3];
+    fire_at_centre(fx, &p[0], fire_centre); /* before the next frame gathers its own */
+    sbfx_medium_params *m = &sbfx_media(fx)[SBFX_SMOKE], *fire = &sbfx_media(fx)[SBFX_FIRE];
+    float emission = fire->emission_scale;
+    fire->emission_scale = 0.0f;
+    float *off = lit_fire_frame(&f, fx, p, 2, &lit_off);
+    fire->emission_scale = emission;
+    CHECK(lit_on == 1 && lit_off == 0, "particles lit by fire: %d, %d without its emission", lit_on, lit_off);
+    sbfx_lit_medium lm = {{m->albedo * m->color[0], m->albedo * m->color[1], m->albedo * m->color[2]},
+                          m->tau, m->wrap, m->translucency, m->dampening, m->steps_min, m->steps_max};
+    double pixel_slope = 2.0 / (SIZE * f.frame.projection[0]), c[3] = {p[0].center[0], p[0].center[1], p[0].center[2]};
+    double lod = sbfx_lit_lod(t.tex.size, p[0].radius, -c[2], pixel_slope);
+    int variant = sbfx_lit_variant(p[0].detail[0], t.tex.layers / 2), pixels = 0, over = 0;
+    double most = 0.0, worst = 0.0, sum_gpu = 0.0, sum_cpu = 0.0, sum_off = 0.0;
+    static double want[SIZE * SIZE][3];
+    static bool fire_reaches[SIZE * SIZE];
+    for (int i = 0; i < SIZE * SIZE; i++) {
+        double ray[3], rp_alpha;
+        fixture_ray(&f, &f.frame, SIZE, SIZE, i % SIZE, i / SIZE, ray);
+        sbfx_ref_particle rp = {{c[0], c[1], c[2]}, p[0].radius, m->tau * p[0].intensity};
+        sbfx_ref_particle rf = {{p[1].center[0], p[1].center[1], p[1].center[2]}, p[1].radius, fire->tau};
+        sbfx_ref_pixel px = {{ray[0], ray[1], ray[2]}, INFINITY, fixture_near(&f.frame), 0.0};
+        rp_alpha = sbfx_ref_opacity(SBFX_OPACITY_SPHERICAL, &rp, &px);
+        fire_reaches[i] = sbfx_ref_opacity(SBFX_OPACITY_SPHERICAL, &rf, &px) > 0.0;
+        sbfx_lit_fire_radiance(&lm, &t.tex, variant, lod, c, p[0].radius, ray, fire_centre, want[i]);
+        for (int k = 0; k < 3; k++) want[i][k] *= rp_alpha, most = fmax(most, want[i][k]);
+    }
+    for (int i = 0; i < SIZE * SIZE; i++) {
+        if (!(1.0 - off[4 * i + 3] > 0.02) || fire_reaches[i]) continue; /* the puff alone */
+        for (int k = 0; k < 3; k++) {
+            double got = on[4 * i + k] - off[4 * i + k], e = fabs(got - want[i][k]) / (fabs(want[i][k]) + 0.01 * most);
+            worst = fmax(worst, e);
+            if (e > RADIANCE_TOLERANCE) over++;
+            sum_gpu += got, sum_cpu += want[i][k], sum_off += off[4 * i + k];
+        }
+        pixels++;
+    }
+    printf("# %d pixels of the lit puff: %.4f without the fire's light, +%.4f with it on the GPU, +%.4f in the "
+           "reference (GPU/reference %.4f); worst pixel %.3f, %d channels over %.2f; fire at its centre "
+           "%.4f %.4f %.4f\n", pixels, sum_off / pixels, sum_gpu / pixels, sum_cpu / pixels, sum_gpu / sum_cpu, worst,
+           over, RADIANCE_TOLERANCE, fire_centre[0], fire_centre[1], fire_centre[2]);
+    CHECK(pixels > 200, "%d pixels", pixels);
+    CHECK(over <= ROUNDING_PIXELS * 3 * pixels, "%d channels differ from the reference beyond the tolerance", over);
+    CHECK(sum_cpu > 0.5 * sum_off, "the fire adds %.4f to %.4f: hardly any light", sum_cpu, sum_off);
+    free(on), free(off), free(t.texels);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
 /* The hard cases, each against the reference: N.V = 0 at the rim (steps nMin), a light exactly
  * behind and exactly in front, zero lights, nMax = nMin, a light inside the particle. */
 CHECK_TEST(hard_cases_match_cpu)
