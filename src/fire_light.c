@@ -12,7 +12,7 @@
 #define EROSION_SHARPNESS 1.8
 #define EROSION_GAIN 2.2
 #define RINGS 8 /* midpoint rule over rho: 0.5 % of the exact integral for the defaults */
-#define BINS 1024
+#define BINS SBFX_FIRE_DETAIL_BINS
 #define SHADE_REACH 4.0 /* m */
 
 static double clamp01(double x) { return x < 0.0 ? 0.0 : x > 1.0 ? 1.0 : x; }
@@ -43,23 +43,23 @@ static double trilinear(const float *v, int size, int frames, const double p[3])
     return sum;
 }
 
-void sbfx_fire_detail_levels(const float *volume, int size, int frames, double out[SBFX_FIRE_DETAIL_LEVELS])
+static double next_uniform(uint64_t *state)
 {
-    unsigned histogram[BINS] = {0};
-    unsigned n = 0;
-    uint64_t state = 0x9e3779b97f4a7c15ull;
-    for (int i = 0; i < 65536 && volume && size > 0 && frames > 0; i++) {
-        double p[3];
-        for (int k = 0; k < 3; k++) {
-            state = state * 6364136223846793005ull + 1442695040888963407ull;
-            p[k] = (double)(state >> 11) * 0x1p-53 * (k < 2 ? size : frames);
-        }
-        double value = trilinear(volume, size, frames, p);
-        if (!(value >= 0.0 && value <= 1.0)) continue;
-        int b = (int)(value * BINS);
-        histogram[b < BINS ? b : BINS - 1]++;
-        n++;
-    }
+    *state = *state * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(*state >> 11) * 0x1p-53;
+}
+
+static void count_value(double value, unsigned *histogram, unsigned *n)
+{
+    if (!(value >= 0.0 && value <= 1.0)) return;
+    int b = (int)(value * BINS);
+    histogram[b < BINS ? b : BINS - 1]++;
+    ++*n;
+}
+
+/* The quantiles (j + 1/2) / LEVELS of a histogram of n values, linear within a bin. */
+static void quantiles(const unsigned histogram[BINS], unsigned n, double out[SBFX_FIRE_DETAIL_LEVELS])
+{
     unsigned seen = 0;
     int b = 0;
     for (int j = 0; j < SBFX_FIRE_DETAIL_LEVELS; j++) {
@@ -68,6 +68,51 @@ void sbfx_fire_detail_levels(const float *volume, int size, int frames, double o
         double within = histogram[b] ? (want - seen) / histogram[b] : 0.5;
         out[j] = n ? (b + within) / BINS : 0.5;
     }
+}
+
+void sbfx_fire_detail_levels(const float *volume, int size, int frames, double out[SBFX_FIRE_DETAIL_LEVELS])
+{
+    unsigned histogram[BINS] = {0};
+    unsigned n = 0;
+    uint64_t state = 0x9e3779b97f4a7c15ull;
+    for (int i = 0; i < 65536 && volume && size > 0 && frames > 0; i++) {
+        double p[3];
+        for (int k = 0; k < 3; k++) p[k] = next_uniform(&state) * (k < 2 ? size : frames);
+        count_value(trilinear(volume, size, frames, p), histogram, &n);
+    }
+    quantiles(histogram, n, out);
+}
+
+static double half_texel(const uint16_t *slice, int size, int x, int y)
+{
+    _Float16 h;
+    memcpy(&h, &slice[(size_t)(y & (size - 1)) * size + (x & (size - 1))], sizeof(h));
+    return (double)h;
+}
+
+void sbfx_fire_slice_histogram(const uint16_t *half_texels, int size, uint16_t histogram[SBFX_FIRE_DETAIL_BINS])
+{
+    unsigned counts[BINS] = {0}, n = 0;
+    uint64_t state = 0x9e3779b97f4a7c15ull;
+    for (int i = 0; i < SBFX_FIRE_SLICE_SAMPLES && half_texels && size > 0; i++) {
+        double px = next_uniform(&state) * size, py = next_uniform(&state) * size;
+        int x = (int)px, y = (int)py;
+        double fx = px - x, fy = py - y;
+        double value = (1.0 - fy) * ((1.0 - fx) * half_texel(half_texels, size, x, y) +
+                                     fx * half_texel(half_texels, size, x + 1, y)) +
+                       fy * ((1.0 - fx) * half_texel(half_texels, size, x, y + 1) +
+                             fx * half_texel(half_texels, size, x + 1, y + 1));
+        count_value(value, counts, &n);
+    }
+    for (int b = 0; b < BINS; b++) histogram[b] = (uint16_t)counts[b];
+}
+
+void sbfx_fire_detail_levels_of_slices(const uint16_t *histograms, int slices, double out[SBFX_FIRE_DETAIL_LEVELS])
+{
+    unsigned total[BINS] = {0}, n = 0;
+    for (int s = 0; s < slices; s++)
+        for (int b = 0; b < BINS; b++) total[b] += histograms[(size_t)s * BINS + b], n += histograms[(size_t)s * BINS + b];
+    quantiles(total, n, out);
 }
 
 double sbfx_fire_coordinate(double detail, double rho, double intensity, double strength)

@@ -6,6 +6,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 /* What a fire particle's light depends on: particle.frag's fire (MEDIUM_EMITS), averaged over
  * the detail's values (one per pixel drives both the density and the temperature there; the
@@ -58,6 +59,18 @@ double sbfx_fire_cool_soot(double depth, double glow, double soot);
  * fastest): trilinear between texels, as the GPU filters a magnified window (which narrows the
  * texels' spread), at 65536 fixed pseudo-random points; a 1024-bin histogram, no memory. */
 void sbfx_fire_detail_levels(const float *volume, int size, int frames, double out[SBFX_FIRE_DETAIL_LEVELS]);
+
+/* The same for a volume whose slices a host pushes (a V4L2 camera, a video clip: the time ring
+ * of sbfx_detail_push_slice): one histogram per slice, of SBFX_FIRE_SLICE_SAMPLES values at fixed
+ * pseudo-random points of the slice (half-float texels, size x size, REPEAT), bilinear as the GPU
+ * filters a magnified window within a slice (adjacent slices of a camera are alike: the filter
+ * between them narrows little), in SBFX_FIRE_DETAIL_BINS bins; then the quantiles of the slices'
+ * histograms together. A pushed slice replaces its slot's histogram: the statistics follow what
+ * the volume holds. No memory. */
+#define SBFX_FIRE_DETAIL_BINS 1024
+#define SBFX_FIRE_SLICE_SAMPLES 2048
+void sbfx_fire_slice_histogram(const uint16_t *half_texels, int size, uint16_t histogram[SBFX_FIRE_DETAIL_BINS]);
+void sbfx_fire_detail_levels_of_slices(const uint16_t *histograms, int slices, double out[SBFX_FIRE_DETAIL_LEVELS]);
 
 /* Radiant intensity rgb (linear radiance units x m^2: light per steradian, the same in every
  * direction) of one fire particle of the given radius and intensity, and its emitting area

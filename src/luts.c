@@ -70,6 +70,29 @@ static bool borrow_texture(sbfx *fx, uint64_t key, GLuint *texture, size_t bytes
 
 static sbfx_result make_detail(sbfx *fx, int size, int frames, size_t n);
 
+/* The fire's light follows a volume the host writes (a camera's or a clip's slices): per-slice
+ * statistics, kept only where the scene's detail is live or a clip and its fire emits. */
+static bool wants_slice_statistics(const sbfx *fx)
+{
+    const sbfx_medium_params *fire = &fx->media[SBFX_FIRE];
+    return (sbfx_wants_live_detail(fx) || sbfx_detail_clip(fx)) && fx->uses_medium[SBFX_FIRE] &&
+           (fire->emissivity > 0.0f || fire->emission_scale > 0.0f);
+}
+
+/* A volume taken over from the live module on a reload holds what it was made with: so do its
+ * statistics. Without the donor's per-slice ones where they are wanted, it is made again. */
+static bool borrow_detail(sbfx *fx, uint64_t key, size_t bytes)
+{
+    const sbfx *donor = fx->donor;
+    if (fx->fire_slice_histograms && !(donor && donor->fire_slice_histograms)) return false;
+    if (!borrow_texture(fx, key, &fx->gl.detail_texture, bytes)) return false;
+    memcpy(fx->fire_detail, donor->fire_detail, sizeof(fx->fire_detail));
+    if (fx->fire_slice_histograms)
+        memcpy(fx->fire_slice_histograms, donor->fire_slice_histograms,
+               (size_t)fx->desc.detail_frames * SBFX_FIRE_DETAIL_BINS * sizeof(uint16_t));
+    return true;
+}
+
 static sbfx_result upload_detail(sbfx *fx)
 {
     int size = fx->desc.detail_size, frames = fx->desc.detail_frames;
@@ -78,7 +101,10 @@ static sbfx_result upload_detail(sbfx *fx)
     uint64_t key = generated_key("detail", size, frames, r32f, fx->desc.seed);
     if (r32f && !(fx->detail_scratch = sbfx_calloc(fx, (size_t)size * size, sizeof(float))))
         return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
-    if (borrow_texture(fx, key, &fx->gl.detail_texture, n * (r32f ? 4 : 2))) return SBFX_OK;
+    if (wants_slice_statistics(fx) &&
+        !(fx->fire_slice_histograms = sbfx_calloc(fx, (size_t)frames * SBFX_FIRE_DETAIL_BINS, sizeof(uint16_t))))
+        return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
+    if (borrow_detail(fx, key, n * (r32f ? 4 : 2))) return SBFX_OK;
     sbfx_result r = make_detail(fx, size, frames, n);
     if (r == SBFX_OK) sbfx_object_note(fx, SBFX_OBJECT_TEXTURE, fx->gl.detail_texture, key, NULL);
     return r;
@@ -92,13 +118,16 @@ static sbfx_result make_detail(sbfx *fx, int size, int frames, size_t n)
     if (values && texels) {
         sbfx_detail_generate(size, frames, fx->desc.seed, values);
         sbfx_fire_detail_levels(values, size, frames, fx->fire_detail); /* what fire's light averages over */
+        for (size_t i = 0; i < n; i++) texels[i] = (_Float16)values[i];
+        for (int s = 0; fx->fire_slice_histograms && s < frames; s++)
+            sbfx_fire_slice_histogram((const uint16_t *)&texels[(size_t)s * size * size], size,
+                                      &fx->fire_slice_histograms[(size_t)s * SBFX_FIRE_DETAIL_BINS]);
         if (fx->desc.detail_format == SBFX_DETAIL_R32F) {
             /* R32F is not filterable in core ES 3.0: sampled NEAREST, which is its cost. */
             fx->gl.detail_texture = sbfx_texture_create(fx, GL_TEXTURE_3D, GL_NEAREST, GL_REPEAT);
             glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size, size, frames, 0, GL_RED, GL_FLOAT, values);
             fx->counters.gpu_bytes += n * 4;
         } else {
-            for (size_t i = 0; i < n; i++) texels[i] = (_Float16)values[i];
             /* R16F: filterable in core ES 3.0, REPEAT so windows and time wrap. */
             fx->gl.detail_texture = sbfx_texture_create(fx, GL_TEXTURE_3D, GL_LINEAR, GL_REPEAT);
             glTexImage3D(GL_TEXTURE_3D, 0, GL_R16F, size, size, frames, 0, GL_RED, GL_HALF_FLOAT, texels);
@@ -193,7 +222,9 @@ void sbfx_luts_destroy(sbfx *fx)
     sbfx_free(fx, fx->cmf_rgb);
     sbfx_free(fx, fx->cmf_band);
     sbfx_free(fx, fx->detail_scratch);
+    sbfx_free(fx, fx->fire_slice_histograms);
     fx->cmf_rgb = fx->cmf_band = fx->detail_scratch = NULL;
+    fx->fire_slice_histograms = NULL;
     fx->gl.detail_texture = 0;
 }
 
@@ -260,6 +291,11 @@ sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int si
     }
     sbfx_gl_state_restore(&saved);
     sbfx_object_forget_recipe(fx, SBFX_OBJECT_TEXTURE, fx->gl.detail_texture); /* not procedural now */
+    if (fx->fire_slice_histograms) { /* the fire's light follows what the volume now holds */
+        sbfx_fire_slice_histogram(half_texels, size,
+                                  &fx->fire_slice_histograms[(size_t)fx->detail_ring_next * SBFX_FIRE_DETAIL_BINS]);
+        sbfx_fire_detail_levels_of_slices(fx->fire_slice_histograms, fx->desc.detail_frames, fx->fire_detail);
+    }
     fx->detail_ring_next = (fx->detail_ring_next + 1) % fx->desc.detail_frames;
     sbfx_result r = sbfx_gl_check(fx, "writing a detail slice") ? SBFX_OK : SBFX_ERR_GL;
     sbfx_gl_leave(fx, "sbfx_detail_push_slice");

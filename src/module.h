@@ -347,6 +347,9 @@ struct sbfx {
     sbfx_fire_particle *fire_particles;
     sbfx_fire_work *fire_work;
     double fire_detail[SBFX_FIRE_DETAIL_LEVELS]; /* the detail volume's quantiles (fire_light.h) */
+    uint16_t *fire_slice_histograms; /* detail_frames x SBFX_FIRE_DETAIL_BINS: each slice's values, so
+                                        the quantiles follow pushed slices; only where the scene's
+                                        detail is live or a clip and fire emits (luts.c) */
     sbfx_fire_gathered emitted[SBFX_MAX_POINT_LIGHTS]; /* world space, after the last update */
     int emitted_count;
     bool emitted_current;        /* emitted[] gathered since the last sbfx_update */

@@ -365,6 +365,29 @@ CHECK_TEST(reload_keeps_the_host_desc)
     fixture_close(&f);
 }
 
+/* A detail volume taken over on a reload keeps the statistics the fire's light averages over
+ * (they were not made again with it, and were all 0 once). */
+CHECK_TEST(reload_keeps_the_fire_light_detail_statistics)
+{
+    gl_fixture f;
+    fixture_open_far(&f, 96, 64);
+    edit e = base;
+    e.fire = true;
+    sbfx *fx = module_of(&f, e);
+    GLuint volume = fx->gl.detail_texture;
+    double before[SBFX_FIRE_DETAIL_LEVELS];
+    memcpy(before, fx->fire_detail, sizeof before);
+    CHECK(before[SBFX_FIRE_DETAIL_LEVELS - 1] > before[0] && before[0] > 0.0, "quantiles %g .. %g", before[0],
+          before[SBFX_FIRE_DETAIL_LEVELS - 1]);
+    e.grey = 0.5f;
+    CHECK(reload(fx, e) == SBFX_OK, "%s", sbfx_last_error(fx));
+    CHECK(fx->gl.detail_texture == volume, "the volume was made again");
+    CHECK(memcmp(before, fx->fire_detail, sizeof before) == 0, "the quantiles changed: %g .. %g", fx->fire_detail[0],
+          fx->fire_detail[SBFX_FIRE_DETAIL_LEVELS - 1]);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
 /* The procedural detail volume is taken over while it holds what it was made with; once a host
  * pushed a slice into it, a reload makes a procedural one again (the host pushes again). */
 CHECK_TEST(pushed_detail_is_not_taken_over)
