@@ -16,4 +16,25 @@ double sbfx_ref_chord_depth(double tau, double r, double d);
 double sbfx_ref_shadow_transmittance(const sbfx_ref_particle *particles, size_t count,
                                      const double direction[3], const double p[3]);
 
+/* The map's four values on the light's ray through p (shadow.frag): r = that transmittance,
+ * g = the product of exp(-chord depth x z), z the centre's map depth, b = the product of
+ * exp(-chord depth x (z^2 + the chord's variance along itself, in map depth)), a = the least map
+ * depth where a particle's chord begins (1 where none is). A point x's map depth is
+ * depth_row . (x, 1) (the host's matrix: (view_projection x).z * 0.5 + 0.5). */
+void sbfx_ref_shadow_texel(const sbfx_ref_particle *particles, size_t count, const double direction[3],
+                           const double p[3], const double depth_row[4], double out[4]);
+
+/* What a host makes of the map at a receiver of map depth `depth` (docs/embedding.md,
+ * smoke_visibility): 1 in front of where the smoke begins (a) or where there is none; else the
+ * optical depth -log r spread evenly over mean -+ sqrt(3) sd (a uniform spread of that mean and
+ * variance: mean = log g / log r, mean of squares log b / log r), begun no earlier than a, and
+ * the share of it in front of the receiver: r^share. Behind all of it: r. Where r < 1e-4 (the
+ * moments are not known to half precision) all of it is in front. */
+double sbfx_ref_shadow_visibility(const double texel[4], double depth);
+
+/* The exact transmittance from the light to the point p: each particle's chord only as far as p
+ * (the antiderivative of its linear density along the ray). */
+double sbfx_ref_shadow_transmittance_to(const sbfx_ref_particle *particles, size_t count,
+                                        const double direction[3], const double p[3]);
+
 #endif

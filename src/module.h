@@ -263,9 +263,9 @@ typedef struct sbfx_host_errors {
 /* The host's transmittance shadow map (shadow.c): made at load only when asked for. */
 typedef struct sbfx_shadow {
     int size;                  /* 0: none */
-    sbfx_rt map;               /* one colour texture: R16F, or RGBA8 where half floats do not render */
+    sbfx_rt map;               /* one colour texture: RGBA16F, or RGBA8 where half floats do not render */
     GLuint program, vao, buffer;
-    GLint u_matrix;
+    GLint u_matrix, u_depth;
     bool clear;                /* the map holds 1 everywhere (no particle since it was cleared) */
 } sbfx_shadow;
 

@@ -430,14 +430,20 @@ SBFX_API sbfx_result sbfx_detail_procedural(const sbfx *fx, float *out, size_t c
 /* Smoke shades the host (RTR 13.8.1; docs/embedding.md "Smoke that shades the host"). sbfx
  * renders the live particles' transmittance, seen from one directional light, into a texture
  * of its own (desc.shadow_map_size texels per side, made at load); the host multiplies the
- * value it looks up into that light's visibility. The map holds, in .r, the transmittance
+ * value it makes of it into that light's visibility. The map holds, in .r, the transmittance
  * along the light's ray through every particle (the exact model's optical depth of each
  * particle's mean density, detail not sampled): 1 where no particle is, and on the map's
- * border, so a CLAMP_TO_EDGE lookup outside the particles reads 1. The texture is LINEAR
- * filtered, R16F where half floats are renderable, else RGBA8 (the value in every channel);
- * the host only samples it and leaves its parameters alone. It is fitted to the particles each
- * call: a world point p looks up uv = (view_projection * p).xy * 0.5 + 0.5. Shadows are cast
- * along the whole ray: a surface inside or above the cloud is shaded like one below it. */
+ * border, so a CLAMP_TO_EDGE lookup outside the particles reads 1. And where along the light
+ * it absorbs, in the map's depth z = (view_projection * p).z * 0.5 + 0.5 (0 where the particles
+ * begin, 1 where they end): .a the nearest z where any particle begins, .g the product of
+ * exp(-optical depth x the particle centre's z), .b of exp(-optical depth x (z^2 + the chord's
+ * variance)), so log g / log r is the optical-depth-weighted mean depth and log b / log r its
+ * mean square. docs/embedding.md's smoke_visibility() makes of them 1 above the smoke, .r
+ * under it and the share in front of a surface inside it; .r alone shades a surface above the
+ * cloud like one below it. The texture is LINEAR filtered, RGBA16F where half floats are
+ * renderable, else RGBA8; the host only samples it and leaves its parameters alone. It is
+ * fitted to the particles each call: a world point p looks up uv = (view_projection * p).xy *
+ * 0.5 + 0.5. */
 typedef struct sbfx_shadow_map {
     uint32_t texture;            /* sbfx's GL texture (valid until sbfx_destroy) */
     int size;                    /* texels per side */

@@ -10,7 +10,7 @@
 #define SHADOW_MARGIN_TEXELS 2   /* cleared texels kept on each side: CLAMP_TO_EDGE reads 1 */
 #define SHADOW_INSTANCE_FLOATS 5 /* light-view centre, radius, tau x intensity */
 
-static const sbfx_rt_format shadow_r16f = {GL_R16F, GL_RED, GL_HALF_FLOAT, 2};
+static const sbfx_rt_format shadow_rgba16f = {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT, 8};
 
 /* ---- load ---- */
 
@@ -39,11 +39,11 @@ static void clear_map(sbfx *fx)
 
 static sbfx_result create_map(sbfx *fx, int size)
 {
-    const sbfx_rt_format *r16f[SBFX_RT_MAX] = {&shadow_r16f}, *rgba8[SBFX_RT_MAX] = {&sbfx_rt_rgba8};
-    if (sbfx_half_float_renderable() && sbfx_rt_create(fx, &fx->shadow.map, size, size, r16f, NULL, GL_LINEAR))
+    const sbfx_rt_format *half[SBFX_RT_MAX] = {&shadow_rgba16f}, *rgba8[SBFX_RT_MAX] = {&sbfx_rt_rgba8};
+    if (sbfx_half_float_renderable() && sbfx_rt_create(fx, &fx->shadow.map, size, size, half, NULL, GL_LINEAR))
         return SBFX_OK;
-    sbfx_log(fx, SBFX_LOG_INFO, "shadow map: R16F is not renderable here, the map is RGBA8 (transmittance in "
-             "steps of 1/255 per particle)");
+    sbfx_log(fx, SBFX_LOG_INFO, "shadow map: RGBA16F is not renderable here, the map is RGBA8 (transmittance in "
+             "steps of 1/255 per particle, depth in 1/255 of the smoke's extent)");
     if (sbfx_rt_create(fx, &fx->shadow.map, size, size, rgba8, NULL, GL_LINEAR)) return SBFX_OK;
     return sbfx_fail(fx, SBFX_ERR_GL, "shadow map: a %dx%d RGBA8 framebuffer is incomplete on this context; "
                      "try a smaller desc.shadow_map_size", size, size);
@@ -82,6 +82,7 @@ sbfx_result sbfx_shadow_create(sbfx *fx)
     s->program = sbfx_program_build(fx, "shadow.vert", "shadow.frag", NULL);
     if (!s->program) return SBFX_ERR_SHADER;
     s->u_matrix = glGetUniformLocation(s->program, "u_matrix");
+    s->u_depth = glGetUniformLocation(s->program, "u_depth");
     sbfx_result r = create_buffers(fx);
     if (r != SBFX_OK) return r;
     const sbfx_gl_units unit0 = {1u, 0u, 0u};
@@ -160,9 +161,11 @@ static int pack_instances(sbfx *fx, int n, shadow_bounds *b)
 }
 
 /* Orthographic light-view -> clip fitted to the bounds, SHADOW_MARGIN_TEXELS of the map left
- * clear on each side (a particle's quad never reaches the border). Clip z is 0: no depth is
- * kept, and neither the host's clip control nor its depth range can clip a quad. */
-static void fit_projection(const shadow_bounds *b, int size, float proj[16])
+ * clear on each side (a particle's quad never reaches the border). The quads are drawn at clip
+ * z 0 (neither the host's clip control nor its depth range can clip one); the depth along the
+ * light, 0 where the particles begin and 1 where they end, is the shader's own (depth: scale and
+ * offset of the light view's -z) and the host's matrix's third row (clip z = 2 depth - 1). */
+static void fit_projection(const shadow_bounds *b, int size, float proj[16], float depth[2])
 {
     float grow = (float)size / (float)(size - 2 * SHADOW_MARGIN_TEXELS);
     memset(proj, 0, 16 * sizeof(float));
@@ -173,6 +176,17 @@ static void fit_projection(const shadow_bounds *b, int size, float proj[16])
         proj[12 + k] = -mid / half;
     }
     proj[15] = 1.0f;
+    float near = -b->hi[2], extent = fmaxf(b->hi[2] - b->lo[2], 1e-3f); /* along the light's travel */
+    depth[0] = 1.0f / extent;
+    depth[1] = -near / extent;
+}
+
+/* The host's matrix: the drawing one with the depth row, clip z = 2 (scale (-z) + offset) - 1. */
+static void with_depth_row(const float proj[16], const float depth[2], float out[16])
+{
+    memcpy(out, proj, 16 * sizeof(float));
+    out[10] = -2.0f * depth[0];
+    out[14] = 2.0f * depth[1] - 1.0f;
 }
 
 static void mat4_mul(float out[16], const float a[16], const float b[16])
@@ -187,7 +201,7 @@ static void mat4_mul(float out[16], const float a[16], const float b[16])
 
 /* ---- the pass ---- */
 
-static void draw_map(sbfx *fx, int count, const float proj[16])
+static void draw_map(sbfx *fx, int count, const float proj[16], const float depth[2])
 {
     sbfx_shadow *s = &fx->shadow;
     sbfx_gl_state saved;
@@ -199,10 +213,13 @@ static void draw_map(sbfx *fx, int count, const float proj[16])
     clear_map(fx);
     sbfx_rt_bind(&s->map);
     glEnable(GL_BLEND);
-    glBlendEquation(GL_FUNC_ADD);
-    glBlendFunc(GL_ZERO, GL_SRC_COLOR); /* dst * transmittance: the order does not matter */
+    /* r, g, b: dst * src (products of transmittances); a: the nearest front. The order does not
+     * matter. MIN takes no factors. */
+    glBlendEquationSeparate(GL_FUNC_ADD, GL_MIN);
+    glBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ONE, GL_ONE);
     glUseProgram(s->program);
     glUniformMatrix4fv(s->u_matrix, 1, GL_FALSE, proj);
+    glUniform2fv(s->u_depth, 1, depth);
     glBindVertexArray(s->vao);
     glBindBuffer(GL_ARRAY_BUFFER, s->buffer);
     glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)((size_t)count * SHADOW_INSTANCE_FLOATS * sizeof(float)),
@@ -219,15 +236,15 @@ static sbfx_result render_map(sbfx *fx, int n, const float view[16], sbfx_shadow
 {
     shadow_bounds bounds;
     int count = pack_instances(fx, n, &bounds);
-    float proj[16];
+    float proj[16], depth[2], host[16];
     if (count == 0) bounds = (shadow_bounds){{-1, -1, -1}, {1, 1, 1}};
-    fit_projection(&bounds, fx->shadow.size, proj);
+    fit_projection(&bounds, fx->shadow.size, proj, depth);
     fx->counters.shadow_passes = 0;
     sbfx_result r = SBFX_OK;
     if (count > 0 || !fx->shadow.clear) {
         sbfx_gl_enter(fx);
         if (count > 0) {
-            draw_map(fx, count, proj);
+            draw_map(fx, count, proj, depth);
         } else {
             sbfx_gl_state saved;
             sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | fx->context_parts, NULL);
@@ -240,7 +257,8 @@ static sbfx_result render_map(sbfx *fx, int n, const float view[16], sbfx_shadow
     out->texture = fx->shadow.map.texture[0];
     out->size = fx->shadow.size;
     out->particles = count;
-    mat4_mul(out->view_projection, proj, view);
+    with_depth_row(proj, depth, host);
+    mat4_mul(out->view_projection, host, view);
     return r;
 }
 

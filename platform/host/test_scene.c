@@ -91,12 +91,21 @@ static const char fragment_source[] =
     "    }\n"
     "    return sum;\n"
     "}\n"
-    /* the smoke's transmittance towards the sun (sbfx_render_shadow_map): the map is 1 on its
-     * border, so CLAMP_TO_EDGE reads 1 outside the smoke */
+    /* the smoke's transmittance towards the sun (sbfx_render_shadow_map, docs/embedding.md's
+     * smoke_visibility): the map is 1 on its border, so CLAMP_TO_EDGE reads 1 outside the smoke;
+     * a surface in front of where the smoke begins along the light is not shaded, one inside it
+     * by the share of the smoke's optical depth in front of it */
     "float sun_visibility(vec3 world) {\n"
     "    if (u_shadowed == 0) return 1.0;\n"
-    "    vec2 uv = (u_shadow_matrix * vec4(world, 1.0)).xy * 0.5 + 0.5;\n"
-    "    return texture(u_shadow, uv).r;\n"
+    "    vec3 m = (u_shadow_matrix * vec4(world, 1.0)).xyz * 0.5 + 0.5;\n"
+    "    vec4 s = texture(u_shadow, m.xy);\n"
+    "    if (m.z <= s.a || s.r >= 1.0) return 1.0;\n"
+    "    if (s.r <= 1e-4) return s.r;\n"
+    "    float mean = log(s.g) / log(s.r);\n"
+    "    float half_width = sqrt(3.0 * max(log(s.b) / log(s.r) - mean * mean, 0.0));\n"
+    "    float begin = max(s.a, mean - half_width), end = mean + half_width;\n"
+    "    float share = end > begin ? clamp((m.z - begin) / (end - begin), 0.0, 1.0) : 1.0;\n"
+    "    return pow(s.r, share);\n"
     "}\n"
     "float checker(vec2 p) {\n"
     "    vec2 w = max(fwidth(p), vec2(1e-4));\n"

@@ -42,10 +42,10 @@ CHECK_TEST(plan_holds_only_what_each_scene_uses)
                              + (want->fire_light ? 32 : 0);                 /* + the fire's light */
         size_t bytes = (want->blackbody ? BLACKBODY_BYTES : 0) + (want->phase ? PHASE_BYTES : 0) +
                        DETAIL_BYTES + (size_t)want->max_particles * instance_bytes;
-        /* the shadow map (made at load: R16F, or RGBA8 where half floats do not render) and its
+        /* the shadow map (made at load: RGBA16F, or RGBA8 where half floats do not render) and its
          * instance buffer of 5 floats per particle */
         if (want->shadow_map)
-            bytes += (size_t)want->shadow_map * want->shadow_map * (sbfx_half_float_renderable() ? 2 : 4) +
+            bytes += (size_t)want->shadow_map * want->shadow_map * (sbfx_half_float_renderable() ? 8 : 4) +
                      (size_t)want->max_particles * 20;
         printf("# %-10s programs %d textures %d framebuffers %d gpu_bytes %zu\n", want->scene, c.programs,
                c.textures, c.framebuffers, c.gpu_bytes);

@@ -1,6 +1,7 @@
 /* The host's transmittance shadow map (sbfx_render_shadow_map, RTR 13.8.1): a known smoke puff
- * against the CPU reference (ref/shadow_ref.h), the map only where asked for (counters), and
- * bad input refused with nothing changed. Its GL state: test_gl_state's shadow_map_leaves_state. */
+ * against the CPU reference (ref/shadow_ref.h), every channel; what a host makes of it in front
+ * of, inside and behind the smoke; the map only where asked for (counters), and bad input
+ * refused with nothing changed. Its GL state: test_gl_state's shadow_map_leaves_state. */
 #include "gl_fixture.h"
 #include "module.h" /* fx->shadow */
 #include "shadow_ref.h"
@@ -24,6 +25,13 @@ static void texel_point(const float vp[16], int size, int i, int j, double p[3])
         double a = (ndc[row] - vp[12 + row]) / s2; /* (ndc - t) / s along the unit row, over s again */
         for (int k = 0; k < 3; k++) p[k] += a * e[k];
     }
+}
+
+/* The map's depth at a world point, as the host computes it: (view_projection x).z * 0.5 + 0.5. */
+static void depth_row_of(const float vp[16], double row[4])
+{
+    for (int k = 0; k < 4; k++) row[k] = 0.5 * vp[k * 4 + 2];
+    row[3] += 0.5;
 }
 
 /* Six smoke particles overlapping around (0, 1.5, 0), different sizes and intensities. */
@@ -58,27 +66,36 @@ CHECK_TEST(smoke_puff_matches_the_reference)
     static float texels[SIZE * SIZE * 4];
     CHECK(sbfx_read_shadow_map(fx, texels, ARRAY_SIZE(texels)) == SBFX_OK, "%s", sbfx_last_error(fx));
     /* Each blend rounds the product to the map's format, in a rounding mode GL leaves open (llvmpipe
-     * truncates): up to one unit in the last place per particle over the texel, at most n. A unit
-     * of R16F is 2^-11 for values in [0.5, 1) and less below; of RGBA8 1/255. The shader's exp and
-     * log in highp add ~1e-6. */
+     * truncates): up to one unit in the last place per particle over the texel, at most n, for r,
+     * g and b. A unit of a half float is 2^-11 for values in [0.5, 1) and less below; of RGBA8
+     * 1/255. a, a MIN, rounds once: half a unit (one where the rounding mode is open) of the
+     * front's depth in [0, 1]. The shader's exp, log and sqrt in highp add ~1e-6. */
     bool rgba8 = fx->shadow.map.bytes == (size_t)SIZE * SIZE * 4;
     double per_particle = rgba8 ? 1.0 / 255.0 : 1.0 / 2048.0, tol = n * per_particle + 1e-5;
-    double len = sqrt(0.16 + 1.0 + 0.09), unit[3] = {0.4 / len, -1.0 / len, 0.3 / len};
-    double worst = 0.0, darkest = 1.0, border_min = 1.0;
+    double tol_front = per_particle + 1e-5;
+    double len = sqrt(0.16 + 1.0 + 0.09), unit[3] = {0.4 / len, -1.0 / len, 0.3 / len}, row[4];
+    depth_row_of(map.view_projection, row);
+    double worst[4] = {0.0, 0.0, 0.0, 0.0}, darkest = 1.0, border_min = 1.0;
     for (int j = 0; j < SIZE; j++)
         for (int i = 0; i < SIZE; i++) {
-            double p[3];
+            double p[3], want[4];
             texel_point(map.view_projection, SIZE, i, j, p);
-            double want = sbfx_ref_shadow_transmittance(ref, (size_t)n, unit, p);
-            double got = texels[(j * SIZE + i) * 4];
-            CHECK_FINITE(got);
-            worst = fmax(worst, fabs(got - want));
-            darkest = fmin(darkest, got);
-            if (i < 2 || j < 2 || i >= SIZE - 2 || j >= SIZE - 2) border_min = fmin(border_min, got);
+            sbfx_ref_shadow_texel(ref, (size_t)n, unit, p, row, want);
+            CHECK_NEAR(want[0], sbfx_ref_shadow_transmittance(ref, (size_t)n, unit, p), 1e-15);
+            const float *got = &texels[(j * SIZE + i) * 4];
+            for (int k = 0; k < 4; k++) {
+                CHECK_FINITE(got[k]);
+                worst[k] = fmax(worst[k], fabs(got[k] - want[k]));
+            }
+            darkest = fmin(darkest, got[0]);
+            if (i < 2 || j < 2 || i >= SIZE - 2 || j >= SIZE - 2) border_min = fmin(border_min, got[0]);
         }
-    printf("# %s map: max |map - reference| %.2e (allowed %.2e), darkest %.4f\n", rgba8 ? "RGBA8" : "R16F", worst,
-           tol, darkest);
-    CHECK(worst <= tol, "max error %g > %g", worst, tol);
+    printf("# %s map: max |map - reference| %.2e %.2e %.2e (r g b, allowed %.2e), front %.2e (allowed %.2e); "
+           "darkest %.4f\n", rgba8 ? "RGBA8" : "RGBA16F", worst[0], worst[1], worst[2], tol, worst[3], tol_front,
+           darkest);
+    CHECK(worst[0] <= tol && worst[1] <= tol && worst[2] <= tol, "max error %g %g %g > %g", worst[0], worst[1],
+          worst[2], tol);
+    CHECK(worst[3] <= tol_front, "the front's depth is %g off (> %g)", worst[3], tol_front);
     CHECK(darkest < 0.7, "the puff casts no real shadow: darkest %g", darkest);
     CHECK(border_min == 1.0, "the border is shaded (%g): CLAMP_TO_EDGE would smear the shadow", border_min);
     sbfx_destroy(fx);
@@ -103,15 +120,68 @@ CHECK_TEST(rgba8_fallback_matches_the_reference)
     CHECK(sbfx_render_shadow_particles(fx, direction, particles, n, &map) == SBFX_OK, "%s", sbfx_last_error(fx));
     static float texels[64 * 64 * 4];
     CHECK(sbfx_read_shadow_map(fx, texels, ARRAY_SIZE(texels)) == SBFX_OK);
-    double unit[3] = {0, -1, 0}, worst = 0.0, tol = n / 255.0 + 1e-5; /* as above */
+    double unit[3] = {0, -1, 0}, worst = 0.0, front = 0.0, tol = n / 255.0 + 1e-5, row[4]; /* as above */
+    depth_row_of(map.view_projection, row);
     for (int j = 0; j < 64; j++)
         for (int i = 0; i < 64; i++) {
-            double p[3];
+            double p[3], want[4];
             texel_point(map.view_projection, 64, i, j, p);
-            worst = fmax(worst, fabs(texels[(j * 64 + i) * 4] - sbfx_ref_shadow_transmittance(ref, (size_t)n, unit, p)));
+            sbfx_ref_shadow_texel(ref, (size_t)n, unit, p, row, want);
+            for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(texels[(j * 64 + i) * 4 + k] - want[k]));
+            front = fmax(front, fabs(texels[(j * 64 + i) * 4 + 3] - want[3]));
         }
-    printf("# RGBA8 map: max |map - reference| %.2e (allowed %.2e)\n", worst, tol);
+    printf("# RGBA8 map: max |map - reference| %.2e (allowed %.2e), front %.2e (allowed %.2e)\n", worst, tol, front,
+           1.0 / 255.0 + 1e-5);
     CHECK(worst <= tol, "max error %g > %g", worst, tol);
+    CHECK(front <= 1.0 / 255.0 + 1e-5, "the front's depth is %g off", front);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
+/* What a host makes of the map (docs/embedding.md's smoke_visibility, ref/shadow_ref.h's
+ * sbfx_ref_shadow_visibility) for receivers on the light's rays through the puff: above where
+ * the smoke begins, exactly 1 (a surface over the cloud is not shaded: the map used to shade it
+ * like one under it); under all of it, the map's transmittance; inside, the optical depth spread
+ * from the front to twice its mean depth beyond, against the exact transmittance to the point
+ * (each chord as far as the point): within 0.1 (measured 0.058), the spread's approximation. */
+CHECK_TEST(the_map_knows_where_the_smoke_is_along_the_light)
+{
+    gl_fixture f;
+    fixture_open(&f, 32, 32);
+    sbfx *fx = module_with_map(&f, SIZE);
+    sbfx_view_particle particles[8];
+    sbfx_ref_particle ref[8];
+    int n = puff(fx, particles, ref);
+    const float direction[3] = {0.0f, -1.0f, 0.0f};
+    sbfx_shadow_map map;
+    CHECK(sbfx_render_shadow_particles(fx, direction, particles, n, &map) == SBFX_OK, "%s", sbfx_last_error(fx));
+    static float texels[SIZE * SIZE * 4];
+    CHECK(sbfx_read_shadow_map(fx, texels, ARRAY_SIZE(texels)) == SBFX_OK);
+    double unit[3] = {0, -1, 0}, row[4], above = 0.0, below = 0.0, inside = 0.0, shaded_above = 1.0;
+    depth_row_of(map.view_projection, row);
+    int rays = 0;
+    for (int j = 0; j < SIZE; j++)
+        for (int i = 0; i < SIZE; i++) {
+            const float *t = &texels[(j * SIZE + i) * 4];
+            if (!(t[0] < 0.95f)) continue; /* rays through the puff */
+            double texel[4] = {t[0], t[1], t[2], t[3]}, p[3];
+            texel_point(map.view_projection, SIZE, i, j, p);
+            rays++;
+            for (double y = 3.5; y >= -0.5; y -= 0.05) { /* from above the puff (top 2.7) to below it (0.2) */
+                double q[3] = {p[0], y, p[2]}, depth = row[0] * q[0] + row[1] * q[1] + row[2] * q[2] + row[3];
+                double host = sbfx_ref_shadow_visibility(texel, depth);
+                double exact = sbfx_ref_shadow_transmittance_to(ref, (size_t)n, unit, q);
+                if (y > 2.75) above = fmax(above, fabs(host - 1.0)), shaded_above = fmin(shaded_above, host);
+                else if (y < 0.15) below = fmax(below, fabs(host - t[0]));
+                else inside = fmax(inside, fabs(host - exact));
+            }
+        }
+    printf("# %d rays through the puff: above it visibility 1 within %.1e, below it the map's transmittance "
+           "within %.1e, inside the exact transmittance within %.3f\n", rays, above, below, inside);
+    CHECK(rays > 200, "%d rays", rays);
+    CHECK(above == 0.0, "a surface above the smoke is shaded (%g)", shaded_above);
+    CHECK(below <= 1e-12, "under the smoke: %g from the map's transmittance", below);
+    CHECK(inside <= 0.1, "inside the smoke: %g from the exact transmittance", inside);
     sbfx_destroy(fx);
     fixture_close(&f);
 }
