@@ -2,6 +2,7 @@
 #include "shadow_ref.h"
 
 #include <math.h>
+#include <stdbool.h>
 
 double sbfx_ref_chord_depth(double tau, double r, double d)
 {
@@ -29,16 +30,28 @@ static void on_ray(const sbfx_ref_particle *q, const double direction[3], const 
 
 static double dot4(const double row[4], const double x[3]) { return row[0] * x[0] + row[1] * x[1] + row[2] * x[2] + row[3]; }
 
-double sbfx_ref_shadow_transmittance(const sbfx_ref_particle *particles, size_t count,
-                                     const double direction[3], const double p[3])
+static double chord_depth_to(double tau, double r, double d, double s);
+
+/* The transmittance on the light's ray through p: of each particle's whole chord, or of its
+ * chord only as far as p. */
+static double transmittance(const sbfx_ref_particle *particles, size_t count, const double direction[3],
+                            const double p[3], bool whole)
 {
     double depth = 0.0;
     for (size_t i = 0; i < count; i++) {
         double d, beyond;
         on_ray(&particles[i], direction, p, &d, &beyond);
-        depth += sbfx_ref_chord_depth(particles[i].tau, particles[i].radius, d);
+        /* p is -beyond past the point of the chord nearest the centre */
+        depth += whole ? sbfx_ref_chord_depth(particles[i].tau, particles[i].radius, d)
+                       : chord_depth_to(particles[i].tau, particles[i].radius, d, -beyond);
     }
     return exp(-depth);
+}
+
+double sbfx_ref_shadow_transmittance(const sbfx_ref_particle *particles, size_t count,
+                                     const double direction[3], const double p[3])
+{
+    return transmittance(particles, count, direction, p, true);
 }
 
 /* The variance along the chord at distance d of the density 1 - |x - c| / r (shadow.frag). */
@@ -98,11 +111,5 @@ static double chord_depth_to(double tau, double r, double d, double s)
 double sbfx_ref_shadow_transmittance_to(const sbfx_ref_particle *particles, size_t count,
                                         const double direction[3], const double p[3])
 {
-    double depth = 0.0;
-    for (size_t i = 0; i < count; i++) {
-        double d, beyond;
-        on_ray(&particles[i], direction, p, &d, &beyond);
-        depth += chord_depth_to(particles[i].tau, particles[i].radius, d, -beyond); /* p is -beyond past the nearest point */
-    }
-    return exp(-depth);
+    return transmittance(particles, count, direction, p, false);
 }
