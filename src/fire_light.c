@@ -111,7 +111,10 @@ void sbfx_fire_detail_levels_of_slices(const uint16_t *histograms, int slices, d
 {
     unsigned total[BINS] = {0}, n = 0;
     for (int s = 0; s < slices; s++)
-        for (int b = 0; b < BINS; b++) total[b] += histograms[(size_t)s * BINS + b], n += histograms[(size_t)s * BINS + b];
+        for (int b = 0; b < BINS; b++) {
+            unsigned count = histograms[(size_t)s * BINS + b];
+            total[b] += count, n += count;
+        }
     quantiles(total, n, out);
 }
 

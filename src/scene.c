@@ -459,7 +459,8 @@ static int parse_medium(parser *p, const config_setting_t *g, sbfx_medium which)
         get_float(p, g, "density", 0, 1e6, &m->tau) || get_float(p, g, "phase_g", -0.99, 0.99, &m->phase_g) ||
         get_vector(p, g, "color", 3, 0, 100, m->color) ||
         get_vector(p, g, "temperature", 2, 0, 1e5, temperature) ||
-        get_float(p, g, "cooling", 0, 1, &m->cooling) || get_float(p, g, "soot", 0, 64, &m->soot) || get_float(p, g, "emission", 0, 1e4, &m->emission_scale) ||
+        get_float(p, g, "cooling", 0, 1, &m->cooling) || get_float(p, g, "soot", 0, 64, &m->soot) ||
+        get_float(p, g, "emission", 0, 1e4, &m->emission_scale) ||
         get_float(p, g, "strength", 0, 0.2, &m->heat_strength) || parse_emission(p, g, m, what))
         return -1;
     m->t0 = temperature[0], m->t1 = temperature[1];
