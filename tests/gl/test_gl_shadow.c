@@ -51,26 +51,43 @@ static int puff(sbfx *fx, sbfx_view_particle out[], sbfx_ref_particle ref[])
     return n;
 }
 
-/* The puff's map for light travelling along `direction`, read back into `texels` (SIZE^2 x 4). */
-static int puff_map(sbfx *fx, const float direction[3], sbfx_ref_particle ref[8], sbfx_shadow_map *map, float *texels)
+/* The puff's map (SIZE^2) for light travelling along a direction, read back. */
+typedef struct puff_case {
+    gl_fixture f;
+    sbfx *fx;
+    sbfx_ref_particle ref[8];
+    int n;
+    sbfx_shadow_map map;
+    float texels[SIZE * SIZE * 4];
+} puff_case;
+
+static void puff_open(puff_case *c, const float direction[3])
 {
+    fixture_open(&c->f, 32, 32);
+    c->fx = module_with_map(&c->f, SIZE);
     sbfx_view_particle particles[8];
-    int n = puff(fx, particles, ref);
-    CHECK(sbfx_render_shadow_particles(fx, direction, particles, n, map) == SBFX_OK, "%s", sbfx_last_error(fx));
-    CHECK(map->particles == n && map->size == SIZE && map->texture == fx->shadow.map.texture[0]);
-    CHECK(sbfx_read_shadow_map(fx, texels, (size_t)SIZE * SIZE * 4) == SBFX_OK, "%s", sbfx_last_error(fx));
-    return n;
+    c->n = puff(c->fx, particles, c->ref);
+    CHECK(sbfx_render_shadow_particles(c->fx, direction, particles, c->n, &c->map) == SBFX_OK, "%s",
+          sbfx_last_error(c->fx));
+    CHECK(c->map.particles == c->n && c->map.size == SIZE && c->map.texture == c->fx->shadow.map.texture[0]);
+    CHECK(sbfx_read_shadow_map(c->fx, c->texels, ARRAY_SIZE(c->texels)) == SBFX_OK, "%s", sbfx_last_error(c->fx));
+}
+
+static void puff_close(puff_case *c)
+{
+    sbfx_destroy(c->fx);
+    fixture_close(&c->f);
 }
 
 CHECK_TEST(smoke_puff_matches_the_reference)
 {
-    gl_fixture f;
-    fixture_open(&f, 32, 32);
-    sbfx *fx = module_with_map(&f, SIZE);
-    sbfx_ref_particle ref[8];
-    sbfx_shadow_map map;
-    static float texels[SIZE * SIZE * 4];
-    int n = puff_map(fx, (const float[3]){0.4f, -1.0f, 0.3f}, ref, &map, texels);
+    static puff_case c;
+    puff_open(&c, (const float[3]){0.4f, -1.0f, 0.3f});
+    sbfx *fx = c.fx;
+    const sbfx_ref_particle *ref = c.ref;
+    const float *texels = c.texels;
+    const sbfx_shadow_map map = c.map;
+    int n = c.n;
     /* Each blend rounds the product to the map's format, in a rounding mode GL leaves open (llvmpipe
      * truncates): up to one unit in the last place per particle over the texel, at most n, for r,
      * g and b. A unit of a half float is 2^-11 for values in [0.5, 1) and less below; of RGBA8
@@ -104,8 +121,7 @@ CHECK_TEST(smoke_puff_matches_the_reference)
     CHECK(worst[3] <= tol_front, "the front's depth is %g off (> %g)", worst[3], tol_front);
     CHECK(darkest < 0.7, "the puff casts no real shadow: darkest %g", darkest);
     CHECK(border_min == 1.0, "the border is shaded (%g): CLAMP_TO_EDGE would smear the shadow", border_min);
-    sbfx_destroy(fx);
-    fixture_close(&f);
+    puff_close(&c);
 }
 
 /* The RGBA8 map where half floats are not renderable: the tested fallback. */
@@ -153,13 +169,12 @@ CHECK_TEST(rgba8_fallback_matches_the_reference)
  * 0.058), the spread's approximation. */
 CHECK_TEST(the_map_knows_where_the_smoke_is_along_the_light)
 {
-    gl_fixture f;
-    fixture_open(&f, 32, 32);
-    sbfx *fx = module_with_map(&f, SIZE);
-    sbfx_ref_particle ref[8];
-    sbfx_shadow_map map;
-    static float texels[SIZE * SIZE * 4];
-    int n = puff_map(fx, (const float[3]){0.0f, -1.0f, 0.0f}, ref, &map, texels);
+    static puff_case c;
+    puff_open(&c, (const float[3]){0.0f, -1.0f, 0.0f});
+    const sbfx_ref_particle *ref = c.ref;
+    const float *texels = c.texels;
+    const sbfx_shadow_map map = c.map;
+    int n = c.n;
     double unit[3] = {0, -1, 0}, row[4], above = 0.0, below = 0.0, inside = 0.0, shaded_above = 1.0;
     depth_row_of(map.view_projection, row);
     int rays = 0;
@@ -185,8 +200,7 @@ CHECK_TEST(the_map_knows_where_the_smoke_is_along_the_light)
     CHECK(above == 0.0, "a surface above the smoke is shaded (%g)", shaded_above);
     CHECK(below <= 1e-12, "under the smoke: %g from the map's transmittance", below);
     CHECK(inside <= 0.1, "inside the smoke: %g from the exact transmittance", inside);
-    sbfx_destroy(fx);
-    fixture_close(&f);
+    puff_close(&c);
 }
 
 /* Nothing of it without the desc or scene asking; one texture, framebuffer and program with it;
