@@ -256,7 +256,8 @@ CHECK_TEST(loop_has_no_seam)
         {"mandelbrot=size=128x128:rate=25", "mandelbrot", true},
         {"cellauto=size=128x128:rate=25:seed=7", "cellauto", false},
         {"color=gray:size=128x128:rate=25,noise=alls=100:allf=t", "noise", false},
-        {"gradients=size=128x128:rate=25:speed=0.05", "gradients", true},
+        /* a fixed seed: a random one can draw two colours of one luma, a clip that never moves */
+        {"gradients=size=128x128:rate=25:speed=0.05:seed=7", "gradients", true},
     };
     for (size_t i = 0; i < sizeof(sources) / sizeof(sources[0]); i++) {
         char path[128], err[512];
