@@ -93,7 +93,8 @@ LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined)
 
 # The runtime library: src/ and the embedded shaders. Only what src/sbfx.h declares (SBFX_API)
 # is exported from the .so; the rest is hidden, and what no public function reaches is dropped.
-SRC := $(wildcard src/*.c)
+# src/ is in rooms, one folder per floor (src/rooms.txt): src/ROOM/NAME.c -> $(BUILD)/obj/src/ROOM/NAME.o
+SRC := $(sort $(wildcard src/*.c src/*/*.c))
 SHADERS := $(sort $(wildcard shaders_es/*.vert shaders_es/*.frag))
 LIB_OBJ := $(SRC:src/%.c=$(BUILD)/obj/src/%.o) $(BUILD)/obj/gen/shaders_es.o $(BUILD)/obj/gen/cie1931_2deg.o
 LIB_CFLAGS := -fvisibility=hidden -ffunction-sections -fdata-sections

@@ -205,13 +205,13 @@ static bool shader_log_on(void)
 
 static GLuint build_program(sbfx *fx, const char *vert_name, const char *frag_name, const char *defines);
 
-/* How a program is made: its stages' names, defines and precision (sbfx_object_key). */
+/* How a program is made: its stages' names, defines and precision (sbfx_hash64). */
 static uint64_t program_key(const sbfx *fx, const char *vert_name, const char *frag_name, const char *defines)
 {
-    uint64_t key = sbfx_object_key(0, vert_name, strlen(vert_name) + 1);
-    key = sbfx_object_key(key, frag_name, strlen(frag_name) + 1);
-    key = sbfx_object_key(key, defines ? defines : "", defines ? strlen(defines) + 1 : 1);
-    return sbfx_object_key(key, &fx->mediump_as_highp, sizeof(fx->mediump_as_highp));
+    uint64_t key = sbfx_hash64(0, vert_name, strlen(vert_name) + 1);
+    key = sbfx_hash64(key, frag_name, strlen(frag_name) + 1);
+    key = sbfx_hash64(key, defines ? defines : "", defines ? strlen(defines) + 1 : 1);
+    return sbfx_hash64(key, &fx->mediump_as_highp, sizeof(fx->mediump_as_highp));
 }
 
 static GLuint build_logged(sbfx *fx, const char *vert_name, const char *frag_name, const char *defines);

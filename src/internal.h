@@ -5,9 +5,10 @@
 #include <GLES3/gl3.h>
 #include <stdarg.h>
 #include "sbfx.h"
+#include "base/base.h"
+#include "base/hash.h"
+#include "base/rng.h"
 #include "tables.h"
-
-#define ARRAY_SIZE(a) (sizeof(a) / sizeof((a)[0]))
 
 /* Lookup tables (reference.h has their coordinates; docs/accuracy-and-benchmarks.md the sizes'
  * measured error). Float32 entries fetched with texelFetch and interpolated in the shader:
@@ -83,17 +84,6 @@ typedef struct sbfx_view_particle {
 
 /* True when every input of the particle is finite and the radius is positive. */
 bool sbfx_view_particle_valid(const sbfx_view_particle *p);
-
-/* ---- allocation accounting (alloc.c): every heap allocation of the module goes here ---- */
-void *sbfx_calloc(sbfx *fx, size_t count, size_t size);
-void sbfx_free(sbfx *fx, void *p);
-
-/* ---- errors and logging (sbfx.c) ---- */
-/* Records the message as last error, sends it to the log callback, returns `result`. */
-sbfx_result sbfx_fail(sbfx *fx, sbfx_result result, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-void sbfx_log(sbfx *fx, sbfx_log_level level, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
 
 /* ---- embedded shaders (generated from shaders_es/ at build time) ---- */
 const char *sbfx_shader_source(const char *name);

@@ -57,7 +57,7 @@ sbfx_result sbfx_blackbody_constants_load(sbfx *fx)
 static uint64_t generated_key(const char *what, int a, int b, int c, uint32_t seed)
 {
     int recipe[4] = {a, b, c, (int)seed};
-    return sbfx_object_key(sbfx_object_key(0, what, strlen(what)), recipe, sizeof(recipe));
+    return sbfx_hash64(sbfx_hash64(0, what, strlen(what)), recipe, sizeof(recipe));
 }
 
 static bool borrow_texture(sbfx *fx, uint64_t key, GLuint *texture, size_t bytes)

@@ -448,7 +448,6 @@ sbfx_result sbfx_module_build(sbfx *fx, const sbfx_desc *desc);
 void sbfx_module_release(sbfx *fx);
 
 /* reload.c */
-uint64_t sbfx_object_key(uint64_t key, const void *data, size_t size);
 void sbfx_object_note(sbfx *fx, sbfx_object_kind kind, GLuint id, uint64_t key, const sbfx_rt *rt);
 /* Takes over the donor's object of that kind and key (true), or finds none (false). */
 bool sbfx_object_borrow(sbfx *fx, sbfx_object_kind kind, uint64_t key, GLuint *id, sbfx_rt *rt);

@@ -7,16 +7,6 @@
 #include <string.h>
 #include "module.h"
 
-/* FNV-1a, 64 bits: a key names how an object was made (shader names and defines, a target's
- * size, formats and filter); two different recipes share a key with odds of about 2^-64. */
-uint64_t sbfx_object_key(uint64_t key, const void *data, size_t size)
-{
-    const unsigned char *b = data;
-    if (!key) key = 1469598103934665603ull;
-    for (size_t i = 0; i < size; i++) key = (key ^ b[i]) * 1099511628211ull;
-    return key;
-}
-
 void sbfx_object_note(sbfx *fx, sbfx_object_kind kind, GLuint id, uint64_t key, const sbfx_rt *rt)
 {
     /* a full table only means the object cannot be lent: it is deleted the ordinary way */

@@ -30,13 +30,13 @@ static void count(sbfx *fx, const sbfx_rt *rt, int sign)
     else fx->counters.gpu_bytes -= rt->bytes;
 }
 
-/* How a target is made: size, attachments' formats, filter (sbfx_object_key). */
+/* How a target is made: size, attachments' formats, filter (sbfx_hash64). */
 static uint64_t target_key(int w, int h, const sbfx_rt_format *const colors[SBFX_RT_MAX], const sbfx_rt_format *depth,
                            GLenum filter)
 {
     GLenum recipe[SBFX_RT_MAX + 4] = {(GLenum)w, (GLenum)h, filter, depth ? depth->internal : GL_NONE};
     for (int i = 0; i < SBFX_RT_MAX; i++) recipe[4 + i] = colors && colors[i] ? colors[i]->internal : GL_NONE;
-    return sbfx_object_key(0, recipe, sizeof(recipe));
+    return sbfx_hash64(0, recipe, sizeof(recipe));
 }
 
 bool sbfx_rt_create(sbfx *fx, sbfx_rt *rt, int w, int h, const sbfx_rt_format *const colors[SBFX_RT_MAX],

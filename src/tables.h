@@ -12,6 +12,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "sbfx.h"
+#include "base/rng.h"
 
 /* ---- black body (docs/design.md §2.3) -------------------------------------------------------- */
 
@@ -171,12 +172,5 @@ size_t sbfx_smoke_level_offset(int size, int layers, int level);
 /* Limits of particle.frag's lit variant, which the scene parser enforces. */
 #define SBFX_LIT_MAX_LIGHTS 4 /* the seed's four; lit media use the frame's first four lights */
 #define SBFX_LIT_MAX_STEPS 64 /* MAX_STEPS in particle.frag */
-
-/* ---- small deterministic RNG shared by simulation, tests and tools -------------------- */
-typedef struct sbfx_rng { uint64_t state; } sbfx_rng;
-void sbfx_rng_seed(sbfx_rng *rng, uint64_t seed);
-uint32_t sbfx_rng_u32(sbfx_rng *rng);
-double sbfx_rng_uniform(sbfx_rng *rng); /* [0,1) */
-double sbfx_rng_range(sbfx_rng *rng, double lo, double hi);
 
 #endif

@@ -3,7 +3,7 @@
  * a full-period sequence, and the output passes BigCrush — plenty for spawn jitter and tests.
  * Same seed, same sequence, on every platform (no floating point in the state update). */
 #include <math.h>
-#include "tables.h"
+#include "base/rng.h"
 
 static uint64_t splitmix64_next(sbfx_rng *rng)
 {
