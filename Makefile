@@ -13,7 +13,7 @@
 #                     (and 6 bits for NVIDIA's cases; tests/precision.sh; make test runs it)
 #   make bench        timings into build/bench/
 #   make figures      the seed's figures rendered into docs/figures/ (docs/figures.md)
-#   make ladder       src/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
+#   make ladder       src/budget/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
 #   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR, MANDIR, DATADIR); also
 #                     scenes, boards and the kiosk's unit and udev rule (dist/)
 #   make uninstall    remove what make install put there (same PREFIX, DESTDIR)
@@ -138,7 +138,7 @@ $(BUILD)/obj/gen/shaders_es.o: $(BUILD)/gen/shaders_es.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(SRC_CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
 
-# The CIE 1931 2° colour-matching functions compiled in (src/tables.h): generated from
+# The CIE 1931 2° colour-matching functions compiled in (src/tables/tables.h): generated from
 # colord-data's file through lcms2 by a build-time program, so the library reads no file and
 # does not link lcms2 (docs/distributions.md). The host's lcms2, also in a cross build.
 CIE_CMF ?= /usr/share/colord/cmf/CIE1931-2deg-XYZ.cmf
@@ -300,7 +300,7 @@ $(BUILD)/tests/gl/%: tests/gl/%.c $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check
 	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(GL_TEST_WRAP) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
 # The GL state test also runs on desktop OpenGL (tests/run.sh), where sbfx reaches glPolygonMode
-# through the process (src/gl_state.c): libOpenGL is in it, as in a desktop host.
+# through the process (src/gl/gl_state.c): libOpenGL is in it, as in a desktop host.
 OPENGL_LIBS = $(call pkg_config,OPENGL_LIBS,--libs opengl)
 $(BUILD)/tests/gl/test_gl_state: PLATFORM_LIBS += -Wl,--no-as-needed $(OPENGL_LIBS) -Wl,--as-needed
 
@@ -409,8 +409,8 @@ clean:
 
 # ---- fuzzing (clang, libFuzzer): FUZZ_SECONDS bounded, the example scenes as corpus ----
 FUZZ_SECONDS ?= 60
-FUZZ_SRC := src/scene.c src/effects.c src/quality_name.c
-$(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) src/sbfx.h src/scene.h
+FUZZ_SRC := src/scene/scene.c src/scene/effects.c src/scene/quality_name.c
+$(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) src/sbfx.h src/scene/scene.h
 	@mkdir -p $(@D)
 	clang -std=c11 -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -Isrc \
 		$(shell $(PKG_CONFIG) --cflags glesv2 libconfig) -o $@ tests/fuzz/fuzz_scene.c $(FUZZ_SRC) \
@@ -442,11 +442,11 @@ $(BUILD)/bench/bench_accuracy: $(BENCH_OBJ) $(BUILD)/obj/look/look_metrics.o $(P
 
 bench: $(BUILD)/bench/bench_accuracy
 
-# ---- the default quality ladder (issue 11): src/ladder_default.h from the accuracy bench's CSV ----
+# ---- the default quality ladder (issue 11): src/budget/ladder_default.h from the accuracy bench's CSV ----
 # make bench writes $(BUILD)/bench/ladder_default.h (the ladder its run proposes); make ladder
-# regenerates the committed src/ladder_default.h from $(BUILD)/bench/accuracy.csv (tools/ladder.sh).
+# regenerates the committed src/budget/ladder_default.h from $(BUILD)/bench/accuracy.csv (tools/ladder.sh).
 ladder:
-	tools/ladder.sh $(BUILD)/bench/accuracy.csv src/ladder_default.h
+	tools/ladder.sh $(BUILD)/bench/accuracy.csv src/budget/ladder_default.h
 
 # ---- frame budget bench (issue 11): the barrage at several budgets and at every fixed level ----
 # A program of its own (tests/bench/budget/), with the accuracy bench's read-backs, metrics and

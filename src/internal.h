@@ -8,7 +8,7 @@
 #include "base/base.h"
 #include "base/hash.h"
 #include "base/rng.h"
-#include "tables.h"
+#include "tables/tables.h"
 
 /* Lookup tables (reference.h has their coordinates; docs/accuracy-and-benchmarks.md the sizes'
  * measured error). Float32 entries fetched with texelFetch and interpolated in the shader:
@@ -131,7 +131,7 @@ double sbfx_detail_time(const sbfx *fx);
 /* The window depth a host's depth buffer holds for a view distance under the frame's projection
  * and clip depth mode (the clear value for INFINITY or beyond a finite far plane), and the view
  * distance sbfx reads from a window depth (INFINITY for the clear value): what the shaders
- * compute, in double (src/projection.c). A malformed projection gives the clear value / INFINITY. */
+ * compute, in double (src/render/projection.c). A malformed projection gives the clear value / INFINITY. */
 float sbfx_window_depth(const sbfx_frame *frame, double distance);
 double sbfx_window_distance(const sbfx_frame *frame, float window);
 

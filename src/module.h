@@ -3,10 +3,10 @@
 #define SBFX_MODULE_H
 
 #include "internal.h"
-#include "governor.h"
-#include "gpu_timer.h"
-#include "lod.h"
-#include "fire_light.h"
+#include "budget/governor.h"
+#include "gl/gpu_timer.h"
+#include "sim/lod.h"
+#include "sim/fire_light.h"
 
 #define SBFX_MAX_EFFECTS 16
 #define SBFX_MAX_EMITTERS 8
@@ -300,7 +300,7 @@ struct sbfx {
     sbfx_live_flash flashes[SBFX_MAX_LIVE_FLASHES];
     int flash_count;
     sbfx_tables tables;
-    sbfx_tone_curve tone_curve;  /* the composite's (src/tonemap.c), made at load */
+    sbfx_tone_curve tone_curve;  /* the composite's (src/tables/tonemap.c), made at load */
 
     sbfx_effect effects[SBFX_MAX_EFFECTS];
     int effect_count;
@@ -591,7 +591,7 @@ int sbfx_collect_view_particles(sbfx *fx, const float view[16]);
 /* A live particle's radius and intensity at its age (what the renderer draws). */
 void sbfx_pool_particle_shape(const sbfx_pool *p, int i, float *radius, float *intensity);
 
-/* emitted_lights.c: fire gathered into point lights (src/fire_light.h) */
+/* emitted_lights.c: fire gathered into point lights (src/sim/fire_light.h) */
 sbfx_result sbfx_fire_lights_create(sbfx *fx);
 void sbfx_fire_lights_destroy(sbfx *fx);
 /* The fire model of the loaded scene (its black body: the module's table). */

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "module.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 static void normalize3(float v[3]);
 

@@ -187,7 +187,7 @@ test_scene_run() {
     programs=$(json_number "$tmp/smoke.json" programs)
     passes=$(json_number "$tmp/smoke.json" passes)
     # smoke, depth, composite and their passes, + the low-res corners' program and pass where
-    # RGBA32F renders (src/passes.c), + the shadow map's program (render.host_shadows), whose
+    # RGBA32F renders (src/render/passes.c), + the shadow map's program (render.host_shadows), whose
     # pass is sbfx_render_shadow_map's, not sbfx_render's
     if { [ "$programs" = 4 ] || [ "$programs" = 5 ]; } && [ "${passes:-0}" = "$((programs - 1))" ]; then
         ok scene-run

@@ -123,7 +123,7 @@ CHECK_TEST(no_fire_no_light_and_no_memory)
 }
 
 /* The fire's light follows a detail volume the host writes (a V4L2 camera, a clip): the
- * quantiles it averages over are the pushed slices' (src/fire_light.h), kept per slice only
+ * quantiles it averages over are the pushed slices' (src/sim/fire_light.h), kept per slice only
  * where the detail is live and the fire emits. A volume of detail 0.9 everywhere makes every
  * quantile 0.9 (to a bin, 1/1024) and the fire, hotter, brighter; pushing the procedural slices
  * back gives back its statistics, to within 0.02 (measured 0.0066: a slice is sampled within

@@ -1,5 +1,5 @@
 /* Fire lights its dust and smoke (issue 27): the frame's fire particles gathered into point
- * lights (src/fire_light.h) in-scatter into dust and smoke through the phase model, per particle
+ * lights (src/sim/fire_light.h) in-scatter into dust and smoke through the phase model, per particle
  * at its centre, falling off across it from the fire. The GPU against the CPU reference
  * (ref/reference_frame.c, fire_light on): the light the fire adds (the frame with the fire's
  * emission less the frame with it at 0) agrees pixel by pixel within the hard cases' light

@@ -239,7 +239,7 @@ CHECK_TEST(gpu_matches_cpu_lit)
 }
 
 /* Fire lights lit smoke too (issue 27): the frame's fire, gathered into point lights, reaches a lit
- * particle as the phase model's isotropic in-scattering at its centre (src/fire_light.h), per
+ * particle as the phase model's isotropic in-scattering at its centre (src/sim/fire_light.h), per
  * particle like the fill lights, shaded by the brightness map and dampened like the lights
  * (ref/lit_ref.c, sbfx_lit_fire_radiance). A lit puff above a fireball: the light the fire adds
  * (the frame with the fire's emission less the frame with it at 0) against the reference's,

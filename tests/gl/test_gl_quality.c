@@ -3,7 +3,7 @@
  * when switched back to; only the declared levels' variants exist; a budget the top level
  * meets changes nothing; bad names, budgets and ladders are clear errors. */
 #include "gl_fixture.h"
-#include "ladder_default.h"
+#include "budget/ladder_default.h"
 #include "module.h"
 #include "host/test_scene.h"
 

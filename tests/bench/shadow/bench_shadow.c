@@ -11,7 +11,7 @@
 #include "host/test_scene.h"
 #include "internal.h"
 #include "module.h" /* the packed instances: the map's fragments */
-#include "scene.h"  /* render.shadow_map_size: a module without the scene's map */
+#include "scene/scene.h"  /* render.shadow_map_size: a module without the scene's map */
 #include <math.h>
 
 #define W 640

@@ -398,7 +398,7 @@ static sbfx_result draw_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
     if (r != SBFX_OK) return r;
     frame_params fp = frame_params_from(depth);
     if (count > 0) {
-        /* a lodN level: at most N particles, the least visible merged (src/lod.h) */
+        /* a lodN level: at most N particles, the least visible merged (src/sim/lod.h) */
         if (fx->desc.lod_particles > 0) count = lod_reduce(&fx->lod, fx->view, count, fx->desc.lod_particles);
         sbfx_sort_back_to_front(fx, count);
         fp.particles_far = particles_far(fx, count, fp.near);

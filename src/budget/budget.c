@@ -5,7 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include "module.h"
-#include "ladder_default.h"
+#include "budget/ladder_default.h"
 
 _Static_assert(ARRAY_SIZE(sbfx_ladder_default) < SBFX_LADDER_MAX, "the default ladder and a top must fit a ladder");
 

@@ -1,5 +1,5 @@
 /* The frame-budget governor: governor.h says what it does and why. */
-#include "governor.h"
+#include "budget/governor.h"
 
 #include <math.h>
 

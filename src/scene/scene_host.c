@@ -1,7 +1,7 @@
 /* What a scene file says to its host: sbfx_scene_host (sbfx-play's test scene reads it). */
 #include <math.h>
 #include <string.h>
-#include "scene.h"
+#include "scene/scene.h"
 
 bool sbfx_scene_host_get(const sbfx_scene *scene, sbfx_scene_host *out)
 {

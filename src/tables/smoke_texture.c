@@ -14,7 +14,7 @@
  * the rounded 2x2 box average of the level above, layer by layer. */
 #include <math.h>
 #include <string.h>
-#include "tables.h"
+#include "tables/tables.h"
 
 /* The brightness veins' fBm gain (with the normal strength, docs/look.md: the rendered lit
  * smoke's spectrum within the turbulent range in every view measured). */

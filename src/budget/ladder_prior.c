@@ -1,12 +1,12 @@
 /* The governor's prior (governor_set_prior) for a budget's ladder: the accuracy bench's time of
- * each level that the default ladder names (src/ladder_default.h, make ladder); levels it does
+ * each level that the default ladder names (src/budget/ladder_default.h, make ladder); levels it does
  * not name, and levels of detail, are filled in by the governor at its default step (0.7 a
  * rung): what a level of detail saves depends on the load (the bench's explosion, 159
  * particles, shows no saving beyond the noise; a barrage of 3800 does), so the explosion's time
  * is no prior for it. The relative costs let the first step down skip as many rungs as the
  * measured overrun calls for. */
-#include "governor.h"
-#include "ladder_default.h"
+#include "budget/governor.h"
+#include "budget/ladder_default.h"
 #include "module.h"
 
 void sbfx_ladder_prior(const sbfx_quality *ladder, int count, governor *g)

@@ -18,7 +18,7 @@
  * Normalisation: ∫ over the sphere of P = 2 pi ∫_{-1}^{1} P dc = 1 for every |g| < 1. */
 #include <math.h>
 #include <stdbool.h>
-#include "tables.h"
+#include "tables/tables.h"
 
 #define PI 3.14159265358979323846 /* M_PI is not C11 */
 

@@ -10,7 +10,7 @@
  * k + (1 - k)(2u - u^2): it arrives at 1 with slope 0 at its white point (1024), so the light
  * turns white without a crease; slope 1 at the knee then needs s = ln(1 + s x_w) / 2. */
 #include <math.h>
-#include "tables.h"
+#include "tables/tables.h"
 
 static sbfx_tone_curve tone_curve_with_white(double white, bool smooth_white)
 {

@@ -3,8 +3,8 @@
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
-#include "fire_light.h"
-#include "tables.h"
+#include "sim/fire_light.h"
+#include "tables/tables.h"
 
 /* particle.frag's constants (EROSION_*) */
 #define EROSION_THRESHOLD 0.30

@@ -1,5 +1,5 @@
 /* Particle level of detail, the ladder's last resort: lod.h has the math and the contract. */
-#include "lod.h"
+#include "sim/lod.h"
 
 #include <float.h>
 #include <math.h>

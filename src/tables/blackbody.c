@@ -4,7 +4,7 @@
  * The CMFs are compiled in (sbfx_cie1931_2deg, generated at build time from colord-data's file
  * by tools/gen_cmf.c): nothing here reads a file. */
 #include <math.h>
-#include "tables.h"
+#include "tables/tables.h"
 
 /* ---- Planck's law ------------------------------------------------------------------------ */
 

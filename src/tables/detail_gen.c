@@ -18,7 +18,7 @@
  * in the perturbation). Deterministic from the seed; no allocation but the output. */
 #include <math.h>
 #include <stdbool.h>
-#include "tables.h"
+#include "tables/tables.h"
 
 #define MAX_OCTAVES 7
 #define BASE_CELLS_XY 4 /* coarsest octave: 4 features across the image */

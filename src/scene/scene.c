@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "scene.h"
+#include "scene/scene.h"
 
 typedef struct parser {
     const char *name;

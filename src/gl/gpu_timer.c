@@ -1,5 +1,5 @@
 /* GPU time per frame from a ring of GL_EXT_disjoint_timer_query queries: gpu_timer.h. */
-#include "gpu_timer.h"
+#include "gl/gpu_timer.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -94,7 +94,7 @@ double sbfx_phase_table_lookup(const float *table, int size, double g, double co
  * times finer than the table, plus the peak and the back). */
 double sbfx_phase_table_error(const float *table, int size, double g);
 
-/* ---- tone curve of the particles' light (sbfx_tone_map; src/tonemap.c) ----------------- */
+/* ---- tone curve of the particles' light (sbfx_tone_map; src/tables/tonemap.c) ----------------- */
 
 #define SBFX_TONE_KNEE 0.6   /* light below this reaches the display unchanged */
 /* ...and this much reaches 1 (hue-preserving, per-channel): the particles' radiance ceiling
@@ -127,11 +127,11 @@ double sbfx_tone_curve_apply(const sbfx_tone_curve *c, double v);
 /* ---- detail volume (docs/design.md §2.4) ----------------------------------------------------- */
 
 /* Tileable (in x, y and t) animated turbulence, size x size x frames floats in [0,1], x fastest:
- * domain-warped fBm, octave gain 2^(-1/2) (src/detail_gen.c, docs/look.md). Deterministic
+ * domain-warped fBm, octave gain 2^(-1/2) (src/tables/detail_gen.c, docs/look.md). Deterministic
  * from seed. */
 void sbfx_detail_generate(int size, int frames, uint32_t seed, float *out);
 /* The same lattice without the warp, octave gain 1/2: the smooth fBm the procedural smoke
- * textures of lit media are made of (src/smoke_texture.c). */
+ * textures of lit media are made of (src/tables/smoke_texture.c). */
 void sbfx_detail_generate_smooth(int size, int frames, uint32_t seed, float *out);
 /* The smooth fBm with octave gain `gain` and at most `octaves` octaves (>= 1; the smooth one
  * is gain 1/2, 5 octaves). */
@@ -166,7 +166,7 @@ uint32_t sbfx_smoke_texture_seed(uint32_t seed, int medium);
 /* Offset in bytes of a level's first texel. */
 size_t sbfx_smoke_level_offset(int size, int layers, int level);
 
-/* The normal map's strength: normals of the height field scaled by this (src/smoke_texture.c). */
+/* The normal map's strength: normals of the height field scaled by this (src/tables/smoke_texture.c). */
 #define SBFX_SMOKE_NORMAL_STRENGTH 0.35
 
 /* Limits of particle.frag's lit variant, which the scene parser enforces. */
