@@ -1,7 +1,7 @@
 /* Every heap allocation of the module goes through here, so "nothing allocated per frame"
  * is a number a test can assert (heap_allocs_after_load). */
 #include <stdlib.h>
-#include "module.h"
+#include "base/base.h"
 
 void *sbfx_calloc(sbfx *fx, size_t count, size_t size)
 {

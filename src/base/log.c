@@ -1,7 +1,7 @@
 /* Errors and logging: every room reports through these, so none calls back into sbfx.c. A
  * failure's message is kept as the module's last error and sent to the host's log callback. */
 #include <stdio.h>
-#include "module.h"
+#include "base/base.h"
 
 static const char *const result_strings[] = {
     [0] = "ok",
@@ -23,7 +23,7 @@ const char *sbfx_result_string(sbfx_result result)
 
 static void emit(sbfx *fx, sbfx_log_level level, const char *message)
 {
-    if (fx->desc.log) fx->desc.log(level, message, fx->desc.log_user);
+    if (fx->log) fx->log(level, message, fx->log_user);
 }
 
 sbfx_result sbfx_fail(sbfx *fx, sbfx_result result, const char *fmt, ...)

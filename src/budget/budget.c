@@ -4,7 +4,7 @@
  * missing, reported by the host (sbfx_report_frame_time), fed back to the governor. */
 #include <math.h>
 #include <stdio.h>
-#include "module.h"
+#include "budget/budget.h"
 #include "budget/ladder_default.h"
 
 _Static_assert(ARRAY_SIZE(sbfx_ladder_default) < SBFX_LADDER_MAX, "the default ladder and a top must fit a ladder");
@@ -12,7 +12,7 @@ _Static_assert(ARRAY_SIZE(sbfx_ladder_default) < SBFX_LADDER_MAX, "the default l
 /* desc.ladder (the scene's render.ladder), or with a budget and none given the default. */
 static sbfx_result given_ladder(sbfx *fx, sbfx_quality *out, int *count)
 {
-    const sbfx_desc *d = &fx->desc;
+    const sbfx_desc *d = &fx->scene->desc;
     const char *const *names = d->ladder;
     int n = d->ladder_count;
     const char *what = "ladder";
@@ -60,52 +60,52 @@ static int after_top(const sbfx_quality *top, const sbfx_quality *given, int cou
  * cheaper than the top (above). The governor never goes above level 0. */
 static void build_ladder(sbfx *fx, const sbfx_quality *given, int count)
 {
-    sbfx_budget *b = &fx->budget;
-    int from = after_top(&fx->top, given, count);
-    b->ladder[0] = fx->top;
+    sbfx_budget *b = fx->budget;
+    int from = after_top(&fx->scene->top, given, count);
+    b->ladder[0] = fx->scene->top;
     b->count = 1;
     for (int i = from < 0 ? 0 : from; i < count && b->count < SBFX_LADDER_MAX; i++)
-        if (from >= 0 || cheaper_than_top(&fx->top, &given[i])) b->ladder[b->count++] = given[i];
+        if (from >= 0 || cheaper_than_top(&fx->scene->top, &given[i])) b->ladder[b->count++] = given[i];
 }
 
 static void declare(sbfx *fx, const sbfx_quality *q)
 {
-    for (int i = 0; i < fx->declared_count; i++)
-        if (sbfx_quality_equal(&fx->declared[i], q)) return;
-    if (fx->declared_count < (int)ARRAY_SIZE(fx->declared)) fx->declared[fx->declared_count++] = *q;
+    for (int i = 0; i < fx->scene->declared_count; i++)
+        if (sbfx_quality_equal(&fx->scene->declared[i], q)) return;
+    if (fx->scene->declared_count < (int)ARRAY_SIZE(fx->scene->declared)) fx->scene->declared[fx->scene->declared_count++] = *q;
 }
 
 sbfx_result sbfx_budget_init(sbfx *fx)
 {
-    sbfx_budget *b = &fx->budget;
+    sbfx_budget *b = fx->budget;
     sbfx_quality given[SBFX_LADDER_MAX];
     int count = 0;
-    fx->top = sbfx_quality_from_desc(&fx->desc);
-    sbfx_quality_resolve(&fx->top, NULL, 0);
-    fx->current = fx->top;
-    fx->declared_count = 0;
-    declare(fx, &fx->top);
+    fx->scene->top = sbfx_quality_from_desc(&fx->scene->desc);
+    sbfx_quality_resolve(&fx->scene->top, NULL, 0);
+    fx->scene->current = fx->scene->top;
+    fx->scene->declared_count = 0;
+    declare(fx, &fx->scene->top);
     sbfx_result r = given_ladder(fx, given, &count);
     if (r != SBFX_OK) return r;
-    fx->counters.budget_ms = fx->desc.frame_budget_ms;
-    if (!(fx->desc.frame_budget_ms > 0)) {
+    fx->counters.budget_ms = fx->scene->desc.frame_budget_ms;
+    if (!(fx->scene->desc.frame_budget_ms > 0)) {
         for (int i = 0; i < count; i++) declare(fx, &given[i]); /* for sbfx_set_quality */
         return SBFX_OK;
     }
     build_ladder(fx, given, count);
     for (int i = 0; i < b->count; i++) declare(fx, &b->ladder[i]);
-    governor_init(&b->gov, fx->desc.frame_budget_ms, b->count);
+    governor_init(&b->gov, fx->scene->desc.frame_budget_ms, b->count);
     sbfx_ladder_prior(b->ladder, b->count, &b->gov);
     b->on = true;
     b->level = 0;
     return SBFX_OK;
 }
 
-bool sbfx_budget_active(const sbfx *fx) { return fx->budget.on; }
+bool sbfx_budget_active(const sbfx *fx) { return fx->budget->on; }
 
 void sbfx_budget_gl_init(sbfx *fx)
 {
-    sbfx_budget *b = &fx->budget;
+    sbfx_budget *b = fx->budget;
     if (!b->on) return;
     b->level = 0; /* the load made the top current */
     if (!gpu_timer_init(&b->timer))
@@ -115,12 +115,12 @@ void sbfx_budget_gl_init(sbfx *fx)
 
 void sbfx_budget_gl_destroy(sbfx *fx)
 {
-    if (fx->budget.on) gpu_timer_destroy(&fx->budget.timer);
+    if (fx->budget->on) gpu_timer_destroy(&fx->budget->timer);
 }
 
 static void publish(sbfx *fx)
 {
-    const governor *g = &fx->budget.gov;
+    const governor *g = &fx->budget->gov;
     fx->counters.gpu_ms = (float)governor_smoothed_ms(g);
     fx->counters.frames_over_budget = governor_frames_over(g);
     fx->counters.quality_changes = governor_changes(g);
@@ -129,7 +129,7 @@ static void publish(sbfx *fx)
 /* Measurements that have arrived (a few frames late) go to the governor. */
 static void collect(sbfx *fx)
 {
-    sbfx_budget *b = &fx->budget;
+    sbfx_budget *b = fx->budget;
     double ms;
     int level;
     bool valid;
@@ -143,7 +143,7 @@ static void collect(sbfx *fx)
 
 sbfx_result sbfx_budget_begin_frame(sbfx *fx)
 {
-    sbfx_budget *b = &fx->budget;
+    sbfx_budget *b = fx->budget;
     if (!b->on) return SBFX_OK;
     collect(fx);
     int level = governor_level(&b->gov);
@@ -160,7 +160,7 @@ sbfx_result sbfx_budget_begin_frame(sbfx *fx)
 
 void sbfx_budget_end_frame(sbfx *fx)
 {
-    sbfx_budget *b = &fx->budget;
+    sbfx_budget *b = fx->budget;
     if (!b->timing) return;
     gpu_timer_end(&b->timer);
     b->timing = false;
@@ -168,7 +168,7 @@ void sbfx_budget_end_frame(sbfx *fx)
 
 void sbfx_report_frame_time(sbfx *fx, double ms)
 {
-    if (!fx || !fx->budget.on || fx->budget.timer.ok) return;
-    governor_observe(&fx->budget.gov, fx->budget.level, ms, isfinite(ms) && ms >= 0.0);
+    if (!fx || !fx->budget->on || fx->budget->timer.ok) return;
+    governor_observe(&fx->budget->gov, fx->budget->level, ms, isfinite(ms) && ms >= 0.0);
     publish(fx);
 }

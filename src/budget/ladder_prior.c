@@ -7,7 +7,7 @@
  * measured overrun calls for. */
 #include "budget/governor.h"
 #include "budget/ladder_default.h"
-#include "module.h"
+#include "budget/budget.h"
 
 void sbfx_ladder_prior(const sbfx_quality *ladder, int count, governor *g)
 {

@@ -11,7 +11,7 @@
  *                          host's business: sbfx only reads frame.clip_depth_mode) */
 #include <stdio.h>
 #include <string.h>
-#include "module.h"
+#include "gl/gl.h"
 
 /* desktop OpenGL 3.2's, not in the ES headers */
 #define GL_CONTEXT_PROFILE_MASK_CODE 0x9126
@@ -70,8 +70,8 @@ static bool software_rasteriser(void)
 
 static sbfx_result context_accepted(sbfx *fx)
 {
-    fx->mediump_as_highp = software_rasteriser() && !fx->mediump_native; /* SBFX_MEDIUMP=native: precision.c */
-    if (fx->mediump_as_highp && !fx->donor) /* said once, not again on each sbfx_set_scene */
+    fx->gl->context.mediump_as_highp = software_rasteriser() && !fx->gl->context.mediump_native; /* SBFX_MEDIUMP=native: precision.c */
+    if (fx->gl->context.mediump_as_highp && !fx->gl->donor) /* said once, not again on each sbfx_set_scene */
         sbfx_log(fx, SBFX_LOG_INFO, "renderer \"%s\" is a software rasteriser: shaders compile their mediump as "
                  "highp (half precision is emulated there, and slower)", (const char *)glGetString(GL_RENDERER));
     return SBFX_OK;
@@ -98,7 +98,7 @@ sbfx_result sbfx_context_check(sbfx *fx)
         GLint profile = 0;
         if (v >= 32) glGetIntegerv(GL_CONTEXT_PROFILE_MASK_CODE, &profile);
         bool compat = v < 32 || (profile & GL_CONTEXT_COMPATIBILITY_PROFILE_BIT_CODE);
-        fx->context_parts = SBFX_GL_SAVE_DESKTOP | (compat ? SBFX_GL_SAVE_COMPAT : 0u);
+        fx->gl->context.parts = SBFX_GL_SAVE_DESKTOP | (compat ? SBFX_GL_SAVE_COMPAT : 0u);
         return context_accepted(fx);
     }
     return sbfx_fail(fx, SBFX_ERR_NO_GLES3,

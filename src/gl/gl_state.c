@@ -10,7 +10,7 @@
  * no pass of sbfx touches — and only the texture units the frame binds are queried. */
 #define _GNU_SOURCE /* RTLD_DEFAULT */
 #include <dlfcn.h>
-#include "module.h"
+#include "gl/gl.h"
 
 static void get_int(sbfx_gl_state *s, GLenum name, GLint *out)
 {
@@ -287,15 +287,15 @@ static GLuint make_sampler(GLenum filter)
  * not state of any binding point: making them changes nothing of the host's. */
 sbfx_result sbfx_samplers_create(sbfx *fx)
 {
-    fx->gl.depth_sampler = make_sampler(GL_NEAREST);
-    fx->gl.color_sampler = make_sampler(GL_LINEAR);
+    fx->gl->depth_sampler = make_sampler(GL_NEAREST);
+    fx->gl->color_sampler = make_sampler(GL_LINEAR);
     return sbfx_gl_check(fx, "creating the sampler objects for the host's textures") ? SBFX_OK : SBFX_ERR_GL;
 }
 
 void sbfx_samplers_destroy(sbfx *fx)
 {
-    GLuint samplers[] = {fx->gl.depth_sampler, fx->gl.color_sampler};
+    GLuint samplers[] = {fx->gl->depth_sampler, fx->gl->color_sampler};
     for (size_t i = 0; i < ARRAY_SIZE(samplers); i++)
         if (samplers[i]) glDeleteSamplers(1, &samplers[i]);
-    fx->gl.depth_sampler = fx->gl.color_sampler = 0;
+    fx->gl->depth_sampler = fx->gl->color_sampler = 0;
 }

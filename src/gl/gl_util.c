@@ -2,7 +2,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "module.h"
+#include "gl/gl.h"
 
 static const char *gl_error_name(GLenum e)
 {
@@ -57,7 +57,7 @@ static bool post_again(GLenum e)
 
 void sbfx_gl_enter(sbfx *fx)
 {
-    sbfx_host_errors *h = &fx->host_errors;
+    sbfx_host_errors *h = &fx->gl->context.host_errors;
     h->count = 0;
     /* bounded: a lost context may answer GL_CONTEXT_LOST to every call */
     for (int i = 0; i < SBFX_HOST_ERRORS_MAX; i++) {
@@ -72,7 +72,7 @@ void sbfx_gl_enter(sbfx *fx)
 
 void sbfx_gl_leave(sbfx *fx, const char *entry)
 {
-    sbfx_host_errors *h = &fx->host_errors;
+    sbfx_host_errors *h = &fx->gl->context.host_errors;
     for (int k = 0; k < h->count; k++) {
         GLenum e = h->code[k];
         bool posted = post_again(e);
@@ -138,7 +138,7 @@ static GLuint compile_stage(sbfx *fx, GLenum stage, const char *name, const char
     }
     const char *body = strchr(text, '\n');
     body = body ? body + 1 : text;
-    const char *precision = fx->mediump_as_highp ? "#define mediump highp\n" : "";
+    const char *precision = fx->gl->context.mediump_as_highp ? "#define mediump highp\n" : "";
     if (injected_failure(defines)) {
         sbfx_fail(fx, SBFX_ERR_SHADER, "compiling %s failed: SBFX_INJECT_SHADER_FAILURE names one of its defines "
                   "(%s)", name, getenv("SBFX_INJECT_SHADER_FAILURE"));
@@ -146,8 +146,8 @@ static GLuint compile_stage(sbfx *fx, GLenum stage, const char *name, const char
     }
     char filter[64] = "";
     const char *library = "";
-    if (fx->filter_bits > 0 && stage == GL_FRAGMENT_SHADER) { /* SBFX_FILTER_BITS (precision.c) */
-        snprintf(filter, sizeof(filter), "#define FILTER_BITS %d\n#define FILTER_LIBRARY\n", fx->filter_bits);
+    if (fx->gl->context.filter_bits > 0 && stage == GL_FRAGMENT_SHADER) { /* SBFX_FILTER_BITS (precision.c) */
+        snprintf(filter, sizeof(filter), "#define FILTER_BITS %d\n#define FILTER_LIBRARY\n", fx->gl->context.filter_bits);
         library = sbfx_filter_library();
         if (!library) {
             sbfx_fail(fx, SBFX_ERR_SHADER, "shader filtered.frag is not embedded in this build");
@@ -211,7 +211,7 @@ static uint64_t program_key(const sbfx *fx, const char *vert_name, const char *f
     uint64_t key = sbfx_hash64(0, vert_name, strlen(vert_name) + 1);
     key = sbfx_hash64(key, frag_name, strlen(frag_name) + 1);
     key = sbfx_hash64(key, defines ? defines : "", defines ? strlen(defines) + 1 : 1);
-    return sbfx_hash64(key, &fx->mediump_as_highp, sizeof(fx->mediump_as_highp));
+    return sbfx_hash64(key, &fx->gl->context.mediump_as_highp, sizeof(fx->gl->context.mediump_as_highp));
 }
 
 static GLuint build_logged(sbfx *fx, const char *vert_name, const char *frag_name, const char *defines);

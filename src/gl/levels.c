@@ -1,10 +1,12 @@
-/* Run-time quality (docs/design.md §6): what a level needs on the GPU, and switching between levels
- * without re-creating the module (level names: quality_name.c). The current level's choices live in
- * fx->desc (its quality fields) and in the current copies of fx->gl (particle programs,
+/* Run-time quality (docs/design.md §6) on the GPU: what a level needs (its particle programs, its
+ * composite, the tables it samples), made at load for every declared level or at its first use,
+ * and switching between levels without re-creating the module (level names:
+ * scene/quality_name.c; the frame budget that switches: budget/). The current level's choices
+ * live in fx->scene->desc (its quality fields) and in the current copies of fx->gl (particle programs,
  * composite, targets), so the passes read them as they always did. */
 #include <stdio.h>
 #include <string.h>
-#include "module.h"
+#include "gl/gl.h"
 
 /* ---- what a level needs --------------------------------------------------------------------- */
 
@@ -22,60 +24,21 @@ sbfx_variant_key sbfx_variant_key_of(const sbfx *fx, const sbfx_quality *q)
     return (sbfx_variant_key){
         .opacity = q->opacity,
         .lpp = q->light_per_particle && phase,
-        .abb = fx->uses_medium[SBFX_FIRE] && (q->analytic_blackbody || fx->tables.blackbody_missed),
+        .abb = fx->scene->uses_medium[SBFX_FIRE] && (q->analytic_blackbody || fx->tables->blackbody_missed),
         .aph = q->analytic_phase && phase,
     };
 }
-
-int sbfx_variant_index(const sbfx_variant_key *k)
-{
-    return (int)k->opacity * 8 + (k->lpp ? 4 : 0) + (k->abb ? 2 : 0) + (k->aph ? 1 : 0);
-}
-
-/* The default format asks for RGBA16F: both share a target. */
-int sbfx_target_index(int divisor, sbfx_target_format format)
-{
-    int log2 = divisor == 1 ? 0 : divisor == 2 ? 1 : divisor == 4 ? 2 : 3;
-    return log2 * SBFX_FORMAT_COUNT + (int)(format ? format : SBFX_FORMAT_RGBA16F);
-}
-
-bool sbfx_quality_uses_blackbody_table(const sbfx *fx, const sbfx_quality *q)
-{
-    return fx->uses_medium[SBFX_FIRE] && !q->analytic_blackbody && !fx->tables.blackbody_missed;
-}
-
-bool sbfx_quality_uses_blackbody_analytic(const sbfx *fx, const sbfx_quality *q)
-{
-    return fx->uses_medium[SBFX_FIRE] && (q->analytic_blackbody || fx->tables.blackbody_missed);
-}
-
-bool sbfx_quality_uses_phase_table(const sbfx *fx, const sbfx_quality *q)
-{
-    for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
-        if (sbfx_medium_uses_phase(fx, (sbfx_medium)m) && !q->analytic_phase && !fx->tables.phase_missed[m])
-            return true;
-    return false;
-}
-
-bool sbfx_declared_any(const sbfx *fx, bool (*uses)(const sbfx *, const sbfx_quality *))
-{
-    for (int i = 0; i < fx->declared_count; i++)
-        if (uses(fx, &fx->declared[i])) return true;
-    return false;
-}
-
-bool sbfx_quality_uses_light_slot(const sbfx *fx, const sbfx_quality *q) { return q->light_per_particle; }
 
 /* ---- building and switching ----------------------------------------------------------------- */
 
 static bool missing(const sbfx *fx, const sbfx_quality *q)
 {
     sbfx_variant_key key = sbfx_variant_key_of(fx, q);
-    return !fx->gl.variants[sbfx_variant_index(&key)].built || !fx->gl.composites[q->upsample] ||
-           (sbfx_quality_uses_blackbody_table(fx, q) && !fx->gl.blackbody_texture) ||
-           (sbfx_quality_uses_blackbody_analytic(fx, q) && !fx->cmf_rgb) ||
-           (sbfx_quality_uses_phase_table(fx, q) && !fx->gl.phase_texture) ||
-           (q->light_per_particle && !fx->instance_light) || (q->lod_particles && !fx->lod_work);
+    return !fx->gl->variants[sbfx_variant_index(&key)].built || !fx->gl->composites[q->upsample] ||
+           (sbfx_quality_uses_blackbody_table(fx, q) && !fx->gl->blackbody_texture) ||
+           (sbfx_quality_uses_blackbody_analytic(fx, q) && !fx->tables->cmf_rgb) ||
+           (sbfx_quality_uses_phase_table(fx, q) && !fx->gl->phase_texture) ||
+           (q->light_per_particle && !fx->scene->instance_light) || (q->lod_particles && !fx->sim->lod_work);
 }
 
 /* What q's first use needs; called inside a saved state (load_gl's, or build_first_use's). */
@@ -83,11 +46,11 @@ static sbfx_result build(sbfx *fx, const sbfx_quality *q)
 {
     sbfx_result r = SBFX_OK;
     sbfx_variant_key key = sbfx_variant_key_of(fx, q);
-    if (sbfx_quality_uses_blackbody_table(fx, q) && !fx->gl.blackbody_texture) r = sbfx_tables_upload_blackbody(fx);
-    if (r == SBFX_OK && sbfx_quality_uses_blackbody_analytic(fx, q) && !fx->cmf_rgb) r = sbfx_blackbody_constants_load(fx);
-    if (r == SBFX_OK && sbfx_quality_uses_phase_table(fx, q) && !fx->gl.phase_texture) r = sbfx_tables_upload_phase(fx);
-    if (r == SBFX_OK && q->light_per_particle && !fx->instance_light) r = sbfx_instances_reserve_light(fx);
-    if (r == SBFX_OK && q->lod_particles && !fx->lod_work) r = sbfx_lod_create(fx);
+    if (sbfx_quality_uses_blackbody_table(fx, q) && !fx->gl->blackbody_texture) r = sbfx_tables_upload_blackbody(fx);
+    if (r == SBFX_OK && sbfx_quality_uses_blackbody_analytic(fx, q) && !fx->tables->cmf_rgb) r = sbfx_blackbody_constants_load(fx);
+    if (r == SBFX_OK && sbfx_quality_uses_phase_table(fx, q) && !fx->gl->phase_texture) r = sbfx_tables_upload_phase(fx);
+    if (r == SBFX_OK && q->light_per_particle && !fx->scene->instance_light) r = sbfx_instances_reserve_light(fx);
+    if (r == SBFX_OK && q->lod_particles && !fx->sim->lod_work) r = sbfx_lod_create(fx);
     if (r == SBFX_OK) r = sbfx_variant_build(fx, &key);
     if (r == SBFX_OK) r = sbfx_composite_build(fx, q->upsample);
     return r;
@@ -108,34 +71,34 @@ static sbfx_result build_first_use(sbfx *fx, const sbfx_quality *q)
 /* Points the module's current state at q (everything exists). */
 static void point(sbfx *fx, const sbfx_quality *q)
 {
-    sbfx_gl *gl = &fx->gl;
+    sbfx_gl *gl = fx->gl;
     sbfx_variant_key key = sbfx_variant_key_of(fx, q);
     memcpy(gl->particle, gl->variants[sbfx_variant_index(&key)].particle, sizeof(gl->particle));
     gl->composite_program = gl->composites[q->upsample];
     gl->composite_u = gl->composite_us[q->upsample];
-    sbfx_desc *d = &fx->desc;
+    sbfx_desc *d = &fx->scene->desc;
     d->opacity = q->opacity, d->target_divisor = q->target_divisor, d->upsample = q->upsample;
     d->target_format = q->target_format, d->light_per_particle = q->light_per_particle;
     d->analytic_blackbody = q->analytic_blackbody, d->analytic_phase = q->analytic_phase;
     d->lod_particles = q->lod_particles;
-    sbfx_tables *t = &fx->tables;
+    sbfx_tables *t = fx->tables;
     t->blackbody_analytic = q->analytic_blackbody || t->blackbody_missed;
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) {
         if (!sbfx_medium_uses_phase(fx, (sbfx_medium)m)) continue;
         t->phase_analytic[m] = q->analytic_phase || t->phase_missed[m];
         t->phase_table[m] = !t->phase_analytic[m];
     }
-    fx->current = *q;
+    fx->scene->current = *q;
     sbfx_quality_name(q, fx->counters.quality, sizeof(fx->counters.quality));
 }
 
 sbfx_result sbfx_quality_load(sbfx *fx)
 {
-    for (int i = 0; i < fx->declared_count; i++) {
-        sbfx_result r = build(fx, &fx->declared[i]);
+    for (int i = 0; i < fx->scene->declared_count; i++) {
+        sbfx_result r = build(fx, &fx->scene->declared[i]);
         if (r != SBFX_OK) return r;
     }
-    point(fx, &fx->top);
+    point(fx, &fx->scene->top);
     return SBFX_OK;
 }
 
@@ -149,29 +112,25 @@ sbfx_result sbfx_quality_apply(sbfx *fx, const sbfx_quality *q)
     return SBFX_OK;
 }
 
-/* ---- public entry points -------------------------------------------------------------------- */
-
-sbfx_result sbfx_set_quality(sbfx *fx, const sbfx_quality *q)
+/* Test and tool entry points may set more lights than the scene has: the particle programs
+ * are made again, with the larger loop, the next time the current level is applied. */
+void sbfx_light_slots_reserve(sbfx *fx, int count)
 {
-    if (!fx || !q) return SBFX_ERR_INVALID_ARGUMENT;
-    sbfx_quality r = *q;
-    char why[128];
-    if (!sbfx_quality_resolve(&r, why, sizeof(why))) return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "sbfx_set_quality: %s", why);
-    if (r.opacity == SBFX_OPACITY_FLOOR)
-        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "sbfx_set_quality: the floor opacity is for benchmarks only");
-    if (sbfx_budget_active(fx))
-        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "sbfx_set_quality: the frame budget chooses the level "
-                         "(create the module without frame_budget_ms to choose it yourself)");
-    if (sbfx_quality_equal(&r, &fx->current)) return SBFX_OK;
-    sbfx_gl_enter(fx);
-    sbfx_result result = sbfx_quality_apply(fx, &r);
-    sbfx_gl_leave(fx, "sbfx_set_quality");
-    return result;
-}
-
-sbfx_result sbfx_get_quality(const sbfx *fx, sbfx_quality *out)
-{
-    if (!fx || !out) return SBFX_ERR_INVALID_ARGUMENT;
-    *out = fx->current;
-    return SBFX_OK;
+    if (count <= fx->scene->light_slots) return;
+    fx->scene->light_slots = count;
+    bool built = false;
+    for (int v = 0; v < SBFX_VARIANTS; v++) {
+        sbfx_variant *var = &fx->gl->variants[v];
+        for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) {
+            if (!var->particle[m].id) continue;
+            sbfx_program_delete(fx, var->particle[m].id);
+            var->particle[m].id = 0;
+            fx->counters.programs--;
+        }
+        built = built || var->built;
+        var->built = false;
+    }
+    if (!built) return;   /* before load: the programs are made with the new size */
+    sbfx_result r = sbfx_quality_apply(fx, &fx->scene->current);
+    if (r != SBFX_OK) sbfx_log(fx, SBFX_LOG_ERROR, "rebuilding the particle programs for %d lights failed", count);
 }

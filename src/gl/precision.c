@@ -8,7 +8,7 @@
  * Each one honoured is logged at info level by name; an invalid value fails sbfx_create. */
 #include <stdlib.h>
 #include <string.h>
-#include "module.h"
+#include "gl/gl.h"
 
 /* 1..16: Vulkan's subTexelPrecisionBits is at least 4 and typically 8; past 16 the rounding is
  * below half precision's own and shows nothing. */
@@ -23,7 +23,7 @@ static sbfx_result read_mediump(sbfx *fx)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT,
                          "SBFX_MEDIUMP=\"%s\" is not understood: the only value is \"native\" (compile mediump "
                          "as written, also on a software rasteriser); unset it for the default", v);
-    fx->mediump_native = true;
+    fx->gl->context.mediump_native = true;
     sbfx_log(fx, SBFX_LOG_INFO, "SBFX_MEDIUMP=native honoured: shaders compile mediump as written on every "
              "renderer, software rasterisers included");
     return SBFX_OK;
@@ -40,9 +40,9 @@ static sbfx_result read_filter_bits(sbfx *fx)
                          "SBFX_FILTER_BITS=\"%s\" is not a whole number of bits from %d to %d (the texture "
                          "filter's weight precision to emulate, 8 on most GPUs); unset it for the default",
                          v, FILTER_BITS_MIN, FILTER_BITS_MAX);
-    fx->filter_bits = (int)bits;
+    fx->gl->context.filter_bits = (int)bits;
     sbfx_log(fx, SBFX_LOG_INFO, "SBFX_FILTER_BITS=%d honoured: every filtered texture fetch is filtered in the "
-             "shader with its weights rounded to %d bits", fx->filter_bits, fx->filter_bits);
+             "shader with its weights rounded to %d bits", fx->gl->context.filter_bits, fx->gl->context.filter_bits);
     return SBFX_OK;
 }
 

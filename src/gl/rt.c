@@ -2,7 +2,7 @@
  * texture, all of one size, NEAREST filtered. Made inside a render's saved state: they bind
  * the draw framebuffer and unit 0's 2D texture, which the render puts back. Creation and deletion keep the counters of
  * textures, framebuffers and GPU bytes true. */
-#include "module.h"
+#include "gl/gl.h"
 
 const sbfx_rt_format sbfx_rt_rgba8 = {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
 const sbfx_rt_format sbfx_rt_rgba16f = {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT, 8};

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include "module.h"
+#include "render/render.h"
 
 enum post_uniform {
     PU_COLOR,
@@ -107,9 +107,7 @@ static GLint post_loc(const sbfx_post_gl *p, GLuint program, int uniform)
     return -1;
 }
 
-bool sbfx_post_owns_scene(const sbfx *fx) { return fx->plan.owns_scene; }
-
-static bool has_steps(const sbfx *fx) { return fx->post.dof || fx->post.blur != SBFX_BLUR_NONE; }
+static bool has_steps(const sbfx *fx) { return fx->scene->post.dof || fx->scene->post.blur != SBFX_BLUR_NONE; }
 
 /* ---- programs (load) ---- */
 static GLuint build(sbfx *fx, const char *frag, const char *defines, bool wanted)
@@ -119,24 +117,24 @@ static GLuint build(sbfx *fx, const char *frag, const char *defines, bool wanted
 
 sbfx_result sbfx_post_programs_create(sbfx *fx)
 {
-    sbfx_post_gl *p = &fx->gl.post;
-    if (!fx->plan.owns_scene) return SBFX_OK;
+    sbfx_post_gl *p = &fx->render->post;
+    if (!fx->scene->plan.owns_scene) return SBFX_OK;
     bool float_ok = sbfx_half_float_renderable();
     p->color_format = float_ok ? &sbfx_rt_rgba16f : &sbfx_rt_rgba8;
     p->velocity_format = p->color_format;
     p->encode_velocity = !float_ok;
-    if (fx->plan.distortion && !float_ok)
+    if (fx->scene->plan.distortion && !float_ok)
         sbfx_log(fx, SBFX_LOG_WARN, "heat shimmer needs a float particle target (GL_EXT_color_buffer_half_float "
                  "or GL_EXT_color_buffer_float): shimmer is off");
     char defines[128], tile_defines[160], dof_defines[32];
-    bool shimmer = fx->plan.distortion && float_ok;
+    bool shimmer = fx->scene->plan.distortion && float_ok;
     snprintf(defines, sizeof(defines), "%s%s", p->encode_velocity ? "#define ENCODE_UNORM\n" : "",
-             fx->plan.particle_velocity && float_ok ? "#define HAS_PARTICLE_VELOCITY\n" : "");
+             fx->scene->plan.particle_velocity && float_ok ? "#define HAS_PARTICLE_VELOCITY\n" : "");
     /* loops sized to the scene, so the compilers unroll what runs, not the largest size */
-    snprintf(tile_defines, sizeof(tile_defines), "%s#define TILE %d\n", defines, fx->post.tile);
-    snprintf(dof_defines, sizeof(dof_defines), "#define DOF_SCALE %d\n", fx->post.dof_scale);
-    bool velocity = fx->post.blur == SBFX_BLUR_VELOCITY, history = fx->post.blur == SBFX_BLUR_HISTORY;
-    bool dof = fx->post.dof;
+    snprintf(tile_defines, sizeof(tile_defines), "%s#define TILE %d\n", defines, fx->scene->post.tile);
+    snprintf(dof_defines, sizeof(dof_defines), "#define DOF_SCALE %d\n", fx->scene->post.dof_scale);
+    bool velocity = fx->scene->post.blur == SBFX_BLUR_VELOCITY, history = fx->scene->post.blur == SBFX_BLUR_HISTORY;
+    bool dof = fx->scene->post.dof;
     p->copy_program = build(fx, "copy.frag", NULL, true);
     p->history_program = build(fx, "history_blur.frag", NULL, history);
     p->velocity_program = build(fx, "velocity.frag", defines, velocity);
@@ -158,7 +156,7 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
 
 static void destroy_targets(sbfx *fx)
 {
-    sbfx_post_gl *p = &fx->gl.post;
+    sbfx_post_gl *p = &fx->render->post;
     sbfx_rt *all[] = {&p->frame[0], &p->frame[1], &p->history[0], &p->history[1], &p->velocity,
                       &p->tile_rows, &p->tiles, &p->neighbors, &p->dof[0], &p->dof[1]};
     for (size_t i = 0; i < ARRAY_SIZE(all); i++) sbfx_rt_destroy(fx, all[i]);
@@ -168,7 +166,7 @@ static void destroy_targets(sbfx *fx)
 
 void sbfx_post_destroy(sbfx *fx)
 {
-    sbfx_post_gl *p = &fx->gl.post;
+    sbfx_post_gl *p = &fx->render->post;
     destroy_targets(fx);
     GLuint programs[] = {p->velocity_program, p->tile_program, p->neighbor_program, p->blur_program,
                          p->history_program, p->copy_program, p->dof_setup_program, p->dof_blur_program,
@@ -185,22 +183,22 @@ static bool make(sbfx *fx, sbfx_rt *rt, int w, int h, const sbfx_rt_format *a, c
 
 sbfx_result sbfx_post_targets_ensure(sbfx *fx, int w, int h)
 {
-    sbfx_post_gl *p = &fx->gl.post;
-    if (!fx->plan.owns_scene || (p->width == w && p->height == h)) return SBFX_OK;
+    sbfx_post_gl *p = &fx->render->post;
+    if (!fx->scene->plan.owns_scene || (p->width == w && p->height == h)) return SBFX_OK;
     destroy_targets(fx);
     const sbfx_rt_format *c = p->color_format, *v = p->velocity_format;
     bool ok = true;
-    int frames = (fx->post.dof ? 1 : 0) + (fx->post.blur != SBFX_BLUR_NONE ? 1 : 0);
+    int frames = (fx->scene->post.dof ? 1 : 0) + (fx->scene->post.blur != SBFX_BLUR_NONE ? 1 : 0);
     for (int i = 0; i < frames; i++) ok = ok && make(fx, &p->frame[i], w, h, c, NULL, GL_NEAREST);
-    if (fx->post.blur == SBFX_BLUR_HISTORY)
+    if (fx->scene->post.blur == SBFX_BLUR_HISTORY)
         for (int i = 0; i < 2; i++) ok = ok && make(fx, &p->history[i], w, h, c, NULL, GL_NEAREST);
-    if (fx->post.blur == SBFX_BLUR_VELOCITY) {
-        int t = fx->post.tile, tw = (w + t - 1) / t, th = (h + t - 1) / t;
+    if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) {
+        int t = fx->scene->post.tile, tw = (w + t - 1) / t, th = (h + t - 1) / t;
         ok = ok && make(fx, &p->velocity, w, h, v, NULL, GL_NEAREST) && make(fx, &p->tile_rows, tw, h, v, NULL, GL_NEAREST) &&
              make(fx, &p->tiles, tw, th, v, NULL, GL_NEAREST) && make(fx, &p->neighbors, tw, th, v, NULL, GL_NEAREST);
     }
-    if (fx->post.dof) {
-        int s = fx->post.dof_scale, dw = (w + s - 1) / s, dh = (h + s - 1) / s;
+    if (fx->scene->post.dof) {
+        int s = fx->scene->post.dof_scale, dw = (w + s - 1) / s, dh = (h + s - 1) / s;
         /* LINEAR: the composite reads the blurred fields bilinearly in one fetch each (RGBA16F and
          * RGBA8 are filterable); the setup and the blur read texels by index */
         for (int i = 0; i < 2; i++) ok = ok && make(fx, &p->dof[i], dw, dh, c, c, GL_LINEAR);
@@ -223,9 +221,9 @@ typedef struct post_frame {
 /* The host's textures are read through sbfx's samplers, sbfx's own through their parameters. */
 static void bind_unit(const sbfx *fx, GLuint program, int uniform, int unit, GLuint texture)
 {
-    const sbfx_post_gl *p = &fx->gl.post;
-    GLuint sampler = texture == p->host_depth ? fx->gl.depth_sampler
-                     : texture == p->host_color ? fx->gl.color_sampler : 0;
+    const sbfx_post_gl *p = &fx->render->post;
+    GLuint sampler = texture == p->host_depth ? fx->gl->depth_sampler
+                     : texture == p->host_color ? fx->gl->color_sampler : 0;
     sbfx_bind_texture((GLuint)unit, GL_TEXTURE_2D, texture, sampler);
     glUniform1i(post_loc(p, program, uniform), unit);
 }
@@ -234,9 +232,9 @@ sbfx_gl_units sbfx_post_units(const sbfx *fx)
 {
     /* copy: unit 0; history: 0-1; velocity blur: 0-3; depth of field: 0-6 */
     uint32_t units = 1u;
-    if (fx->post.blur == SBFX_BLUR_HISTORY) units = 3u;
-    if (fx->post.blur == SBFX_BLUR_VELOCITY) units = 15u;
-    if (fx->post.dof) units = 127u;
+    if (fx->scene->post.blur == SBFX_BLUR_HISTORY) units = 3u;
+    if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) units = 15u;
+    if (fx->scene->post.dof) units = 127u;
     return (sbfx_gl_units){.tex_2d = units};
 }
 
@@ -250,7 +248,7 @@ static void begin(GLuint program, GLuint fbo, int w, int h)
 
 static void finish(sbfx *fx)
 {
-    glBindVertexArray(fx->gl.fullscreen_vao);
+    glBindVertexArray(fx->gl->fullscreen_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     fx->counters.passes++;
     fx->counters.draw_calls++;
@@ -258,7 +256,7 @@ static void finish(sbfx *fx)
 
 static void pass_copy(sbfx *fx, GLuint source, GLuint fbo, int w, int h)
 {
-    const sbfx_post_gl *p = &fx->gl.post;
+    const sbfx_post_gl *p = &fx->render->post;
     GLuint prog = p->copy_program;
     begin(prog, fbo, w, h);
     bind_unit(fx, prog, PU_SOURCE, 0, source);
@@ -274,26 +272,26 @@ static void set_depth_uniforms(const sbfx_post_gl *p, GLuint prog, const post_fr
  * drew particles into it; the pixel -> particle texel scale for the composite. */
 static void bind_particle_motion(sbfx *fx, GLuint prog, int unit)
 {
-    const sbfx_post_gl *p = &fx->gl.post;
-    GLuint motion = fx->gl.particles.texture[2];
+    const sbfx_post_gl *p = &fx->render->post;
+    GLuint motion = fx->gl->particles.texture[2];
     bind_unit(fx, prog, PU_PARTICLE_MOTION, unit, motion);
     glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && motion);
-    float divisor = (float)fx->desc.target_divisor;
-    if (fx->gl.low_width > 0 && fx->gl.low_height > 0)
-        glUniform2f(post_loc(p, prog, PU_PARTICLE_TEXEL), 1.0f / (divisor * (float)fx->gl.low_width),
-                    1.0f / (divisor * (float)fx->gl.low_height));
+    float divisor = (float)fx->scene->desc.target_divisor;
+    if (fx->gl->low_width > 0 && fx->gl->low_height > 0)
+        glUniform2f(post_loc(p, prog, PU_PARTICLE_TEXEL), 1.0f / (divisor * (float)fx->gl->low_width),
+                    1.0f / (divisor * (float)fx->gl->low_height));
 }
 
 /* Depth of field: split by CoC at the blur resolution, blur both fields separably (two
  * passes), composite over the sharp image. */
 static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
 {
-    sbfx_post_gl *p = &fx->gl.post;
-    const sbfx_post_params *post = &fx->post;
+    sbfx_post_gl *p = &fx->render->post;
+    const sbfx_post_params *post = &fx->scene->post;
     const sbfx_frame *f = pf->f;
     GLuint prog = p->dof_setup_program;
     begin(prog, p->dof[0].framebuffer, p->dof[0].width, p->dof[0].height);
-    sbfx_bind_texture(0, GL_TEXTURE_2D, source, fx->gl.color_sampler); /* LINEAR: 2 x 2 means in one fetch */
+    sbfx_bind_texture(0, GL_TEXTURE_2D, source, fx->gl->color_sampler); /* LINEAR: 2 x 2 means in one fetch */
     glUniform1i(post_loc(p, prog, PU_COLOR), 0);
     bind_unit(fx, prog, PU_SCENE_DEPTH, 1, f->scene_depth_texture);
     glUniform1i(post_loc(p, prog, PU_SCALE), post->dof_scale);
@@ -303,8 +301,8 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     glUniform2fv(post_loc(p, prog, PU_FAR), 1, post->dof_far);
     bind_particle_motion(fx, prog, 2);
     bind_unit(fx, prog, PU_SCENE_COLOR, 3, f->scene_color_texture);
-    glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->desc.target_divisor);
-    glUniform2i(post_loc(p, prog, PU_PARTICLE_SIZE), fx->gl.low_width, fx->gl.low_height);
+    glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->scene->desc.target_divisor);
+    glUniform2i(post_loc(p, prog, PU_PARTICLE_SIZE), fx->gl->low_width, fx->gl->low_height);
     finish(fx);
     prog = p->dof_blur_program;
     for (int dir = 0; dir < 2; dir++) {
@@ -331,7 +329,7 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     bind_unit(fx, prog, PU_SCENE_COLOR, 5, f->scene_color_texture);
     glUniform2f(post_loc(p, prog, PU_FULL_SIZE), (float)f->width, (float)f->height);
     /* the shimmer offsets, LINEAR like the composite's (none: an empty unit reads 0, no offset) */
-    sbfx_bind_texture(6, GL_TEXTURE_2D, fx->gl.particles.texture[1], fx->gl.color_sampler);
+    sbfx_bind_texture(6, GL_TEXTURE_2D, fx->gl->particles.texture[1], fx->gl->color_sampler);
     glUniform1i(post_loc(p, prog, PU_DISTORTION), 6);
     finish(fx);
 }
@@ -339,10 +337,10 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
 /* The seed's motion blur: history = mix(new, history, e^(-dt/persistence)), then shown. */
 static void pass_history(sbfx *fx, GLuint source, GLuint fbo, int w, int h, double dt)
 {
-    sbfx_post_gl *p = &fx->gl.post;
+    sbfx_post_gl *p = &fx->render->post;
     GLuint prog = p->history_program;
     const sbfx_rt *previous = &p->history[1 - p->history_next], *next = &p->history[p->history_next];
-    float keep = p->history_valid ? (float)exp(-dt / fx->post.persistence) : 0.0f;
+    float keep = p->history_valid ? (float)exp(-dt / fx->scene->post.persistence) : 0.0f;
     begin(prog, next->framebuffer, w, h);
     bind_unit(fx, prog, PU_CURRENT, 0, source);
     bind_unit(fx, prog, PU_HISTORY, 1, previous->texture[0]);
@@ -399,23 +397,23 @@ static void view_projection(const sbfx_frame *f, double out[16])
 /* The longest velocity of `tile` texels of `in` along (dx, dy), into `out`: rows, then columns. */
 static void pass_tile_max(sbfx *fx, const sbfx_rt *in, const sbfx_rt *out, int dx, int dy)
 {
-    const sbfx_post_gl *p = &fx->gl.post;
+    const sbfx_post_gl *p = &fx->render->post;
     GLuint prog = p->tile_program;
     begin(prog, out->framebuffer, out->width, out->height);
     bind_unit(fx, prog, PU_VELOCITY, 0, in->texture[0]);
-    glUniform1i(post_loc(p, prog, PU_TILE), fx->post.tile);
+    glUniform1i(post_loc(p, prog, PU_TILE), fx->scene->post.tile);
     glUniform2i(post_loc(p, prog, PU_SIZE), in->width, in->height);
     glUniform2i(post_loc(p, prog, PU_DIRECTION), dx, dy);
-    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->post.tile);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->scene->post.tile);
     finish(fx);
 }
 
 /* McGuire's reconstruction: velocity, tile max (rows, then columns), neighbour max, gather. */
 static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
 {
-    sbfx_post_gl *p = &fx->gl.post;
+    sbfx_post_gl *p = &fx->render->post;
     const sbfx_frame *f = pf->f;
-    const sbfx_post_params *post = &fx->post;
+    const sbfx_post_params *post = &fx->scene->post;
     double now[16], inverse[16], reproject[16];
     view_projection(f, now);
     if (!p->have_previous || !invert4(now, inverse)) memcpy(reproject, (double[16]){1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, sizeof(reproject));
@@ -425,15 +423,15 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
     GLuint prog = p->velocity_program;
     begin(prog, p->velocity.framebuffer, f->width, f->height);
     bind_unit(fx, prog, PU_SCENE_DEPTH, 0, f->scene_depth_texture);
-    bind_unit(fx, prog, PU_PARTICLE_VELOCITY, 1, fx->gl.particles.texture[2]);
-    glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl.particles.texture[2]);
+    bind_unit(fx, prog, PU_PARTICLE_VELOCITY, 1, fx->gl->particles.texture[2]);
+    glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl->particles.texture[2]);
     glUniformMatrix4fv(post_loc(p, prog, PU_REPROJECT), 1, GL_FALSE, reproject_f);
     glUniform2fv(post_loc(p, prog, PU_NDC_DEPTH), 1, pf->ndc_depth);
     glUniform2f(post_loc(p, prog, PU_SIZE), (float)f->width, (float)f->height);
     glUniform1f(post_loc(p, prog, PU_SHUTTER), post->shutter);
     glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
-    glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->desc.target_divisor);
-    glUniform2i(post_loc(p, prog, PU_LOW_SIZE), fx->gl.low_width, fx->gl.low_height);
+    glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->scene->desc.target_divisor);
+    glUniform2i(post_loc(p, prog, PU_LOW_SIZE), fx->gl->low_width, fx->gl->low_height);
     finish(fx);
     pass_tile_max(fx, &p->velocity, &p->tile_rows, 1, 0);
     pass_tile_max(fx, &p->tile_rows, &p->tiles, 0, 1);
@@ -461,28 +459,28 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
  * and leaves the final image in the host's framebuffer. */
 sbfx_result sbfx_post_run(sbfx *fx, const sbfx_frame *f, const sbfx_depth_model *depth, GLuint source)
 {
-    sbfx_post_gl *p = &fx->gl.post;
+    sbfx_post_gl *p = &fx->render->post;
     post_frame pf = {f, {0}, {depth->ndc[0], depth->ndc[1]}};
     sbfx_depth_model_uniform(depth, pf.depth_model);
     p->host_depth = f->scene_depth_texture;
     p->host_color = f->scene_color_texture;
-    double dt = p->have_previous ? fx->time - p->last_time : 0.0;
+    double dt = p->have_previous ? fx->sim->time - p->last_time : 0.0;
     glDisable(GL_BLEND);
     if (!has_steps(fx)) {
         if (source != 0) pass_copy(fx, source, f->out_framebuffer, f->width, f->height);
     } else {
         GLuint input = source;
-        if (fx->post.dof) {
-            bool last = fx->post.blur == SBFX_BLUR_NONE;
+        if (fx->scene->post.dof) {
+            bool last = fx->scene->post.blur == SBFX_BLUR_NONE;
             GLuint dest = last ? f->out_framebuffer : p->frame[1].framebuffer;
             pass_dof(fx, &pf, input, dest);
             input = p->frame[1].texture[0];
         }
-        if (fx->post.blur == SBFX_BLUR_HISTORY) pass_history(fx, input, f->out_framebuffer, f->width, f->height, dt);
-        if (fx->post.blur == SBFX_BLUR_VELOCITY) pass_velocity_blur(fx, &pf, input, f->out_framebuffer);
+        if (fx->scene->post.blur == SBFX_BLUR_HISTORY) pass_history(fx, input, f->out_framebuffer, f->width, f->height, dt);
+        if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) pass_velocity_blur(fx, &pf, input, f->out_framebuffer);
     }
     view_projection(f, p->previous_view_projection);
-    p->last_time = fx->time;
+    p->last_time = fx->sim->time;
     p->have_previous = true;
     return SBFX_OK;
 }
@@ -491,7 +489,7 @@ sbfx_result sbfx_post_run(sbfx *fx, const sbfx_frame *f, const sbfx_depth_model 
  * host's framebuffer when no step follows. */
 GLuint sbfx_post_composite_target(const sbfx *fx, const sbfx_frame *f)
 {
-    return has_steps(fx) ? fx->gl.post.frame[0].framebuffer : f->out_framebuffer;
+    return has_steps(fx) ? fx->render->post.frame[0].framebuffer : f->out_framebuffer;
 }
 
-GLuint sbfx_post_composite_texture(const sbfx *fx) { return fx->gl.post.frame[0].texture[0]; }
+GLuint sbfx_post_composite_texture(const sbfx *fx) { return fx->render->post.frame[0].texture[0]; }

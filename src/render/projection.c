@@ -14,7 +14,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include "module.h"
+#include "render/render.h"
 
 static bool is_zero(float v) { return v == 0.0f; }
 
@@ -170,4 +170,28 @@ void sbfx_reverse_z(float m[16], float n, float f)
         m[10] = n / (f - n);
         m[14] = f * n / (f - n);
     }
+}
+
+/* ---- the look-at matrix (the host's camera, the shadow map's light view) ---- */
+static void cross3(const float a[3], const float b[3], float out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+void sbfx_look_at(float m[16], const float eye[3], const float target[3], const float up[3])
+{
+    float f[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]}, s[3], u[3];
+    sbfx_normalize3(f);
+    cross3(f, up, s);
+    sbfx_normalize3(s);
+    cross3(s, f, u);
+    const float rows[3][3] = {{s[0], s[1], s[2]}, {u[0], u[1], u[2]}, {-f[0], -f[1], -f[2]}};
+    memset(m, 0, 16 * sizeof(float));
+    for (int r = 0; r < 3; r++) {
+        for (int c = 0; c < 3; c++) m[c * 4 + r] = rows[r][c];
+        m[12 + r] = -(rows[r][0] * eye[0] + rows[r][1] * eye[1] + rows[r][2] * eye[2]);
+    }
+    m[15] = 1.0f;
 }

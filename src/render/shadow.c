@@ -4,7 +4,7 @@
  * one pass per sbfx_render_shadow_map with particles, none without. */
 #include <math.h>
 #include <string.h>
-#include "module.h"
+#include "render/render.h"
 
 #define SHADOW_MIN_SIZE 16
 #define SHADOW_MARGIN_TEXELS 2   /* cleared texels kept on each side: CLAMP_TO_EDGE reads 1 */
@@ -30,33 +30,33 @@ static void clear_map(sbfx *fx)
 {
     GLfloat host_clear[4];
     glGetFloatv(GL_COLOR_CLEAR_VALUE, host_clear);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fx->shadow.map.framebuffer);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fx->render->shadow.map.framebuffer);
     glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     glClearColor(host_clear[0], host_clear[1], host_clear[2], host_clear[3]);
-    fx->shadow.clear = true;
+    fx->render->shadow.clear = true;
 }
 
 static sbfx_result create_map(sbfx *fx, int size)
 {
     const sbfx_rt_format *half[SBFX_RT_MAX] = {&shadow_rgba16f}, *rgba8[SBFX_RT_MAX] = {&sbfx_rt_rgba8};
-    if (sbfx_half_float_renderable() && sbfx_rt_create(fx, &fx->shadow.map, size, size, half, NULL, GL_LINEAR))
+    if (sbfx_half_float_renderable() && sbfx_rt_create(fx, &fx->render->shadow.map, size, size, half, NULL, GL_LINEAR))
         return SBFX_OK;
     sbfx_log(fx, SBFX_LOG_INFO, "shadow map: RGBA16F is not renderable here, the map is RGBA8 (transmittance in "
              "steps of 1/255 per particle, depth in 1/255 of the smoke's extent)");
-    if (sbfx_rt_create(fx, &fx->shadow.map, size, size, rgba8, NULL, GL_LINEAR)) return SBFX_OK;
+    if (sbfx_rt_create(fx, &fx->render->shadow.map, size, size, rgba8, NULL, GL_LINEAR)) return SBFX_OK;
     return sbfx_fail(fx, SBFX_ERR_GL, "shadow map: a %dx%d RGBA8 framebuffer is incomplete on this context; "
                      "try a smaller desc.shadow_map_size", size, size);
 }
 
 static sbfx_result create_buffers(sbfx *fx)
 {
-    sbfx_shadow *s = &fx->shadow;
+    sbfx_shadow *s = &fx->render->shadow;
     glGenVertexArrays(1, &s->vao);
     glGenBuffers(1, &s->buffer);
     glBindVertexArray(s->vao);
     glBindBuffer(GL_ARRAY_BUFFER, s->buffer);
-    size_t bytes = (size_t)fx->pool.capacity * SHADOW_INSTANCE_FLOATS * sizeof(float);
+    size_t bytes = (size_t)fx->sim->pool.capacity * SHADOW_INSTANCE_FLOATS * sizeof(float);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_DRAW);
     GLsizei stride = SHADOW_INSTANCE_FLOATS * sizeof(float);
     glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, stride, (const void *)0);
@@ -72,13 +72,13 @@ static sbfx_result create_buffers(sbfx *fx)
 
 sbfx_result sbfx_shadow_create(sbfx *fx)
 {
-    int size = fx->desc.shadow_map_size;
+    int size = fx->scene->desc.shadow_map_size;
     if (size == 0) return SBFX_OK;
     int limit = renderable_limit();
     if (size < SHADOW_MIN_SIZE || size > limit)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "shadow_map_size %d: this context renders %d .. %d "
                          "texels per side (256 is the default)", size, SHADOW_MIN_SIZE, limit);
-    sbfx_shadow *s = &fx->shadow;
+    sbfx_shadow *s = &fx->render->shadow;
     s->program = sbfx_program_build(fx, "shadow.vert", "shadow.frag", NULL);
     if (!s->program) return SBFX_ERR_SHADER;
     s->u_matrix = glGetUniformLocation(s->program, "u_matrix");
@@ -87,7 +87,7 @@ sbfx_result sbfx_shadow_create(sbfx *fx)
     if (r != SBFX_OK) return r;
     const sbfx_gl_units unit0 = {1u, 0u, 0u};
     sbfx_gl_state saved;
-    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | fx->context_parts, &unit0);
+    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | fx->gl->context.parts, &unit0);
     r = create_map(fx, size);
     if (r == SBFX_OK) clear_map(fx);
     sbfx_gl_state_restore(&saved);
@@ -98,13 +98,13 @@ sbfx_result sbfx_shadow_create(sbfx *fx)
 
 void sbfx_shadow_destroy(sbfx *fx)
 {
-    sbfx_shadow *s = &fx->shadow;
+    sbfx_shadow *s = &fx->render->shadow;
     sbfx_rt_destroy(fx, &s->map);
     sbfx_program_delete(fx, s->program); /* it may be lent to the scene that replaces this one */
     if (s->vao) glDeleteVertexArrays(1, &s->vao);
     if (s->buffer) {
         glDeleteBuffers(1, &s->buffer);
-        fx->counters.gpu_bytes -= (size_t)fx->pool.capacity * SHADOW_INSTANCE_FLOATS * sizeof(float);
+        fx->counters.gpu_bytes -= (size_t)fx->sim->pool.capacity * SHADOW_INSTANCE_FLOATS * sizeof(float);
     }
     *s = (sbfx_shadow){0};
 }
@@ -138,17 +138,17 @@ static void light_view(const float direction[3], float view[16])
 
 typedef struct shadow_bounds { float lo[3], hi[3]; } shadow_bounds;
 
-/* Packs the absorbing particles of fx->view[0..n) into fx->instances; returns how many. */
+/* Packs the absorbing particles of fx->sim->view[0..n) into fx->sim->instances; returns how many. */
 static int pack_instances(sbfx *fx, int n, shadow_bounds *b)
 {
     int packed = 0;
     for (int k = 0; k < 3; k++) b->lo[k] = INFINITY, b->hi[k] = -INFINITY;
     for (int i = 0; i < n; i++) {
-        const sbfx_view_particle *p = &fx->view[i];
+        const sbfx_view_particle *p = &fx->sim->view[i];
         if (p->medium == SBFX_HEAT) continue;     /* heat neither absorbs nor emits */
-        float tau = fx->media[p->medium].tau * p->intensity;
+        float tau = fx->scene->media[p->medium].tau * p->intensity;
         if (!(tau > 0.0f)) continue;
-        float *o = &fx->instances[(size_t)packed++ * SHADOW_INSTANCE_FLOATS];
+        float *o = &fx->sim->instances[(size_t)packed++ * SHADOW_INSTANCE_FLOATS];
         memcpy(o, p->center, 3 * sizeof(float));
         o[3] = p->radius;
         o[4] = tau;
@@ -203,9 +203,9 @@ static void mat4_mul(float out[16], const float a[16], const float b[16])
 
 static void draw_map(sbfx *fx, int count, const float proj[16], const float depth[2])
 {
-    sbfx_shadow *s = &fx->shadow;
+    sbfx_shadow *s = &fx->render->shadow;
     sbfx_gl_state saved;
-    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | fx->context_parts, NULL);
+    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | fx->gl->context.parts, NULL);
     /* GL may dither any colour buffer (Mesa does R16F): the product of many particles would
      * then depend on whether the host left GL_DITHER on */
     GLboolean dither = glIsEnabled(GL_DITHER);
@@ -223,7 +223,7 @@ static void draw_map(sbfx *fx, int count, const float proj[16], const float dept
     glBindVertexArray(s->vao);
     glBindBuffer(GL_ARRAY_BUFFER, s->buffer);
     glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)((size_t)count * SHADOW_INSTANCE_FLOATS * sizeof(float)),
-                    fx->instances);
+                    fx->sim->instances);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count);
     if (dither) glEnable(GL_DITHER);
     sbfx_gl_state_restore(&saved);
@@ -231,31 +231,31 @@ static void draw_map(sbfx *fx, int count, const float proj[16], const float dept
     fx->counters.shadow_passes = 1;
 }
 
-/* fx->view[0..n) holds the particles in the light's view space. */
+/* fx->sim->view[0..n) holds the particles in the light's view space. */
 static sbfx_result render_map(sbfx *fx, int n, const float view[16], sbfx_shadow_map *out)
 {
     shadow_bounds bounds;
     int count = pack_instances(fx, n, &bounds);
     float proj[16], depth[2], host[16];
     if (count == 0) bounds = (shadow_bounds){{-1, -1, -1}, {1, 1, 1}};
-    fit_projection(&bounds, fx->shadow.size, proj, depth);
+    fit_projection(&bounds, fx->render->shadow.size, proj, depth);
     fx->counters.shadow_passes = 0;
     sbfx_result r = SBFX_OK;
-    if (count > 0 || !fx->shadow.clear) {
+    if (count > 0 || !fx->render->shadow.clear) {
         sbfx_gl_enter(fx);
         if (count > 0) {
             draw_map(fx, count, proj, depth);
         } else {
             sbfx_gl_state saved;
-            sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | fx->context_parts, NULL);
+            sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | fx->gl->context.parts, NULL);
             clear_map(fx);
             sbfx_gl_state_restore(&saved);
         }
         if (!sbfx_gl_check(fx, "rendering the shadow map")) r = SBFX_ERR_GL;
         sbfx_gl_leave(fx, "sbfx_render_shadow_map");
     }
-    out->texture = fx->shadow.map.texture[0];
-    out->size = fx->shadow.size;
+    out->texture = fx->render->shadow.map.texture[0];
+    out->size = fx->render->shadow.size;
     out->particles = count;
     with_depth_row(proj, depth, host);
     mat4_mul(out->view_projection, host, view);
@@ -266,7 +266,7 @@ static sbfx_result check_call(sbfx *fx, const float direction[3], const sbfx_sha
 {
     if (!fx) return SBFX_ERR_INVALID_ARGUMENT;
     if (!direction || !out) return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "shadow map: NULL direction or out");
-    if (!fx->shadow.size)
+    if (!fx->render->shadow.size)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "shadow map: this module has none: set "
                          "desc.shadow_map_size or the scene's render.host_shadows = true");
     return direction_valid(fx, direction) ? SBFX_OK : SBFX_ERR_INVALID_ARGUMENT;
@@ -289,9 +289,9 @@ sbfx_result sbfx_render_shadow_particles(sbfx *fx, const float direction[3], con
 {
     sbfx_result r = check_call(fx, direction, out);
     if (r != SBFX_OK) return r;
-    if (count < 0 || count > fx->pool.capacity || (count > 0 && !world))
+    if (count < 0 || count > fx->sim->pool.capacity || (count > 0 && !world))
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "shadow map: %d particles for a pool of %d", count,
-                         fx->pool.capacity);
+                         fx->sim->pool.capacity);
     float view[16];
     light_view(direction, view);
     int n = 0;
@@ -300,23 +300,23 @@ sbfx_result sbfx_render_shadow_particles(sbfx *fx, const float direction[3], con
         const float *c = world[i].center;
         for (int k = 0; k < 3; k++)
             p.center[k] = view[k] * c[0] + view[4 + k] * c[1] + view[8 + k] * c[2] + view[12 + k];
-        if (sbfx_view_particle_valid(&p)) fx->view[n++] = p;
+        if (sbfx_view_particle_valid(&p)) fx->sim->view[n++] = p;
     }
     return render_map(fx, n, view, out);
 }
 
 sbfx_result sbfx_read_shadow_map(sbfx *fx, float *values, size_t capacity)
 {
-    int size = fx->shadow.size;
+    int size = fx->render->shadow.size;
     if (!size) return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "no shadow map");
     size_t n = (size_t)size * size;
     if (!values || capacity < n * 4)
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "read buffer holds %zu floats, %zu needed", capacity, n * 4);
     sbfx_gl_state saved;
     sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PACK, NULL);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, fx->shadow.map.framebuffer);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fx->render->shadow.map.framebuffer);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    if (fx->shadow.map.bytes == n * 4) { /* RGBA8 */
+    if (fx->render->shadow.map.bytes == n * 4) { /* RGBA8 */
         uint8_t *bytes = (uint8_t *)values;
         glReadPixels(0, 0, size, size, GL_RGBA, GL_UNSIGNED_BYTE, bytes);
         for (size_t i = n * 4; i-- > 0;) values[i] = bytes[i] / 255.0f;

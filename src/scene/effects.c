@@ -1,6 +1,6 @@
 /* The seed's media and the built-in explosion (16 dust, 115 fire, 28 smoke particles). */
 #include <string.h>
-#include "module.h"
+#include "scene/model.h"
 
 void sbfx_default_media(sbfx_medium_params media[SBFX_MEDIUM_COUNT])
 {

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "module.h"
+#include "scene/scene.h"
 
 #define LOD_MAX (1 << 20)
 

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "scene/scene.h"
+#include "tables/tables.h"
 
 typedef struct parser {
     const char *name;

@@ -1,8 +1,22 @@
-/* Scene contents after parsing (private). The module copies what it needs at sbfx_create. */
+/* The scene room (src/rooms.txt; docs/hacking.md): what the module is asked to show, and the
+ * plan of what it builds for it. Above the ground floor and the tables' math (its parser
+ * checks the smoke textures' and the lit shader's limits, tables/tables.h).
+ *
+ * Exports to the rooms above:
+ *   - the parsed scene file (this header; scene.c parses, sbfx_scene_* in sbfx.h) and the
+ *     host's view of it (scene_host.c);
+ *   - what a scene is made of (model.h): media, effects, flashes, lights, post parameters, and
+ *     the seed's defaults and built-in explosion (effects.c);
+ *   - quality level names (quality_name.c: sbfx_quality_parse/name, resolve, equal);
+ *   - the plan (plan.h, plan.c): the desc with its defaults, checked; the scene as the module
+ *     keeps it (sbfx_scene_state: media, effects, lights, post chain, the levels declared at
+ *     load, the plan's passes and instance layout); the tables the plan decides (scene_tables.h:
+ *     black body and phase tables built in double, table or analytic per medium).
+ * The module copies what it needs of a parsed scene at sbfx_create (sbfx_scene_adopt). */
 #ifndef SBFX_SCENE_H
 #define SBFX_SCENE_H
 
-#include "module.h"
+#include "scene/model.h"
 
 #define SBFX_MAX_LIGHTS 4
 #define SBFX_MAX_TIMELINE 64
@@ -54,5 +68,11 @@ struct sbfx_scene {
 
 /* The scene sbfx uses when the desc names none: the seed's explosion, fired at t = 0. */
 void sbfx_scene_builtin(sbfx_scene *scene);
+
+/* quality_name.c: quality levels (sbfx_quality; their names: sbfx_quality_parse, _name) */
+sbfx_quality sbfx_quality_from_desc(const sbfx_desc *d);
+/* Fills zero fields with the defaults; false (err says why) for values out of range. */
+bool sbfx_quality_resolve(sbfx_quality *q, char *err, size_t size);
+bool sbfx_quality_equal(const sbfx_quality *a, const sbfx_quality *b);
 
 #endif

@@ -1,6 +1,6 @@
 /* Fire as a light source (issue 27): the radiant intensity of fire particles from their black
  * body, and the live fire gathered into a few point lights. Pure C in double, no GL: the module
- * (emitted_lights.c) and the CPU reference (ref/) run the same code. */
+ * (fire_lights.c) and the CPU reference (ref/) run the same code. */
 #ifndef SBFX_FIRE_LIGHT_H
 #define SBFX_FIRE_LIGHT_H
 

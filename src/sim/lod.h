@@ -51,7 +51,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include "internal.h"
+#include "sim/particles.h"
 
 typedef struct particle_lod {
     int capacity;

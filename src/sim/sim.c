@@ -2,22 +2,22 @@
  * Live particles are packed in [0, alive); a dying particle is replaced by the last one. */
 #include <math.h>
 #include <string.h>
-#include "module.h"
+#include "sim/sim.h"
 
 #define POOL_FLOATS_PER_PARTICLE 20 /* pos 3, vel 3, age, life, r0, r1, i0, i1, fade, drag, buoy, detail 3, pad 2 */
 
 sbfx_result sbfx_pool_create(sbfx *fx, int capacity)
 {
-    sbfx_pool *p = &fx->pool;
+    sbfx_pool *p = &fx->sim->pool;
     float *block = sbfx_calloc(fx, (size_t)capacity * POOL_FLOATS_PER_PARTICLE, sizeof(float));
     p->medium = sbfx_calloc(fx, (size_t)capacity, 1);
-    fx->view = sbfx_calloc(fx, (size_t)capacity, sizeof(*fx->view));
-    fx->sort_keys = sbfx_calloc(fx, (size_t)capacity, sizeof(float));
-    fx->order = sbfx_calloc(fx, (size_t)capacity, sizeof(uint32_t));
-    fx->order_tmp = sbfx_calloc(fx, (size_t)capacity, sizeof(uint32_t));
-    fx->instances = sbfx_calloc(fx, (size_t)capacity * fx->instance_floats, sizeof(float));
-    if (!block || !p->medium || !fx->view || !fx->sort_keys || !fx->order || !fx->order_tmp ||
-        !fx->instances) {
+    fx->sim->view = sbfx_calloc(fx, (size_t)capacity, sizeof(*fx->sim->view));
+    fx->sim->sort_keys = sbfx_calloc(fx, (size_t)capacity, sizeof(float));
+    fx->sim->order = sbfx_calloc(fx, (size_t)capacity, sizeof(uint32_t));
+    fx->sim->order_tmp = sbfx_calloc(fx, (size_t)capacity, sizeof(uint32_t));
+    fx->sim->instances = sbfx_calloc(fx, (size_t)capacity * fx->scene->instance_floats, sizeof(float));
+    if (!block || !p->medium || !fx->sim->view || !fx->sim->sort_keys || !fx->sim->order || !fx->sim->order_tmp ||
+        !fx->sim->instances) {
         sbfx_free(fx, block);
         return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "cannot allocate a pool of %d particles", capacity);
     }
@@ -41,23 +41,23 @@ sbfx_result sbfx_pool_create(sbfx *fx, int capacity)
 
 void sbfx_pool_destroy(sbfx *fx)
 {
-    sbfx_free(fx, fx->pool.pos);
-    sbfx_free(fx, fx->pool.medium);
-    sbfx_free(fx, fx->view);
-    sbfx_free(fx, fx->sort_keys);
-    sbfx_free(fx, fx->order);
-    sbfx_free(fx, fx->order_tmp);
-    sbfx_free(fx, fx->instances);
-    sbfx_free(fx, fx->lod_work);
-    fx->lod_work = NULL;
-    memset(&fx->pool, 0, sizeof(fx->pool));
+    sbfx_free(fx, fx->sim->pool.pos);
+    sbfx_free(fx, fx->sim->pool.medium);
+    sbfx_free(fx, fx->sim->view);
+    sbfx_free(fx, fx->sim->sort_keys);
+    sbfx_free(fx, fx->sim->order);
+    sbfx_free(fx, fx->sim->order_tmp);
+    sbfx_free(fx, fx->sim->instances);
+    sbfx_free(fx, fx->sim->lod_work);
+    fx->sim->lod_work = NULL;
+    memset(&fx->sim->pool, 0, sizeof(fx->sim->pool));
 }
 
 sbfx_result sbfx_lod_create(sbfx *fx)
 {
-    fx->lod_work = sbfx_calloc(fx, 1, lod_work_size(fx->pool.capacity));
-    if (!fx->lod_work) return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
-    lod_init(&fx->lod, fx->lod_work, fx->pool.capacity);
+    fx->sim->lod_work = sbfx_calloc(fx, 1, lod_work_size(fx->sim->pool.capacity));
+    if (!fx->sim->lod_work) return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "out of memory");
+    lod_init(&fx->sim->lod, fx->sim->lod_work, fx->sim->pool.capacity);
     return SBFX_OK;
 }
 
@@ -74,7 +74,7 @@ static void random_direction(sbfx_rng *rng, float upward, float out[3])
 
 static void spawn_one(sbfx *fx, const sbfx_emitter *e, const float origin[3], sbfx_rng *rng)
 {
-    sbfx_pool *p = &fx->pool;
+    sbfx_pool *p = &fx->sim->pool;
     int i = p->alive++;
     float dir[3];
     random_direction(rng, e->upward, dir);
@@ -102,13 +102,13 @@ sbfx_result sbfx_spawn_effect(sbfx *fx, const sbfx_effect *effect, const float p
 {
     int needed = 0;
     for (int i = 0; i < effect->emitter_count; i++) needed += effect->emitters[i].count;
-    if (fx->pool.alive + needed > fx->pool.capacity)
+    if (fx->sim->pool.alive + needed > fx->sim->pool.capacity)
         return sbfx_fail(fx, SBFX_ERR_POOL_FULL,
                          "trigger \"%s\" refused: needs %d particles, %d of %d are in use",
-                         effect->name, needed, fx->pool.alive, fx->pool.capacity);
+                         effect->name, needed, fx->sim->pool.alive, fx->sim->pool.capacity);
     /* Each trigger draws from its own stream: same seed + same trigger order = same particles. */
     sbfx_rng rng;
-    sbfx_rng_seed(&rng, ((uint64_t)fx->desc.seed << 32) ^ fx->trigger_count++);
+    sbfx_rng_seed(&rng, ((uint64_t)fx->scene->desc.seed << 32) ^ fx->sim->trigger_count++);
     for (int i = 0; i < effect->emitter_count; i++)
         for (int n = 0; n < effect->emitters[i].count; n++)
             spawn_one(fx, &effect->emitters[i], position, &rng);
@@ -138,7 +138,7 @@ static void retire(sbfx_pool *p, int i)
 
 void sbfx_simulate_step(sbfx *fx, float h)
 {
-    sbfx_pool *p = &fx->pool;
+    sbfx_pool *p = &fx->sim->pool;
     for (int i = 0; i < p->alive;) {
         float age = p->age[i] + h;
         p->age[i] = age;
@@ -163,7 +163,7 @@ void sbfx_simulate_step(sbfx *fx, float h)
 /* FNV-1a over the live particles' state: equal hashes mean bit-identical simulations. */
 uint64_t sbfx_state_hash(const sbfx *fx)
 {
-    const sbfx_pool *p = &fx->pool;
+    const sbfx_pool *p = &fx->sim->pool;
     uint64_t h = 1469598103934665603ull;
     const struct { const void *data; size_t size; } parts[] = {
         {p->pos, 3 * sizeof(float)}, {p->vel, 3 * sizeof(float)}, {p->age, sizeof(float)},

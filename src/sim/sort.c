@@ -2,7 +2,7 @@
  * distance. O(n), stable, no allocation: the scratch arrays are sized at load. */
 #include <math.h>
 #include <string.h>
-#include "module.h"
+#include "sim/sim.h"
 
 #define RADIX_BITS 11
 #define RADIX_SIZE (1u << RADIX_BITS)
@@ -18,16 +18,16 @@ static uint32_t descending_key(float distance)
 
 void sbfx_sort_back_to_front(sbfx *fx, int count)
 {
-    uint32_t *src = fx->order, *dst = fx->order_tmp;
+    uint32_t *src = fx->sim->order, *dst = fx->sim->order_tmp;
     for (int i = 0; i < count; i++) {
-        const float *c = fx->view[i].center;
-        fx->sort_keys[i] = sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        const float *c = fx->sim->view[i].center;
+        fx->sim->sort_keys[i] = sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
         src[i] = (uint32_t)i;
     }
     for (int shift = 0; shift < 32; shift += RADIX_BITS) {
         uint32_t histogram[RADIX_SIZE] = {0};
         for (int i = 0; i < count; i++)
-            histogram[(descending_key(fx->sort_keys[src[i]]) >> shift) & (RADIX_SIZE - 1)]++;
+            histogram[(descending_key(fx->sim->sort_keys[src[i]]) >> shift) & (RADIX_SIZE - 1)]++;
         uint32_t sum = 0;
         for (uint32_t b = 0; b < RADIX_SIZE; b++) {
             uint32_t n = histogram[b];
@@ -35,7 +35,7 @@ void sbfx_sort_back_to_front(sbfx *fx, int count)
             sum += n;
         }
         for (int i = 0; i < count; i++) {
-            uint32_t key = descending_key(fx->sort_keys[src[i]]);
+            uint32_t key = descending_key(fx->sim->sort_keys[src[i]]);
             dst[histogram[(key >> shift) & (RADIX_SIZE - 1)]++] = src[i];
         }
         uint32_t *t = src;
@@ -43,8 +43,8 @@ void sbfx_sort_back_to_front(sbfx *fx, int count)
         dst = t;
     }
     /* Three passes leave the result in order_tmp: swap the roles of the arrays. */
-    if (src != fx->order) {
-        fx->order_tmp = fx->order;
-        fx->order = src;
+    if (src != fx->sim->order) {
+        fx->sim->order_tmp = fx->sim->order;
+        fx->sim->order = src;
     }
 }

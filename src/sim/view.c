@@ -1,13 +1,9 @@
-/* One frame, as the seed's figure 9 draws it:
- *   collect live particles (view space, bad ones skipped) -> sort back to front
- *   pass 1: opaque depth -> particle-target resolution
- *   pass 2: particles -> low-res target (premultiplied light, transmittance)
- *   pass 3: composite over the host's framebuffer (depth-aware upsample)
- * With no live particle there is no pass at all. */
+/* The frame's particles in view space: the live particles whose delay has passed, shaped at
+ * their age (radius, intensity), where they were at the previous render (velocity blur), bad
+ * ones skipped and counted. The first step of a frame (sbfx.c, sbfx_render). */
 #include <math.h>
 #include <string.h>
-#include "module.h"
-
+#include "sim/sim.h"
 
 bool sbfx_view_particle_valid(const sbfx_view_particle *p)
 {
@@ -39,25 +35,25 @@ void sbfx_pool_particle_shape(const sbfx_pool *p, int i, float *radius, float *i
 static void previous_center(const sbfx *fx, const float pos[3], const float vel[3], const float view[16],
                             sbfx_view_particle *v)
 {
-    if (!fx->plan.particle_velocity || !fx->have_previous_view) {
+    if (!fx->scene->plan.particle_velocity || !fx->sim->have_previous_view) {
         memcpy(v->previous_center, v->center, sizeof(v->center));
         return;
     }
-    float dt = (float)(fx->time - fx->previous_render_time), before[3];
+    float dt = (float)(fx->sim->time - fx->sim->previous_render_time), before[3];
     for (int k = 0; k < 3; k++) before[k] = pos[k] - vel[k] * dt;
-    transform_point(fx->previous_view, before, v->previous_center);
+    transform_point(fx->sim->previous_view, before, v->previous_center);
     (void)view;
 }
 
-/* Live particles whose delay has passed, in view space, into fx->view. */
+/* Live particles whose delay has passed, in view space, into fx->sim->view. */
 int sbfx_collect_view_particles(sbfx *fx, const float view[16])
 {
-    const sbfx_pool *p = &fx->pool;
+    const sbfx_pool *p = &fx->sim->pool;
     int n = 0;
     fx->counters.particles_skipped = 0;
     for (int i = 0; i < p->alive; i++) {
         if (p->age[i] < 0.0f) continue;
-        sbfx_view_particle *v = &fx->view[n];
+        sbfx_view_particle *v = &fx->sim->view[n];
         transform_point(view, &p->pos[3 * i], v->center);
         sbfx_pool_particle_shape(p, i, &v->radius, &v->intensity);
         memcpy(v->detail, &p->detail[3 * i], sizeof(v->detail));
@@ -69,83 +65,17 @@ int sbfx_collect_view_particles(sbfx *fx, const float view[16])
     return n;
 }
 
-static bool frame_valid(sbfx *fx, const sbfx_frame *f, sbfx_depth_model *depth)
-{
-    if (f->width <= 0 || f->height <= 0 || f->width > 16384 || f->height > 16384) {
-        sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "frame size %dx%d is out of range", f->width, f->height);
-        return false;
-    }
-    if (!f->scene_depth_texture) {
-        sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "frame has no scene_depth_texture: sbfx needs "
-                  "the opaque scene's depth as a texture");
-        return false;
-    }
-    if (fx->plan.owns_scene && !f->scene_color_texture) {
-        sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "this scene's post effects (heat shimmer, motion blur or "
-                  "depth of field) need frame.scene_color_texture");
-        return false;
-    }
-    return sbfx_depth_model_from(fx, f, depth);
-}
-
-sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame)
-{
-    if (!fx || !frame) return SBFX_ERR_INVALID_ARGUMENT;
-    fx->counters.passes = 0;
-    fx->counters.draw_calls = 0;
-    fx->counters.gl_state_queries = 0;
-    fx->counters.fire_lit_particles = 0;
-    sbfx_depth_model depth;
-    if (!frame_valid(fx, frame, &depth)) return SBFX_ERR_INVALID_ARGUMENT;
-    int count = sbfx_collect_view_particles(fx, frame->view);
-    sbfx_result r = SBFX_OK;
-    /* Idle without post effects: no pass at all, no GL call: the host's state is untouched. */
-    if (count > 0 || fx->plan.owns_scene) {
-        sbfx_gl_enter(fx);
-        r = sbfx_budget_begin_frame(fx); /* the budget's level, and its GPU timer */
-        if (r == SBFX_OK) r = sbfx_render_frame(fx, frame, &depth, count);
-        sbfx_budget_end_frame(fx);
-        sbfx_gl_leave(fx, "sbfx_render");
-    }
-    memcpy(fx->previous_view, frame->view, sizeof(fx->previous_view));
-    fx->previous_render_time = fx->time;
-    fx->have_previous_view = true;
-    return r;
-}
-
-sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
-                                       const sbfx_view_particle *particles, int count)
-{
-    if (!fx || !frame || (count > 0 && !particles) || count < 0) return SBFX_ERR_INVALID_ARGUMENT;
-    fx->counters.passes = 0;
-    fx->counters.draw_calls = 0;
-    fx->counters.particles_skipped = 0;
-    fx->counters.gl_state_queries = 0;
-    fx->counters.fire_lit_particles = 0;
-    sbfx_depth_model depth;
-    if (!frame_valid(fx, frame, &depth)) return SBFX_ERR_INVALID_ARGUMENT;
-    if (count > fx->pool.capacity)
-        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "%d particles exceed the pool of %d",
-                         count, fx->pool.capacity);
-    int n = 0;
-    for (int i = 0; i < count; i++) {
-        if (sbfx_view_particle_valid(&particles[i]) && fx->uses_medium[particles[i].medium]) {
-            fx->view[n] = particles[i];
-            memcpy(fx->view[n++].previous_center, particles[i].center, sizeof(particles[i].center));
-        }
-        else
-            fx->counters.particles_skipped++;
-    }
-    if (n == 0 && !fx->plan.owns_scene) return SBFX_OK;
-    sbfx_gl_enter(fx);
-    sbfx_result r = sbfx_render_frame(fx, frame, &depth, n);
-    sbfx_gl_leave(fx, "sbfx_render_view_particles");
-    return r;
-}
-
 int sbfx_frame_particles(sbfx *fx, const float view[16], const sbfx_view_particle **out)
 {
     int n = sbfx_collect_view_particles(fx, view);
-    *out = fx->view;
+    *out = fx->sim->view;
     return n;
+}
+
+/* The view and the clock of the frame just rendered: where particles were then (velocity blur). */
+void sbfx_view_rendered(sbfx *fx, const float view[16])
+{
+    memcpy(fx->sim->previous_view, view, 16 * sizeof(float));
+    fx->sim->previous_render_time = fx->sim->time;
+    fx->sim->have_previous_view = true;
 }

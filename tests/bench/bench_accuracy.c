@@ -552,7 +552,7 @@ static void run_config(bench *b, result *res)
     particle_lod lod;
     void *lod_work = NULL;
     if (rc.lod) {
-        int capacity = fx->pool.capacity;
+        int capacity = fx->sim->pool.capacity;
         lod_work = xcalloc(1, lod_work_size(capacity));
         lod_init(&lod, lod_work, capacity);
         rc.lod_state = &lod;

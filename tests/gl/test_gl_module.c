@@ -79,7 +79,7 @@ CHECK_TEST(software_rasteriser_compiles_mediump_as_highp)
     sbfx *fx = NULL;
     CHECK(sbfx_create(&(sbfx_desc){.log = note_mediump}, &fx) == SBFX_OK);
     if (fx) {
-        CHECK(fx->mediump_as_highp == software, "renderer %s: mediump_as_highp %d", renderer, fx->mediump_as_highp);
+        CHECK(fx->gl->context.mediump_as_highp == software, "renderer %s: mediump_as_highp %d", renderer, fx->gl->context.mediump_as_highp);
         CHECK(logged_mediump == software, "renderer %s: logged %d", renderer, logged_mediump);
         sbfx_destroy(fx);
     }
