@@ -5,7 +5,8 @@
 #   make gallery      one contact sheet per example scene into docs/gallery/ (docs/scene-format.md)
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, docs, then ASan+UBSan,
 #                     every core (tests/run.sh; docs/testing.md: one suite, one case)
-#   make check        the edit-compile loop's tier: unit tests, a GL smoke test per pass, shaders
+#   make check        the edit-compile loop's tier: unit tests, a GL smoke test per pass, shaders,
+#                     the rooms' one-way dependencies (tests/layers.sh, src/rooms.txt)
 #   make test-hosts   the SDL2, desktop OpenGL and Qt Quick hosts and their tests (docs/hosts/;
 #                     make test runs them)
 #   make test-qt-quick  the Qt Quick item, its example and test where Qt 6 is installed (test-hosts)
@@ -334,7 +335,8 @@ test:
 	@$(MAKE) --no-print-directory $(JOBS_FLAG) test-build
 	@tests/run.sh --asan=$(TEST_ASAN)
 
-# The edit-compile tier (docs/testing.md): unit tests, one GL smoke test per pass, the shaders.
+# The edit-compile tier (docs/testing.md): unit tests, one GL smoke test per pass, the shaders, the
+# rooms' one-way dependencies (the objects of libsbfx.a are read: test-unit builds them).
 check:
 	@tools/deps.sh test
 	@$(MAKE) --no-print-directory $(JOBS_FLAG) test-unit $(BUILD)/tests/gl/test_gl_smoke
