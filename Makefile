@@ -97,6 +97,11 @@ LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined)
 # src/ is in rooms, one folder per floor (src/rooms.txt): src/ROOM/NAME.c -> $(BUILD)/obj/src/ROOM/NAME.o
 SRC := $(sort $(wildcard src/*.c src/*/*.c))
 SHADERS := $(sort $(wildcard shaders_es/*.vert shaders_es/*.frag))
+# A shader written in parts, shaders_es/NAME.STAGE.parts/N-WHAT.glsl (particle.frag.parts/): joined at
+# build time into $(BUILD)/gen/shaders_es/NAME.STAGE, with #line directives that name each part
+# and its line (tools/embed_shaders.c; docs/hacking.md), then embedded like the others.
+SHADER_PARTS := $(sort $(wildcard shaders_es/*.parts/*.glsl))
+SHADERS_JOINED := $(patsubst shaders_es/%.parts,$(BUILD)/gen/shaders_es/%,$(wildcard shaders_es/*.parts))
 LIB_OBJ := $(SRC:src/%.c=$(BUILD)/obj/src/%.o) $(BUILD)/obj/gen/shaders_es.o $(BUILD)/obj/gen/cie1931_2deg.o
 LIB_CFLAGS := -fvisibility=hidden -ffunction-sections -fdata-sections
 SONAME := libsbfx.so.$(SOVERSION)
@@ -131,9 +136,13 @@ $(BUILD)/tools/embed_shaders: tools/embed_shaders.c | deps
 	$(HOSTCC) -O1 -o $@ $<
 HOSTCC ?= cc
 
-$(BUILD)/gen/shaders_es.c: $(SHADERS) $(BUILD)/tools/embed_shaders
+$(BUILD)/gen/shaders_es/%: $(SHADER_PARTS) $(BUILD)/tools/embed_shaders
 	@mkdir -p $(@D)
-	$(BUILD)/tools/embed_shaders $@ $(SHADERS)
+	$(BUILD)/tools/embed_shaders --join shaders_es/$*.parts $@
+
+$(BUILD)/gen/shaders_es.c: $(SHADERS) $(SHADERS_JOINED) $(BUILD)/tools/embed_shaders
+	@mkdir -p $(@D)
+	$(BUILD)/tools/embed_shaders $@ $(SHADERS) $(SHADERS_JOINED)
 
 $(BUILD)/obj/gen/shaders_es.o: $(BUILD)/gen/shaders_es.c | deps
 	@mkdir -p $(@D)

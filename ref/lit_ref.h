@@ -1,8 +1,9 @@
 /* Per-pixel lit smoke (the lit-smoke seed): a CPU reference in double precision of sampling
- * the procedural smoke textures (made at load, src/tables/tables.h), of every lighting term and of the
- * height-field ray march. The particle shader's LIGHTING_LIT variant (shaders_es/particle.frag)
- * computes the same things in float; tests and the lighting bench compare the two. Part of
- * libsbfx_ref.a, not of the runtime library. Pure libc, no GL.
+ * the procedural smoke textures (made at load, src/tables/tables.h), of every lighting term and of
+ * the height-field ray march. The particle shader's LIGHTING_LIT variant
+ * (shaders_es/particle.frag.parts/5-lighting.glsl) computes the same things in float; tests and
+ * the lighting bench compare the two. Part of libsbfx_ref.a, not of the runtime library. Pure
+ * libc, no GL.
  *
  * Texture space of a lit particle (centre c, radius r, view space; the view matrix is the
  * tangent basis, so tangent = view x, bitangent = view y, normal = view +z, toward the eye):

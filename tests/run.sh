@@ -189,7 +189,7 @@ list_check() {
         emit "not ok - test_gl_smoke: $BUILD/tests/gl/test_gl_smoke was not built (make check)"
     fi
     WEIGHT=3
-    run_suite "" shaders tests/shaders.sh
+    run_suite "" shaders tests/shaders.sh "$BUILD"
     run_suite "" layers tests/layers.sh "$BUILD"
 }
 
@@ -209,7 +209,7 @@ list_all() {
     run_suite "" desktop-gl-example tests/hosts/desktop_gl_example.sh "$BUILD"
     # the Qt Quick item's test and example under Xvfb (skipped, with the reason, without Qt 6)
     run_suite "" qt-quick tests/hosts/qt_quick.sh "$BUILD"
-    run_suite "" shaders tests/shaders.sh
+    run_suite "" shaders tests/shaders.sh "$BUILD"
     run_suite "" layers tests/layers.sh "$BUILD"
     run_cli "" "$BUILD/sbfx-play"
     run_suite "" probe tests/probe.sh "$BUILD/sbfx-probe"
