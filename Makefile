@@ -225,8 +225,9 @@ $(BUILD)/obj/platform/display/display_wayland.o $(BUILD)/obj/platform/wayland/wa
 	PLATFORM_CFLAGS += $(WAYLAND_PKG_CFLAGS) -I$(WAYLAND_GEN)
 
 # sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera and GPIO inputs (platform/)
-PLAYER_SRC := $(addprefix player/,player player_args player_usage player_stats player_inputs player_loop \
-	player_reset board player_notify player_host player_watch) \
+PLAYER_SRC := $(addprefix player/,player loop reset host) \
+	$(addprefix player/options/,args usage board) $(addprefix player/outputs/,stats notify) \
+	$(addprefix player/inputs/,gpio_source watch) \
 	$(addprefix video/,luma live_detail v4l2_source clip_detail) \
 	$(addprefix gpio/,gpio_backend effect_names gpio_triggers trigger_filter) \
 	$(addprefix display/,display_headless display_drm display_link display_wayland) \
@@ -234,7 +235,7 @@ PLAYER_SRC := $(addprefix player/,player player_args player_usage player_stats p
 	$(addprefix wayland/,wayland_egl present_feedback)
 PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o) $(WAYLAND_PROTOCOL_OBJ)
 # --version prints the Makefile's VERSION (the library's)
-$(BUILD)/obj/platform/player/player_usage.o: PLATFORM_CFLAGS += -DSBFX_VERSION='"$(VERSION)"'
+$(BUILD)/obj/platform/player/options/usage.o: PLATFORM_CFLAGS += -DSBFX_VERSION='"$(VERSION)"'
 # The GPIO backend (docs/gpio.md): platform/gpio/gpio_gpiod2.c when pkg-config's libgpiod is 2.x
 # or later, else gpio_gpiod1.c (1.6). gpiod-version holds the version the object was built for, so
 # a different libgpiod (PKG_CONFIG_PATH) rebuilds it.
@@ -249,10 +250,10 @@ $(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS) $(WAYLAND_PKG_LIBS)
-# READY=1 and the watchdog's pings for systemd (player_notify.c): libsystemd, the player only
+# READY=1 and the watchdog's pings for systemd (player/outputs/notify.c): libsystemd, the player only
 NOTIFY_PKG_CFLAGS = $(call pkg_config,NOTIFY_PKG_CFLAGS,--cflags libsystemd)
 NOTIFY_PKG_LIBS = $(call pkg_config,NOTIFY_PKG_LIBS,--libs libsystemd)
-$(BUILD)/obj/platform/player/player_notify.o: PLATFORM_CFLAGS += $(NOTIFY_PKG_CFLAGS)
+$(BUILD)/obj/platform/player/outputs/notify.o: PLATFORM_CFLAGS += $(NOTIFY_PKG_CFLAGS)
 $(BUILD)/obj/platform/video/clip_detail.o: PLATFORM_CFLAGS += $(CLIP_PKG_CFLAGS)
 
 # sbfx-probe and sbfx-soak (tools/probe/, tools/soak/): tools that look inside the module through
@@ -531,8 +532,8 @@ bench: $(BUILD)/bench/bench_shadow
 # ---- platform (issue #5: DRM/KMS kiosk, V4L2 detail, GPIO triggers, boards) ---------------
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,
 # the --gpio/--mode syntax), run by tests/run.sh like the unit tests.
-PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,video/luma.o gpio/trigger_filter.o player/board.o \
-	player/player_args.o display/display_link.o) $(BUILD)/obj/tools/soak/soak_check.o
+PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,video/luma.o gpio/trigger_filter.o player/options/board.o \
+	player/options/args.o display/display_link.o) $(BUILD)/obj/tools/soak/soak_check.o
 PLATFORM_TESTS := $(patsubst tests/platform/%.c,$(BUILD)/tests/platform/%,$(wildcard tests/platform/*.c))
 $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h
 	@mkdir -p $(@D)

@@ -13,7 +13,7 @@
 
 #include "gpio/effect_names.h"
 #include "player/player.h"
-#include "player/player_stats.h"
+#include "player/outputs/stats.h"
 
 static void on_sbfx_log(sbfx_log_level level, const char *message, void *user)
 {

@@ -11,16 +11,16 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "player/board.h"
+#include "player/options/board.h"
 #include "display/display.h"
 #include "egl/gl_reset.h"
 #include "gpio/gpio_triggers.h"
 #include "video/live_detail.h"
-#include "player/player_args.h"
+#include "player/options/options.h"
 #include "sbfx.h"
 #include "host/test_scene.h"
-#include "player/player_notify.h"
-#include "player/player_watch.h"
+#include "player/outputs/notify.h"
+#include "player/inputs/watch.h"
 
 /* sbfx-play's exit status (main): 0 a finished or stopped run (--frames done, SIGINT, SIGTERM,
  * the Wayland window closed), 1 a bad argument or a failure, and this one when the display

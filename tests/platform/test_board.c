@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "player/board.h"
+#include "player/options/board.h"
 #include "check.h"
 
 static const char *write_temp(const char *text)

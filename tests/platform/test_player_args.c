@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "player/player_args.h"
+#include "player/options/options.h"
 
 static int parse(struct player_options *opt, char *err, size_t n, const char *a, const char *b,
                  const char *c, const char *d)

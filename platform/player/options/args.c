@@ -1,8 +1,8 @@
 /* sbfx-play's command line: one table of flags, one parser per kind of value. Every error
  * names the flag and what it accepts; nothing here exits or prints. */
-#include "player/player_args.h"
+#include "player/options/options.h"
 
-#include "player/board.h" /* enum modeset_kind, mode_spec_parse */
+#include "player/options/board.h" /* enum modeset_kind, mode_spec_parse */
 
 #include <ctype.h>
 #include <errno.h>

@@ -1,7 +1,7 @@
 /* sbfx-play --help and --version. The flags' text is here; the --stats keys come from their
  * table in player_stats.c. SBFX_VERSION is the Makefile's VERSION. */
-#include "player/player_args.h"
-#include "player/player_stats.h"
+#include "player/options/options.h"
+#include "player/outputs/stats.h"
 
 #ifndef SBFX_VERSION
 #error "SBFX_VERSION (the Makefile's VERSION) is not defined"

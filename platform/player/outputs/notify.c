@@ -4,7 +4,7 @@
 #include <systemd/sd-daemon.h>
 #include <time.h>
 
-#include "player/player_notify.h"
+#include "player/outputs/notify.h"
 
 #define HANG_ENV "SBFX_PLAY_TEST_HANG_AFTER_FRAMES"
 

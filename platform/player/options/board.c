@@ -1,5 +1,5 @@
 /* Board profiles from libconfig files (board.h). */
-#include "player/board.h"
+#include "player/options/board.h"
 
 #include <errno.h>
 #include <libconfig.h>

@@ -4,7 +4,7 @@
 #include <errno.h>
 #include <stdio.h>
 
-#include "player.h"
+#include "player/player.h"
 
 static int shadow(struct player *p, char *err, size_t n)
 {

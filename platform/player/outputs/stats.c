@@ -1,5 +1,5 @@
 /* sbfx-play --stats: the keys, their JSON and their --help text from one table. */
-#include "player/player_stats.h"
+#include "player/outputs/stats.h"
 
 #include <errno.h>
 #include <stddef.h>
