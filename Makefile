@@ -225,9 +225,9 @@ $(BUILD)/obj/platform/display/display_wayland.o $(BUILD)/obj/platform/wayland/wa
 	PLATFORM_CFLAGS += $(WAYLAND_PKG_CFLAGS) -I$(WAYLAND_GEN)
 
 # sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera and GPIO inputs (platform/)
-PLAYER_SRC := $(addprefix player/,player loop reset host) \
+PLAYER_SRC := $(addprefix player/,player module loop host reset authoring clock) \
 	$(addprefix player/options/,args usage board) $(addprefix player/outputs/,stats notify) \
-	$(addprefix player/inputs/,gpio_source watch) \
+	$(addprefix player/inputs/,triggers gpio_source detail watch signals) \
 	$(addprefix video/,luma live_detail v4l2_source clip_detail) \
 	$(addprefix gpio/,gpio_backend effect_names gpio_triggers trigger_filter) \
 	$(addprefix display/,display_headless display_drm display_link display_wayland) \
@@ -346,10 +346,12 @@ test:
 	@tests/run.sh --asan=$(TEST_ASAN)
 
 # The edit-compile tier (docs/testing.md): unit tests, one GL smoke test per pass, the shaders, the
-# rooms' one-way dependencies (the objects of libsbfx.a are read: test-unit builds them).
+# rooms' one-way dependencies (src/'s and the player's: the objects of libsbfx.a, which test-unit
+# builds, and the player's own, made here).
 check:
 	@tools/deps.sh test
-	@$(MAKE) --no-print-directory $(JOBS_FLAG) test-unit $(BUILD)/tests/gl/test_gl_smoke
+	@$(MAKE) --no-print-directory $(JOBS_FLAG) test-unit $(BUILD)/tests/gl/test_gl_smoke \
+		$(filter $(BUILD)/obj/platform/player/%,$(PLAYER_OBJ))
 	@tests/run.sh --check
 
 # The build's lines are left out (QUIET_LINES=0: tools/quiet-shell.sh); warnings still show.

@@ -1,14 +1,14 @@
 /* sbfx-play's frame loop. Per frame: wait until the display can take a frame (a page flip in
- * flight completes; GPIO events and camera frames are serviced while waiting), draw the test
- * scene, copy it into the display's framebuffer, sbfx_update + sbfx_render over it, present.
- * Nothing here allocates. */
+ * flight completes; the trigger sources are serviced while waiting, the detail feeds once), draw
+ * the test scene, copy it into the display's framebuffer, sbfx_update + sbfx_render over it,
+ * present; on a screen, a line of counters once a second. It reaches its inputs and outputs
+ * through their contracts only: the display (display/display.h), the trigger sources and the
+ * detail feeds (inputs/inputs.h), systemd's notify (outputs/notify.h). Nothing here allocates. */
 #include <errno.h>
 #include <limits.h>
 #include <poll.h>
-#include <signal.h>
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 
 #include "egl/gl_check.h"
 #include "player/player.h"
@@ -16,37 +16,6 @@
 #define FLIP_TIMEOUT_NS INT64_C(1000000000)
 #define MAX_REALTIME_STEP 0.25 /* s: a stalled frame does not make the simulation jump */
 #define NS_PER_S 1e9
-
-static volatile sig_atomic_t stop_signal;
-
-static void on_signal(int sig)
-{
-    stop_signal = sig;
-}
-
-/* SIGINT and SIGTERM end the kiosk loop after the frame in progress; no SA_RESTART, so a poll
- * waiting for a page flip returns at once. */
-void player_catch_signals(void)
-{
-    struct sigaction sa;
-    memset(&sa, 0, sizeof(sa));
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
-}
-
-bool player_stop_requested(void)
-{
-    return stop_signal != 0;
-}
-
-int64_t player_now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
-}
 
 /* ---- waiting for the display ---------------------------------------------------------- */
 
@@ -58,18 +27,19 @@ static int collect_fds(struct player *p, struct pollfd *fds, int max, int *displ
         *display_slot = count;
         fds[count++] = (struct pollfd){.fd = p->display->fd, .events = POLLIN};
     }
-    if (p->gpio_on) count += gpio_triggers_pollfds(&p->gpio, fds + count, max - count);
+    count += trigger_sources_pollfds(&p->triggers, fds + count, max - count);
     return count;
 }
 
-/* Polls the display (while a flip is in flight) and the GPIO lines; returns when the display
- * can take the next frame, or a signal asks to stop. The camera is serviced once per frame. */
+/* Polls the display (while a flip is in flight) and the trigger sources (inputs.h: the GPIO lines
+ * and whatever else the run has); returns when the display can take the next frame, or a signal
+ * asks to stop. The detail feeds are serviced once per frame. */
 static int wait_ready(struct player *p, char *err, size_t n)
 {
     struct display *d = p->display;
     int64_t deadline = player_now_ns() + FLIP_TIMEOUT_NS;
     for (;;) {
-        struct pollfd fds[2 + GPIO_TRIGGERS_MAX];
+        struct pollfd fds[1 + TRIGGER_POLLFDS_MAX];
         int slot = -1, count = collect_fds(p, fds, (int)(sizeof(fds) / sizeof(fds[0])), &slot);
         int64_t left = deadline - player_now_ns();
         int timeout = d->busy ? (int)(left > 0 ? left / 1000000 + 1 : 0) : 0;
@@ -83,7 +53,7 @@ static int wait_ready(struct player *p, char *err, size_t n)
             int rc = d->ops->dispatch(d, err, n);
             if (rc) return rc;
         }
-        player_service_gpio(p);
+        trigger_sources_service(&p->triggers, p->fx, player_now_ns());
         if (!d->busy || player_stop_requested() || d->closed) break;
         if (player_now_ns() < deadline) continue;
         if (!d->ops->stalled) {
@@ -93,27 +63,11 @@ static int wait_ready(struct player *p, char *err, size_t n)
         int rc = d->ops->stalled(d, err, n); /* wayland: a hidden window; frames go on unshown */
         if (rc) return rc;
     }
-    player_service_video(p);
+    detail_service(&p->detail, player_now_ns());
     return 0;
 }
 
 /* ---- one frame ------------------------------------------------------------------------ */
-
-static int update(struct player *p, double dt, char *err, size_t n)
-{
-    if (dt <= 0.0) return 0; /* already there (player_host_prepare advanced it) */
-    sbfx_result r = sbfx_update(p->fx, dt);
-    if (r != SBFX_OK) {
-        snprintf(err, n, "sbfx_update(%g) at t=%.4f s: %s: %s", dt, p->sim_time,
-                 sbfx_result_string(r), sbfx_last_error(p->fx));
-        return -EIO;
-    }
-    sbfx_counters c;
-    sbfx_stats(p->fx, &c);
-    p->frame_simulated += c.particles_simulated;
-    p->sim_time += dt;
-    return 0;
-}
 
 static int draw_scene(struct player *p, double t, sbfx_frame *frame, char *err, size_t n)
 {
@@ -136,11 +90,9 @@ static int draw_scene(struct player *p, double t, sbfx_frame *frame, char *err, 
     return platform_gl_check("scene copy to the output framebuffer", err, n);
 }
 
-int player_update(struct player *p, double t, char *err, size_t n) { return update(p, t - p->sim_time, err, n); }
-
 static int run_fx(struct player *p, double t, const sbfx_frame *frame, char *err, size_t n)
 {
-    int rc = update(p, t - p->sim_time, err, n);
+    int rc = player_update(p, t, err, n);
     if (rc) return rc;
     sbfx_result r = sbfx_render(p->fx, frame);
     if (r != SBFX_OK) {
@@ -231,7 +183,7 @@ static void second_reset(struct player *p, int64_t now)
     s->flips = p->display->counts.flips;
     s->missed = p->display->counts.missed;
     s->fired = (uint64_t)p->last.triggers_fired;
-    s->video = p->live_on ? p->live.counts.frames : 0;
+    s->video = p->detail.camera_on ? p->detail.camera.counts.frames : 0;
     s->shown = p->display->counts.feedback_presented;
     s->latency_ns = p->display->counts.latency_ns_sum;
     s->frame_ms_sum = p->times.total_sum;
@@ -245,11 +197,11 @@ static void stats_line(struct player *p, int64_t now)
     double seconds = (double)(now - s->start_ns) / NS_PER_S;
     uint64_t frames = (uint64_t)p->frames_done - s->frames;
     char video[96] = "";
-    if (p->live_on) {
+    if (p->detail.camera_on) {
         char what[64];
-        live_detail_describe(&p->live, what, sizeof(what));
+        live_detail_describe(&p->detail.camera, what, sizeof(what));
         snprintf(video, sizeof(video), ", video %llu frames (%s)",
-                 (unsigned long long)(p->live.counts.frames - s->video), what);
+                 (unsigned long long)(p->detail.camera.counts.frames - s->video), what);
     }
     char latency[64] = "";
     if (p->display->presentation && c->feedback_presented > s->shown)

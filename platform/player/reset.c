@@ -59,9 +59,8 @@ int player_check_gpu_reset(struct player *p, int frame, char *err, size_t n)
         frame, status);
     p->fx_time_lost = p->fx_created_at + sbfx_elapsed(p->fx);
     p->fx_clock_lost = sbfx_time(p->fx);
-    bool camera = p->live_on;
-    if (camera) live_detail_stop(&p->live);
-    p->live_on = false;
+    bool camera = p->detail.camera_on;
+    detail_close(&p->detail);
     sbfx_destroy(p->fx);
     p->fx = NULL;
     test_scene_destroy(&p->scene);
@@ -73,11 +72,12 @@ int player_check_gpu_reset(struct player *p, int frame, char *err, size_t n)
         return rc;
     }
     p->gpu_resets++;
-    if (player_open_clip(p, why, sizeof(why)) != 0) {
+    if (detail_open_clip(p->fx, player_log, p, why, sizeof(why)) != 0) {
         player_log(why, p);
         player_log("the detail clip did not come back after the GPU reset: procedural detail", p);
     }
-    if (camera && player_open_video(p, why, sizeof(why)) != 0) {
+    if (camera &&
+        detail_open_camera(&p->detail, p->fx, p->opt->video, &p->board, player_log, p, why, sizeof(why)) != 0) {
         player_log(why, p);
         player_log("the camera did not come back after the GPU reset: procedural detail", p);
     }

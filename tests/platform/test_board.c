@@ -1,4 +1,4 @@
-/* Board profiles (platform/player/board.c): every boards/NAME.cfg loads; errors name file, line and key. */
+/* Board profiles (platform/player/options/board.c): every boards/NAME.cfg loads; errors name file, line and key. */
 #include <errno.h>
 #include <glob.h>
 #include <stdio.h>

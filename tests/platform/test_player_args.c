@@ -1,4 +1,4 @@
-/* sbfx-play's platform flags (platform/player/player_args.c): --gpio syntax, display conflicts. */
+/* sbfx-play's platform flags (platform/player/options/args.c): --gpio syntax, display conflicts. */
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>

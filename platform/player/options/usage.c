@@ -1,5 +1,5 @@
 /* sbfx-play --help and --version. The flags' text is here; the --stats keys come from their
- * table in player_stats.c. SBFX_VERSION is the Makefile's VERSION. */
+ * table in outputs/stats.c. SBFX_VERSION is the Makefile's VERSION. */
 #include "player/options/options.h"
 #include "player/outputs/stats.h"
 

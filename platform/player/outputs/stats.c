@@ -3,7 +3,6 @@
 
 #include <errno.h>
 #include <stddef.h>
-#include "player/player.h"
 
 enum stats_group { GROUP_EVERY_RUN, GROUP_KIOSK, GROUP_PRESENTATION, GROUP_GPIO, GROUP_VIDEO, GROUP_COUNT };
 enum stats_kind { KIND_INT, KIND_G, KIND_MS3, KIND_STRING };
@@ -72,42 +71,6 @@ static const char *const group_titles[GROUP_COUNT] = {
     [GROUP_GPIO] = "with GPIO lines",
     [GROUP_VIDEO] = "with a camera",
 };
-
-void player_stats_collect(const struct player *p, struct player_stats_record *r)
-{
-    const sbfx_counters *c = &p->last;
-    const struct display_counts *d = &p->display->counts;
-    const struct gpio_trigger_counts *g = &p->gpio.counts;
-    const struct live_detail_counts *v = &p->live.counts;
-    *r = (struct player_stats_record){
-        .programs = c->programs, .textures = c->textures, .framebuffers = c->framebuffers,
-        .gpu_bytes = (long long)c->gpu_bytes, .passes = c->passes, .draw_calls = c->draw_calls,
-        .particles_simulated = p->frame_simulated,
-        .heap_allocs_after_load = (long long)c->heap_allocs_after_load,
-        .budget_ms = c->budget_ms, .gpu_ms = c->gpu_ms,
-        .frames_over_budget = c->frames_over_budget, .quality_changes = c->quality_changes,
-        .gpu_resets = (long long)p->gpu_resets, .gpu_reset_notification = p->reset.status ? 1 : 0,
-        .frames = p->frames_done, .flips = (long long)d->flips, .missed_vblanks = (long long)d->missed,
-        .triggers_fired = c->triggers_fired, .triggers_refused = c->triggers_refused,
-        .display_unplugs = (long long)d->unplugs, .display_replugs = (long long)d->replugs,
-        .display_paused_frames = (long long)d->paused,
-        .presented_frames = (long long)d->feedback_presented,
-        .discarded_frames = (long long)d->feedback_discarded,
-        .latency_ms_mean = d->feedback_presented ? (double)d->latency_ns_sum / (double)d->feedback_presented / 1e6 : 0.0,
-        .latency_ms_max = (double)d->latency_ns_max / 1e6,
-        .gpio_edges = (long long)g->edges, .gpio_fired = (long long)g->fired,
-        .gpio_filtered = (long long)g->filtered, .gpio_refused = (long long)g->refused,
-        .gpio_overflows = (long long)g->overflows, .gpio_losses = (long long)g->losses,
-        .gpio_returns = (long long)g->returns, .gpio_retries = (long long)g->retries,
-        .gpio_absent = (long long)g->absent, .gpio_appeared = (long long)g->appeared,
-        .video_frames = (long long)v->frames, .video_distinct = (long long)v->distinct,
-        .video_losses = (long long)v->losses, .video_reopens = (long long)v->reopens,
-        .video_takeovers = (long long)v->takeovers,
-        .kiosk_on = p->display->fd >= 0 || p->gpio_on || p->live_on,
-        .gpio_on = p->gpio_on, .video_on = p->live_on, .presentation_on = p->display->presentation,
-    };
-    snprintf(r->quality, sizeof(r->quality), "%s", c->quality);
-}
 
 static bool group_written(const struct player_stats_record *r, enum stats_group group)
 {
