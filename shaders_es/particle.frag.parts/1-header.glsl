@@ -20,7 +20,7 @@
 //   LIT_SHADOW       (with LIGHTING_LIT) ray-marched self-shadowing through the height field,
 //                    toward the key light (the first) only
 //   TABLE_PROBE      diagnostics: main() writes blackbody(T) and phase(cos) for the probe and
-//                    the tests (src/diagnostics.c) instead of shading a particle
+//                    the tests (src/render/diagnostics.c) instead of shading a particle
 // Light and colour are mediump (what a Mali-class GPU runs at half precision); geometry,
 // depth and opacity stay highp.
 precision highp float;

@@ -32,7 +32,7 @@ uniform float u_detail_strength;
 uniform float u_time;            // in detail-volume loops
 #endif
 #ifdef MEDIUM_SCATTERS
-uniform sampler2D u_phase_lut;   // R32F, row m: medium m's phase function (src/tables.c)
+uniform sampler2D u_phase_lut;   // R32F, row m: medium m's phase function (src/scene/scene_tables.c)
 uniform int u_phase_row;
 uniform vec4 u_phase_warp;       // sign(g), (1-|g|)^2, 2|g| (0: unwarped), 1/ln((1-|g|)^2/(1+|g|)^2)
 uniform vec2 u_phase_shift;      // -ln((1+|g|)^2) * u_phase_warp.w, entries - 1
@@ -44,7 +44,7 @@ uniform vec3 u_albedo_color;     // albedo * tint
 #endif
 uniform int u_light_count;
 uniform vec4 u_light_vector[MAX_LIGHTS]; // view space: w = 0 direction of travel, w = 1 position
-uniform vec3 u_light_color[MAX_LIGHTS];  // irradiance (point lights: at 1 m) x 4 pi (passes.c)
+uniform vec3 u_light_color[MAX_LIGHTS];  // irradiance (point lights: at 1 m) x 4 pi (render/particles.c)
 uniform vec3 u_ambient;
 #endif
 #ifdef LIGHTING_LIT
@@ -76,7 +76,7 @@ uniform vec3 u_cmf_rgb[MAX_BANDS]; // sRGB weight of each band (CMF, trapezoid, 
 uniform float u_cmf_band[MAX_BANDS]; // wavelength [µm]
 #endif
 #ifdef MEDIUM_EMITS
-uniform sampler2D u_blackbody;   // RGBA32F, uniform in 1/T: rgb / Y, ln(Y / T) (src/blackbody.c)
+uniform sampler2D u_blackbody;   // RGBA32F, uniform in 1/T: rgb / Y, ln(Y / T) (src/tables/blackbody.c)
 uniform vec3 u_blackbody_map;    // 1/T at entry 0, entries per unit of 1/T, entries - 2
 uniform vec4 u_temperature;      // T0, T1, cooling, the cool share's soot (media.fire.soot)
 uniform float u_emission_scale;   // includes (1 - albedo)

@@ -55,7 +55,7 @@ mediump vec3 in_scattered(vec3 ray, vec3 p)
 #endif
 
 #if defined(FIRE_LIGHT) && !defined(LIGHTING_LIT)
-// The fire's light (src/fire_light.h, sbfx_fire_scatter_instance): the phase model evaluated at
+// The fire's light (src/sim/fire_light.h, sbfx_fire_scatter_instance): the phase model evaluated at
 // the centre on the CPU; across the particle (its centre's depth plane) the first-order change of
 // 1/d² from the fire, so smoke above a fireball glows from below. Zero without live fire. In
 // mediump, like the light it adds to (the gradient is at most 1 / radius: never negative).
@@ -67,7 +67,7 @@ mediump vec3 fire_scattered(vec3 ray, vec3 c)
 #endif
 
 #ifdef LIGHTING_LIT
-// The lit-smoke seed, mirrored by src/lit_ref.c (see there for the texture space). The view
+// The lit-smoke seed, mirrored by ref/lit_ref.c (see there for the texture space). The view
 // matrix is the tangent basis of these screen-aligned particles: tangent = view x, bitangent =
 // view y, normal = view +z (toward the eye), so a normal-map texel is already a view-space normal.
 #ifdef LIT_SHADOW
