@@ -242,10 +242,7 @@ sbfx_result sbfx_update(sbfx *fx, double dt)
 sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame)
 {
     if (!fx || !frame) return SBFX_ERR_INVALID_ARGUMENT;
-    fx->counters.passes = 0;
-    fx->counters.draw_calls = 0;
-    fx->counters.gl_state_queries = 0;
-    fx->counters.fire_lit_particles = 0;
+    sbfx_frame_counters_reset(fx);
     sbfx_depth_model depth;
     if (!sbfx_frame_check(fx, frame, &depth)) return SBFX_ERR_INVALID_ARGUMENT;
     int count = sbfx_collect_view_particles(fx, frame->view);

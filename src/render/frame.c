@@ -106,6 +106,15 @@ int sbfx_host_state_roundtrip(sbfx *fx, bool particles)
     return sbfx_gl_state_restore(&saved);
 }
 
+/* A frame's own counters start at 0 (sbfx_render, sbfx_render_view_particles). */
+void sbfx_frame_counters_reset(sbfx *fx)
+{
+    fx->counters.passes = 0;
+    fx->counters.draw_calls = 0;
+    fx->counters.gl_state_queries = 0;
+    fx->counters.fire_lit_particles = 0;
+}
+
 bool sbfx_frame_check(sbfx *fx, const sbfx_frame *f, sbfx_depth_model *depth)
 {
     if (f->width <= 0 || f->height <= 0 || f->width > 16384 || f->height > 16384) {
@@ -129,11 +138,8 @@ sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
                                        const sbfx_view_particle *particles, int count)
 {
     if (!fx || !frame || (count > 0 && !particles) || count < 0) return SBFX_ERR_INVALID_ARGUMENT;
-    fx->counters.passes = 0;
-    fx->counters.draw_calls = 0;
+    sbfx_frame_counters_reset(fx);
     fx->counters.particles_skipped = 0;
-    fx->counters.gl_state_queries = 0;
-    fx->counters.fire_lit_particles = 0;
     sbfx_depth_model depth;
     if (!sbfx_frame_check(fx, frame, &depth)) return SBFX_ERR_INVALID_ARGUMENT;
     if (count > fx->sim->pool.capacity)

@@ -64,6 +64,8 @@ typedef struct frame_lights {
 } frame_lights;
 
 /* frame.c */
+/* A frame's own counters (passes, draw calls, state queries, fire-lit particles) start at 0. */
+void sbfx_frame_counters_reset(sbfx *fx);
 /* The frame's size, textures and projection usable (its depth model into *depth); else fails. */
 bool sbfx_frame_check(sbfx *fx, const sbfx_frame *f, sbfx_depth_model *depth);
 /* The frame's passes between one save and restore of the host's state. */

@@ -12,16 +12,21 @@ static void on_signal(int sig)
     stop_signal = sig;
 }
 
-/* SIGINT and SIGTERM end the kiosk loop after the frame in progress; no SA_RESTART, so a poll
- * waiting for a page flip returns at once. */
-void player_catch_signals(void)
+/* No SA_RESTART: a poll that waits (for a page flip, for a change of the scene) returns at once. */
+static void catch_signal(int sig, void (*handler)(int))
 {
     struct sigaction sa;
     memset(&sa, 0, sizeof(sa));
-    sa.sa_handler = on_signal;
+    sa.sa_handler = handler;
     sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
+    sigaction(sig, &sa, NULL);
+}
+
+/* SIGINT and SIGTERM end the kiosk loop after the frame in progress. */
+void player_catch_signals(void)
+{
+    catch_signal(SIGINT, on_signal);
+    catch_signal(SIGTERM, on_signal);
 }
 
 bool player_stop_requested(void)
@@ -37,14 +42,10 @@ static void on_hup(int sig)
     hup_signal = 1;
 }
 
-/* No SA_RESTART: a headless run waiting for a change wakes at once. */
+/* A headless run waiting for a change wakes at once. */
 void player_catch_hup(void)
 {
-    struct sigaction sa;
-    memset(&sa, 0, sizeof(sa));
-    sa.sa_handler = on_hup;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGHUP, &sa, NULL);
+    catch_signal(SIGHUP, on_hup);
 }
 
 bool player_hup_taken(void)
