@@ -5,7 +5,8 @@
 #   make gallery      one contact sheet per example scene into docs/gallery/ (docs/scene-format.md)
 #   make test         unit + GL (surfaceless Mesa) tests, shader validation, docs, then ASan+UBSan,
 #                     every core (tests/run.sh; docs/testing.md: one suite, one case)
-#   make check        the edit-compile loop's tier: unit tests, a GL smoke test per pass, shaders
+#   make check        the edit-compile loop's tier: unit tests, a GL smoke test per pass, shaders,
+#                     the rooms' one-way dependencies (tests/layers.sh, src/rooms.txt)
 #   make test-hosts   the SDL2, desktop OpenGL and Qt Quick hosts and their tests (docs/hosts/;
 #                     make test runs them)
 #   make test-qt-quick  the Qt Quick item, its example and test where Qt 6 is installed (test-hosts)
@@ -13,7 +14,7 @@
 #                     (and 6 bits for NVIDIA's cases; tests/precision.sh; make test runs it)
 #   make bench        timings into build/bench/
 #   make figures      the seed's figures rendered into docs/figures/ (docs/figures.md)
-#   make ladder       src/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
+#   make ladder       src/budget/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
 #   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR, MANDIR, DATADIR); also
 #                     scenes, boards and the kiosk's unit and udev rule (dist/)
 #   make uninstall    remove what make install put there (same PREFIX, DESTDIR)
@@ -93,8 +94,14 @@ LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined)
 
 # The runtime library: src/ and the embedded shaders. Only what src/sbfx.h declares (SBFX_API)
 # is exported from the .so; the rest is hidden, and what no public function reaches is dropped.
-SRC := $(wildcard src/*.c)
+# src/ is in rooms, one folder per floor (src/rooms.txt): src/ROOM/NAME.c -> $(BUILD)/obj/src/ROOM/NAME.o
+SRC := $(sort $(wildcard src/*.c src/*/*.c))
 SHADERS := $(sort $(wildcard shaders_es/*.vert shaders_es/*.frag))
+# A shader written in parts, shaders_es/NAME.STAGE.parts/N-WHAT.glsl (particle.frag.parts/): joined at
+# build time into $(BUILD)/gen/shaders_es/NAME.STAGE, with #line directives that name each part
+# and its line (tools/embed_shaders.c; docs/hacking.md), then embedded like the others.
+SHADER_PARTS := $(sort $(wildcard shaders_es/*.parts/*.glsl))
+SHADERS_JOINED := $(patsubst shaders_es/%.parts,$(BUILD)/gen/shaders_es/%,$(wildcard shaders_es/*.parts))
 LIB_OBJ := $(SRC:src/%.c=$(BUILD)/obj/src/%.o) $(BUILD)/obj/gen/shaders_es.o $(BUILD)/obj/gen/cie1931_2deg.o
 LIB_CFLAGS := -fvisibility=hidden -ffunction-sections -fdata-sections
 SONAME := libsbfx.so.$(SOVERSION)
@@ -129,15 +136,19 @@ $(BUILD)/tools/embed_shaders: tools/embed_shaders.c | deps
 	$(HOSTCC) -O1 -o $@ $<
 HOSTCC ?= cc
 
-$(BUILD)/gen/shaders_es.c: $(SHADERS) $(BUILD)/tools/embed_shaders
+$(BUILD)/gen/shaders_es/%: $(SHADER_PARTS) $(BUILD)/tools/embed_shaders
 	@mkdir -p $(@D)
-	$(BUILD)/tools/embed_shaders $@ $(SHADERS)
+	$(BUILD)/tools/embed_shaders --join shaders_es/$*.parts $@
+
+$(BUILD)/gen/shaders_es.c: $(SHADERS) $(SHADERS_JOINED) $(BUILD)/tools/embed_shaders
+	@mkdir -p $(@D)
+	$(BUILD)/tools/embed_shaders $@ $(SHADERS) $(SHADERS_JOINED)
 
 $(BUILD)/obj/gen/shaders_es.o: $(BUILD)/gen/shaders_es.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(SRC_CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
 
-# The CIE 1931 2° colour-matching functions compiled in (src/tables.h): generated from
+# The CIE 1931 2° colour-matching functions compiled in (src/tables/tables.h): generated from
 # colord-data's file through lcms2 by a build-time program, so the library reads no file and
 # does not link lcms2 (docs/distributions.md). The host's lcms2, also in a cross build.
 CIE_CMF ?= /usr/share/colord/cmf/CIE1931-2deg-XYZ.cmf
@@ -214,8 +225,9 @@ $(BUILD)/obj/platform/display/display_wayland.o $(BUILD)/obj/platform/wayland/wa
 	PLATFORM_CFLAGS += $(WAYLAND_PKG_CFLAGS) -I$(WAYLAND_GEN)
 
 # sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera and GPIO inputs (platform/)
-PLAYER_SRC := $(addprefix player/,player player_args player_usage player_stats player_inputs player_loop \
-	player_reset board player_notify player_host player_watch) \
+PLAYER_SRC := $(addprefix player/,player module loop host reset authoring clock) \
+	$(addprefix player/options/,args usage board) $(addprefix player/outputs/,stats notify) \
+	$(addprefix player/inputs/,triggers gpio_source detail watch signals) \
 	$(addprefix video/,luma live_detail v4l2_source clip_detail) \
 	$(addprefix gpio/,gpio_backend effect_names gpio_triggers trigger_filter) \
 	$(addprefix display/,display_headless display_drm display_link display_wayland) \
@@ -223,7 +235,7 @@ PLAYER_SRC := $(addprefix player/,player player_args player_usage player_stats p
 	$(addprefix wayland/,wayland_egl present_feedback)
 PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o) $(WAYLAND_PROTOCOL_OBJ)
 # --version prints the Makefile's VERSION (the library's)
-$(BUILD)/obj/platform/player/player_usage.o: PLATFORM_CFLAGS += -DSBFX_VERSION='"$(VERSION)"'
+$(BUILD)/obj/platform/player/options/usage.o: PLATFORM_CFLAGS += -DSBFX_VERSION='"$(VERSION)"'
 # The GPIO backend (docs/gpio.md): platform/gpio/gpio_gpiod2.c when pkg-config's libgpiod is 2.x
 # or later, else gpio_gpiod1.c (1.6). gpiod-version holds the version the object was built for, so
 # a different libgpiod (PKG_CONFIG_PATH) rebuilds it.
@@ -238,10 +250,10 @@ $(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS) $(WAYLAND_PKG_LIBS)
-# READY=1 and the watchdog's pings for systemd (player_notify.c): libsystemd, the player only
+# READY=1 and the watchdog's pings for systemd (player/outputs/notify.c): libsystemd, the player only
 NOTIFY_PKG_CFLAGS = $(call pkg_config,NOTIFY_PKG_CFLAGS,--cflags libsystemd)
 NOTIFY_PKG_LIBS = $(call pkg_config,NOTIFY_PKG_LIBS,--libs libsystemd)
-$(BUILD)/obj/platform/player/player_notify.o: PLATFORM_CFLAGS += $(NOTIFY_PKG_CFLAGS)
+$(BUILD)/obj/platform/player/outputs/notify.o: PLATFORM_CFLAGS += $(NOTIFY_PKG_CFLAGS)
 $(BUILD)/obj/platform/video/clip_detail.o: PLATFORM_CFLAGS += $(CLIP_PKG_CFLAGS)
 
 # sbfx-probe and sbfx-soak (tools/probe/, tools/soak/): tools that look inside the module through
@@ -299,7 +311,7 @@ $(BUILD)/tests/gl/%: tests/gl/%.c $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check
 	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(GL_TEST_WRAP) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
 # The GL state test also runs on desktop OpenGL (tests/run.sh), where sbfx reaches glPolygonMode
-# through the process (src/gl_state.c): libOpenGL is in it, as in a desktop host.
+# through the process (src/gl/gl_state.c): libOpenGL is in it, as in a desktop host.
 OPENGL_LIBS = $(call pkg_config,OPENGL_LIBS,--libs opengl)
 $(BUILD)/tests/gl/test_gl_state: PLATFORM_LIBS += -Wl,--no-as-needed $(OPENGL_LIBS) -Wl,--as-needed
 
@@ -333,10 +345,13 @@ test:
 	@$(MAKE) --no-print-directory $(JOBS_FLAG) test-build
 	@tests/run.sh --asan=$(TEST_ASAN)
 
-# The edit-compile tier (docs/testing.md): unit tests, one GL smoke test per pass, the shaders.
+# The edit-compile tier (docs/testing.md): unit tests, one GL smoke test per pass, the shaders, the
+# rooms' one-way dependencies (src/'s and the player's: the objects of libsbfx.a, which test-unit
+# builds, and the player's own, made here).
 check:
 	@tools/deps.sh test
-	@$(MAKE) --no-print-directory $(JOBS_FLAG) test-unit $(BUILD)/tests/gl/test_gl_smoke
+	@$(MAKE) --no-print-directory $(JOBS_FLAG) test-unit $(BUILD)/tests/gl/test_gl_smoke \
+		$(filter $(BUILD)/obj/platform/player/%,$(PLAYER_OBJ))
 	@tests/run.sh --check
 
 # The build's lines are left out (QUIET_LINES=0: tools/quiet-shell.sh); warnings still show.
@@ -408,8 +423,8 @@ clean:
 
 # ---- fuzzing (clang, libFuzzer): FUZZ_SECONDS bounded, the example scenes as corpus ----
 FUZZ_SECONDS ?= 60
-FUZZ_SRC := src/scene.c src/effects.c src/quality_name.c
-$(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) src/sbfx.h src/scene.h
+FUZZ_SRC := src/scene/scene.c src/scene/effects.c src/scene/quality_name.c
+$(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) src/sbfx.h src/scene/scene.h
 	@mkdir -p $(@D)
 	clang -std=c11 -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -Isrc \
 		$(shell $(PKG_CONFIG) --cflags glesv2 libconfig) -o $@ tests/fuzz/fuzz_scene.c $(FUZZ_SRC) \
@@ -441,11 +456,11 @@ $(BUILD)/bench/bench_accuracy: $(BENCH_OBJ) $(BUILD)/obj/look/look_metrics.o $(P
 
 bench: $(BUILD)/bench/bench_accuracy
 
-# ---- the default quality ladder (issue 11): src/ladder_default.h from the accuracy bench's CSV ----
+# ---- the default quality ladder (issue 11): src/budget/ladder_default.h from the accuracy bench's CSV ----
 # make bench writes $(BUILD)/bench/ladder_default.h (the ladder its run proposes); make ladder
-# regenerates the committed src/ladder_default.h from $(BUILD)/bench/accuracy.csv (tools/ladder.sh).
+# regenerates the committed src/budget/ladder_default.h from $(BUILD)/bench/accuracy.csv (tools/ladder.sh).
 ladder:
-	tools/ladder.sh $(BUILD)/bench/accuracy.csv src/ladder_default.h
+	tools/ladder.sh $(BUILD)/bench/accuracy.csv src/budget/ladder_default.h
 
 # ---- frame budget bench (issue 11): the barrage at several budgets and at every fixed level ----
 # A program of its own (tests/bench/budget/), with the accuracy bench's read-backs, metrics and
@@ -519,8 +534,8 @@ bench: $(BUILD)/bench/bench_shadow
 # ---- platform (issue #5: DRM/KMS kiosk, V4L2 detail, GPIO triggers, boards) ---------------
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,
 # the --gpio/--mode syntax), run by tests/run.sh like the unit tests.
-PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,video/luma.o gpio/trigger_filter.o player/board.o \
-	player/player_args.o display/display_link.o) $(BUILD)/obj/tools/soak/soak_check.o
+PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,video/luma.o gpio/trigger_filter.o player/options/board.o \
+	player/options/args.o display/display_link.o) $(BUILD)/obj/tools/soak/soak_check.o
 PLATFORM_TESTS := $(patsubst tests/platform/%.c,$(BUILD)/tests/platform/%,$(wildcard tests/platform/*.c))
 $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h
 	@mkdir -p $(@D)

@@ -1,7 +1,8 @@
 /* CPU reference (double) of the lit-smoke shading: texture fetches as the GPU filters them,
  * wrap-around Lambert, back-lighting, the view-dependent step count and the height-field ray
  * march toward the key light (the first; the others are lit from the particle's centre,
- * unshadowed). shaders_es/particle.frag (LIGHTING_LIT) mirrors it line by line. */
+ * unshadowed). particle.frag's lit_scattered (LIGHTING_LIT; its part
+ * shaders_es/particle.frag.parts/5-lighting.glsl) mirrors it line by line. */
 #include <math.h>
 #include <stdbool.h>
 #include "lit_ref.h"

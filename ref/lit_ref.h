@@ -1,8 +1,9 @@
 /* Per-pixel lit smoke (the lit-smoke seed): a CPU reference in double precision of sampling
- * the procedural smoke textures (made at load, src/tables.h), of every lighting term and of the
- * height-field ray march. The particle shader's LIGHTING_LIT variant (shaders_es/particle.frag)
- * computes the same things in float; tests and the lighting bench compare the two. Part of
- * libsbfx_ref.a, not of the runtime library. Pure libc, no GL.
+ * the procedural smoke textures (made at load, src/tables/tables.h), of every lighting term and of
+ * the height-field ray march. The particle shader's LIGHTING_LIT variant
+ * (shaders_es/particle.frag.parts/5-lighting.glsl) computes the same things in float; tests and
+ * the lighting bench compare the two. Part of libsbfx_ref.a, not of the runtime library. Pure
+ * libc, no GL.
  *
  * Texture space of a lit particle (centre c, radius r, view space; the view matrix is the
  * tangent basis, so tangent = view x, bitangent = view y, normal = view +z, toward the eye):
@@ -15,9 +16,9 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include "tables.h"
+#include "tables/tables.h"
 
-/* ---- sampling the procedural smoke textures (src/tables.h makes them) ---------------- */
+/* ---- sampling the procedural smoke textures (src/tables/tables.h makes them) ---------------- */
 
 typedef struct sbfx_smoke_texture {
     int size, layers, levels; /* levels <= sbfx_smoke_texture_levels(size) */
@@ -95,7 +96,7 @@ void sbfx_lit_radiance(const sbfx_lit_medium *m, const sbfx_smoke_texture *tex, 
 
 /* The fire's light on a lit particle through this pixel's ray (particle.frag's FIRE_LIGHT with
  * LIGHTING_LIT), before the opacity multiplies it: albedo * B * (1 - dampening) * fire, fire the
- * fire's light at the particle's centre (src/fire_light.h's in-scattering, isotropic: per
+ * fire's light at the particle's centre (src/sim/fire_light.h's in-scattering, isotropic: per
  * particle, like the fill lights) and B the brightness map at the pixel's st. The fire is
  * gathered per particle without a direction: it lights the relief through the brightness map,
  * as a light wrapped all around it would, not through the normals, and unshadowed.

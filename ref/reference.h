@@ -1,14 +1,14 @@
 /* CPU reference of the particle opacity, in double precision, usable without GL. Tests, the
  * probe and the benchmark compare the GPU against these functions; with ref/reference_frame.h
  * (whole frames) and ref/lit_ref.h (lit smoke) it makes libsbfx_ref.a, which is not part of the
- * runtime library. The tables the module builds at load are in src/tables.h. Pure libc. */
+ * runtime library. The tables the module builds at load are in src/tables/tables.h. Pure libc. */
 #ifndef SBFX_REFERENCE_H
 #define SBFX_REFERENCE_H
 
 #include <stddef.h>
 #include <stdint.h>
 #include "sbfx.h"
-#include "tables.h"
+#include "tables/tables.h"
 
 /* ---- opacity (docs/design.md §2.1) ----------------------------------------------------------- */
 

@@ -5,7 +5,7 @@
  * pixel — same ray, same detail lookup, same medium and light model, same emission ceiling —
  * but in double, with the opacity model chosen per frame (EXACT for the benchmark's reference),
  * the black body and the phase function analytic (or, for tests of the GPU tables, through the
- * same tables), and accumulates the particles back to front in the order src/sort.c gives them:
+ * same tables), and accumulates the particles back to front in the order src/sim/sort.c gives them:
  *     C <- c_i + C (1 - a_i),   T <- T (1 - a_i)      (C = premultiplied light, T = transmittance)
  * then composites over the opaque scene like composite.frag and an RGBA8 framebuffer do, with the
  * same tone mapping of the layer's light (C' = tone_map(C, T)):
@@ -23,7 +23,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include "reference.h"
-#include "fire_light.h"
+#include "sim/fire_light.h"
 
 /* particle.frag's per-fragment radiance ceiling (RADIANCE_CEILING). */
 #define SBFX_RF_RADIANCE_CEILING 16384.0
@@ -33,7 +33,7 @@
 #define SBFX_RF_EROSION_AGE 0.25
 #define SBFX_RF_EROSION_SHARPNESS 1.8
 #define SBFX_RF_EROSION_GAIN 2.2
-#define SBFX_RF_FIRE_CORE SBFX_FIRE_CORE     /* src/fire_light.h: sbfx_fire_coordinate */
+#define SBFX_RF_FIRE_CORE SBFX_FIRE_CORE     /* src/sim/fire_light.h: sbfx_fire_coordinate */
 #define SBFX_RF_FIRE_DETAIL SBFX_FIRE_DETAIL
 #define SBFX_RF_DETAIL_SHADE 1.8
 /* The shader's light falloff floor: point lights act no closer than 0.5 m (d² >= 0.25). */
@@ -46,7 +46,7 @@ typedef struct sbfx_rf_particle {
     double detail[3];  /* detail window origin (u, v) and time offset */
     double intensity;  /* density scale; fire also cools as it falls */
     sbfx_medium medium;
-    /* The frame's fire light in-scattered at its centre (sbfx_fire_scatter, src/fire_light.h):
+    /* The frame's fire light in-scattered at its centre (sbfx_fire_scatter, src/sim/fire_light.h):
      * filled by sbfx_rf_render_layer when the frame's fire_light is on; zero otherwise. */
     sbfx_fire_scatter fire;
 } sbfx_rf_particle;
@@ -133,7 +133,7 @@ typedef struct sbfx_rf_frame {
  * sbfx_view_particle_valid: an invalid particle is skipped, never drawn). */
 bool sbfx_rf_particle_valid(const sbfx_rf_particle *p);
 
-/* Back-to-front order exactly as src/sort.c computes it: key = sqrtf of the float squared
+/* Back-to-front order exactly as src/sim/sort.c computes it: key = sqrtf of the float squared
  * distance of the float centre, descending, ties in input order. order[] gets count indices. */
 void sbfx_rf_sort(const sbfx_rf_particle *particles, int count, int *order);
 
@@ -147,7 +147,7 @@ void sbfx_rf_pixel_ray(const sbfx_rf_frame *f, int x, int y, double ray[3]);
 void sbfx_rf_shade(const sbfx_rf_frame *f, const sbfx_rf_particle *p, const double ray[3],
                    double opaque_distance, double rgb[3], double *alpha);
 
-/* The frame's fire particles gathered into at most max point lights in view space (src/fire_light.h,
+/* The frame's fire particles gathered into at most max point lights in view space (src/sim/fire_light.h,
  * as the module gathers them): the fire model of f->media[SBFX_FIRE], its black body (f's table or
  * analytic), the detail volume's levels. Returns the count, -1 if out of memory. */
 int sbfx_rf_fire_lights(const sbfx_rf_frame *f, const sbfx_rf_particle *particles, int count, sbfx_fire_gathered *out,

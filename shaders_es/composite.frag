@@ -49,7 +49,7 @@ out vec4 o_color;
 
 const float HALF_MAX = 65504.0;
 
-// Window depth -> view distance (src/projection.c): the matrix's own depth row, solved around
+// Window depth -> view distance (src/render/projection.c): the matrix's own depth row, solved around
 // the far end so nothing cancels; the clear value means no surface.
 const float NO_SURFACE = 1e30;
 float view_distance(float d)
@@ -67,7 +67,7 @@ float low_near_over_distance(vec2 uv)
 }
 
 // ---- tone mapping: the particle layer's light (pre-exposed) before it meets the host's picture ----
-uniform vec3 u_tone_curve;        // knee, steepness, 1 / ln(1 + steepness x_white) (src/tonemap.c)
+uniform vec3 u_tone_curve;        // knee, steepness, 1 / ln(1 + steepness x_white) (src/tables/tonemap.c)
 
 // The identity up to the knee, a logarithmic shoulder above it reaching 1 at the white point.
 float tone_curve(float v)
@@ -78,7 +78,7 @@ float tone_curve(float v)
 }
 
 #ifdef TONE_MAP_FILMIC
-// Filmic, a path to white for emitters (src/tonemap.c, docs/look-fire.md), on q = light / room.
+// Filmic, a path to white for emitters (src/tables/tonemap.c, docs/look-fire.md), on q = light / room.
 // Light the display can show (every channel of q at most 1) keeps its hue exactly: its largest
 // channel goes through the curve and the colour is scaled with it. Brighter light blends, over
 // two stops (q from 1 to 4), into the crossover: each channel takes a share of the channels'
@@ -153,7 +153,7 @@ mediump vec4 bilinear_weights(vec2 f)
 }
 
 #ifdef UPSAMPLE_NEAREST_DEPTH
-uniform float u_particles_far;    // view distance beyond which no particle reaches (passes.c)
+uniform float u_particles_far;    // view distance beyond which no particle reaches (render/frame.c)
 uniform float u_near_over_far;    // u_near / u_particles_far
 
 // Bilinear where the four low-res depths agree with this pixel's, else all weight on the texel

@@ -9,7 +9,7 @@ precision highp sampler2D;
 uniform sampler2D u_scene_depth;   // host depth texture, window depth in [0,1]
 uniform int u_divisor;
 uniform ivec2 u_full_size;
-uniform vec4 u_depth_model;        // distance = w / (x (d - y) + z); d = y: no surface (src/projection.c)
+uniform vec4 u_depth_model;        // distance = w / (x (d - y) + z); d = y: no surface (src/render/projection.c)
 uniform float u_near;
 
 // near / distance of one window depth; linear in d, so nothing cancels.

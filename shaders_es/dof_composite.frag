@@ -35,7 +35,7 @@ uniform sampler2D u_distortion;    // low-res RGBA16F, LINEAR: the composite's s
 
 out vec4 o_color;
 
-// Window depth -> view distance (src/projection.c): the matrix's own depth row, solved around
+// Window depth -> view distance (src/render/projection.c): the matrix's own depth row, solved around
 // the far end so nothing cancels; the clear value means no surface.
 float view_distance(float d)
 {

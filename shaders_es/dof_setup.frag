@@ -5,7 +5,7 @@
 // edges onto whatever is behind it.
 //   CoC from the artist's ranges: full near blur at u_near.x, sharp from u_near.y to u_far.x,
 //   full far blur at u_far.y; radius in full-resolution pixels, at most u_max_radius.
-//   DOF_SCALE  the scene's blur resolution divisor, set at load (src/post.c): the loops the
+//   DOF_SCALE  the scene's blur resolution divisor, set at load (src/render/post.c): the loops the
 //              compilers unroll are as long as the block, and the block's size is a constant
 //              (without it: blocks of u_scale, loops as long as the largest, 4)
 precision highp float;
@@ -41,7 +41,7 @@ uniform sampler2D u_scene_color;
 layout(location = 0) out vec4 o_far;   // rgb, far CoC in [0,1]
 layout(location = 1) out vec4 o_near;  // rgb * coverage, coverage (= near CoC in [0,1])
 
-// Window depth -> view distance (src/projection.c): the matrix's own depth row, solved around
+// Window depth -> view distance (src/render/projection.c): the matrix's own depth row, solved around
 // the far end so nothing cancels; the clear value means no surface.
 float view_distance(float d)
 {

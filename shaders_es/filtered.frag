@@ -1,8 +1,8 @@
 #version 300 es
 // Texture filtering in the shader, with the weights rounded to FILTER_BITS fractional bits the
 // way a GPU's fixed-point filter rounds them (DESIGN §9: NVIDIA documents 8; Vulkan's
-// subTexelPrecisionBits is at least 4). A diagnostic (SBFX_FILTER_BITS=N, src/precision.c):
-// gl_util.c inserts this file, with FILTER_LIBRARY defined, ahead of a fragment shader's body;
+// subTexelPrecisionBits is at least 4). A diagnostic (SBFX_FILTER_BITS=N, src/gl/precision.c):
+// src/gl/gl_util.c inserts this file, with FILTER_LIBRARY defined, ahead of a fragment shader's body;
 // the shaders then call filtered_2d / filtered_3d_repeat / filtered_array_lod where they would
 // have left a fetch to the texture unit. Without FILTER_BITS each shader defines those names as
 // the plain texture() / textureLod() calls: default builds compile none of this.
@@ -76,7 +76,7 @@ vec4 bilinear_layer(sampler2DArray s, vec2 uv, int layer, int level)
 }
 
 // LINEAR_MIPMAP_LINEAR, CLAMP_TO_EDGE, an explicit level of detail; the chain is complete
-// (src/smoke_texture.c: down to 1 x 1), so its last level is log2 of the base size.
+// (src/tables/smoke_texture.c: down to 1 x 1), so its last level is log2 of the base size.
 vec4 filtered_array_lod(sampler2DArray s, vec3 uvl, float lod)
 {
     ivec2 base = textureSize(s, 0).xy;

@@ -28,7 +28,7 @@ const float SOFT_Z = 0.1;          // metres over which depth ordering fades
 
 vec2 decode(vec4 t) { return encode ? (t.xy - 0.5) * 2.0 * u_max_radius : t.xy; }
 
-// Window depth -> view distance (src/projection.c): the matrix's own depth row, solved around
+// Window depth -> view distance (src/render/projection.c): the matrix's own depth row, solved around
 // the far end so nothing cancels; the clear value means no surface.
 float view_distance(float d)
 {

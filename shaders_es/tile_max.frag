@@ -4,7 +4,7 @@
 // of `tile` texels of its row), then along the columns of that ((0, 1)). Ties keep the first
 // texel in row-major order, as one scan of the block would. A fragment fetches `tile` texels,
 // not tile x tile (docs/gpus.md).
-//   TILE  the scene's tile size, set at load (src/post.c): the loop the compilers unroll
+//   TILE  the scene's tile size, set at load (src/render/post.c): the loop the compilers unroll
 precision highp float;
 precision highp sampler2D;
 

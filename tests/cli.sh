@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The command-line contract of sbfx-play (flags in platform/player/player_args.c, docs/player.md):
+# The command-line contract of sbfx-play (flags in platform/player/options/args.c, docs/player.md):
 # --help, clear errors with exit status 1 for bad arguments, and short headless runs that
 # write PNG frames, a contact sheet and a --stats JSON object.
 # Usage: tests/cli.sh [PLAYER] (default build/sbfx-play). Prints "ok - cli/x" lines for
@@ -187,7 +187,7 @@ test_scene_run() {
     programs=$(json_number "$tmp/smoke.json" programs)
     passes=$(json_number "$tmp/smoke.json" passes)
     # smoke, depth, composite and their passes, + the low-res corners' program and pass where
-    # RGBA32F renders (src/passes.c), + the shadow map's program (render.host_shadows), whose
+    # RGBA32F renders (src/render/passes.c), + the shadow map's program (render.host_shadows), whose
     # pass is sbfx_render_shadow_map's, not sbfx_render's
     if { [ "$programs" = 4 ] || [ "$programs" = 5 ]; } && [ "${passes:-0}" = "$((programs - 1))" ]; then
         ok scene-run
@@ -387,7 +387,7 @@ test_version() {
     fi
 }
 
-# The --stats keys --help lists (one table in platform/player/player_stats.c makes both): its
+# The --stats keys --help lists (one table in platform/player/outputs/stats.c makes both): its
 # every-run group must be exactly the keys of a headless run's JSON, in order; the man page
 # must list every key --help lists, and every flag.
 MAN_PAGE=platform/player/sbfx-play.1

@@ -11,6 +11,13 @@
 #                      inclusive). PATH must be built by the tests: named (it or its folder) in
 #                      the Makefile, .ci/ or a test script.
 #   docs/make-help     `make help` lists every .PHONY target a user runs.
+#   docs/rooms/TREE    docs/hacking.md's map of TREE's rooms (src, player) names the rooms and
+#                      folders of TREE/rooms.txt, in its order
+#   docs/walkthrough/TITLE
+#                      each step of a walkthrough of docs/hacking.md ("## Adding ..."): every path
+#                      it gives in backquotes exists; one followed by "(ROOM)" lies in that room
+#                      (src/ and platform/player/: their rooms.txt; src/sbfx.h: public); every
+#                      name it gives in backquotes (a C identifier) occurs in one of its files
 # Usage: tests/docs.sh. Prints "ok - docs/..." / "not ok - docs/...: why"; exits 1 on a failure.
 set -u
 cd "$(dirname "$0")/.." || exit 1
@@ -195,6 +202,110 @@ check_make_help() {
     fi
 }
 check_make_help
+
+
+# ---- docs/hacking.md against the code (issue 37) ----------------------------------------------
+
+# rooms_of TREE_ROOT: "NAME FOLDER/" per room of TREE_ROOT/rooms.txt ("." as TREE_ROOT/).
+rooms_of() {
+    awk -v root="$1" '/^[ \t]*(#|$)/ || $1 == "+" { next }
+        { print $1, ($2 == "." ? root "/" : root "/" $2 "/") }' "$1/rooms.txt"
+}
+
+# check_room_map TREE ROOT HEADING: the table under HEADING names ROOT's rooms and folders.
+check_room_map() {
+    local tree=$1 root=$2 heading=$3 got want
+    want=$(rooms_of "$root")
+    got=$(awk -v h="## $heading" '$0 == h { on = 1; next } /^## / { on = 0 }
+        on && /^\| [a-z]+ \| `/ { f = $4; gsub(/`/, "", f); print $2, f }' docs/hacking.md)
+    if [ "$got" = "$want" ]; then
+        ok "rooms/$tree ($(wc -l <<<"$want") rooms, as $root/rooms.txt)"
+    else
+        not_ok "rooms/$tree" "the map under '$heading' is '$(tr '\n' ';' <<<"$got")', $root/rooms.txt says '$(tr '\n' ';' <<<"$want")'"
+    fi
+}
+
+# room_of PATH: the room a path of src/ or platform/player/ lies in ("public" for src/sbfx.h),
+# or nothing for a path outside them.
+room_of() {
+    local path=$1 root dir
+    [ "$path" = src/sbfx.h ] && { echo public; return; }
+    case $path in src/*) root=src ;; platform/player/*) root=platform/player ;; *) return ;; esac
+    dir=$(dirname "$path")/
+    [ -d "$path" ] && dir=${path%/}/
+    rooms_of "$root" | awk -v d="$dir" '$2 == d { print $1 }'
+}
+
+# walkthrough_steps: one line per step of docs/hacking.md's "## Adding ..." sections:
+# "TITLE<TAB>LINE<TAB>PATH[:ROOM] ...<TAB>NAME ..." (a step is a numbered item with its
+# continuation lines).
+walkthrough_steps() {
+    awk -v OFS='\t' '
+    function flush(   t, paths, names, s, span, after, room) {
+        if (item == "") return
+        paths = ""; names = ""; t = item
+        while (match(t, /`[^`]+`/)) {
+            span = substr(t, RSTART + 1, RLENGTH - 2); after = substr(t, RSTART + RLENGTH)
+            t = after
+            if (span ~ /\// || span ~ /\.(c|h|sh|glsl|frag|vert|md|txt|1)$/ || span == "Makefile") {
+                room = ""
+                if (match(after, /^ \([a-z]+\)/)) room = substr(after, 3, RLENGTH - 3)
+                paths = paths (paths == "" ? "" : " ") span (room == "" ? "" : ":" room)
+            } else if (span ~ /^[A-Za-z_][A-Za-z0-9_]*$/) {
+                names = names (names == "" ? "" : " ") span
+            }
+        }
+        print title, start, paths, names
+        item = ""
+    }
+    /^## / { flush(); on = ($0 ~ /^## Adding /); title = substr($0, 4); next }
+    !on { next }
+    /^[0-9]+\. / { flush(); item = $0; start = NR; next }
+    /^   [^ ]/ && item != "" { item = item " " substr($0, 4); next }
+    { flush() }
+    END { flush() }' docs/hacking.md
+}
+
+check_walkthroughs() {
+    local title line paths names problems="" p path room want name found steps=0 current="" tname
+    while IFS=$'\t' read -r title line paths names; do
+        if [ "$title" != "$current" ]; then
+            [ -n "$current" ] && report_walkthrough "$current" "$steps" "$problems"
+            current=$title steps=0 problems=""
+        fi
+        steps=$((steps + 1))
+        for p in $paths; do
+            path=${p%%:*} room=""
+            [ "$p" != "$path" ] && room=${p#*:}
+            if [ ! -e "$path" ]; then problems="$problems; line $line: $path does not exist"; continue; fi
+            want=$(room_of "$path")
+            if [ -n "$room" ] && [ -n "$want" ] && [ "$room" != "$want" ]; then
+                problems="$problems; line $line: $path is in the room $want, not $room"
+            fi
+        done
+        for name in $names; do
+            found=0
+            for p in $paths; do
+                path=${p%%:*}
+                [ -e "$path" ] && grep -rqw -- "$name" "$path" && { found=1; break; }
+            done
+            [ "$found" -eq 1 ] || problems="$problems; line $line: $name occurs in none of $(sed 's/:[a-z]*//g' <<<"$paths")"
+        done
+    done < <(walkthrough_steps)
+    [ -n "$current" ] && report_walkthrough "$current" "$steps" "$problems"
+}
+
+report_walkthrough() {
+    local name
+    name=$(tr 'A-Z ' 'a-z-' <<<"$1")
+    if [ -z "$3" ]; then ok "walkthrough/$name ($2 steps)"; else not_ok "walkthrough/$name" "${3#; }"; fi
+}
+
+if [ -f docs/hacking.md ]; then
+    check_room_map src src "The library's rooms"
+    check_room_map player platform/player "The player's rooms"
+    check_walkthroughs
+fi
 
 files=$( { echo README.md; find docs -name '*.md' 2>/dev/null | sort; } )
 for md in $files; do

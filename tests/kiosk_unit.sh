@@ -77,8 +77,8 @@ fi
 [ "$(value Type)" = notify ] && [ -n "$(value WatchdogSec)" ] && [ "$(value NotifyAccess)" = main ] &&
     ok "watchdog (Type=notify, WatchdogSec=$(value WatchdogSec))" ||
     not_ok watchdog "Type=$(value Type) WatchdogSec=$(value WatchdogSec) NotifyAccess=$(value NotifyAccess)"
-# systemctl reload: SIGHUP to the player, which reloads its scene (platform/player/player_watch.c)
-if [ "$(value ExecReload)" = '/bin/kill -HUP $MAINPID' ] && grep -q 'sigaction(SIGHUP' platform/player/player_watch.c; then
+# systemctl reload: SIGHUP to the player, which reloads its scene (platform/player/inputs/signals.c)
+if [ "$(value ExecReload)" = '/bin/kill -HUP $MAINPID' ] && grep -q 'catch_signal(SIGHUP' platform/player/inputs/signals.c; then
     ok "reload (ExecReload=$(value ExecReload))"
 else not_ok reload "ExecReload='$(value ExecReload)': want '/bin/kill -HUP \$MAINPID' (sbfx-play reloads on SIGHUP)"; fi
 restart_sec=$(value RestartSec | sed 's/s$//')

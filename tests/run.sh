@@ -9,7 +9,8 @@
 #      $BUILD/tests/hosts/ (the SDL2 host, docs/hosts/), the GL state and host-error tests again
 #      on desktop OpenGL (core and compatibility), the SDL2 and desktop OpenGL example programs,
 #      the Qt Quick item's test and example under Xvfb (tests/hosts/qt_quick.sh)
-#   2. the shaders through glslangValidator and their "#version 300 es" line (tests/shaders.sh)
+#   2. the shaders through glslangValidator and their "#version 300 es" line (tests/shaders.sh),
+#      the rooms' one-way dependencies (tests/layers.sh)
 #   3. the sbfx-play command-line tests (tests/cli.sh), the probe's (tests/probe.sh), what
 #      libsbfx.so exports (tests/exports.sh), that it reads no data file and renders fire with
 #      colord-data hidden (tests/no_data_files.sh), the CIE table generator (tests/gen_cmf.sh), the
@@ -34,7 +35,8 @@
 # Usage: tests/run.sh [--gl-only | --check] [--asan=cpu] [-j N] [--list] [PATTERN...]
 #   --gl-only  the GL suites of $BUILD only (tests/gl/, on desktop OpenGL too), on whichever EGL
 #              driver the loader finds: Mesa here, a GPU's driver where there is one
-#   --check    the edit-compile tier of `make check`: unit tests, test_gl_smoke, the shaders
+#   --check    the edit-compile tier of `make check`: unit tests, test_gl_smoke, the shaders, the
+#              rooms' dependencies
 #   --asan=cpu the ASan+UBSan tier without the suites that render on Mesa (make test TEST_ASAN=cpu,
 #              which make test-debian13 runs)
 #   --list     print the suites' names and stop
@@ -187,7 +189,8 @@ list_check() {
         emit "not ok - test_gl_smoke: $BUILD/tests/gl/test_gl_smoke was not built (make check)"
     fi
     WEIGHT=3
-    run_suite "" shaders tests/shaders.sh
+    run_suite "" shaders tests/shaders.sh "$BUILD"
+    run_suite "" layers tests/layers.sh "$BUILD"
 }
 
 list_all() {
@@ -206,7 +209,8 @@ list_all() {
     run_suite "" desktop-gl-example tests/hosts/desktop_gl_example.sh "$BUILD"
     # the Qt Quick item's test and example under Xvfb (skipped, with the reason, without Qt 6)
     run_suite "" qt-quick tests/hosts/qt_quick.sh "$BUILD"
-    run_suite "" shaders tests/shaders.sh
+    run_suite "" shaders tests/shaders.sh "$BUILD"
+    run_suite "" layers tests/layers.sh "$BUILD"
     run_cli "" "$BUILD/sbfx-play"
     run_suite "" probe tests/probe.sh "$BUILD/sbfx-probe"
     run_suite "" exports tests/exports.sh "$BUILD"

@@ -1,7 +1,7 @@
 /* Build-time tool: the CIE 1931 2° colour-matching functions as C source (docs/design.md §2.3).
  *
  * Reads colord-data's CGATS file with lcms2's IT8 parser and writes a C file defining
- * `const sbfx_cmf sbfx_cie1931_2deg` (src/tables.h) and checks at compile time that the analytic
+ * `const sbfx_cmf sbfx_cie1931_2deg` (src/tables/tables.h) and checks at compile time that the analytic
  * black body's shader array holds every band, so the runtime library carries the table
  * and neither links lcms2 nor opens a file (docs/distributions.md). Every number is printed
  * with %.17g: the doubles read back bit for bit what lcms2 parsed.

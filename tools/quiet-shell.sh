@@ -40,7 +40,7 @@ if [ -n "$tag" ]; then
     done
     case "$tag" in
         AR) out=$3 ;;
-        GEN) out=$2 ;;
+        GEN) out=$2; [ "$2" = --join ] && out=$4 ;;
         LN | INSTALL) out=$word ;;
     esac
     printf '  %-7s %s\n' "$tag" "$out"

@@ -13,7 +13,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "player/board.h"
+#include "player/options/board.h"
 #include "drm/drm_device.h"
 #include "drm/drm_fb.h"
 #include "drm/drm_kms.h"

@@ -8,7 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "player/board.h" /* mode_spec_parse */
+#include "player/options/board.h" /* mode_spec_parse */
 
 static void connector_name(const drmModeConnector *c, char *out, size_t n)
 {

@@ -3,7 +3,7 @@
  * EGL_LOSE_CONTEXT_ON_RESET_EXT), and asks the context once per frame whether a reset happened
  * (glGetGraphicsResetStatusKHR or ...EXT, fetched with eglGetProcAddress). A context that was
  * reset is lost for good: the player then makes a new one and everything that lived in it
- * (player.h, player_reset.c).
+ * (platform/player/reset.c).
  *
  * Testing without a GPU that can be made to hang: gl_reset_inject() makes the status query
  * answer GL_GUILTY_CONTEXT_RESET once, at a given frame, without asking the driver (sbfx-play:

@@ -4,31 +4,16 @@
  * One frame: test scene -> its colour is copied into the display's framebuffer (so an idle
  * sbfx, which issues no pass, still leaves the scene there) -> sbfx_update -> sbfx_render into
  * that framebuffer -> the display presents it (headless: glReadPixels -> PNG; drm: page flip).
- * The command line is in player_args.c, the loop in player_loop.c, inputs in player_inputs.c. */
+ * The command line is in options/args.c, the loop in loop.c, the inputs in inputs/ (player.h
+ * has the map). */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
-#include "gpio/effect_names.h"
 #include "player/player.h"
-#include "player/player_stats.h"
-
-static void on_sbfx_log(sbfx_log_level level, const char *message, void *user)
-{
-    const struct player_options *opt = user;
-    static const char *const prefix[] = {"error", "warning", "info"};
-    if (level == SBFX_LOG_INFO && opt->quiet) return;
-    const char *name = (unsigned)level <= SBFX_LOG_INFO ? prefix[level] : "?";
-    fprintf(stderr, "sbfx: %s: %s\n", name, message);
-}
-
-void player_log(const char *message, void *user)
-{
-    (void)user;
-    fprintf(stderr, "sbfx-play: %s\n", message);
-}
+#include "player/outputs/stats.h"
 
 /* ---- setup -------------------------------------------------------------------------------- */
 
@@ -72,85 +57,6 @@ static int check_writable(const char *path, char *err, size_t n)
     }
     fclose(f);
     return 0;
-}
-
-/* --trigger entries go to the module's schedule: each fires at the first simulation step at
- * or after its time, so a run does not depend on --fps. The default timeline (one explosion at
- * t=0 at the origin) is the scene's own; --no-timeline turns it off (desc.ignore_timeline). */
-static int schedule_triggers(struct player *p, char *err, size_t n)
-{
-    const struct player_options *opt = p->opt;
-    for (int i = 0; i < opt->trigger_count; i++) {
-        const struct player_trigger *t = &opt->triggers[i];
-        double at = t->seconds;
-        if (p->recovering) { /* a new module after a GPU reset: its time 0 is the player's now */
-            if (at <= p->fx_time_lost) continue; /* fired before the reset */
-            at = at > p->sim_time ? at - p->sim_time : 0.0;
-        }
-        sbfx_result r = sbfx_schedule(p->fx, t->effect, at, t->position);
-        if (r != SBFX_OK) {
-            char names[256] = "";
-            if (r == SBFX_ERR_UNKNOWN_EFFECT) effect_names(p->fx, names, sizeof(names));
-            snprintf(err, n, "--trigger %s@%g: %s: %s%s%s%s", t->effect, t->seconds,
-                     sbfx_result_string(r), sbfx_last_error(p->fx), names[0] ? " (the scene's effects: " : "",
-                     names, names[0] ? ")" : "");
-            return -EINVAL;
-        }
-    }
-    return 0;
-}
-
-static int load_scene(const char *path, sbfx_scene **scene, char *err, size_t n)
-{
-    *scene = NULL;
-    if (!path) return 0; /* the library's built-in explosion */
-    char why[512];
-    if (sbfx_scene_load(path, scene, why, sizeof(why)) != SBFX_OK) {
-        snprintf(err, n, "--scene %s", why);
-        return -EINVAL;
-    }
-    return 0;
-}
-
-int player_create_fx(struct player *p, char *err, size_t n)
-{
-    const struct player_options *opt = p->opt;
-    sbfx_scene *scene = NULL;
-    int rc = load_scene(opt->scene_path, &scene, err, n);
-    if (rc == 0 && !p->recovering) rc = player_collect_scene_gpio(p, scene, err, n);
-    sbfx_scene_camera_get(scene, &p->camera); /* the default orbit without a camera group */
-    sbfx_scene_host_get(scene, &p->host);     /* the test scene's fixed daylight without `sky` */
-    if (rc) {
-        sbfx_scene_free(scene);
-        return rc;
-    }
-    const sbfx_desc desc = {
-        .target_divisor = opt->scale ? opt->scale : p->board.target_scale,
-        .target_format = opt->format,
-        .upsample = opt->upsample,
-        .opacity = opt->opacity,
-        .tone_map = opt->tone_map,
-        .exposure = opt->exposure,
-        .seed = opt->seed,
-        .start_time = p->recovering ? p->fx_clock_lost : opt->start_time,
-        .frame_budget_ms = opt->budget_ms,
-        .max_particles = p->board.max_particles,
-        .scene = scene,
-        .ignore_timeline = opt->no_timeline || p->recovering, /* not replayed after a reset */
-        .log = on_sbfx_log,
-        .log_user = (void *)opt,
-    };
-    sbfx_result r = sbfx_create(&desc, &p->fx);
-    rc = r == SBFX_OK ? player_watch_files(p, scene, err, n) : 0; /* --watch: the file and its includes */
-    player_keep_scene(p, scene); /* the module keeps what it needs; --loop replays the scene */
-    if (r != SBFX_OK) { /* the reason went through the log callback */
-        snprintf(err, n, "sbfx_create failed: %s", sbfx_result_string(r));
-        return -EIO;
-    }
-    if (rc) return rc;
-    p->timeline_start = p->sim_time; /* --loop counts from here */
-    p->fx_created_at = p->recovering ? p->sim_time : 0.0;
-    return schedule_triggers(p, err, n);
 }
 
 static int create_headless(struct player *p, char *err, size_t n)
@@ -223,9 +129,34 @@ static int create_display(struct player *p, char *err, size_t n)
     return create_headless(p, err, n);
 }
 
+static int load_board(struct player *p, char *err, size_t n)
+{
+    board_profile_defaults(&p->board);
+    if (!p->opt->board_path) return 0;
+    char why[512];
+    int rc = board_load(p->opt->board_path, &p->board, why, sizeof(why));
+    if (rc) {
+        snprintf(err, n, "--board: %s", why);
+        return rc;
+    }
+    p->have_board = true;
+    return 0;
+}
+
+/* The inputs the scene, the board and the flags name: GPIO lines (the scene's were collected
+ * with the scene, player_create_fx), the scene's detail clip, the camera. */
+static int open_inputs(struct player *p, char *err, size_t n)
+{
+    int rc = gpio_source_add_options(&p->gpio, &p->board, p->opt, err, n);
+    if (rc == 0) rc = gpio_source_open(&p->gpio, &p->triggers, p->fx, player_now_ns(), player_log, p, err, n);
+    if (rc == 0) rc = detail_open_clip(p->fx, player_log, p, err, n);
+    if (rc == 0) rc = detail_open_camera(&p->detail, p->fx, p->opt->video, &p->board, player_log, p, err, n);
+    return rc;
+}
+
 static int setup(struct player *p, char *err, size_t n)
 {
-    int rc = player_load_board(p, err, n);
+    int rc = load_board(p, err, n);
     if (rc) return rc;
     rc = create_display(p, err, n);
     if (rc) return rc;
@@ -234,14 +165,15 @@ static int setup(struct player *p, char *err, size_t n)
     p->scene_made = true;
     player_reset_setup(p);
     if ((rc = player_create_fx(p, err, n)) != 0) return rc;
-    return player_open_inputs(p, err, n);
+    return open_inputs(p, err, n);
 }
 
 /* Undoes whatever part of setup() happened: every member starts zeroed. */
 static void teardown(struct player *p)
 {
-    player_close_inputs(p);
-    player_watch_close(p);
+    trigger_sources_close(&p->triggers);
+    detail_close(&p->detail);
+    scene_watch_close(&p->watch);
     player_keep_scene(p, NULL);
     if (p->fx) sbfx_destroy(p->fx);
     if (p->scene_made) test_scene_destroy(&p->scene);
@@ -252,11 +184,47 @@ static void teardown(struct player *p)
 
 /* ---- results -------------------------------------------------------------------------- */
 
-/* The --stats file: one JSON object, from the table in player_stats.c. */
+static void collect_stats(const struct player *p, struct player_stats_record *r)
+{
+    const sbfx_counters *c = &p->last;
+    const struct display_counts *d = &p->display->counts;
+    const struct gpio_trigger_counts *g = &p->gpio.lines.counts;
+    const struct live_detail_counts *v = &p->detail.camera.counts;
+    *r = (struct player_stats_record){
+        .programs = c->programs, .textures = c->textures, .framebuffers = c->framebuffers,
+        .gpu_bytes = (long long)c->gpu_bytes, .passes = c->passes, .draw_calls = c->draw_calls,
+        .particles_simulated = p->frame_simulated,
+        .heap_allocs_after_load = (long long)c->heap_allocs_after_load,
+        .budget_ms = c->budget_ms, .gpu_ms = c->gpu_ms,
+        .frames_over_budget = c->frames_over_budget, .quality_changes = c->quality_changes,
+        .gpu_resets = (long long)p->gpu_resets, .gpu_reset_notification = p->reset.status ? 1 : 0,
+        .frames = p->frames_done, .flips = (long long)d->flips, .missed_vblanks = (long long)d->missed,
+        .triggers_fired = c->triggers_fired, .triggers_refused = c->triggers_refused,
+        .display_unplugs = (long long)d->unplugs, .display_replugs = (long long)d->replugs,
+        .display_paused_frames = (long long)d->paused,
+        .presented_frames = (long long)d->feedback_presented,
+        .discarded_frames = (long long)d->feedback_discarded,
+        .latency_ms_mean = d->feedback_presented ? (double)d->latency_ns_sum / (double)d->feedback_presented / 1e6 : 0.0,
+        .latency_ms_max = (double)d->latency_ns_max / 1e6,
+        .gpio_edges = (long long)g->edges, .gpio_fired = (long long)g->fired,
+        .gpio_filtered = (long long)g->filtered, .gpio_refused = (long long)g->refused,
+        .gpio_overflows = (long long)g->overflows, .gpio_losses = (long long)g->losses,
+        .gpio_returns = (long long)g->returns, .gpio_retries = (long long)g->retries,
+        .gpio_absent = (long long)g->absent, .gpio_appeared = (long long)g->appeared,
+        .video_frames = (long long)v->frames, .video_distinct = (long long)v->distinct,
+        .video_losses = (long long)v->losses, .video_reopens = (long long)v->reopens,
+        .video_takeovers = (long long)v->takeovers,
+        .kiosk_on = p->display->fd >= 0 || p->gpio.on || p->detail.camera_on,
+        .gpio_on = p->gpio.on, .video_on = p->detail.camera_on, .presentation_on = p->display->presentation,
+    };
+    snprintf(r->quality, sizeof(r->quality), "%s", c->quality);
+}
+
+/* The --stats file: one JSON object, from the table in outputs/stats.c. */
 static int write_stats(const struct player *p, const char *path, char *err, size_t n)
 {
     struct player_stats_record record;
-    player_stats_collect(p, &record);
+    collect_stats(p, &record);
     FILE *f = fopen(path, "w");
     if (!f) {
         int rc = -errno;

@@ -1,9 +1,14 @@
-/* sbfx-play's state, shared by its files (private to the player):
- *   player.c         main, setup and teardown, results
- *   player_inputs.c  board profile, GPIO trigger lines, the V4L2 detail source
- *   player_loop.c    the frame loop: poll, inputs, simulate, render, present, stats line
- *   player_reset.c   GPU resets: a new context, its GL objects and sbfx, and the run goes on
- *   player_watch.c   the authoring loop: --watch, SIGHUP and --loop reload the scene */
+/* sbfx-play's state, shared by the player's own files (the top of platform/player/rooms.txt):
+ *   player.c     main, setup and teardown, results
+ *   module.c     sbfx made from the scene and the options (again after a GPU reset), advanced
+ *   loop.c       the frame loop: wait (display, trigger sources), draw, simulate, render, present
+ *   host.c       the test scene as the scene file describes it: daylight, the smoke's shadow,
+ *                the fire's lights
+ *   reset.c      GPU resets: a new context, its GL objects and sbfx, and the run goes on
+ *   authoring.c  --watch, SIGHUP and --loop reload the scene or replay its timeline
+ *   clock.c      the player's clock and its log line
+ * Below them: the options and board profiles (options/), the inputs (inputs/: trigger sources,
+ * detail feeds, the scene's files, signals) and what the player reports (outputs/). */
 #ifndef SBFX_PLAYER_H
 #define SBFX_PLAYER_H
 
@@ -11,16 +16,18 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "player/board.h"
 #include "display/display.h"
 #include "egl/gl_reset.h"
-#include "gpio/gpio_triggers.h"
-#include "video/live_detail.h"
-#include "player/player_args.h"
-#include "sbfx.h"
 #include "host/test_scene.h"
-#include "player/player_notify.h"
-#include "player/player_watch.h"
+#include "player/inputs/detail.h"
+#include "player/inputs/gpio_source.h"
+#include "player/inputs/inputs.h"
+#include "player/inputs/watch.h"
+#include "player/options/board.h"
+#include "player/options/options.h"
+#include "player/outputs/notify.h"
+#include "player/outputs/stats.h"
+#include "sbfx.h"
 
 /* sbfx-play's exit status (main): 0 a finished or stopped run (--frames done, SIGINT, SIGTERM,
  * the Wayland window closed), 1 a bad argument or a failure, and this one when the display
@@ -61,72 +68,65 @@ struct player {
     bool realtime;            /* drm or wayland without --fps: the simulation follows the clock */
     bool measure_gpu;         /* glFinish around sbfx (headless timings) */
     int64_t run_start_ns, last_frame_ns;
-    /* inputs */
-    struct gpio_trigger_spec gpio_specs[GPIO_TRIGGERS_MAX];
-    int gpio_spec_count;
-    struct gpio_triggers gpio;
-    bool gpio_on;
-    struct live_detail live;
-    bool live_on;
+    /* inputs (inputs/): the loop polls and services the trigger sources, the detail feeds */
+    struct trigger_sources triggers;
+    struct gpio_source gpio;  /* the GPIO lines, one of the trigger sources when it has any */
+    struct detail_feed detail;
     struct second_stats second;
-    struct player_notify notify; /* READY=1, WATCHDOG=1 (player_notify.c) */
-    /* GPU resets (player_reset.c) */
+    struct player_notify notify; /* READY=1, WATCHDOG=1 (outputs/notify.c) */
+    /* GPU resets (reset.c) */
     struct gl_reset reset;
     uint64_t gpu_resets;
     bool recovering;          /* sbfx is being made again after a reset */
     double fx_time_lost;      /* the lost module's time: --trigger entries up to it had fired */
     double fx_clock_lost;     /* its absolute clock (sbfx_time): the new module starts there */
     double fx_created_at;     /* the player's time when the current module was made */
-    /* the authoring loop (player_watch.c) */
-    struct player_watch watch;
+    /* the authoring loop (authoring.c) */
+    struct scene_watch watch;
     sbfx_scene *scene_kept;   /* --loop: the scene it replays */
     double timeline_start;    /* sim_time when the timeline last started (--loop) */
     int64_t take_first;       /* headless: the first frame of this take (a reload starts one) */
 };
 
+/* clock.c */
 int64_t player_now_ns(void);
 void player_log(const char *message, void *user); /* "sbfx-play: message" on stderr */
 
-/* player.c */
+/* module.c */
 /* Makes sbfx (again, while p->recovering: the scene's GPIO lines are kept, its timeline is not
  * replayed, --trigger entries still ahead are scheduled relative to now). */
 int player_create_fx(struct player *p, char *err, size_t n);
+/* Advances sbfx to time t. */
+int player_update(struct player *p, double t, char *err, size_t n);
 
-/* player_host.c */
+/* host.c */
 /* Before the test scene is drawn at time t: the scene file's daylight, and where it asks for
  * them the smoke's shadow map (render.host_shadows) and the fire's lights
  * (render.host_lights), which need the simulation at t: it is advanced here first. */
 int player_host_prepare(struct player *p, double t, char *err, size_t n);
-/* Advances sbfx to time t (player_loop.c). */
-int player_update(struct player *p, double t, char *err, size_t n);
 
-/* player_reset.c */
+/* reset.c */
 /* Before each frame: asks the context whether the GPU was reset (SBFX_PLAY_INJECT_GPU_RESET=N
  * makes frame N answer "guilty" once) and, if so, makes everything that lived in it again. */
 int player_check_gpu_reset(struct player *p, int frame, char *err, size_t n);
 /* After the display is made: reset notification and the injected reset, if asked for. */
 void player_reset_setup(struct player *p);
 
-/* player_inputs.c */
-int player_load_board(struct player *p, char *err, size_t n);
-/* Collects the scene's GPIO triggers (before the scene is freed). */
-int player_collect_scene_gpio(struct player *p, const sbfx_scene *scene, char *err, size_t n);
-int player_open_inputs(struct player *p, char *err, size_t n);
-/* The camera again, into a new sbfx (after a GPU reset). */
-int player_open_video(struct player *p, char *err, size_t n);
-/* Decodes the scene's detail clip, if it names one, into the volume (clip_detail.h): 0, or an
- * error naming the file. */
-int player_open_clip(struct player *p, char *err, size_t n);
-void player_close_inputs(struct player *p);
-/* Reads the GPIO events that wait and fires what passes; never blocks. */
-void player_service_gpio(struct player *p);
-/* Takes the newest camera frame if one arrived (once per frame: a camera faster than the
- * display does not cost more uploads), notices losses, retries; never blocks. */
-void player_service_video(struct player *p);
+/* authoring.c */
+/* --watch: the scene's files (none without --watch or a scene file). */
+int player_watch_files(struct player *p, const sbfx_scene *scene, char *err, size_t n);
+/* Between two frames: a SIGHUP, a settled change or --loop's period. Returns PLAYER_RELOADED when
+ * a new scene took over, PLAYER_REPLAYED when --loop started the timeline again, 0 when nothing
+ * did (a refused edit is logged, and the old scene goes on); never an error: an author's
+ * mistake does not stop the player. */
+enum { PLAYER_RELOADED = 1, PLAYER_REPLAYED = 2 };
+int player_watch_service(struct player *p);
+/* Headless --watch after a take: waits for a reload (1) or a stop signal (0). */
+int player_watch_wait(struct player *p, char *err, size_t n);
+/* Keeps the scene (for --loop and the watch list) or frees it. */
+void player_keep_scene(struct player *p, sbfx_scene *scene);
 
-/* player_loop.c */
-void player_catch_signals(void);
-bool player_stop_requested(void);
+/* loop.c */
 int player_run_frames(struct player *p, char *err, size_t n);
 
 #endif

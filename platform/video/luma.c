@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#define OUTPUT_GAIN 0.45f  /* the procedural volume's curve (src/detail_gen.c) */
+#define OUTPUT_GAIN 0.45f  /* the procedural volume's curve (src/tables/detail_gen.c) */
 #define SMOOTHING 0.2f     /* weight of a new frame's mean and spread */
 #define FLAT_SPREAD 0.5f   /* below half a luma level the picture is flat: all 0.5 */
 

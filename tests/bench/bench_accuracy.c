@@ -13,7 +13,7 @@
  * "exa/1 nd aBB", "flo/8 nd"...) contains LABEL (for profiling one of them); several labels
  * separated by commas run the configurations that contain any of them.
  *
- * The rows with a `lod` (issue 11, the quality ladder's last resort: src/lod.h) draw at most
+ * The rows with a `lod` (issue 11, the quality ladder's last resort: src/sim/lod.h) draw at most
  * that many particles, merged by lod_reduce from the frame's particles, and are compared with the
  * same reference of all of them: their error is what the level of detail costs.
  *
@@ -46,7 +46,7 @@
 #include "bench_reference.h"
 #include "egl/egl_headless.h"
 #include "internal.h"
-#include "lod.h"
+#include "sim/lod.h"
 #include "look_metrics.h"
 #include "module.h" /* the pool's capacity: the level of detail's work memory */
 #include "image/png_io.h"
@@ -93,7 +93,7 @@ typedef struct config {
     bool density_matched; /* every medium's density halved: the exact model's optical depth
                              through a particle's centre in the cheaper models (docs/design.md §2.1) */
     bool keep; /* keep the GPU images (LUT comparisons) */
-    int lod; /* at most this many particles drawn (src/lod.h), 0: all */
+    int lod; /* at most this many particles drawn (src/sim/lod.h), 0: all */
     bool gpu; /* precision `gpu`: SBFX_MEDIUMP=native SBFX_FILTER_BITS=8 (issue 25), else `float` */
 } config;
 
@@ -552,7 +552,7 @@ static void run_config(bench *b, result *res)
     particle_lod lod;
     void *lod_work = NULL;
     if (rc.lod) {
-        int capacity = fx->pool.capacity;
+        int capacity = fx->sim->pool.capacity;
         lod_work = xcalloc(1, lod_work_size(capacity));
         lod_init(&lod, lod_work, capacity);
         rc.lod_state = &lod;

@@ -120,7 +120,7 @@ CHECK_TEST(clip_fills_the_detail_volume)
     int mismatches = 0;
     double spread = 0.0;
     for (int k = 0; k < slices; k++) {
-        if (!read_layer(fx->gl.detail_texture, k, size, got))
+        if (!read_layer(fx->gl->detail_texture, k, size, got))
             CHECK_SKIP("an R16F volume slice cannot be read back here (no EXT_color_buffer_float)");
         for (int i = 0; i < size * size; i++) {
             float w = half_value(want[(size_t)k * size * size + i]);

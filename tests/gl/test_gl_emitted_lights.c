@@ -102,7 +102,7 @@ CHECK_TEST(no_fire_no_light_and_no_memory)
     sbfx_scene *scene = fixture_load_scene("smoke");
     sbfx *fx = fixture_module(&f, (sbfx_desc){.scene = scene});
     sbfx_scene_free(scene);
-    CHECK(fx->fire_work == NULL && fx->fire_particles == NULL, "work memory for fire in a scene without");
+    CHECK(fx->sim->fire_work == NULL && fx->sim->fire_particles == NULL, "work memory for fire in a scene without");
     const char *name = sbfx_effect_name(fx, 0);
     CHECK(sbfx_trigger(fx, name, origin) == SBFX_OK, "%s", sbfx_last_error(fx));
     sbfx_update(fx, 0.5);
@@ -123,7 +123,7 @@ CHECK_TEST(no_fire_no_light_and_no_memory)
 }
 
 /* The fire's light follows a detail volume the host writes (a V4L2 camera, a clip): the
- * quantiles it averages over are the pushed slices' (src/fire_light.h), kept per slice only
+ * quantiles it averages over are the pushed slices' (src/sim/fire_light.h), kept per slice only
  * where the detail is live and the fire emits. A volume of detail 0.9 everywhere makes every
  * quantile 0.9 (to a bin, 1/1024) and the fire, hotter, brighter; pushing the procedural slices
  * back gives back its statistics, to within 0.02 (measured 0.0066: a slice is sampled within
@@ -159,7 +159,7 @@ static void push_procedural(sbfx *fx, uint16_t *slice, int size, int frames)
     size_t n = (size_t)size * size;
     float *volume = malloc(n * frames * sizeof(float));
     CHECK(volume && sbfx_detail_procedural(fx, volume, n * frames) == SBFX_OK);
-    int next = fx->detail_ring_next;
+    int next = fx->gl->detail_ring_next;
     for (int s = 0; s < frames; s++) {
         const float *from = &volume[(size_t)((next + s) % frames) * n];
         for (size_t i = 0; i < n; i++) {
@@ -174,7 +174,7 @@ static void push_procedural(sbfx *fx, uint16_t *slice, int size, int frames)
 static double farthest_from(const sbfx *fx, const double *levels)
 {
     double worst = 0.0;
-    for (int j = 0; j < SBFX_FIRE_DETAIL_LEVELS; j++) worst = fmax(worst, fabs(fx->fire_detail[j] - levels[j]));
+    for (int j = 0; j < SBFX_FIRE_DETAIL_LEVELS; j++) worst = fmax(worst, fabs(fx->sim->fire_detail[j] - levels[j]));
     return worst;
 }
 
@@ -183,11 +183,11 @@ CHECK_TEST(the_light_follows_a_pushed_detail_volume)
     gl_fixture f;
     fixture_open(&f, 16, 16);
     sbfx *procedural = fire_module(&f, "procedural");
-    CHECK(procedural->fire_slice_histograms == NULL, "per-slice statistics for a volume no one writes");
+    CHECK(procedural->sim->fire_slice_histograms == NULL, "per-slice statistics for a volume no one writes");
     sbfx *fx = fire_module(&f, "v4l2");
-    CHECK(fx->fire_slice_histograms != NULL, "no per-slice statistics for a live volume");
+    CHECK(fx->sim->fire_slice_histograms != NULL, "no per-slice statistics for a live volume");
     double levels[SBFX_FIRE_DETAIL_LEVELS], hot[SBFX_FIRE_DETAIL_LEVELS], before = particle_luminance(fx);
-    memcpy(levels, fx->fire_detail, sizeof levels);
+    memcpy(levels, fx->sim->fire_detail, sizeof levels);
     int size = 0, frames = 0;
     sbfx_detail_dimensions(fx, &size, &frames);
     size_t n = (size_t)size * size;

@@ -1,5 +1,5 @@
 /* Fire lights its dust and smoke (issue 27): the frame's fire particles gathered into point
- * lights (src/fire_light.h) in-scatter into dust and smoke through the phase model, per particle
+ * lights (src/sim/fire_light.h) in-scatter into dust and smoke through the phase model, per particle
  * at its centre, falling off across it from the fire. The GPU against the CPU reference
  * (ref/reference_frame.c, fire_light on): the light the fire adds (the frame with the fire's
  * emission less the frame with it at 0) agrees pixel by pixel within the hard cases' light
@@ -207,9 +207,9 @@ CHECK_TEST(only_what_is_asked_for)
         shader_log[0] = '\0';
         sbfx *fx = module_of_text(&f, text);
         bool has_define = strstr(shader_log, "FIRE_LIGHT") != NULL;
-        CHECK(sbfx_fire_lit(fx) == cases[i].lit && has_define == cases[i].lit && (fx->instance_fire > 0) == cases[i].lit,
+        CHECK(sbfx_fire_lit(fx) == cases[i].lit && has_define == cases[i].lit && (fx->scene->instance_fire > 0) == cases[i].lit,
               "%s: fire light %d, FIRE_LIGHT variant %d, instance data %d", cases[i].name, sbfx_fire_lit(fx),
-              has_define, fx->instance_fire);
+              has_define, fx->scene->instance_fire);
         CHECK(sbfx_trigger(fx, "boom", (const float[3]){0.0f, 0.0f, -5.0f}) == SBFX_OK);
         sbfx_update(fx, 0.2);
         CHECK(sbfx_render(fx, &f.frame) == SBFX_OK, "%s", sbfx_last_error(fx));

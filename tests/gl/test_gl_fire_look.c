@@ -11,7 +11,7 @@
 
 #include "fire_look.h"
 #include "gl_fixture.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 #define WIDTH 480
 #define HEIGHT 270

@@ -1,9 +1,9 @@
-/* GL tests of the GPU timer ring (src/gpu_timer.c, issue 11 item 2) on the surfaceless context:
+/* GL tests of the GPU timer ring (src/gl/gpu_timer.c, issue 11 item 2) on the surfaceless context:
  * results arrive a few frames late tagged with their level, never more than the ring holds in
  * flight, a host's active time query is left alone (that frame is not timed), and without the
  * extension init says so (the fallback path). */
 #include "gl_fixture.h"
-#include "gpu_timer.h"
+#include "gl/gpu_timer.h"
 
 #ifndef GL_TIME_ELAPSED_EXT
 #define GL_TIME_ELAPSED_EXT 0x88BF

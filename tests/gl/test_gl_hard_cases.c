@@ -36,7 +36,7 @@
  *          tolerance. Without the variable it is 0. */
 #include "gl_fixture.h"
 #include "reference_frame.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 #define SIZE 32
 #define MAX_P 256
@@ -153,7 +153,7 @@ static void gpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, hc_result *r)
 static sbfx_cmf cmf;
 
 /* How far a trilinear weight of the detail volume may be off, and why:
- *   SBFX_FILTER_BITS=N (src/precision.c): the shader rounds it to N bits, at most 2^-(N+1);
+ *   SBFX_FILTER_BITS=N (src/gl/precision.c): the shader rounds it to N bits, at most 2^-(N+1);
  *   llvmpipe, softpipe: the texture unit filters in float, 0;
  *   any other renderer (a GPU): its texture unit, in fixed point with 8 fractional bits
  *   (DESIGN §9), and NVIDIA's snaps the coordinate down to them (docs/gpus.md, root causes):

@@ -1,5 +1,5 @@
-/* The host's scene lit and shaded by the effects, as sbfx-play draws it (platform/player/
- * player_host.c): the smoke's shadow map from the scene's sun (render.host_shadows) and the
+/* The host's scene lit and shaded by the effects, as sbfx-play draws it
+ * (platform/player/host.c): the smoke's shadow map from the scene's sun (render.host_shadows) and the
  * fire's lights (render.host_lights) on the test scene. The issue's numbers, measured on the
  * composited frame: a low sun's shadows darken at least 1 % of the frame by 5 % or more. */
 #include "gl_fixture.h"
@@ -33,7 +33,7 @@ static void read_luminance(GLuint framebuffer, float *lum)
 }
 
 /* The frame at time t of scenes/NAME.cfg from the scene file's camera: sbfx composited over the
- * test scene, lit and shaded as sbfx-play does (player_host.c) where the options say so. */
+ * test scene, lit and shaded as sbfx-play does (platform/player/host.c) where the options say so. */
 static void host_frame(gl_fixture *f, const char *name, double t, host_options o, host_picture *out)
 {
     char err[256];

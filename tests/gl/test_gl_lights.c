@@ -1,7 +1,7 @@
-/* The phase shaders' light loop is sized at load (src/lights.c, docs/gpus.md): the scene's
+/* The phase shaders' light loop is sized at load (src/scene/plan.c, docs/gpus.md): the scene's
  * lights plus one effect's flashes; more lights set later make the programs again. */
 #include "gl_fixture.h"
-#include "module.h" /* fx->light_slots */
+#include "module.h" /* fx->scene->light_slots */
 
 static char shader_log[8192];
 
@@ -39,7 +39,7 @@ CHECK_TEST(light_slots_are_the_scenes_lights_and_one_effects_flashes)
         sbfx *fx = module_of(cases[i].scene);
         char want[32];
         snprintf(want, sizeof(want), "LIGHT_SLOTS=%d ", cases[i].slots);
-        CHECK(fx->light_slots == cases[i].slots, "%s: %d slots", cases[i].scene, fx->light_slots);
+        CHECK(fx->scene->light_slots == cases[i].slots, "%s: %d slots", cases[i].scene, fx->scene->light_slots);
         CHECK(strstr(shader_log, want) != NULL, "%s: no %s in\n%s", cases[i].scene, want, shader_log);
         CHECK(strstr(shader_log, "LIGHT_SLOTS=8") == NULL, "%s: a loop over 8 lights", cases[i].scene);
         sbfx_destroy(fx);
@@ -62,7 +62,7 @@ CHECK_TEST(more_lights_than_slots_make_the_programs_again)
     shader_log[0] = '\0';
     sbfx_set_lights(fx, lights, 5, (const float[3]){0.1f, 0.1f, 0.1f});
     sbfx_stats(fx, &after);
-    CHECK(fx->light_slots == 5, "%d slots", fx->light_slots);
+    CHECK(fx->scene->light_slots == 5, "%d slots", fx->scene->light_slots);
     CHECK(strstr(shader_log, "LIGHT_SLOTS=5 ") != NULL, "no LIGHT_SLOTS=5 build in\n%s", shader_log);
     CHECK(after.programs == before.programs, "programs %d -> %d", before.programs, after.programs);
     float view[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
@@ -72,7 +72,7 @@ CHECK_TEST(more_lights_than_slots_make_the_programs_again)
     CHECK(sbfx_render(fx, &f.frame) == SBFX_OK, "%s", sbfx_last_error(fx));
     shader_log[0] = '\0';
     sbfx_set_lights(fx, lights, 3, (const float[3]){0.1f, 0.1f, 0.1f});
-    CHECK(fx->light_slots == 5 && shader_log[0] == '\0', "fewer lights rebuilt: %d slots", fx->light_slots);
+    CHECK(fx->scene->light_slots == 5 && shader_log[0] == '\0', "fewer lights rebuilt: %d slots", fx->scene->light_slots);
     sbfx_destroy(fx);
     fixture_close(&f);
 }

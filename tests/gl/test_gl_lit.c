@@ -239,7 +239,7 @@ CHECK_TEST(gpu_matches_cpu_lit)
 }
 
 /* Fire lights lit smoke too (issue 27): the frame's fire, gathered into point lights, reaches a lit
- * particle as the phase model's isotropic in-scattering at its centre (src/fire_light.h), per
+ * particle as the phase model's isotropic in-scattering at its centre (src/sim/fire_light.h), per
  * particle like the fill lights, shaded by the brightness map and dampened like the lights
  * (ref/lit_ref.c, sbfx_lit_fire_radiance). A lit puff above a fireball: the light the fire adds
  * (the frame with the fire's emission less the frame with it at 0) against the reference's,
@@ -264,13 +264,13 @@ static float *lit_fire_frame(gl_fixture *f, sbfx *fx, const sbfx_view_particle *
     return fixture_read_target(fx, &w, &h);
 }
 
-/* The fire's light on the puff: the module's gathered fire (fx->frame_fire, the frame just
+/* The fire's light on the puff: the module's gathered fire (fx->sim->frame_fire, the frame just
  * rendered) in-scattered at the centre, isotropic. */
 static void fire_at_centre(sbfx *fx, const sbfx_view_particle *p, double out[3])
 {
     const double c[3] = {p->center[0], p->center[1], p->center[2]};
     sbfx_fire_scatter s;
-    sbfx_fire_scatter_at(fx->frame_fire, fx->frame_fire_count, sbfx_get_desc(fx)->exposure, c, 0.0, &s);
+    sbfx_fire_scatter_at(fx->sim->frame_fire, fx->sim->frame_fire_count, sbfx_get_desc(fx)->exposure, c, 0.0, &s);
     for (int k = 0; k < 3; k++) out[k] = s.rgb[k];
 }
 
@@ -473,8 +473,8 @@ CHECK_TEST(plan_makes_smoke_textures_only_for_lit_media)
         CHECK(c.gpu_bytes == plans[i].bytes + 16 * 32, "%s: %zu GPU bytes, want %zu", plans[i].name, c.gpu_bytes,
               plans[i].bytes + 16 * 32);
         for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) {
-            bool has_texture = fx->gl.smoke_texture[m] != 0;
-            bool lit_program = fx->gl.particle[m].id && fx->gl.particle[m].smoke >= 0;
+            bool has_texture = fx->gl->smoke_texture[m] != 0;
+            bool lit_program = fx->gl->particle[m].id && fx->gl->particle[m].smoke >= 0;
             CHECK(has_texture == plans[i].lit[m] && lit_program == plans[i].lit[m],
                   "%s: medium %d texture %d lit program %d", plans[i].name, m, has_texture, lit_program);
         }

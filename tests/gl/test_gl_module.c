@@ -68,7 +68,7 @@ static void note_mediump(sbfx_log_level level, const char *message, void *user)
 
 /* On Mesa's software rasterisers the shaders' mediump is compiled as highp (half precision is
  * emulated there: the composite ran three times slower with it), and the log says so once; a GPU
- * gets the shaders as written (src/context.c). */
+ * gets the shaders as written (src/gl/context.c). */
 CHECK_TEST(software_rasteriser_compiles_mediump_as_highp)
 {
     gl_fixture f;
@@ -79,7 +79,7 @@ CHECK_TEST(software_rasteriser_compiles_mediump_as_highp)
     sbfx *fx = NULL;
     CHECK(sbfx_create(&(sbfx_desc){.log = note_mediump}, &fx) == SBFX_OK);
     if (fx) {
-        CHECK(fx->mediump_as_highp == software, "renderer %s: mediump_as_highp %d", renderer, fx->mediump_as_highp);
+        CHECK(fx->gl->context.mediump_as_highp == software, "renderer %s: mediump_as_highp %d", renderer, fx->gl->context.mediump_as_highp);
         CHECK(logged_mediump == software, "renderer %s: logged %d", renderer, logged_mediump);
         sbfx_destroy(fx);
     }
@@ -274,7 +274,7 @@ CHECK_TEST(rgba8_fallback_when_half_float_not_renderable)
     fixture_close(&f);
 }
 
-/* The GPU's lookups are the CPU lookups of the same float tables (src/blackbody.c, phase.c), up
+/* The GPU's lookups are the CPU lookups of the same float tables (src/tables/blackbody.c, phase.c), up
  * to the shader's float arithmetic: what SBFX_TABLE_GPU_ALLOWANCE allows for. */
 CHECK_TEST(gpu_tables_match_cpu_tables)
 {

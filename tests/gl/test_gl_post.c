@@ -133,10 +133,10 @@ CHECK_TEST(horizontal_pan_blurs_by_the_velocity)
     read_out(&p, out);
     if (getenv("SBFX_TEST_VERBOSE")) {
         float v[4 * W * H];
-        glBindFramebuffer(GL_FRAMEBUFFER, fx->gl.post.velocity.framebuffer);
+        glBindFramebuffer(GL_FRAMEBUFFER, fx->render->post.velocity.framebuffer);
         glReadPixels(0, 0, W, H, GL_RGBA, GL_FLOAT, v);
         printf("# velocity at centre %g %g\n", v[4 * (H / 2 * W + W / 2)], v[4 * (H / 2 * W + W / 2) + 1]);
-        glBindFramebuffer(GL_FRAMEBUFFER, fx->gl.post.neighbors.framebuffer);
+        glBindFramebuffer(GL_FRAMEBUFFER, fx->render->post.neighbors.framebuffer);
         glReadPixels(0, 0, 1, 1, GL_RGBA, GL_FLOAT, v);
         printf("# neighbour max %g %g\n", v[0], v[1]);
     }

@@ -1,4 +1,4 @@
-/* The precision diagnostics (issue 25, src/precision.c, docs/testing.md): SBFX_MEDIUMP=native and
+/* The precision diagnostics (issue 25, src/gl/precision.c, docs/testing.md): SBFX_MEDIUMP=native and
  * SBFX_FILTER_BITS=N are read by sbfx_create, each one honoured is logged at info level by name,
  * and an invalid value fails sbfx_create with a message naming the variable. With filter bits
  * set, the fetches go through shaders_es/filtered.frag: the picture changes, by little. */

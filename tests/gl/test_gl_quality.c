@@ -3,7 +3,7 @@
  * when switched back to; only the declared levels' variants exist; a budget the top level
  * meets changes nothing; bad names, budgets and ladders are clear errors. */
 #include "gl_fixture.h"
-#include "ladder_default.h"
+#include "budget/ladder_default.h"
 #include "module.h"
 #include "host/test_scene.h"
 
@@ -343,7 +343,7 @@ static void expect_ladder(gl_fixture *f, const sbfx_quality *top, int from)
     sbfx_desc d = desc_of(top);
     d.frame_budget_ms = 16.0f;
     sbfx *fx = fixture_module(f, d);
-    const sbfx_budget *b = &fx->budget;
+    const sbfx_budget *b = fx->budget;
     char name[64], want[64];
     CHECK(b->count == 1 + SBFX_LADDER_DEFAULT_COUNT - from, "%d levels below %s, want %d", b->count - 1,
           sbfx_quality_name(top, name, sizeof(name)), SBFX_LADDER_DEFAULT_COUNT - from);
@@ -373,8 +373,8 @@ CHECK_TEST(budget_ladder_starts_below_the_top)
     sbfx_quality top = {.opacity = SBFX_OPACITY_SOFT, .target_divisor = 4, .upsample = SBFX_UPSAMPLE_BILINEAR};
     sbfx *fx = fixture_module(&f, (sbfx_desc){.opacity = top.opacity, .target_divisor = 4,
                                               .upsample = top.upsample, .frame_budget_ms = 16.0f});
-    for (int i = 1; i < fx->budget.count; i++)
-        CHECK(fx->budget.ladder[i].target_divisor > 4 || fx->budget.ladder[i].lod_particles > 0, "level %d", i);
+    for (int i = 1; i < fx->budget->count; i++)
+        CHECK(fx->budget->ladder[i].target_divisor > 4 || fx->budget->ladder[i].lod_particles > 0, "level %d", i);
     sbfx_destroy(fx);
     fixture_close(&f);
 }

@@ -129,8 +129,8 @@ static int64_t heap_bytes(void)
 static int programs_of(const sbfx *fx, GLuint *out, int max)
 {
     int n = 0;
-    for (int i = 0; i < fx->object_count && n < max; i++)
-        if (fx->objects[i].kind == SBFX_OBJECT_PROGRAM) out[n++] = fx->objects[i].id;
+    for (int i = 0; i < fx->gl->object_count && n < max; i++)
+        if (fx->gl->objects[i].kind == SBFX_OBJECT_PROGRAM) out[n++] = fx->gl->objects[i].id;
     return n;
 }
 
@@ -218,9 +218,9 @@ CHECK_TEST(variant_changing_edit_builds_the_new_and_frees_the_old)
     sbfx_counters coarse = stats(fx);
     CHECK(coarse.programs_compiled == after.programs_compiled, "a target change compiled %d programs",
           coarse.programs_compiled - after.programs_compiled);
-    int targets = 2 + (fx->gl.corners_program ? 1 : 0);
+    int targets = 2 + (fx->gl->corners_program ? 1 : 0);
     CHECK(coarse.targets_created - after.targets_created == targets, "%d targets made (particles, low-res depth%s)",
-          coarse.targets_created - after.targets_created, fx->gl.corners_program ? ", corners" : "");
+          coarse.targets_created - after.targets_created, fx->gl->corners_program ? ", corners" : "");
     gl_census coarse_objects = census();
     CHECK(coarse_objects.framebuffers == objects.framebuffers && coarse.framebuffers == after.framebuffers,
           "framebuffers in GL %d -> %d, counted %d -> %d", objects.framebuffers, coarse_objects.framebuffers,
@@ -374,16 +374,16 @@ CHECK_TEST(reload_keeps_the_fire_light_detail_statistics)
     edit e = base;
     e.fire = true;
     sbfx *fx = module_of(&f, e);
-    GLuint volume = fx->gl.detail_texture;
+    GLuint volume = fx->gl->detail_texture;
     double before[SBFX_FIRE_DETAIL_LEVELS];
-    memcpy(before, fx->fire_detail, sizeof before);
+    memcpy(before, fx->sim->fire_detail, sizeof before);
     CHECK(before[SBFX_FIRE_DETAIL_LEVELS - 1] > before[0] && before[0] > 0.0, "quantiles %g .. %g", before[0],
           before[SBFX_FIRE_DETAIL_LEVELS - 1]);
     e.grey = 0.5f;
     CHECK(reload(fx, e) == SBFX_OK, "%s", sbfx_last_error(fx));
-    CHECK(fx->gl.detail_texture == volume, "the volume was made again");
-    CHECK(memcmp(before, fx->fire_detail, sizeof before) == 0, "the quantiles changed: %g .. %g", fx->fire_detail[0],
-          fx->fire_detail[SBFX_FIRE_DETAIL_LEVELS - 1]);
+    CHECK(fx->gl->detail_texture == volume, "the volume was made again");
+    CHECK(memcmp(before, fx->sim->fire_detail, sizeof before) == 0, "the quantiles changed: %g .. %g", fx->sim->fire_detail[0],
+          fx->sim->fire_detail[SBFX_FIRE_DETAIL_LEVELS - 1]);
     sbfx_destroy(fx);
     fixture_close(&f);
 }
@@ -395,9 +395,9 @@ CHECK_TEST(pushed_detail_is_not_taken_over)
     gl_fixture f;
     fixture_open_far(&f, 96, 64);
     sbfx *fx = module_of(&f, base);
-    GLuint volume = fx->gl.detail_texture;
+    GLuint volume = fx->gl->detail_texture;
     CHECK(reload(fx, base) == SBFX_OK, "%s", sbfx_last_error(fx));
-    CHECK(fx->gl.detail_texture == volume, "an untouched procedural volume was made again");
+    CHECK(fx->gl->detail_texture == volume, "an untouched procedural volume was made again");
     int size = 0, slices = 0;
     sbfx_detail_dimensions(fx, &size, &slices);
     uint16_t *slice = calloc((size_t)size * size, sizeof(uint16_t));
@@ -406,8 +406,8 @@ CHECK_TEST(pushed_detail_is_not_taken_over)
     sbfx_counters before = stats(fx);
     CHECK(reload(fx, base) == SBFX_OK, "%s", sbfx_last_error(fx));
     sbfx_counters after = stats(fx);
-    CHECK(fx->gl.detail_texture != volume && !glIsTexture(volume), "the pushed volume %u was kept (now %u)", volume,
-          fx->gl.detail_texture);
+    CHECK(fx->gl->detail_texture != volume && !glIsTexture(volume), "the pushed volume %u was kept (now %u)", volume,
+          fx->gl->detail_texture);
     CHECK(after.textures == before.textures && after.programs_compiled == before.programs_compiled,
           "textures %d -> %d, %d programs compiled", before.textures, after.textures,
           after.programs_compiled - before.programs_compiled);

@@ -3,7 +3,7 @@
  * of, inside and behind the smoke; the map only where asked for (counters), and bad input
  * refused with nothing changed. Its GL state: test_gl_state's shadow_map_leaves_state. */
 #include "gl_fixture.h"
-#include "module.h" /* fx->shadow */
+#include "module.h" /* fx->render->shadow */
 #include "shadow_ref.h"
 
 #define SIZE 128
@@ -69,7 +69,7 @@ static void puff_open(puff_case *c, const float direction[3])
     c->n = puff(c->fx, particles, c->ref);
     CHECK(sbfx_render_shadow_particles(c->fx, direction, particles, c->n, &c->map) == SBFX_OK, "%s",
           sbfx_last_error(c->fx));
-    CHECK(c->map.particles == c->n && c->map.size == SIZE && c->map.texture == c->fx->shadow.map.texture[0]);
+    CHECK(c->map.particles == c->n && c->map.size == SIZE && c->map.texture == c->fx->render->shadow.map.texture[0]);
     CHECK(sbfx_read_shadow_map(c->fx, c->texels, ARRAY_SIZE(c->texels)) == SBFX_OK, "%s", sbfx_last_error(c->fx));
 }
 
@@ -93,7 +93,7 @@ CHECK_TEST(smoke_puff_matches_the_reference)
      * g and b. A unit of a half float is 2^-11 for values in [0.5, 1) and less below; of RGBA8
      * 1/255. a, a MIN, rounds once: half a unit (one where the rounding mode is open) of the
      * front's depth in [0, 1]. The shader's exp, log and sqrt in highp add ~1e-6. */
-    bool rgba8 = fx->shadow.map.bytes == (size_t)SIZE * SIZE * 4;
+    bool rgba8 = fx->render->shadow.map.bytes == (size_t)SIZE * SIZE * 4;
     double per_particle = rgba8 ? 1.0 / 255.0 : 1.0 / 2048.0, tol = n * per_particle + 1e-5;
     double tol_front = per_particle + 1e-5;
     double len = sqrt(0.16 + 1.0 + 0.09), unit[3] = {0.4 / len, -1.0 / len, 0.3 / len}, row[4];
@@ -133,7 +133,7 @@ CHECK_TEST(rgba8_fallback_matches_the_reference)
     fixture_open(&f, 32, 32);
     fixture_require_hidden(hidden);
     sbfx *fx = module_with_map(&f, 64);
-    CHECK(fx->shadow.map.bytes == 64 * 64 * 4, "%zu bytes: not RGBA8", fx->shadow.map.bytes);
+    CHECK(fx->render->shadow.map.bytes == 64 * 64 * 4, "%zu bytes: not RGBA8", fx->render->shadow.map.bytes);
     sbfx_view_particle particles[8];
     sbfx_ref_particle ref[8];
     int n = puff(fx, particles, ref);
@@ -217,7 +217,7 @@ CHECK_TEST(the_map_exists_only_when_asked_for)
     CHECK(b.textures == a.textures + 1 && b.framebuffers == a.framebuffers + 1 && b.programs == a.programs + 1,
           "textures %d -> %d, framebuffers %d -> %d, programs %d -> %d", a.textures, b.textures, a.framebuffers,
           b.framebuffers, a.programs, b.programs);
-    CHECK(plain->shadow.size == 0 && !plain->shadow.map.framebuffer && !plain->shadow.program && !plain->shadow.buffer);
+    CHECK(plain->render->shadow.size == 0 && !plain->render->shadow.map.framebuffer && !plain->render->shadow.program && !plain->render->shadow.buffer);
     sbfx_shadow_map map;
     const float sun[3] = {0.3f, -1.0f, 0.2f};
     CHECK(sbfx_render_shadow_map(plain, sun, &map) == SBFX_ERR_INVALID_ARGUMENT);
@@ -242,7 +242,7 @@ CHECK_TEST(the_map_exists_only_when_asked_for)
 
     sbfx_scene *scene = fixture_load_scene("post");
     sbfx *fx = fixture_module(&f, (sbfx_desc){.scene = scene});
-    CHECK(fx->shadow.size == 0 && !fx->shadow.map.framebuffer, "post.cfg has a %d map", fx->shadow.size);
+    CHECK(fx->render->shadow.size == 0 && !fx->render->shadow.map.framebuffer, "post.cfg has a %d map", fx->render->shadow.size);
     sbfx_destroy(fx);
     sbfx_scene_free(scene);
     char err[512];
@@ -254,7 +254,7 @@ CHECK_TEST(the_map_exists_only_when_asked_for)
         sbfx_scene_host_get(scene, &host);
         CHECK(host.host_shadows && !host.host_lights && !host.has_sky && host.has_sun);
         fx = fixture_module(&f, (sbfx_desc){.scene = scene});
-        CHECK(fx->shadow.size == 256, "host_shadows made a %d map", fx->shadow.size);
+        CHECK(fx->render->shadow.size == 256, "host_shadows made a %d map", fx->render->shadow.size);
         sbfx_destroy(fx);
         sbfx_scene_free(scene);
     }

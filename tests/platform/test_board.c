@@ -1,10 +1,10 @@
-/* Board profiles (platform/player/board.c): every boards/NAME.cfg loads; errors name file, line and key. */
+/* Board profiles (platform/player/options/board.c): every boards/NAME.cfg loads; errors name file, line and key. */
 #include <errno.h>
 #include <glob.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "player/board.h"
+#include "player/options/board.h"
 #include "check.h"
 
 static const char *write_temp(const char *text)

@@ -1,10 +1,10 @@
-/* sbfx-play's platform flags (platform/player/player_args.c): --gpio syntax, display conflicts. */
+/* sbfx-play's platform flags (platform/player/options/args.c): --gpio syntax, display conflicts. */
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
-#include "player/player_args.h"
+#include "player/options/options.h"
 
 static int parse(struct player_options *opt, char *err, size_t n, const char *a, const char *b,
                  const char *c, const char *d)

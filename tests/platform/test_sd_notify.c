@@ -1,4 +1,4 @@
-/* sbfx-play under a service manager (platform/player/player_notify.c, docs/kiosk-deploy.md):
+/* sbfx-play under a service manager (platform/player/outputs/notify.c, docs/kiosk-deploy.md):
  * this test plays systemd's part. It binds a unix datagram socket, starts the player headless
  * (the sbfx-play beside this test's build folder) with NOTIFY_SOCKET naming it, WATCHDOG_USEC
  * set and the test hook SBFX_PLAY_TEST_HANG_AFTER_FRAMES, which stalls the render loop after

@@ -1,4 +1,4 @@
-/* Unit tests of the black-body reference (src/blackbody.c): the compiled-in CMFs, Planck's law, XYZ ->
+/* Unit tests of the black-body reference (src/tables/blackbody.c): the compiled-in CMFs, Planck's law, XYZ ->
  * linear sRGB, the normalised table and its lookup (docs/design.md §2.3, hard cases of §2.2). No GL. */
 #include "check.h"
 #include "reference.h"
@@ -222,7 +222,7 @@ CHECK_TEST(blackbody_norm_is_inverse_y_of_max)
 
 /* ---- photometry (docs/look-fire.md) ------------------------------------------------------ */
 
-/* The test's own integration, independent of src/blackbody.c: Planck's law written out in long
+/* The test's own integration, independent of src/tables/blackbody.c: Planck's law written out in long
  * double, ybar interpolated linearly between the file's 5 nm bands, Simpson's rule at 0.05 nm. */
 static double independent_luminance(const sbfx_cmf *cmf, double kelvin)
 {

@@ -9,9 +9,9 @@
 
 static sbfx *clock_at(double start, double elapsed)
 {
-    sbfx *fx = calloc(1, sizeof(*fx));
-    fx->desc.start_time = start;
-    fx->time = elapsed;
+    sbfx *fx = sbfx_module_new(); /* the rooms zeroed, as sbfx_create finds them */
+    fx->scene->desc.start_time = start;
+    fx->sim->time = elapsed;
     return fx;
 }
 
@@ -64,11 +64,11 @@ CHECK_TEST(a_year_in_is_the_start_of_the_loop)
 static void orbit_position(double start, double elapsed, float period, float out[3])
 {
     sbfx *fx = clock_at(start, elapsed);
-    fx->light_count = 1;
-    fx->lights[0] = (sbfx_scene_light){.point = true,
+    fx->scene->light_count = 1;
+    fx->scene->lights[0] = (sbfx_scene_light){.point = true,
                                        .orbit = {.on = true, .center = {0, 2, 0}, .radius = 3.6f, .period = period}};
     sbfx_orbit_lights(fx);
-    memcpy(out, fx->lights[0].vector, 3 * sizeof(float));
+    memcpy(out, fx->scene->lights[0].vector, 3 * sizeof(float));
     free(fx);
 }
 

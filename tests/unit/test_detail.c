@@ -1,5 +1,5 @@
-/* Unit tests of the procedural detail volume (src/detail_gen.c, docs/design.md §2.4) and of the shared
- * RNG (src/rng.c). No GL. */
+/* Unit tests of the procedural detail volume (src/tables/detail_gen.c, docs/design.md §2.4) and of the shared
+ * RNG (src/base/rng.c). No GL. */
 #include <stdint.h>
 #include "check.h"
 #include "reference.h"

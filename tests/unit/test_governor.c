@@ -1,10 +1,10 @@
-/* Unit tests of the frame-budget governor (src/governor.c, docs/design.md §6, issue 11 item 4) with a
+/* Unit tests of the frame-budget governor (src/budget/governor.c, docs/design.md §6, issue 11 item 4) with a
  * synthetic cost model, no GL: a ladder of 8 rungs whose true costs are load × COST[i], each
  * frame's time measured LATENCY frames late (tagged with the level it was rendered at), with
  * deterministic noise (an LCG) of ±NOISE where a test asks for it. The measured numbers are
  * printed as "# ..." lines. */
 #include "check.h"
-#include "governor.h"
+#include "budget/governor.h"
 
 #define LEVELS 8
 #define LATENCY 3   /* frames between rendering and the measurement's arrival (the timer ring) */

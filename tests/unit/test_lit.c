@@ -1,4 +1,4 @@
-/* Unit tests of the lit-smoke CPU side (src/smoke_texture.c, ref/lit_ref.c): the procedural
+/* Unit tests of the lit-smoke CPU side (src/tables/smoke_texture.c, ref/lit_ref.c): the procedural
  * smoke textures and the double reference of every lighting term and of the ray march. No GL. */
 #include <stdint.h>
 #include "check.h"

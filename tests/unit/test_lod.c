@@ -1,10 +1,10 @@
-/* Unit tests of the particle level of detail (src/lod.c, the ladder's last resort): at most N
+/* Unit tests of the particle level of detail (src/sim/lod.c, the ladder's last resort): at most N
  * particles, the integrated optical depth (Σ w = Σ I r³ / D² per medium) and the light
  * (Σ w·I per medium) conserved, deterministic, NaN-free, nothing changed at or under N, and the
  * image's optical depth integrated over the view (CPU reference, exact model) kept. */
 #include <stdlib.h>
 #include "check.h"
-#include "lod.h"
+#include "sim/lod.h"
 #include "reference.h"
 
 #define MAX 4096

@@ -192,7 +192,7 @@ CHECK_TEST(mask_keeps_changed_pixels_over_smooth_background)
     free(mask);
 }
 
-/* The detail volume itself (src/detail_gen.c): a frame of the module's default 128 x 128 x 32
+/* The detail volume itself (src/tables/detail_gen.c): a frame of the module's default 128 x 128 x 32
  * volume, tiled 4 x 4 (it is periodic), measured in texels. A slice of 3D lattice noise puts
  * energy at every scale (each octave's shell projects onto all lower frequencies), so a frame
  * measures much flatter than the octave gain alone says, and the gain hardly shows: 2.16 for the

@@ -18,7 +18,7 @@
 #include <math.h>
 #include <stdint.h>
 #include "check.h"
-#include "tables.h"
+#include "tables/tables.h"
 
 #define CASES 200000
 #define UNIT_ROUNDOFF 4.8828125e-4                 /* 2^-11 */

@@ -1,4 +1,4 @@
-/* Unit tests of the phase function reference (src/phase.c): normalisation, the forward-peak
+/* Unit tests of the phase function reference (src/tables/phase.c): normalisation, the forward-peak
  * convention, the per-medium table in its warped coordinate and its lookup (docs/design.md §2.3,
  * g = ±0.99 and 0 of §2.2). */
 #include "check.h"

@@ -4,7 +4,7 @@
 #include <string.h>
 #include "check.h"
 #include "sbfx.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 #define MEDIA "media = { smoke = { albedo = 0.2; density = 0.4; }; };\n"
 #define EFFECT(body) "effects = { puff = { steps = ( " body " ); }; };\n"

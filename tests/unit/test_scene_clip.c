@@ -3,7 +3,7 @@
  * different clips, or a clip beside the camera, are errors naming the line. */
 #include <string.h>
 #include "check.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 #define DETAIL(medium, source) \
     medium " = { albedo = 0.2; density = 0.4; detail = { source = \"" source "\"; strength = 0.5; }; };\n"

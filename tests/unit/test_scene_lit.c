@@ -3,7 +3,7 @@
  * name, the line and what is wrong. */
 #include <string.h>
 #include "check.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 #define EFFECT "effects = { puff = { steps = ( { type = \"emitter\"; medium = \"smoke\"; count = 10; } ); }; };\n"
 #define SMOKE(keys) "media = { smoke = { albedo = 0.3; density = 0.5;\n" keys " }; };\n" EFFECT

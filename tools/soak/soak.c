@@ -22,7 +22,7 @@
 #include <unistd.h>
 
 #include "egl/egl_headless.h"
-#include "scene.h"
+#include "scene/scene.h"
 #include "soak_check.h"
 #include "host/test_scene.h"
 

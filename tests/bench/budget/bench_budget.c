@@ -163,9 +163,9 @@ static void open_scene(bench *b)
 static void prepare(bench *b)
 {
     sbfx *fx = create(b, 1e3);
-    b->levels = fx->budget.count;
+    b->levels = fx->budget->count;
     for (int i = 0; i < b->levels; i++) {
-        b->ladder[i] = fx->budget.ladder[i];
+        b->ladder[i] = fx->budget->ladder[i];
         sbfx_quality_name(&b->ladder[i], b->names[i], sizeof(b->names[i]));
     }
     sbfx_detail_dimensions(fx, &b->detail_size, &b->detail_frames);

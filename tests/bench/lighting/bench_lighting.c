@@ -168,7 +168,7 @@ static cpu_texture cpu_smoke(const sbfx_medium_params *m, uint32_t seed)
     return t;
 }
 
-/* Back to front as src/sort.c orders them: by float distance, far first, stable. */
+/* Back to front as src/sim/sort.c orders them: by float distance, far first, stable. */
 static void cpu_order(const bench *b, int order[PARTICLES])
 {
     float key[PARTICLES];

@@ -11,7 +11,7 @@
 #include "host/test_scene.h"
 #include "internal.h"
 #include "module.h" /* the packed instances: the map's fragments */
-#include "scene.h"  /* render.shadow_map_size: a module without the scene's map */
+#include "scene/scene.h"  /* render.shadow_map_size: a module without the scene's map */
 #include <math.h>
 
 #define W 640
@@ -85,7 +85,7 @@ static int measure(const char *path, int size, struct test_scene *scene, GLuint 
         const float *m = map.view_projection;
         double sx = sqrt(m[0] * m[0] + m[4] * m[4] + m[8] * m[8]), sy = sqrt(m[1] * m[1] + m[5] * m[5] + m[9] * m[9]);
         for (int k = 0; k < map.particles; k++) {
-            double r = fx->instances[(size_t)k * 5 + 3];
+            double r = fx->sim->instances[(size_t)k * 5 + 3];
             row->overdraw += r * sx * r * sy / FRAMES;
         }
         if (sbfx_render(fx, &frame) != SBFX_OK) fprintf(stderr, "bench_shadow: %s\n", sbfx_last_error(fx));

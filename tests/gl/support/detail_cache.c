@@ -1,7 +1,7 @@
 /* The procedural detail volume, generated once per test run and shared by every GL test
  * (issue 26: reference data computed once per run).
  *
- * sbfx_create generates the 128 x 128 x 32 turbulence volume on the CPU (src/detail_gen.c:
+ * sbfx_create generates the 128 x 128 x 32 turbulence volume on the CPU (src/tables/detail_gen.c:
  * ~1 s, ~5 s under ASan), and the GL suites create a module in almost every one of their
  * hundreds of forked tests: that generation was most of their time. The GL tests are linked with
  * -Wl,--wrap=sbfx_detail_generate (Makefile, GL_TEST_WRAP), so the module's call lands here:

@@ -1,0 +1,113 @@
+/* The player's module: sbfx made from the scene file and the options (again after a GPU reset,
+ * reset.c), its triggers scheduled, and advanced to the player's time. */
+#include <errno.h>
+#include <stdio.h>
+
+#include "gpio/effect_names.h"
+#include "player/player.h"
+
+static void on_sbfx_log(sbfx_log_level level, const char *message, void *user)
+{
+    const struct player_options *opt = user;
+    static const char *const prefix[] = {"error", "warning", "info"};
+    if (level == SBFX_LOG_INFO && opt->quiet) return;
+    const char *name = (unsigned)level <= SBFX_LOG_INFO ? prefix[level] : "?";
+    fprintf(stderr, "sbfx: %s: %s\n", name, message);
+}
+
+/* --trigger entries go to the module's schedule: each fires at the first simulation step at
+ * or after its time, so a run does not depend on --fps. The default timeline (one explosion at
+ * t=0 at the origin) is the scene's own; --no-timeline turns it off (desc.ignore_timeline). */
+static int schedule_triggers(struct player *p, char *err, size_t n)
+{
+    const struct player_options *opt = p->opt;
+    for (int i = 0; i < opt->trigger_count; i++) {
+        const struct player_trigger *t = &opt->triggers[i];
+        double at = t->seconds;
+        if (p->recovering) { /* a new module after a GPU reset: its time 0 is the player's now */
+            if (at <= p->fx_time_lost) continue; /* fired before the reset */
+            at = at > p->sim_time ? at - p->sim_time : 0.0;
+        }
+        sbfx_result r = sbfx_schedule(p->fx, t->effect, at, t->position);
+        if (r != SBFX_OK) {
+            char names[256] = "";
+            if (r == SBFX_ERR_UNKNOWN_EFFECT) effect_names(p->fx, names, sizeof(names));
+            snprintf(err, n, "--trigger %s@%g: %s: %s%s%s%s", t->effect, t->seconds,
+                     sbfx_result_string(r), sbfx_last_error(p->fx), names[0] ? " (the scene's effects: " : "",
+                     names, names[0] ? ")" : "");
+            return -EINVAL;
+        }
+    }
+    return 0;
+}
+
+static int load_scene(const char *path, sbfx_scene **scene, char *err, size_t n)
+{
+    *scene = NULL;
+    if (!path) return 0; /* the library's built-in explosion */
+    char why[512];
+    if (sbfx_scene_load(path, scene, why, sizeof(why)) != SBFX_OK) {
+        snprintf(err, n, "--scene %s", why);
+        return -EINVAL;
+    }
+    return 0;
+}
+
+int player_create_fx(struct player *p, char *err, size_t n)
+{
+    const struct player_options *opt = p->opt;
+    sbfx_scene *scene = NULL;
+    int rc = load_scene(opt->scene_path, &scene, err, n);
+    if (rc == 0 && !p->recovering) rc = gpio_source_add_scene(&p->gpio, scene, &p->board, err, n);
+    sbfx_scene_camera_get(scene, &p->camera); /* the default orbit without a camera group */
+    sbfx_scene_host_get(scene, &p->host);     /* the test scene's fixed daylight without `sky` */
+    if (rc) {
+        sbfx_scene_free(scene);
+        return rc;
+    }
+    const sbfx_desc desc = {
+        .target_divisor = opt->scale ? opt->scale : p->board.target_scale,
+        .target_format = opt->format,
+        .upsample = opt->upsample,
+        .opacity = opt->opacity,
+        .tone_map = opt->tone_map,
+        .exposure = opt->exposure,
+        .seed = opt->seed,
+        .start_time = p->recovering ? p->fx_clock_lost : opt->start_time,
+        .frame_budget_ms = opt->budget_ms,
+        .max_particles = p->board.max_particles,
+        .scene = scene,
+        .ignore_timeline = opt->no_timeline || p->recovering, /* not replayed after a reset */
+        .log = on_sbfx_log,
+        .log_user = (void *)opt,
+    };
+    sbfx_result r = sbfx_create(&desc, &p->fx);
+    rc = r == SBFX_OK ? player_watch_files(p, scene, err, n) : 0; /* --watch: the file and its includes */
+    player_keep_scene(p, scene); /* the module keeps what it needs; --loop replays the scene */
+    if (r != SBFX_OK) { /* the reason went through the log callback */
+        snprintf(err, n, "sbfx_create failed: %s", sbfx_result_string(r));
+        return -EIO;
+    }
+    if (rc) return rc;
+    p->timeline_start = p->sim_time; /* --loop counts from here */
+    p->fx_created_at = p->recovering ? p->sim_time : 0.0;
+    return schedule_triggers(p, err, n);
+}
+
+static int advance(struct player *p, double dt, char *err, size_t n)
+{
+    if (dt <= 0.0) return 0; /* already there (player_host_prepare advanced it) */
+    sbfx_result r = sbfx_update(p->fx, dt);
+    if (r != SBFX_OK) {
+        snprintf(err, n, "sbfx_update(%g) at t=%.4f s: %s: %s", dt, p->sim_time,
+                 sbfx_result_string(r), sbfx_last_error(p->fx));
+        return -EIO;
+    }
+    sbfx_counters c;
+    sbfx_stats(p->fx, &c);
+    p->frame_simulated += c.particles_simulated;
+    p->sim_time += dt;
+    return 0;
+}
+
+int player_update(struct player *p, double t, char *err, size_t n) { return advance(p, t - p->sim_time, err, n); }

@@ -1,0 +1,643 @@
+/* sbfx-play's command line: one table of flags, one parser per kind of value. Every error
+ * names the flag and what it accepts; nothing here exits or prints. */
+#include "player/options/options.h"
+
+#include "player/options/board.h" /* enum modeset_kind, mode_spec_parse */
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define ARRAY_SIZE(a) (sizeof(a) / sizeof((a)[0]))
+
+void player_options_defaults(struct player_options *opt)
+{
+    memset(opt, 0, sizeof(*opt));
+    opt->width = 960;
+    opt->height = 540;
+    opt->frames = 36;
+    opt->fps = 12.0;
+    opt->out_dir = "sbfx-frames";
+    opt->modeset = -1;
+}
+
+/* ---- value parsers: true when the whole string is a valid value in range ------------------ */
+
+static bool parse_integer(const char *s, long long min, long long max, long long *out)
+{
+    if (!s || !*s || isspace((unsigned char)*s)) return false;
+    char *end = NULL;
+    errno = 0;
+    long long v = strtoll(s, &end, 10);
+    if (errno || *end != '\0' || v < min || v > max) return false;
+    *out = v;
+    return true;
+}
+
+/* A finite number ending at one of the characters in `stops` (or at the end of s). */
+static bool parse_number(const char *s, const char *stops, double *out, const char **rest)
+{
+    if (!s || !*s || isspace((unsigned char)*s)) return false;
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || errno == ERANGE || !isfinite(v)) return false;
+    if (*end != '\0' && (!stops || !strchr(stops, *end))) return false;
+    *out = v;
+    if (rest) *rest = end;
+    return true;
+}
+
+struct choice {
+    const char *name;
+    int value;
+};
+
+static int parse_choice(const char *flag, const char *value, const struct choice *choices,
+                        size_t count, int *out, char *err, size_t n)
+{
+    for (size_t i = 0; i < count; i++)
+        if (strcmp(value, choices[i].name) == 0) {
+            *out = choices[i].value;
+            return 0;
+        }
+    char list[160] = "";
+    for (size_t i = 0; i < count; i++) {
+        if (i) strncat(list, "|", sizeof(list) - strlen(list) - 1);
+        strncat(list, choices[i].name, sizeof(list) - strlen(list) - 1);
+    }
+    snprintf(err, n, "%s: expected one of %s, got '%s'", flag, list, value);
+    return -EINVAL;
+}
+
+/* ---- one handler per flag ------------------------------------------------------------- */
+
+static int set_size(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    char w[32], h[32];
+    const char *x = strpbrk(value, "xX");
+    long long width = 0, height = 0;
+    size_t wlen = x ? (size_t)(x - value) : 0;
+    if (x && wlen < sizeof(w) && strlen(x + 1) < sizeof(h)) {
+        memcpy(w, value, wlen);
+        w[wlen] = '\0';
+        strcpy(h, x + 1);
+        if (parse_integer(w, PLAYER_MIN_SIZE, PLAYER_MAX_SIZE, &width) &&
+            parse_integer(h, PLAYER_MIN_SIZE, PLAYER_MAX_SIZE, &height)) {
+            opt->width = (int)width;
+            opt->height = (int)height;
+            opt->size_set = true;
+            return 0;
+        }
+    }
+    snprintf(err, n, "--size: expected WxH with W and H in %d..%d (e.g. 960x540), got '%s'",
+             PLAYER_MIN_SIZE, PLAYER_MAX_SIZE, value);
+    return -EINVAL;
+}
+
+static int set_frames(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    long long v = 0;
+    if (!parse_integer(value, 1, PLAYER_MAX_FRAMES, &v)) {
+        snprintf(err, n, "--frames: expected a whole number in 1..%d, got '%s'",
+                 PLAYER_MAX_FRAMES, value);
+        return -EINVAL;
+    }
+    opt->frames = (int)v;
+    opt->frames_set = true;
+    return 0;
+}
+
+static int set_fps(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    double v = 0;
+    if (!parse_number(value, NULL, &v, NULL) || !(v > 0.0) || v > 1000.0) {
+        snprintf(err, n, "--fps: expected a number F with 0 < F <= 1000 (e.g. 12 or 29.97), "
+                 "got '%s'", value);
+        return -EINVAL;
+    }
+    opt->fps = v;
+    opt->fps_set = true;
+    return 0;
+}
+
+static int set_start_time(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    double v = 0;
+    if (!parse_number(value, NULL, &v, NULL) || !(v >= 0.0) || v > PLAYER_MAX_START_TIME) {
+        snprintf(err, n, "--start-time: expected seconds from 0 to 1e10 (e.g. 31536000 for a year), "
+                 "got '%s'", value);
+        return -EINVAL;
+    }
+    opt->start_time = v;
+    return 0;
+}
+
+static int set_path(const char *flag, const char **dst, const char *value, char *err, size_t n)
+{
+    if (!*value) {
+        snprintf(err, n, "%s: expected a path, got an empty string", flag);
+        return -EINVAL;
+    }
+    *dst = value;
+    return 0;
+}
+
+static int set_out(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    opt->out_set = true;
+    return set_path("--out", &opt->out_dir, value, err, n);
+}
+
+static int set_stats(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    return set_path("--stats", &opt->stats_path, value, err, n);
+}
+
+static int set_scene(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    return set_path("--scene", &opt->scene_path, value, err, n);
+}
+
+static int set_watch(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    opt->watch = true;
+    return 0;
+}
+
+static int set_loop(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    double v = 0;
+    if (!parse_number(value, NULL, &v, NULL) || !(v >= 0.1) || v > 1e6) {
+        snprintf(err, n, "--loop: expected a period in seconds from 0.1 to 1e6 (e.g. 3), got '%s'", value);
+        return -EINVAL;
+    }
+    opt->loop_seconds = v;
+    return 0;
+}
+
+static int set_trigger(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    if (opt->trigger_count >= PLAYER_MAX_TRIGGERS) {
+        snprintf(err, n, "--trigger: at most %d triggers, '%s' is one too many",
+                 PLAYER_MAX_TRIGGERS, value);
+        return -EINVAL;
+    }
+    int rc = player_parse_trigger(value, &opt->triggers[opt->trigger_count], err, n);
+    if (rc == 0) opt->trigger_count++;
+    return rc;
+}
+
+static int set_scale(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    static const struct choice choices[] = {{"1", 1}, {"2", 2}, {"4", 4}, {"8", 8}};
+    return parse_choice("--scale", value, choices, ARRAY_SIZE(choices), &opt->scale, err, n);
+}
+
+static int set_opacity(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    static const struct choice choices[] = {
+        {"planar", SBFX_OPACITY_PLANAR}, {"soft", SBFX_OPACITY_SOFT},
+        {"spherical", SBFX_OPACITY_SPHERICAL}, {"exact", SBFX_OPACITY_EXACT},
+    };
+    int v = 0;
+    int rc = parse_choice("--opacity", value, choices, ARRAY_SIZE(choices), &v, err, n);
+    opt->opacity = (sbfx_opacity_mode)v;
+    return rc;
+}
+
+static int set_format(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    static const struct choice choices[] = {
+        {"auto", SBFX_FORMAT_DEFAULT}, {"rgba8", SBFX_FORMAT_RGBA8},
+        {"rgba16f", SBFX_FORMAT_RGBA16F}, {"rgba32f", SBFX_FORMAT_RGBA32F},
+    };
+    int v = 0;
+    int rc = parse_choice("--format", value, choices, ARRAY_SIZE(choices), &v, err, n);
+    opt->format = (sbfx_target_format)v;
+    return rc;
+}
+
+static int set_upsample(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    static const struct choice choices[] = {
+        {"bilinear", SBFX_UPSAMPLE_BILINEAR}, {"nearest-depth", SBFX_UPSAMPLE_NEAREST_DEPTH},
+    };
+    int v = 0;
+    int rc = parse_choice("--upsample", value, choices, ARRAY_SIZE(choices), &v, err, n);
+    opt->upsample = (sbfx_upsample)v;
+    return rc;
+}
+
+static int set_tone_map(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    static const struct choice choices[] = {
+        {"none", SBFX_TONE_MAP_NONE}, {"hue-preserving", SBFX_TONE_MAP_HUE_PRESERVING},
+        {"per-channel", SBFX_TONE_MAP_PER_CHANNEL}, {"filmic", SBFX_TONE_MAP_FILMIC},
+    };
+    int v = 0;
+    int rc = parse_choice("--tone-map", value, choices, ARRAY_SIZE(choices), &v, err, n);
+    opt->tone_map = (sbfx_tone_map)v;
+    return rc;
+}
+
+static int set_exposure(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    double v = 0;
+    if (!parse_number(value, NULL, &v, NULL) || !(v >= 0.01) || v > 100.0) {
+        snprintf(err, n, "--exposure: expected a scale from 0.01 to 100 (e.g. 1 or 0.5), got '%s'", value);
+        return -EINVAL;
+    }
+    opt->exposure = (float)v;
+    return 0;
+}
+
+static int set_budget(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    double v = 0;
+    if (!parse_number(value, NULL, &v, NULL) || !(v > 0.0) || v > 10000.0) {
+        snprintf(err, n, "--budget-ms: expected a frame time in milliseconds above 0 and at most 10000 "
+                 "(e.g. 16.7), got '%s'", value);
+        return -EINVAL;
+    }
+    opt->budget_ms = (float)v;
+    return 0;
+}
+
+static int set_seed(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    long long v = 0;
+    if (!parse_integer(value, 0, UINT32_MAX, &v)) {
+        snprintf(err, n, "--seed: expected a whole number in 0..4294967295, got '%s'", value);
+        return -EINVAL;
+    }
+    opt->seed = (uint32_t)v;
+    return 0;
+}
+
+static int set_headless(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    opt->headless_flag = true; /* the default display */
+    return 0;
+}
+
+static int set_display(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    static const struct choice choices[] = {
+        {"drm", PLAYER_DISPLAY_DRM}, {"headless", PLAYER_DISPLAY_HEADLESS},
+        {"wayland", PLAYER_DISPLAY_WAYLAND}, {"auto", PLAYER_DISPLAY_AUTO},
+    };
+    int v = 0;
+    int rc = parse_choice("--display", value, choices, ARRAY_SIZE(choices), &v, err, n);
+    opt->display_auto = v == PLAYER_DISPLAY_AUTO;
+    /* auto: a Wayland session's variable says a compositor runs; without one, the kiosk owns
+     * the screen through DRM/KMS */
+    const char *wayland = getenv("WAYLAND_DISPLAY");
+    if (opt->display_auto) v = wayland && *wayland ? PLAYER_DISPLAY_WAYLAND : PLAYER_DISPLAY_DRM;
+    opt->display = (enum player_display)v;
+    opt->display_set = true;
+    return rc;
+}
+
+bool player_on_screen(const struct player_options *opt)
+{
+    return opt->display != PLAYER_DISPLAY_HEADLESS;
+}
+
+static int set_device(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    return set_path("--device", &opt->device, value, err, n);
+}
+
+static int set_connector(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    if (*value && strlen(value) < 32 && !strpbrk(value, " \t/")) {
+        opt->connector = value;
+        return 0;
+    }
+    snprintf(err, n, "--connector: expected a connector name such as HDMI-A-1 or DSI-1, got '%s'", value);
+    return -EINVAL;
+}
+
+static int set_mode(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    int w, h, hz;
+    if (mode_spec_parse(value, &w, &h, &hz) == 0) {
+        opt->mode = value;
+        return 0;
+    }
+    snprintf(err, n, "--mode: expected WxH or WxH@HZ (e.g. 1920x1080 or 1280x720@60), got '%s'", value);
+    return -EINVAL;
+}
+
+static int set_modeset(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    static const struct choice choices[] = {
+        {"auto", MODESET_AUTO}, {"atomic", MODESET_ATOMIC}, {"legacy", MODESET_LEGACY},
+    };
+    return parse_choice("--modeset", value, choices, ARRAY_SIZE(choices), &opt->modeset, err, n);
+}
+
+static int set_screenshot(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    return set_path("--screenshot", &opt->screenshot, value, err, n);
+}
+
+static int set_board(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    return set_path("--board", &opt->board_path, value, err, n);
+}
+
+static int set_video(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    return set_path("--video", &opt->video, value, err, n);
+}
+
+static int set_gpio(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    if (opt->gpio_count >= PLAYER_MAX_GPIO) {
+        snprintf(err, n, "--gpio: at most %d lines, '%s' is one too many", PLAYER_MAX_GPIO, value);
+        return -EINVAL;
+    }
+    int rc = player_parse_gpio(value, &opt->gpio[opt->gpio_count], err, n);
+    if (rc == 0) opt->gpio_count++;
+    return rc;
+}
+
+static int set_contact_sheet(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    opt->contact_sheet = true;
+    return 0;
+}
+
+static int set_no_timeline(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    opt->no_timeline = true;
+    return 0;
+}
+
+static int set_quiet(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    opt->quiet = true;
+    return 0;
+}
+
+static int set_help(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    opt->help = true;
+    return 0;
+}
+
+static int set_version(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    opt->version = true;
+    return 0;
+}
+
+/* ---- the table ------------------------------------------------------------------------ */
+
+struct flag {
+    const char *name;
+    const char *value; /* what the value looks like, for "needs a value" errors; NULL: switch */
+    int (*apply)(struct player_options *opt, const char *value, char *err, size_t n);
+};
+
+static const struct flag flags[] = {
+    {"--headless", NULL, set_headless},
+    {"--display", "headless|drm|wayland|auto", set_display},
+    {"--device", "PATH (e.g. /dev/dri/card0)", set_device},
+    {"--connector", "NAME (e.g. HDMI-A-1)", set_connector},
+    {"--mode", "WxH[@HZ] (e.g. 1920x1080@60)", set_mode},
+    {"--modeset", "auto|atomic|legacy", set_modeset},
+    {"--screenshot", "FILE", set_screenshot},
+    {"--board", "FILE", set_board},
+    {"--video", "DEV (e.g. /dev/video0)", set_video},
+    {"--gpio", "CHIP:LINE=EFFECT[@X,Y,Z]", set_gpio},
+    {"--size", "WxH (e.g. 960x540)", set_size},
+    {"--frames", "N (1..1000000)", set_frames},
+    {"--fps", "F (0 < F <= 1000)", set_fps},
+    {"--start-time", "SECONDS (0..1e10)", set_start_time},
+    {"--out", "DIR", set_out},
+    {"--contact-sheet", NULL, set_contact_sheet},
+    {"--stats", "FILE", set_stats},
+    {"--trigger", "EFFECT@SECONDS[:X,Y,Z]", set_trigger},
+    {"--no-timeline", NULL, set_no_timeline},
+    {"--scale", "1|2|4|8", set_scale},
+    {"--opacity", "planar|soft|spherical|exact", set_opacity},
+    {"--format", "auto|rgba8|rgba16f|rgba32f", set_format},
+    {"--upsample", "bilinear|nearest-depth", set_upsample},
+    {"--tone-map", "none|hue-preserving|per-channel|filmic", set_tone_map},
+    {"--exposure", "X (0.01..100)", set_exposure},
+    {"--budget-ms", "MS (0 < MS <= 10000)", set_budget},
+    {"--seed", "N (0..4294967295)", set_seed},
+    {"--scene", "FILE", set_scene},
+    {"--watch", NULL, set_watch},
+    {"--loop", "SECONDS (0.1..1e6)", set_loop},
+    {"--quiet", NULL, set_quiet},
+    {"--version", NULL, set_version},
+    {"--help", NULL, set_help}, /* last: -h finds it there */
+};
+
+static const struct flag *find_flag(const char *arg, size_t len)
+{
+    if (len == 2 && strncmp(arg, "-h", 2) == 0) return &flags[ARRAY_SIZE(flags) - 1];
+    for (size_t i = 0; i < ARRAY_SIZE(flags); i++)
+        if (strlen(flags[i].name) == len && strncmp(arg, flags[i].name, len) == 0)
+            return &flags[i];
+    return NULL;
+}
+
+/* Finds the value of flag f at argv[*i]: after '=' in the same word, else the next word. */
+static int flag_value(const struct flag *f, const char *eq, int argc, char **argv, int *i,
+                      const char **value, char *err, size_t n)
+{
+    *value = NULL;
+    if (!f->value) {
+        if (!eq) return 0;
+        snprintf(err, n, "%s takes no value, got '%s'", f->name, argv[*i]);
+        return -EINVAL;
+    }
+    if (eq) {
+        *value = eq + 1;
+    } else if (*i + 1 < argc && strncmp(argv[*i + 1], "--", 2) != 0) {
+        *value = argv[++*i]; /* a following "--flag" is a forgotten value, not a value */
+    } else {
+        snprintf(err, n, "%s needs a value: %s %s", f->name, f->name, f->value);
+        return -EINVAL;
+    }
+    return 0;
+}
+
+static int parse_flags(struct player_options *opt, int argc, char **argv, char *err, size_t n);
+
+static const char *display_name(enum player_display display)
+{
+    return display == PLAYER_DISPLAY_DRM ? "drm" : display == PLAYER_DISPLAY_WAYLAND ? "wayland" : "headless";
+}
+
+/* Flags that only mean something on one display. --size also sets a Wayland window's size
+ * where the compositor leaves it to the client (full screen refused). */
+static int check_display(const struct player_options *opt, char *err, size_t n)
+{
+    bool drm = opt->display == PLAYER_DISPLAY_DRM, screen = player_on_screen(opt);
+    const char *wrong = NULL;
+    if (screen && opt->headless_flag) wrong = "--headless";
+    else if (drm && opt->size_set) wrong = "--size";
+    else if (screen && opt->out_set) wrong = "--out";
+    else if (screen && opt->contact_sheet) wrong = "--contact-sheet";
+    if (wrong && drm) {
+        snprintf(err, n, "%s applies to --display headless, not drm (drm: the mode sets the size; "
+                 "--screenshot saves a frame)", wrong);
+        return -EINVAL;
+    }
+    if (wrong) {
+        snprintf(err, n, "%s applies to --display headless, not wayland%s (wayland: the compositor "
+                 "sets the window's size)", wrong, opt->display_auto ? " (auto chose it: WAYLAND_DISPLAY is set)" : "");
+        return -EINVAL;
+    }
+    if (!drm && opt->device) wrong = "--device";
+    else if (!drm && opt->connector) wrong = "--connector";
+    else if (!drm && opt->mode) wrong = "--mode";
+    else if (!drm && opt->modeset >= 0) wrong = "--modeset";
+    else if (!drm && opt->screenshot) wrong = "--screenshot";
+    if (wrong) {
+        snprintf(err, n, "%s applies to --display drm (the display is %s%s)", wrong, display_name(opt->display),
+                 opt->display_auto ? ": auto chose it, WAYLAND_DISPLAY is set" : "");
+        return -EINVAL;
+    }
+    return 0;
+}
+
+int player_board_display(struct player_options *opt, const char *backend, char *err, size_t n)
+{
+    if (opt->display_set || opt->headless_flag || !backend[0]) return 0;
+    int rc = set_display(opt, backend, err, n);
+    return rc ? rc : check_display(opt, err, n);
+}
+
+int player_parse_args(struct player_options *opt, int argc, char **argv, char *err, size_t n)
+{
+    int rc = parse_flags(opt, argc, argv, err, n);
+    if (rc || opt->help || opt->version) return rc;
+    if (opt->watch && !opt->scene_path) {
+        snprintf(err, n, "--watch reloads the scene file: give it with --scene FILE");
+        return -EINVAL;
+    }
+    return check_display(opt, err, n);
+}
+
+static int parse_flags(struct player_options *opt, int argc, char **argv, char *err, size_t n)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        const char *eq = strchr(arg, '=');
+        size_t len = eq ? (size_t)(eq - arg) : strlen(arg);
+        const struct flag *f = arg[0] == '-' ? find_flag(arg, len) : NULL;
+        if (!f) {
+            snprintf(err, n, "%s '%.*s' (see sbfx-play --help for the flags)",
+                     arg[0] == '-' ? "unknown flag" : "unexpected argument", (int)len, arg);
+            return -EINVAL;
+        }
+        const char *value = NULL;
+        int rc = flag_value(f, eq, argc, argv, &i, &value, err, n);
+        if (rc == 0) rc = f->apply(opt, value, err, n);
+        if (rc) return rc;
+        if (opt->help || opt->version) return 0;
+    }
+    return 0;
+}
+
+/* ---- --trigger EFFECT@SECONDS[:X,Y,Z] --------------------------------------------------- */
+
+static bool valid_effect_name(const char *name, size_t len)
+{
+    if (len == 0 || len >= PLAYER_EFFECT_NAME_MAX) return false;
+    for (size_t i = 0; i < len; i++) {
+        unsigned char c = (unsigned char)name[i];
+        if (!isalnum(c) && c != '_' && c != '-' && c != '.') return false;
+    }
+    return true;
+}
+
+static bool parse_position(const char *s, float position[3])
+{
+    for (int k = 0; k < 3; k++) {
+        double v = 0;
+        const char *rest = NULL;
+        if (!parse_number(s, k < 2 ? "," : NULL, &v, &rest)) return false;
+        if ((k < 2) != (*rest == ',')) return false;
+        position[k] = (float)v;
+        s = rest + (k < 2);
+    }
+    return true;
+}
+
+static int trigger_error(const char *text, const char *why, char *err, size_t n)
+{
+    snprintf(err, n, "--trigger: expected EFFECT@SECONDS[:X,Y,Z] (e.g. explosion@0.5 or "
+             "explosion@1.5:2,0,-1), got '%s': %s", text, why);
+    return -EINVAL;
+}
+
+int player_parse_trigger(const char *text, struct player_trigger *out, char *err, size_t n)
+{
+    const char *at = strchr(text, '@');
+    if (!at) return trigger_error(text, "no '@'", err, n);
+    size_t name_len = (size_t)(at - text);
+    if (!valid_effect_name(text, name_len))
+        return trigger_error(text, "the effect name must be 1..63 of A-Z a-z 0-9 _ - .", err, n);
+    struct player_trigger t = {.position = {0, 0, 0}};
+    memcpy(t.effect, text, name_len);
+    t.effect[name_len] = '\0';
+    const char *rest = NULL;
+    if (!parse_number(at + 1, ":", &t.seconds, &rest) || t.seconds < 0.0 || t.seconds > 1e6)
+        return trigger_error(text, "SECONDS must be a number in 0..1e6", err, n);
+    if (*rest == ':' && !parse_position(rest + 1, t.position))
+        return trigger_error(text, "the position must be three finite numbers X,Y,Z", err, n);
+    *out = t;
+    return 0;
+}
+
+/* ---- --gpio CHIP:LINE=EFFECT[@X,Y,Z] ------------------------------------------------------ */
+
+static int gpio_error(const char *text, const char *why, char *err, size_t n)
+{
+    snprintf(err, n, "--gpio: expected CHIP:LINE=EFFECT[@X,Y,Z] (e.g. gpiochip0:17=explosion or "
+             "gpiochip0:17=explosion@0,0,-1), got '%s': %s", text, why);
+    return -EINVAL;
+}
+
+int player_parse_gpio(const char *text, struct player_gpio *out, char *err, size_t n)
+{
+    const char *eq = strchr(text, '=');
+    if (!eq) return gpio_error(text, "no '='", err, n);
+    const char *colon = NULL;
+    for (const char *p = text; p < eq; p++)
+        if (*p == ':') colon = p; /* the last one: chip labels may hold ':' */
+    if (!colon || colon == text) return gpio_error(text, "no CHIP: before the line number", err, n);
+    struct player_gpio g = {.position = {0, 0, 0}};
+    size_t chip_len = (size_t)(colon - text);
+    if (chip_len >= sizeof(g.chip)) return gpio_error(text, "the chip name is too long", err, n);
+    memcpy(g.chip, text, chip_len);
+    char line[16];
+    size_t line_len = (size_t)(eq - colon - 1);
+    long long v = -1;
+    if (line_len < sizeof(line)) {
+        memcpy(line, colon + 1, line_len);
+        line[line_len] = '\0';
+    }
+    if (line_len >= sizeof(line) || !parse_integer(line, 0, 65535, &v))
+        return gpio_error(text, "LINE must be a whole number in 0..65535", err, n);
+    g.line = (int)v;
+    const char *at = strchr(eq + 1, '@');
+    size_t name_len = at ? (size_t)(at - eq - 1) : strlen(eq + 1);
+    if (!valid_effect_name(eq + 1, name_len))
+        return gpio_error(text, "the effect name must be 1..63 of A-Z a-z 0-9 _ - .", err, n);
+    memcpy(g.effect, eq + 1, name_len);
+    if (at && !parse_position(at + 1, g.position))
+        return gpio_error(text, "the position must be three finite numbers X,Y,Z", err, n);
+    *out = g;
+    return 0;
+}

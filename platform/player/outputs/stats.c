@@ -1,0 +1,121 @@
+/* sbfx-play --stats: the keys, their JSON and their --help text from one table. */
+#include "player/outputs/stats.h"
+
+#include <errno.h>
+#include <stddef.h>
+
+enum stats_group { GROUP_EVERY_RUN, GROUP_KIOSK, GROUP_PRESENTATION, GROUP_GPIO, GROUP_VIDEO, GROUP_COUNT };
+enum stats_kind { KIND_INT, KIND_G, KIND_MS3, KIND_STRING };
+
+struct stats_key {
+    const char *name;
+    enum stats_kind kind;
+    enum stats_group group;
+    size_t offset; /* of the field in struct player_stats_record */
+    const char *meaning;
+};
+
+#define KEY(field, kind, group, meaning) \
+    {#field, kind, group, offsetof(struct player_stats_record, field), meaning}
+
+/* In the order the JSON object has them. */
+static const struct stats_key stats_keys[] = {
+    KEY(programs, KIND_INT, GROUP_EVERY_RUN, "GL programs sbfx holds"),
+    KEY(textures, KIND_INT, GROUP_EVERY_RUN, "GL textures sbfx holds"),
+    KEY(framebuffers, KIND_INT, GROUP_EVERY_RUN, "GL framebuffers sbfx holds"),
+    KEY(gpu_bytes, KIND_INT, GROUP_EVERY_RUN, "bytes of GPU memory sbfx holds"),
+    KEY(passes, KIND_INT, GROUP_EVERY_RUN, "render passes of the last frame"),
+    KEY(draw_calls, KIND_INT, GROUP_EVERY_RUN, "draw calls of the last frame"),
+    KEY(particles_simulated, KIND_INT, GROUP_EVERY_RUN, "particles the last frame's updates advanced"),
+    KEY(heap_allocs_after_load, KIND_INT, GROUP_EVERY_RUN, "heap allocations after sbfx_create (0)"),
+    KEY(budget_ms, KIND_G, GROUP_EVERY_RUN, "the frame budget (0: none)"),
+    KEY(gpu_ms, KIND_MS3, GROUP_EVERY_RUN, "the budget governor's GPU time of the current level"),
+    KEY(frames_over_budget, KIND_INT, GROUP_EVERY_RUN, "measured frames over the budget"),
+    KEY(quality_changes, KIND_INT, GROUP_EVERY_RUN, "quality level changes"),
+    KEY(quality, KIND_STRING, GROUP_EVERY_RUN, "the current quality level's name (a string)"),
+    KEY(gpu_resets, KIND_INT, GROUP_EVERY_RUN, "GPU resets the player recovered from"),
+    KEY(gpu_reset_notification, KIND_INT, GROUP_EVERY_RUN, "1 when the context reports GPU resets"),
+    KEY(frames, KIND_INT, GROUP_KIOSK, "frames rendered"),
+    KEY(flips, KIND_INT, GROUP_KIOSK, "page flips (wayland: frame callbacks)"),
+    KEY(missed_vblanks, KIND_INT, GROUP_KIOSK, "vblanks a flip missed (wayland: refreshes)"),
+    KEY(triggers_fired, KIND_INT, GROUP_KIOSK, "effects started"),
+    KEY(triggers_refused, KIND_INT, GROUP_KIOSK, "triggers refused (particle pool full)"),
+    KEY(display_unplugs, KIND_INT, GROUP_KIOSK, "times the display went away"),
+    KEY(display_replugs, KIND_INT, GROUP_KIOSK, "times it came back"),
+    KEY(display_paused_frames, KIND_INT, GROUP_KIOSK, "frames rendered but not shown meanwhile"),
+    KEY(presented_frames, KIND_INT, GROUP_PRESENTATION, "frames the compositor put on screen"),
+    KEY(discarded_frames, KIND_INT, GROUP_PRESENTATION, "frames it replaced before showing them"),
+    KEY(latency_ms_mean, KIND_MS3, GROUP_PRESENTATION, "commit to on screen, mean (ms)"),
+    KEY(latency_ms_max, KIND_MS3, GROUP_PRESENTATION, "commit to on screen, max (ms)"),
+    KEY(gpio_edges, KIND_INT, GROUP_GPIO, "edges read from the GPIO lines"),
+    KEY(gpio_fired, KIND_INT, GROUP_GPIO, "edges that fired their effect"),
+    KEY(gpio_filtered, KIND_INT, GROUP_GPIO, "edges the debounce or rate limit dropped"),
+    KEY(gpio_refused, KIND_INT, GROUP_GPIO, "edges whose trigger sbfx refused"),
+    KEY(gpio_overflows, KIND_INT, GROUP_GPIO, "reads that found the kernel's event FIFO full"),
+    KEY(gpio_losses, KIND_INT, GROUP_GPIO, "lines lost (their chip went away)"),
+    KEY(gpio_returns, KIND_INT, GROUP_GPIO, "lost lines requested again"),
+    KEY(gpio_retries, KIND_INT, GROUP_GPIO, "attempts to request a lost line"),
+    KEY(gpio_absent, KIND_INT, GROUP_GPIO, "lines whose chip or line was absent at start"),
+    KEY(gpio_appeared, KIND_INT, GROUP_GPIO, "lines absent at start that appeared later"),
+    KEY(video_frames, KIND_INT, GROUP_VIDEO, "camera slices pushed to the detail volume"),
+    KEY(video_distinct, KIND_INT, GROUP_VIDEO, "slices that differed from the slice before"),
+    KEY(video_losses, KIND_INT, GROUP_VIDEO, "outages: the camera went away, failed or fell silent"),
+    KEY(video_reopens, KIND_INT, GROUP_VIDEO, "outages that ended with frames again"),
+    KEY(video_takeovers, KIND_INT, GROUP_VIDEO, "procedural volumes pushed back meanwhile"),
+};
+
+static const char *const group_titles[GROUP_COUNT] = {
+    [GROUP_EVERY_RUN] = "every run (sbfx_stats() after the last frame, and GPU resets)",
+    [GROUP_KIOSK] = "with a DRM or Wayland display, GPIO lines or a camera",
+    [GROUP_PRESENTATION] = "with a Wayland compositor's presentation-time feedback",
+    [GROUP_GPIO] = "with GPIO lines",
+    [GROUP_VIDEO] = "with a camera",
+};
+
+static bool group_written(const struct player_stats_record *r, enum stats_group group)
+{
+    switch (group) {
+    case GROUP_KIOSK: return r->kiosk_on;
+    case GROUP_PRESENTATION: return r->presentation_on;
+    case GROUP_GPIO: return r->kiosk_on && r->gpio_on;
+    case GROUP_VIDEO: return r->kiosk_on && r->video_on;
+    default: return true;
+    }
+}
+
+static void write_value(const struct player_stats_record *r, const struct stats_key *k, FILE *f)
+{
+    const char *field = (const char *)r + k->offset;
+    switch (k->kind) {
+    case KIND_INT: fprintf(f, "%lld", *(const long long *)(const void *)field); break;
+    case KIND_G: fprintf(f, "%g", *(const double *)(const void *)field); break;
+    case KIND_MS3: fprintf(f, "%.3f", *(const double *)(const void *)field); break;
+    /* the level's name comes from sbfx_quality_name: letters, digits and '/' only */
+    case KIND_STRING: fprintf(f, "\"%s\"", field); break;
+    }
+}
+
+int player_stats_write(const struct player_stats_record *r, FILE *f)
+{
+    const char *sep = "{";
+    for (size_t i = 0; i < sizeof(stats_keys) / sizeof(stats_keys[0]); i++) {
+        const struct stats_key *k = &stats_keys[i];
+        if (!group_written(r, k->group)) continue;
+        fprintf(f, "%s\"%s\": ", sep, k->name);
+        write_value(r, k, f);
+        sep = ", ";
+    }
+    fprintf(f, "}\n");
+    return ferror(f) ? -EIO : 0;
+}
+
+void player_stats_usage(FILE *f)
+{
+    fprintf(f, "--stats keys (one JSON object; numbers unless said):\n");
+    for (int g = 0; g < GROUP_COUNT; g++) {
+        fprintf(f, "  %s:\n", group_titles[g]);
+        for (size_t i = 0; i < sizeof(stats_keys) / sizeof(stats_keys[0]); i++)
+            if (stats_keys[i].group == (enum stats_group)g)
+                fprintf(f, "    %-24s %s\n", stats_keys[i].name, stats_keys[i].meaning);
+    }
+}

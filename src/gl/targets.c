@@ -1,0 +1,146 @@
+/* The reduced-resolution particle target and the downsampled opaque depth (docs/design.md §2.5).
+ * Made on the first render and again only when the output size changes.
+ * The particle framebuffer's attachments: 0 light + transmittance; 1 heat-shimmer offsets
+ * (scenes with heat); 2 premultiplied screen velocity and view distance (scenes with velocity
+ * motion blur or depth of field). */
+#include "gl/gl.h"
+
+typedef struct target_format {
+    sbfx_target_format id;
+    const sbfx_rt_format *rt;
+    const char *name;
+} target_format;
+
+static const target_format formats[] = {
+    {SBFX_FORMAT_RGBA32F, &sbfx_rt_rgba32f, "RGBA32F"},
+    {SBFX_FORMAT_RGBA16F, &sbfx_rt_rgba16f, "RGBA16F"},
+    {SBFX_FORMAT_RGBA8, &sbfx_rt_rgba8, "RGBA8"},
+};
+
+/* Blending into 32-bit floats needs EXT_float_blend as well. */
+static bool format_allowed(const target_format *f)
+{
+    if (f->id == SBFX_FORMAT_RGBA8) return true;
+    if (f->id == SBFX_FORMAT_RGBA32F)
+        return sbfx_float32_blendable();
+    return sbfx_half_float_renderable();
+}
+
+static bool try_format(sbfx *fx, sbfx_target_set *set, const target_format *f)
+{
+    if (!format_allowed(f)) return false;
+    /* Signed offsets and velocities need a float format: with RGBA8 they are left out
+     * (the shaders' extra outputs then go nowhere) and the loss is logged at load. The shimmer
+     * offsets are RGBA16F whatever the light's format: the composite reads them with one
+     * filtered fetch (RGBA32F is not filterable in ES 3.0), and a half float holds an offset
+     * of at most a few hundredths to 2^-11 of itself (docs/gpus.md, "Precision"). */
+    bool is_float = f->id != SBFX_FORMAT_RGBA8;
+    const sbfx_rt_format *colors[SBFX_RT_MAX] = {f->rt, is_float && fx->scene->plan.distortion ? &sbfx_rt_rgba16f : NULL,
+                                                 is_float && fx->scene->plan.motion_target ? f->rt : NULL};
+    if (!sbfx_rt_create(fx, &set->particles, set->low_width, set->low_height, colors, NULL, GL_NEAREST)) return false;
+    set->target_type = f->rt->type;
+    set->format = f->id;
+    return true;
+}
+
+static const target_format *format_by_id(sbfx_target_format id)
+{
+    for (size_t i = 0; i < ARRAY_SIZE(formats); i++)
+        if (formats[i].id == id) return &formats[i];
+    return &formats[1];
+}
+
+/* Requested format first, then each cheaper one; RGBA8 always works. */
+static sbfx_result create_particle_target(sbfx *fx, sbfx_target_set *set, sbfx_target_format want)
+{
+    if (!want) want = SBFX_FORMAT_RGBA16F;
+    size_t start = 0;
+    while (formats[start].id != want) start++;
+    for (size_t i = start; i < ARRAY_SIZE(formats); i++) {
+        if (!try_format(fx, set, &formats[i])) continue;
+        if (i != start && !fx->gl->context.warned_format) {
+            fx->gl->context.warned_format = true;
+            sbfx_log(fx, SBFX_LOG_WARN,
+                     "%s is not colour-renderable here (needs GL_EXT_color_buffer_half_float or "
+                     "GL_EXT_color_buffer_float%s): particles render into %s instead; light above "
+                     "1.0 is clipped there", format_by_id(want)->name,
+                     want == SBFX_FORMAT_RGBA32F ? " and GL_EXT_float_blend" : "", formats[i].name);
+        }
+        return SBFX_OK;
+    }
+    return sbfx_fail(fx, SBFX_ERR_GL, "no particle target format is renderable (not even RGBA8)");
+}
+
+static sbfx_result create_low_depth(sbfx *fx, sbfx_target_set *set)
+{
+    if (!sbfx_rt_create(fx, &set->low_depth, set->low_width, set->low_height, NULL, &sbfx_rt_depth32f, GL_NEAREST))
+        return sbfx_fail(fx, SBFX_ERR_GL, "the %dx%d DEPTH_COMPONENT32F target is incomplete",
+                         set->low_width, set->low_height);
+    const sbfx_rt_format *corners[SBFX_RT_MAX] = {&sbfx_rt_rgba32f, NULL, NULL};
+    if (fx->gl->corners_program &&
+        !sbfx_rt_create(fx, &set->low_corners, set->low_width + 1, set->low_height + 1, corners, NULL, GL_NEAREST))
+        return sbfx_fail(fx, SBFX_ERR_GL, "the %dx%d RGBA32F target of the low-res corners is incomplete",
+                         set->low_width + 1, set->low_height + 1);
+    return sbfx_gl_check(fx, "creating the low-resolution depth target") ? SBFX_OK : SBFX_ERR_GL;
+}
+
+static void destroy_set(sbfx *fx, sbfx_target_set *set)
+{
+    sbfx_rt_destroy(fx, &set->particles);
+    sbfx_rt_destroy(fx, &set->low_depth);
+    sbfx_rt_destroy(fx, &set->low_corners);
+}
+
+/* The default format asks for RGBA16F: both share a target. */
+int sbfx_target_index(int divisor, sbfx_target_format format)
+{
+    int log2 = divisor == 1 ? 0 : divisor == 2 ? 1 : divisor == 4 ? 2 : 3;
+    return log2 * SBFX_FORMAT_COUNT + (int)(format ? format : SBFX_FORMAT_RGBA16F);
+}
+
+/* The targets of level q at the output size (made once per size). */
+static sbfx_result ensure_set(sbfx *fx, const sbfx_quality *q)
+{
+    sbfx_target_set *set = &fx->gl->targets[sbfx_target_index(q->target_divisor, q->target_format)];
+    if (set->particles.framebuffer) return SBFX_OK;
+    int div = q->target_divisor;
+    set->low_width = (fx->gl->out_width + div - 1) / div;
+    set->low_height = (fx->gl->out_height + div - 1) / div;
+    sbfx_result r = create_particle_target(fx, set, q->target_format);
+    if (r == SBFX_OK) r = create_low_depth(fx, set);
+    if (r != SBFX_OK) destroy_set(fx, set);
+    return r;
+}
+
+sbfx_result sbfx_targets_ensure(sbfx *fx, int width, int height)
+{
+    sbfx_gl *gl = fx->gl;
+    sbfx_result r = SBFX_OK;
+    if (gl->out_width != width || gl->out_height != height) {
+        sbfx_targets_destroy(fx);
+        gl->out_width = width;
+        gl->out_height = height;
+        for (int i = 0; i < fx->scene->declared_count && r == SBFX_OK; i++) r = ensure_set(fx, &fx->scene->declared[i]);
+    }
+    if (r == SBFX_OK) r = ensure_set(fx, &fx->scene->current);
+    if (r != SBFX_OK) {
+        sbfx_targets_destroy(fx);
+        return r;
+    }
+    const sbfx_target_set *set = &gl->targets[sbfx_target_index(fx->scene->current.target_divisor, fx->scene->current.target_format)];
+    gl->particles = set->particles;
+    gl->low_depth = set->low_depth;
+    gl->low_corners = set->low_corners;
+    gl->low_width = set->low_width;
+    gl->low_height = set->low_height;
+    gl->target_type = set->target_type;
+    fx->counters.target_format = set->format;
+    return SBFX_OK;
+}
+
+void sbfx_targets_destroy(sbfx *fx)
+{
+    for (int i = 0; i < SBFX_TARGET_SETS; i++) destroy_set(fx, &fx->gl->targets[i]);
+    fx->gl->particles = fx->gl->low_depth = fx->gl->low_corners = (sbfx_rt){0};
+    fx->gl->out_width = fx->gl->out_height = 0;
+}

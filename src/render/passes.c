@@ -1,0 +1,126 @@
+/* Passes 1 and 3 of a frame with live particles (frame.c): the opaque depth downsampled to the
+ * particle target's resolution (and, for nearest-depth upsampling on RGBA32F devices, its
+ * corners gathered), and the composite of the particle target over the host's framebuffer. */
+#include <math.h>
+#include <string.h>
+#include "render/render.h"
+
+/* Heat shimmer in the composite: heat particles and a float target to hold their offsets. */
+static bool shimmer(const sbfx *fx) { return fx->scene->plan.distortion && fx->gl->particles.texture[1]; }
+
+/* Pass 1: the closest opaque distance of each low-res texel, as near / distance (0: none). */
+void sbfx_pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
+{
+    sbfx_gl *gl = fx->gl;
+    GLuint prog = gl->depth_program;
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl->low_depth.framebuffer);
+    glViewport(0, 0, gl->low_width, gl->low_height);
+    glEnable(GL_DEPTH_TEST); /* depth writes need the test on; ALWAYS keeps every fragment */
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(prog);
+    sbfx_bind_texture(0, GL_TEXTURE_2D, f->scene_depth_texture, gl->depth_sampler);
+    const sbfx_pass_uniforms *u = &gl->depth_u;
+    glUniform1i(u->scene_depth, 0);
+    glUniform1i(u->divisor, fx->scene->desc.target_divisor);
+    glUniform2i(u->full_size, f->width, f->height);
+    glUniform4fv(u->depth_model, 1, fp->depth_model);
+    glUniform1f(u->near, fp->near);
+    glBindVertexArray(gl->fullscreen_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    fx->counters.passes++;
+    fx->counters.draw_calls++;
+}
+
+/* Pass 1b (nearest-depth upsampling, RGBA32F devices): the four low-res depths around each
+ * texel gathered into one RGBA32F texel (low_corners.frag), so the composite reads them in one
+ * fetch instead of four. */
+bool sbfx_corners_used(const sbfx *fx)
+{
+    return fx->gl->low_corners.framebuffer && fx->scene->desc.upsample == SBFX_UPSAMPLE_NEAREST_DEPTH;
+}
+
+void sbfx_pass_corners(sbfx *fx)
+{
+    sbfx_gl *gl = fx->gl;
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl->low_corners.framebuffer);
+    glViewport(0, 0, gl->low_corners.width, gl->low_corners.height);
+    glDisable(GL_BLEND); /* a copy: whatever blending the host left on */
+    glUseProgram(gl->corners_program);
+    sbfx_bind_texture(0, GL_TEXTURE_2D, gl->low_depth.depth, 0);
+    glUniform1i(gl->corners_u.low_depth, 0);
+    glUniform2i(gl->corners_u.low_size, gl->low_width, gl->low_height);
+    glBindVertexArray(gl->fullscreen_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    fx->counters.passes++;
+    fx->counters.draw_calls++;
+}
+
+/* The tone map leaves room for the host's picture (composite.frag) when it may read the scene
+ * colour: given, and not attached to the framebuffer being drawn (a feedback loop is undefined
+ * in GLES). Two counted queries of the bound draw framebuffer when it is the host's own. */
+static bool scene_color_readable(sbfx *fx, const sbfx_frame *f)
+{
+    if (!f->scene_color_texture) return false;
+    if (f->out_framebuffer == 0) return true;
+    GLint type = GL_NONE, name = 0;
+    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                          GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    fx->counters.gl_state_queries++;
+    if (type != GL_TEXTURE) return true;
+    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                          GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+    fx->counters.gl_state_queries++;
+    return (GLuint)name != f->scene_color_texture;
+}
+
+/* Pass 3: dst = dst * T + C over the host's framebuffer (its alpha is kept). */
+void sbfx_pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
+{
+    sbfx_gl *gl = fx->gl;
+    GLuint prog = gl->composite_program;
+    bool owns = fx->scene->plan.owns_scene;
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, owns ? sbfx_post_composite_target(fx, f) : f->out_framebuffer);
+    glViewport(0, 0, f->width, f->height);
+    if (owns) {
+        glDisable(GL_BLEND); /* writes the whole image: scene * T + C */
+    } else {
+        glEnable(GL_BLEND);
+        glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
+    }
+    glUseProgram(prog);
+    bool scene_known = owns || scene_color_readable(fx, f);
+    if (scene_known) sbfx_bind_texture(3, GL_TEXTURE_2D, f->scene_color_texture, gl->color_sampler);
+    glUniform1i(gl->composite_u.scene_color, 3);
+    glUniform1i(gl->composite_u.scene_known, scene_known);
+    if (owns) glUniform2f(gl->composite_u.full_size, (float)f->width, (float)f->height);
+    if (shimmer(fx)) {
+        sbfx_bind_texture(4, GL_TEXTURE_2D, gl->particles.texture[1], gl->color_sampler); /* LINEAR: bilinear in one fetch */
+        glUniform1i(gl->composite_u.distortion, 4);
+    }
+    sbfx_bind_texture(0, GL_TEXTURE_2D, gl->particles.texture[0], 0);
+    sbfx_bind_texture(1, GL_TEXTURE_2D, sbfx_corners_used(fx) ? gl->low_corners.texture[0] : gl->low_depth.depth, 0);
+    sbfx_bind_texture(2, GL_TEXTURE_2D, f->scene_depth_texture, gl->depth_sampler);
+    const sbfx_pass_uniforms *u = &gl->composite_u;
+    glUniform1i(u->particles, 0);
+    glUniform1i(u->low_depth, 1);
+    glUniform1i(u->low_corners, 1);
+    glUniform1i(u->scene_depth, 2);
+    glUniform2i(u->low_size, gl->low_width, gl->low_height);
+    glUniform1f(u->divisor, (float)fx->scene->desc.target_divisor);
+    glUniform4fv(u->depth_model, 1, fp->depth_model);
+    glUniform1f(u->near, fp->near);
+    glUniform1f(u->depth_threshold, 0.05f);
+    glUniform1f(u->particles_far, fp->particles_far);
+    glUniform1f(u->near_over_far, fp->near / fp->particles_far);
+    glUniform3f(u->tone_curve, (float)fx->scene->tone_curve.knee, (float)fx->scene->tone_curve.steepness,
+                (float)fx->scene->tone_curve.inverse_log_white);
+    glBindVertexArray(gl->fullscreen_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
+    fx->counters.passes++;
+    fx->counters.draw_calls++;
+}
+

@@ -1,0 +1,495 @@
+/* Post effects after the particle composite (seed fig. 9, RTR 12.4-12.5): depth of field,
+ * then motion blur (the seed's history blend, or McGuire's velocity reconstruction). Each
+ * exists in the plan — programs, targets, passes — only when the scene asks for it. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "render/render.h"
+
+enum post_uniform {
+    PU_COLOR,
+    PU_CURRENT,
+    PU_DEPTH_MODEL,
+    PU_DIRECTION,
+    PU_DISTORTION,
+    PU_DIVISOR,
+    PU_FAR,
+    PU_FAR_FIELD,
+    PU_FULL_SIZE,
+    PU_HISTORY,
+    PU_KEEP,
+    PU_LOW_SIZE,
+    PU_LOW_TEXEL,
+    PU_MAX_RADIUS,
+    PU_NEAR,
+    PU_NDC_DEPTH,
+    PU_NEAR_FIELD,
+    PU_NEIGHBOR_MAX,
+    PU_PARTICLE_MOTION,
+    PU_PARTICLE_SIZE,
+    PU_PARTICLE_TEXEL,
+    PU_PARTICLE_VELOCITY,
+    PU_PARTICLES_DRAWN,
+    PU_REPROJECT,
+    PU_SAMPLES,
+    PU_SCALE,
+    PU_SCENE_COLOR,
+    PU_SCENE_DEPTH,
+    PU_SHUTTER,
+    PU_SIZE,
+    PU_SOURCE,
+    PU_TILE,
+    PU_TILES,
+    PU_TILES_SIZE,
+    PU_VELOCITY,
+    PU_COUNT
+};
+_Static_assert(PU_COUNT <= SBFX_POST_UNIFORMS, "SBFX_POST_UNIFORMS is too small for post.c");
+static const char *const post_uniform_names[PU_COUNT] = {
+    [PU_COLOR] = "u_color",
+    [PU_CURRENT] = "u_current",
+    [PU_DEPTH_MODEL] = "u_depth_model",
+    [PU_DIRECTION] = "u_direction",
+    [PU_DISTORTION] = "u_distortion",
+    [PU_DIVISOR] = "u_divisor",
+    [PU_FAR] = "u_far",
+    [PU_FAR_FIELD] = "u_far_field",
+    [PU_FULL_SIZE] = "u_full_size",
+    [PU_HISTORY] = "u_history",
+    [PU_KEEP] = "u_keep",
+    [PU_LOW_SIZE] = "u_low_size",
+    [PU_LOW_TEXEL] = "u_low_texel",
+    [PU_MAX_RADIUS] = "u_max_radius",
+    [PU_NEAR] = "u_near",
+    [PU_NDC_DEPTH] = "u_ndc_depth",
+    [PU_NEAR_FIELD] = "u_near_field",
+    [PU_NEIGHBOR_MAX] = "u_neighbor_max",
+    [PU_PARTICLE_MOTION] = "u_particle_motion",
+    [PU_PARTICLE_SIZE] = "u_particle_size",
+    [PU_PARTICLE_TEXEL] = "u_particle_texel",
+    [PU_PARTICLE_VELOCITY] = "u_particle_velocity",
+    [PU_PARTICLES_DRAWN] = "u_particles_drawn",
+    [PU_REPROJECT] = "u_reproject",
+    [PU_SAMPLES] = "u_samples",
+    [PU_SCALE] = "u_scale",
+    [PU_SCENE_COLOR] = "u_scene_color",
+    [PU_SCENE_DEPTH] = "u_scene_depth",
+    [PU_SHUTTER] = "u_shutter",
+    [PU_SIZE] = "u_size",
+    [PU_SOURCE] = "u_source",
+    [PU_TILE] = "u_tile",
+    [PU_TILES] = "u_tiles",
+    [PU_TILES_SIZE] = "u_tiles_size",
+    [PU_VELOCITY] = "u_velocity",
+};
+
+/* Uniform locations of the post programs, looked up once at load (-1 where a program has no
+ * such uniform). Per frame a pass finds its program's row by id: no string lookups. */
+static GLuint *post_programs(sbfx_post_gl *p, int i)
+{
+    GLuint *all[SBFX_POST_PROGRAMS] = {&p->copy_program, &p->history_program, &p->velocity_program, &p->tile_program,
+                                      &p->neighbor_program, &p->blur_program, &p->dof_setup_program,
+                                      &p->dof_blur_program, &p->dof_composite_program};
+    return all[i];
+}
+
+static void locate_post_uniforms(sbfx_post_gl *p)
+{
+    for (int i = 0; i < SBFX_POST_PROGRAMS; i++)
+        for (int u = 0; u < PU_COUNT; u++)
+            p->locations[i][u] = *post_programs(p, i) ? glGetUniformLocation(*post_programs(p, i), post_uniform_names[u]) : -1;
+}
+
+static GLint post_loc(const sbfx_post_gl *p, GLuint program, int uniform)
+{
+    for (int i = 0; i < SBFX_POST_PROGRAMS; i++)
+        if (*post_programs((sbfx_post_gl *)p, i) == program) return p->locations[i][uniform];
+    return -1;
+}
+
+static bool has_steps(const sbfx *fx) { return fx->scene->post.dof || fx->scene->post.blur != SBFX_BLUR_NONE; }
+
+/* ---- programs (load) ---- */
+static GLuint build(sbfx *fx, const char *frag, const char *defines, bool wanted)
+{
+    return wanted ? sbfx_program_build(fx, "fullscreen.vert", frag, defines) : 0;
+}
+
+sbfx_result sbfx_post_programs_create(sbfx *fx)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    if (!fx->scene->plan.owns_scene) return SBFX_OK;
+    bool float_ok = sbfx_half_float_renderable();
+    p->color_format = float_ok ? &sbfx_rt_rgba16f : &sbfx_rt_rgba8;
+    p->velocity_format = p->color_format;
+    p->encode_velocity = !float_ok;
+    if (fx->scene->plan.distortion && !float_ok)
+        sbfx_log(fx, SBFX_LOG_WARN, "heat shimmer needs a float particle target (GL_EXT_color_buffer_half_float "
+                 "or GL_EXT_color_buffer_float): shimmer is off");
+    char defines[128], tile_defines[160], dof_defines[32];
+    bool shimmer = fx->scene->plan.distortion && float_ok;
+    snprintf(defines, sizeof(defines), "%s%s", p->encode_velocity ? "#define ENCODE_UNORM\n" : "",
+             fx->scene->plan.particle_velocity && float_ok ? "#define HAS_PARTICLE_VELOCITY\n" : "");
+    /* loops sized to the scene, so the compilers unroll what runs, not the largest size */
+    snprintf(tile_defines, sizeof(tile_defines), "%s#define TILE %d\n", defines, fx->scene->post.tile);
+    snprintf(dof_defines, sizeof(dof_defines), "#define DOF_SCALE %d\n", fx->scene->post.dof_scale);
+    bool velocity = fx->scene->post.blur == SBFX_BLUR_VELOCITY, history = fx->scene->post.blur == SBFX_BLUR_HISTORY;
+    bool dof = fx->scene->post.dof;
+    p->copy_program = build(fx, "copy.frag", NULL, true);
+    p->history_program = build(fx, "history_blur.frag", NULL, history);
+    p->velocity_program = build(fx, "velocity.frag", defines, velocity);
+    p->tile_program = build(fx, "tile_max.frag", tile_defines, velocity);
+    p->neighbor_program = build(fx, "neighbor_max.frag", defines, velocity);
+    p->blur_program = build(fx, "motion_blur.frag", defines, velocity);
+    p->dof_setup_program = build(fx, "dof_setup.frag", dof_defines, dof);
+    p->dof_blur_program = build(fx, "dof_blur.frag", NULL, dof);
+    p->dof_composite_program = build(fx, "dof_composite.frag", shimmer ? "#define HAS_SHIMMER\n" : NULL, dof);
+    GLuint need[] = {p->copy_program, history ? p->history_program : 1, velocity ? p->blur_program : 1,
+                     velocity ? p->velocity_program : 1, velocity ? p->tile_program : 1,
+                     velocity ? p->neighbor_program : 1, dof ? p->dof_composite_program : 1,
+                     dof ? p->dof_setup_program : 1, dof ? p->dof_blur_program : 1};
+    for (size_t i = 0; i < ARRAY_SIZE(need); i++)
+        if (!need[i]) return SBFX_ERR_SHADER;
+    locate_post_uniforms(p);
+    return SBFX_OK;
+}
+
+static void destroy_targets(sbfx *fx)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    sbfx_rt *all[] = {&p->frame[0], &p->frame[1], &p->history[0], &p->history[1], &p->velocity,
+                      &p->tile_rows, &p->tiles, &p->neighbors, &p->dof[0], &p->dof[1]};
+    for (size_t i = 0; i < ARRAY_SIZE(all); i++) sbfx_rt_destroy(fx, all[i]);
+    p->width = p->height = 0;
+    p->history_valid = false;
+}
+
+void sbfx_post_destroy(sbfx *fx)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    destroy_targets(fx);
+    GLuint programs[] = {p->velocity_program, p->tile_program, p->neighbor_program, p->blur_program,
+                         p->history_program, p->copy_program, p->dof_setup_program, p->dof_blur_program,
+                         p->dof_composite_program};
+    for (size_t i = 0; i < ARRAY_SIZE(programs); i++) sbfx_program_delete(fx, programs[i]);
+}
+
+/* ---- targets (first render, size changes) ---- */
+static bool make(sbfx *fx, sbfx_rt *rt, int w, int h, const sbfx_rt_format *a, const sbfx_rt_format *b, GLenum filter)
+{
+    const sbfx_rt_format *colors[SBFX_RT_MAX] = {a, b, NULL};
+    return sbfx_rt_create(fx, rt, w, h, colors, NULL, filter);
+}
+
+sbfx_result sbfx_post_targets_ensure(sbfx *fx, int w, int h)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    if (!fx->scene->plan.owns_scene || (p->width == w && p->height == h)) return SBFX_OK;
+    destroy_targets(fx);
+    const sbfx_rt_format *c = p->color_format, *v = p->velocity_format;
+    bool ok = true;
+    int frames = (fx->scene->post.dof ? 1 : 0) + (fx->scene->post.blur != SBFX_BLUR_NONE ? 1 : 0);
+    for (int i = 0; i < frames; i++) ok = ok && make(fx, &p->frame[i], w, h, c, NULL, GL_NEAREST);
+    if (fx->scene->post.blur == SBFX_BLUR_HISTORY)
+        for (int i = 0; i < 2; i++) ok = ok && make(fx, &p->history[i], w, h, c, NULL, GL_NEAREST);
+    if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) {
+        int t = fx->scene->post.tile, tw = (w + t - 1) / t, th = (h + t - 1) / t;
+        ok = ok && make(fx, &p->velocity, w, h, v, NULL, GL_NEAREST) && make(fx, &p->tile_rows, tw, h, v, NULL, GL_NEAREST) &&
+             make(fx, &p->tiles, tw, th, v, NULL, GL_NEAREST) && make(fx, &p->neighbors, tw, th, v, NULL, GL_NEAREST);
+    }
+    if (fx->scene->post.dof) {
+        int s = fx->scene->post.dof_scale, dw = (w + s - 1) / s, dh = (h + s - 1) / s;
+        /* LINEAR: the composite reads the blurred fields bilinearly in one fetch each (RGBA16F and
+         * RGBA8 are filterable); the setup and the blur read texels by index */
+        for (int i = 0; i < 2; i++) ok = ok && make(fx, &p->dof[i], dw, dh, c, c, GL_LINEAR);
+    }
+    if (!ok) {
+        destroy_targets(fx);
+        return sbfx_fail(fx, SBFX_ERR_GL, "cannot create the %dx%d post-effect targets", w, h);
+    }
+    p->width = w, p->height = h;
+    return sbfx_gl_check(fx, "creating the post-effect targets") ? SBFX_OK : SBFX_ERR_GL;
+}
+
+/* ---- passes ---- */
+typedef struct post_frame {
+    const sbfx_frame *f;
+    float depth_model[4];  /* window depth -> distance (projection.c) */
+    float ndc_depth[2];    /* window depth -> ndc z */
+} post_frame;
+
+/* The host's textures are read through sbfx's samplers, sbfx's own through their parameters. */
+static void bind_unit(const sbfx *fx, GLuint program, int uniform, int unit, GLuint texture)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    GLuint sampler = texture == p->host_depth ? fx->gl->depth_sampler
+                     : texture == p->host_color ? fx->gl->color_sampler : 0;
+    sbfx_bind_texture((GLuint)unit, GL_TEXTURE_2D, texture, sampler);
+    glUniform1i(post_loc(p, program, uniform), unit);
+}
+
+sbfx_gl_units sbfx_post_units(const sbfx *fx)
+{
+    /* copy: unit 0; history: 0-1; velocity blur: 0-3; depth of field: 0-6 */
+    uint32_t units = 1u;
+    if (fx->scene->post.blur == SBFX_BLUR_HISTORY) units = 3u;
+    if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) units = 15u;
+    if (fx->scene->post.dof) units = 127u;
+    return (sbfx_gl_units){.tex_2d = units};
+}
+
+/* Starts a full-screen pass of `program` into `fbo` of w x h; finish() draws it. */
+static void begin(GLuint program, GLuint fbo, int w, int h)
+{
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    glViewport(0, 0, w, h);
+    glUseProgram(program);
+}
+
+static void finish(sbfx *fx)
+{
+    glBindVertexArray(fx->gl->fullscreen_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    fx->counters.passes++;
+    fx->counters.draw_calls++;
+}
+
+static void pass_copy(sbfx *fx, GLuint source, GLuint fbo, int w, int h)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    GLuint prog = p->copy_program;
+    begin(prog, fbo, w, h);
+    bind_unit(fx, prog, PU_SOURCE, 0, source);
+    finish(fx);
+}
+
+static void set_depth_uniforms(const sbfx_post_gl *p, GLuint prog, const post_frame *pf)
+{
+    glUniform4fv(post_loc(p, prog, PU_DEPTH_MODEL), 1, pf->depth_model);
+}
+
+/* The particles' coverage and distance (the motion target) for the DoF's CoC, when this frame
+ * drew particles into it; the pixel -> particle texel scale for the composite. */
+static void bind_particle_motion(sbfx *fx, GLuint prog, int unit)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    GLuint motion = fx->gl->particles.texture[2];
+    bind_unit(fx, prog, PU_PARTICLE_MOTION, unit, motion);
+    glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && motion);
+    float divisor = (float)fx->scene->desc.target_divisor;
+    if (fx->gl->low_width > 0 && fx->gl->low_height > 0)
+        glUniform2f(post_loc(p, prog, PU_PARTICLE_TEXEL), 1.0f / (divisor * (float)fx->gl->low_width),
+                    1.0f / (divisor * (float)fx->gl->low_height));
+}
+
+/* Depth of field: split by CoC at the blur resolution, blur both fields separably (two
+ * passes), composite over the sharp image. */
+static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    const sbfx_post_params *post = &fx->scene->post;
+    const sbfx_frame *f = pf->f;
+    GLuint prog = p->dof_setup_program;
+    begin(prog, p->dof[0].framebuffer, p->dof[0].width, p->dof[0].height);
+    sbfx_bind_texture(0, GL_TEXTURE_2D, source, fx->gl->color_sampler); /* LINEAR: 2 x 2 means in one fetch */
+    glUniform1i(post_loc(p, prog, PU_COLOR), 0);
+    bind_unit(fx, prog, PU_SCENE_DEPTH, 1, f->scene_depth_texture);
+    glUniform1i(post_loc(p, prog, PU_SCALE), post->dof_scale);
+    glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
+    set_depth_uniforms(p, prog, pf);
+    glUniform2fv(post_loc(p, prog, PU_NEAR), 1, post->dof_near);
+    glUniform2fv(post_loc(p, prog, PU_FAR), 1, post->dof_far);
+    bind_particle_motion(fx, prog, 2);
+    bind_unit(fx, prog, PU_SCENE_COLOR, 3, f->scene_color_texture);
+    glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->scene->desc.target_divisor);
+    glUniform2i(post_loc(p, prog, PU_PARTICLE_SIZE), fx->gl->low_width, fx->gl->low_height);
+    finish(fx);
+    prog = p->dof_blur_program;
+    for (int dir = 0; dir < 2; dir++) {
+        const sbfx_rt *in = &p->dof[dir], *out = &p->dof[1 - dir];
+        begin(prog, out->framebuffer, out->width, out->height);
+        bind_unit(fx, prog, PU_FAR_FIELD, 0, in->texture[0]);
+        bind_unit(fx, prog, PU_NEAR_FIELD, 1, in->texture[1]);
+        glUniform2i(post_loc(p, prog, PU_DIRECTION), dir == 0, dir == 1);
+        glUniform2i(post_loc(p, prog, PU_LOW_SIZE), in->width, in->height);
+        glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), post->dof_max_radius / post->dof_scale);
+        finish(fx);
+    }
+    prog = p->dof_composite_program;
+    begin(prog, fbo, f->width, f->height);
+    bind_unit(fx, prog, PU_COLOR, 0, source);
+    bind_unit(fx, prog, PU_FAR_FIELD, 1, p->dof[0].texture[0]);
+    bind_unit(fx, prog, PU_NEAR_FIELD, 2, p->dof[0].texture[1]);
+    bind_unit(fx, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
+    set_depth_uniforms(p, prog, pf);
+    glUniform2fv(post_loc(p, prog, PU_FAR), 1, post->dof_far);
+    glUniform2f(post_loc(p, prog, PU_LOW_TEXEL), 1.0f / (float)(post->dof_scale * p->dof[0].width),
+                1.0f / (float)(post->dof_scale * p->dof[0].height));
+    bind_particle_motion(fx, prog, 4);
+    bind_unit(fx, prog, PU_SCENE_COLOR, 5, f->scene_color_texture);
+    glUniform2f(post_loc(p, prog, PU_FULL_SIZE), (float)f->width, (float)f->height);
+    /* the shimmer offsets, LINEAR like the composite's (none: an empty unit reads 0, no offset) */
+    sbfx_bind_texture(6, GL_TEXTURE_2D, fx->gl->particles.texture[1], fx->gl->color_sampler);
+    glUniform1i(post_loc(p, prog, PU_DISTORTION), 6);
+    finish(fx);
+}
+
+/* The seed's motion blur: history = mix(new, history, e^(-dt/persistence)), then shown. */
+static void pass_history(sbfx *fx, GLuint source, GLuint fbo, int w, int h, double dt)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    GLuint prog = p->history_program;
+    const sbfx_rt *previous = &p->history[1 - p->history_next], *next = &p->history[p->history_next];
+    float keep = p->history_valid ? (float)exp(-dt / fx->scene->post.persistence) : 0.0f;
+    begin(prog, next->framebuffer, w, h);
+    bind_unit(fx, prog, PU_CURRENT, 0, source);
+    bind_unit(fx, prog, PU_HISTORY, 1, previous->texture[0]);
+    glUniform1f(post_loc(p, prog, PU_KEEP), keep);
+    finish(fx);
+    pass_copy(fx, next->texture[0], fbo, w, h);
+    p->history_valid = true;
+    p->history_next = 1 - p->history_next;
+}
+
+static void multiply4(const double a[16], const double b[16], double out[16])
+{
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++) s += a[k * 4 + r] * b[c * 4 + k];
+            out[c * 4 + r] = s;
+        }
+}
+
+/* General 4x4 inverse by cofactors (column-major); false when singular. */
+static bool invert4(const double m[16], double out[16])
+{
+    double inv[16];
+    inv[0] = m[5] * m[10] * m[15] - m[5] * m[11] * m[14] - m[9] * m[6] * m[15] + m[9] * m[7] * m[14] + m[13] * m[6] * m[11] - m[13] * m[7] * m[10];
+    inv[4] = -m[4] * m[10] * m[15] + m[4] * m[11] * m[14] + m[8] * m[6] * m[15] - m[8] * m[7] * m[14] - m[12] * m[6] * m[11] + m[12] * m[7] * m[10];
+    inv[8] = m[4] * m[9] * m[15] - m[4] * m[11] * m[13] - m[8] * m[5] * m[15] + m[8] * m[7] * m[13] + m[12] * m[5] * m[11] - m[12] * m[7] * m[9];
+    inv[12] = -m[4] * m[9] * m[14] + m[4] * m[10] * m[13] + m[8] * m[5] * m[14] - m[8] * m[6] * m[13] - m[12] * m[5] * m[10] + m[12] * m[6] * m[9];
+    inv[1] = -m[1] * m[10] * m[15] + m[1] * m[11] * m[14] + m[9] * m[2] * m[15] - m[9] * m[3] * m[14] - m[13] * m[2] * m[11] + m[13] * m[3] * m[10];
+    inv[5] = m[0] * m[10] * m[15] - m[0] * m[11] * m[14] - m[8] * m[2] * m[15] + m[8] * m[3] * m[14] + m[12] * m[2] * m[11] - m[12] * m[3] * m[10];
+    inv[9] = -m[0] * m[9] * m[15] + m[0] * m[11] * m[13] + m[8] * m[1] * m[15] - m[8] * m[3] * m[13] - m[12] * m[1] * m[11] + m[12] * m[3] * m[9];
+    inv[13] = m[0] * m[9] * m[14] - m[0] * m[10] * m[13] - m[8] * m[1] * m[14] + m[8] * m[2] * m[13] + m[12] * m[1] * m[10] - m[12] * m[2] * m[9];
+    inv[2] = m[1] * m[6] * m[15] - m[1] * m[7] * m[14] - m[5] * m[2] * m[15] + m[5] * m[3] * m[14] + m[13] * m[2] * m[7] - m[13] * m[3] * m[6];
+    inv[6] = -m[0] * m[6] * m[15] + m[0] * m[7] * m[14] + m[4] * m[2] * m[15] - m[4] * m[3] * m[14] - m[12] * m[2] * m[7] + m[12] * m[3] * m[6];
+    inv[10] = m[0] * m[5] * m[15] - m[0] * m[7] * m[13] - m[4] * m[1] * m[15] + m[4] * m[3] * m[13] + m[12] * m[1] * m[7] - m[12] * m[3] * m[5];
+    inv[14] = -m[0] * m[5] * m[14] + m[0] * m[6] * m[13] + m[4] * m[1] * m[14] - m[4] * m[2] * m[13] - m[12] * m[1] * m[6] + m[12] * m[2] * m[5];
+    inv[3] = -m[1] * m[6] * m[11] + m[1] * m[7] * m[10] + m[5] * m[2] * m[11] - m[5] * m[3] * m[10] - m[9] * m[2] * m[7] + m[9] * m[3] * m[6];
+    inv[7] = m[0] * m[6] * m[11] - m[0] * m[7] * m[10] - m[4] * m[2] * m[11] + m[4] * m[3] * m[10] + m[8] * m[2] * m[7] - m[8] * m[3] * m[6];
+    inv[11] = -m[0] * m[5] * m[11] + m[0] * m[7] * m[9] + m[4] * m[1] * m[11] - m[4] * m[3] * m[9] - m[8] * m[1] * m[7] + m[8] * m[3] * m[5];
+    inv[15] = m[0] * m[5] * m[10] - m[0] * m[6] * m[9] - m[4] * m[1] * m[10] + m[4] * m[2] * m[9] + m[8] * m[1] * m[6] - m[8] * m[2] * m[5];
+    double det = m[0] * inv[0] + m[1] * inv[4] + m[2] * inv[8] + m[3] * inv[12];
+    if (!(fabs(det) > 1e-300)) return false;
+    for (int i = 0; i < 16; i++) out[i] = inv[i] / det;
+    return true;
+}
+
+static void view_projection(const sbfx_frame *f, double out[16])
+{
+    double v[16], p[16];
+    for (int i = 0; i < 16; i++) v[i] = f->view[i], p[i] = f->projection[i];
+    multiply4(p, v, out);
+}
+
+/* The longest velocity of `tile` texels of `in` along (dx, dy), into `out`: rows, then columns. */
+static void pass_tile_max(sbfx *fx, const sbfx_rt *in, const sbfx_rt *out, int dx, int dy)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    GLuint prog = p->tile_program;
+    begin(prog, out->framebuffer, out->width, out->height);
+    bind_unit(fx, prog, PU_VELOCITY, 0, in->texture[0]);
+    glUniform1i(post_loc(p, prog, PU_TILE), fx->scene->post.tile);
+    glUniform2i(post_loc(p, prog, PU_SIZE), in->width, in->height);
+    glUniform2i(post_loc(p, prog, PU_DIRECTION), dx, dy);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->scene->post.tile);
+    finish(fx);
+}
+
+/* McGuire's reconstruction: velocity, tile max (rows, then columns), neighbour max, gather. */
+static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    const sbfx_frame *f = pf->f;
+    const sbfx_post_params *post = &fx->scene->post;
+    double now[16], inverse[16], reproject[16];
+    view_projection(f, now);
+    if (!p->have_previous || !invert4(now, inverse)) memcpy(reproject, (double[16]){1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, sizeof(reproject));
+    else multiply4(p->previous_view_projection, inverse, reproject);
+    float reproject_f[16];
+    for (int i = 0; i < 16; i++) reproject_f[i] = (float)reproject[i];
+    GLuint prog = p->velocity_program;
+    begin(prog, p->velocity.framebuffer, f->width, f->height);
+    bind_unit(fx, prog, PU_SCENE_DEPTH, 0, f->scene_depth_texture);
+    bind_unit(fx, prog, PU_PARTICLE_VELOCITY, 1, fx->gl->particles.texture[2]);
+    glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl->particles.texture[2]);
+    glUniformMatrix4fv(post_loc(p, prog, PU_REPROJECT), 1, GL_FALSE, reproject_f);
+    glUniform2fv(post_loc(p, prog, PU_NDC_DEPTH), 1, pf->ndc_depth);
+    glUniform2f(post_loc(p, prog, PU_SIZE), (float)f->width, (float)f->height);
+    glUniform1f(post_loc(p, prog, PU_SHUTTER), post->shutter);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
+    glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->scene->desc.target_divisor);
+    glUniform2i(post_loc(p, prog, PU_LOW_SIZE), fx->gl->low_width, fx->gl->low_height);
+    finish(fx);
+    pass_tile_max(fx, &p->velocity, &p->tile_rows, 1, 0);
+    pass_tile_max(fx, &p->tile_rows, &p->tiles, 0, 1);
+    prog = p->neighbor_program;
+    begin(prog, p->neighbors.framebuffer, p->neighbors.width, p->neighbors.height);
+    bind_unit(fx, prog, PU_TILES, 0, p->tiles.texture[0]);
+    glUniform2i(post_loc(p, prog, PU_TILES_SIZE), p->tiles.width, p->tiles.height);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
+    finish(fx);
+    prog = p->blur_program;
+    begin(prog, fbo, f->width, f->height);
+    bind_unit(fx, prog, PU_COLOR, 0, source);
+    bind_unit(fx, prog, PU_VELOCITY, 1, p->velocity.texture[0]);
+    bind_unit(fx, prog, PU_NEIGHBOR_MAX, 2, p->neighbors.texture[0]);
+    bind_unit(fx, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
+    glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
+    glUniform1i(post_loc(p, prog, PU_TILE), post->tile);
+    glUniform1i(post_loc(p, prog, PU_SAMPLES), post->samples);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
+    set_depth_uniforms(p, prog, pf);
+    finish(fx);
+}
+
+/* Runs the post chain on `source` (the composite's image, or the bare scene on an idle frame)
+ * and leaves the final image in the host's framebuffer. */
+sbfx_result sbfx_post_run(sbfx *fx, const sbfx_frame *f, const sbfx_depth_model *depth, GLuint source)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    post_frame pf = {f, {0}, {depth->ndc[0], depth->ndc[1]}};
+    sbfx_depth_model_uniform(depth, pf.depth_model);
+    p->host_depth = f->scene_depth_texture;
+    p->host_color = f->scene_color_texture;
+    double dt = p->have_previous ? fx->sim->time - p->last_time : 0.0;
+    glDisable(GL_BLEND);
+    if (!has_steps(fx)) {
+        if (source != 0) pass_copy(fx, source, f->out_framebuffer, f->width, f->height);
+    } else {
+        GLuint input = source;
+        if (fx->scene->post.dof) {
+            bool last = fx->scene->post.blur == SBFX_BLUR_NONE;
+            GLuint dest = last ? f->out_framebuffer : p->frame[1].framebuffer;
+            pass_dof(fx, &pf, input, dest);
+            input = p->frame[1].texture[0];
+        }
+        if (fx->scene->post.blur == SBFX_BLUR_HISTORY) pass_history(fx, input, f->out_framebuffer, f->width, f->height, dt);
+        if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) pass_velocity_blur(fx, &pf, input, f->out_framebuffer);
+    }
+    view_projection(f, p->previous_view_projection);
+    p->last_time = fx->sim->time;
+    p->have_previous = true;
+    return SBFX_OK;
+}
+
+/* Where the particle composite writes when sbfx owns the scene: the first post frame, or the
+ * host's framebuffer when no step follows. */
+GLuint sbfx_post_composite_target(const sbfx *fx, const sbfx_frame *f)
+{
+    return has_steps(fx) ? fx->render->post.frame[0].framebuffer : f->out_framebuffer;
+}
+
+GLuint sbfx_post_composite_texture(const sbfx *fx) { return fx->render->post.frame[0].texture[0]; }
