@@ -121,8 +121,25 @@ start_cage() {
     (as_user "$xdg" cage "${CAGE_FLAGS[@]}" -- sleep $((WAIT * 3))) >"$tmp/out/$1-cage.log" 2>&1 &
     cage_pid=$!
     pids+=("$cage_pid")
-    wait_for 20 test -S "$xdg/wayland-0"
+    compositor_up "$cage_pid" "$xdg" "$tmp/out/$1-cage.log"
 }
+
+# compositor_up PID XDG LOG: waits (20 s at most) for the compositor's socket; returns at once,
+# with why_not set to the reason, when the compositor exits first (a compositor that cannot
+# start: waiting would only add 20 s to a failure).
+compositor_up() {
+    why_not=""
+    wait_for 20 socket_or_gone "$1" "$2/wayland-0" || why_not="it did not start within 20 s"
+    if [ -z "$why_not" ] && ! [ -S "$2/wayland-0" ]; then
+        why_not="it exited before its socket appeared: $(tail -n 3 "$3" | tr '\n' ' ')"
+        # cage 0.1.4 (Debian 12) cannot start without Xwayland, which it only recommends
+        if grep -q "Cannot find Xwayland binary" "$3"; then
+            why_not="it needs Xwayland: install xwayland (tools/deps.sh test). $why_not"
+        fi
+    fi
+    [ -z "$why_not" ]
+}
+socket_or_gone() { [ -S "$2" ] || ! kill -0 "$1" 2>/dev/null; }
 
 # children_of PID: the processes whose parent is PID (from /proc: procps may be absent)
 children_of() {
@@ -202,7 +219,7 @@ grab_until_two() {
 
 test_picture() {
     if ! start_cage picture; then
-        fail picture "cage did not start within 20 s: $(tail -n 3 "$tmp/out/picture-cage.log" | tr '\n' ' ')"
+        fail picture "cage: $why_not"
         return
     fi
     # --size: the first buffer is 320x180, cage then configures the output's size: a resize
@@ -301,7 +318,7 @@ check_frames() {
 # ---- the compositor going away --------------------------------------------------------------
 test_compositor_killed() {
     if ! start_cage killed; then
-        fail compositor-killed "cage did not start within 20 s"
+        fail compositor-killed "cage: $why_not"
         return
     fi
     play killed --scene "$tmp/bin/explosion.cfg"
@@ -332,7 +349,7 @@ start_weston() {
         --socket=wayland-0 --width=640 --height=360 --idle-time=0) >"$tmp/out/weston-$1.log" 2>&1 &
     weston_pid=$!
     pids+=("$weston_pid")
-    wait_for 20 test -S "$xdg/wayland-0"
+    compositor_up "$weston_pid" "$xdg" "$tmp/out/weston-$1.log"
 }
 
 # ---- presentation-time feedback: weston (headless, pixman, desktop shell) ----------------------
@@ -344,7 +361,7 @@ test_presentation() {
         return
     fi
     if ! start_weston weston desktop-shell.so; then
-        fail presentation "weston did not start within 20 s: $(tail -n 2 "$tmp/out/weston-weston.log" | tr '\n' ' ')"
+        fail presentation "weston: $why_not"
         return
     fi
     play weston --scene "$tmp/bin/explosion.cfg" --frames 40 --stats "$tmp/out/weston.json"
@@ -375,7 +392,7 @@ test_hidden() {
         return
     fi
     if ! start_weston kiosk kiosk-shell.so; then
-        fail hidden "weston did not start within 20 s: $(tail -n 2 "$tmp/out/weston-kiosk.log" | tr '\n' ' ')"
+        fail hidden "weston: $why_not"
         return
     fi
     play hidden --scene "$tmp/bin/explosion.cfg" --frames 20 --stats "$tmp/out/hidden.json"

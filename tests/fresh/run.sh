@@ -1,0 +1,226 @@
+#!/usr/bin/env bash
+# make test-fresh: the README's quick start, verbatim, on a bare Debian machine
+# (docs/testing.md "A fresh machine"). As root (debootstrap, chroot, mount).
+#
+#   DIST=bookworm (Debian 12, the default) or DIST=trixie (Debian 13).
+#
+#   1. The bare root: `debootstrap --variant=minbase DIST` from the archive this machine's apt
+#      uses (its URI read from the apt sources at run time), plus what the README's
+#      Requirements ask a reader to have before the two commands: git and make. Nothing else.
+#      Made once per DIST and kept in $FRESH_DIR/DIST/base (base.stamp: the suite and that
+#      package list); every scenario below runs in a fresh copy of it.
+#   2. The commit under test (HEAD, or the ref FRESH_REF), not the working tree: a git bundle of it,
+#      cloned inside the root with `git clone`, as a reader clones the project.
+#   3. Scenario "user" (FRESH_AS): as a plain user, `make demo` must stop and print the one
+#      apt-get line; that line is run as root; then `make demo` as the user must render.
+#   4. Scenario "root": as root, `make demo` then `make test`, as the README shows them; they
+#      install what they need. The run fails when either fails.
+#   Downloaded packages are shared (debootstrap's and apt's cache: $FRESH_DIR/DIST/apt, or the
+#   machine's own /var/cache/apt/archives when DIST is the machine's release), so a second
+#   scenario or a second run downloads nothing again. A scenario's root is removed after it
+#   passes (FRESH_KEEP=1 keeps it) and kept for a look when it fails.
+# Environment: DIST, FRESH_DIR (build/fresh), FRESH_AS ("user root"), FRESH_REF (HEAD; a branch or tag).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+DIST=${DIST:-bookworm}
+case $DIST in bookworm | trixie) ;; *)
+    echo "test-fresh: DIST=$DIST: bookworm (Debian 12) or trixie (Debian 13)" >&2
+    exit 2
+    ;;
+esac
+TOP=${FRESH_DIR:-build/fresh}
+case $TOP in /*) ;; *) TOP=$PWD/$TOP ;; esac
+DIR=$TOP/$DIST
+BASE=$DIR/base
+SCENARIOS=${FRESH_AS:-user root}
+REF=${FRESH_REF:-HEAD}
+COMMIT=$(git rev-parse --verify "$REF^{commit}")
+# What the README's Requirements tell a reader to install on a bare Debian before the two
+# commands (README.md "Requirements"; tests/docs.sh checks that the README names them).
+REQUIREMENTS="git make"
+USER_NAME=reader
+
+say() { printf 'fresh %s: %s\n' "$DIST" "$*" >&2; }
+[ "$(id -u)" -eq 0 ] || { say "needs root (debootstrap, chroot, mount)"; exit 1; }
+command -v debootstrap >/dev/null || { say "debootstrap is missing (tools/deps.sh fresh)"; exit 1; }
+[ -z "$(git status --porcelain --untracked-files=no)" ] ||
+    say "note: uncommitted changes are not tested; the commit is $(git log -1 --format='%h %s' "$COMMIT")"
+
+# The archive's URI: the first "URIs:" of a deb822 stanza that serves a main suite (not
+# security), else the first plain "deb" line.
+archive_uri() {
+    local f=/etc/apt/sources.list.d/debian.sources
+    if [ -r "$f" ]; then
+        awk '/^URIs:/ { uri = $2 } /^Suites:/ && uri != "" && $0 !~ /-security/ { print uri; exit }
+             /^$/ { uri = "" }' "$f"
+    fi
+    if [ -r /etc/apt/sources.list ]; then
+        awk '$1 == "deb" && $0 !~ /security/ { for (i = 2; i <= NF; i++) if ($i ~ /^[a-z]+:\/\//) { print $i; exit } }' \
+            /etc/apt/sources.list
+    fi
+}
+
+# The package cache the roots share: the machine's own for its own release (the host's
+# tools/deps.sh filled it), a folder of this run's otherwise.
+host_codename=$(. /etc/os-release 2>/dev/null && echo "${VERSION_CODENAME:-}")
+if [ "$host_codename" = "$DIST" ] && [ -d /var/cache/apt/archives ]; then
+    CACHE=/var/cache/apt/archives
+else
+    CACHE=$DIR/apt
+fi
+mkdir -p "$CACHE/partial"
+
+# Mounts, undone in reverse order on every exit path.
+MOUNTED=()
+unmount_all() {
+    local i
+    for ((i = ${#MOUNTED[@]} - 1; i >= 0; i--)); do
+        umount "${MOUNTED[i]}" 2>/dev/null || umount -l "${MOUNTED[i]}" 2>/dev/null ||
+            say "could not unmount ${MOUNTED[i]}"
+    done
+    MOUNTED=()
+}
+trap unmount_all EXIT
+trap 'exit 130' INT TERM
+mount_in() { # mount_in ROOT TARGET MOUNT-ARGS...
+    local target=$1$2
+    shift 2
+    mkdir -p "$target"
+    mount "$@" "$target"
+    MOUNTED+=("$target")
+}
+mount_all() { # mount_all ROOT
+    # the root bound onto itself: / in the chroot is then a mount point, which `unshare -m`
+    # (tests/no_data_files.sh) needs to make its mounts private
+    mount_in "$1" / --bind "$1"
+    mount_in "$1" /proc -t proc proc
+    mount_in "$1" /sys -t sysfs sysfs
+    mount_in "$1" /dev --bind /dev
+    mount_in "$1" /dev/pts --bind /dev/pts
+    # POSIX shared memory of its own (the bind above does not carry the host's /dev/shm): cage 0.2's
+    # wlroots 0.18 allocates its headless output's buffers there (tests/wayland.sh)
+    mount_in "$1" /dev/shm -t tmpfs -o mode=1777 tmpfs
+    mount_in "$1" /var/cache/apt/archives --bind "$CACHE"
+}
+
+# Mounts a killed run (SIGKILL: no trap) left behind, deepest first: removing or remaking a
+# root over a bound /dev would remove the machine's device nodes.
+unmount_leftovers() {
+    local m
+    awk -v dir="$DIR" 'index($2, dir "/") == 1 { print length($2), $2 }' /proc/mounts |
+        sort -rn | cut -d' ' -f2- | while read -r m; do
+        umount "$m" 2>/dev/null || umount -l "$m" || say "could not unmount $m (left by an earlier run)"
+    done
+}
+
+# in_root ROOT [--userspec=U:G] COMMAND...: a clean environment, as a login would give.
+in_root() {
+    local root=$1 home=/root spec=()
+    shift
+    case $1 in --userspec=*) spec=("$1") home=/home/$USER_NAME; shift ;; esac
+    chroot "${spec[@]}" "$root" /usr/bin/env -i PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
+        HOME="$home" USER="${spec:+$USER_NAME}" LANG=C.UTF-8 "$@"
+}
+as_reader() { in_root "$1" --userspec="$USER_NAME:$USER_NAME" "${@:2}"; }
+
+base_stamp() { printf '%s\n%s\n' "$DIST" "$REQUIREMENTS"; }
+make_base() {
+    local uri
+    uri=$(archive_uri | head -n 1)
+    [ -n "$uri" ] || { say "no Debian archive in the machine's apt sources"; exit 1; }
+    say "debootstrap --variant=minbase --include=${REQUIREMENTS// /,} $DIST (a minute or two)"
+    rm -rf --one-file-system "$BASE" "$DIR/base.stamp"
+    mkdir -p "$DIR"
+    debootstrap --variant=minbase --include="${REQUIREMENTS// /,}" --cache-dir="$CACHE" \
+        "$DIST" "$BASE" "$uri" >"$DIR/debootstrap.log" 2>&1 || {
+        tail -n 5 "$DIR/debootstrap.log" >&2
+        exit 1
+    }
+    in_root "$BASE" useradd --create-home --shell /bin/sh "$USER_NAME"
+    base_stamp >"$DIR/base.stamp"
+}
+
+# new_root NAME: a fresh copy of the bare root with the commit's bundle in /tmp; sets ROOT.
+new_root() {
+    ROOT=$DIR/$1
+    rm -rf --one-file-system "$ROOT"
+    cp -a "$BASE" "$ROOT"
+    git bundle create -q "$ROOT/tmp/sbfx.bundle" "$REF"
+    chmod 644 "$ROOT/tmp/sbfx.bundle"
+    mount_all "$ROOT"
+}
+done_root() {
+    unmount_all
+    [ -n "${FRESH_KEEP:-}" ] || rm -rf --one-file-system "$ROOT"
+}
+
+# timed LABEL COMMAND...: runs COMMAND, says how long it took; its status is COMMAND's.
+timed() {
+    local label=$1 t=$SECONDS rc=0
+    shift
+    "$@" || rc=$?
+    say "$label: $((SECONDS - t)) s (exit status $rc)"
+    return "$rc"
+}
+
+clone_cmd="git clone -q /tmp/sbfx.bundle sbfx && cd sbfx && git checkout -q $COMMIT"
+
+# As a plain user: make demo names the packages and stops; the line as root; make demo renders.
+scenario_user() {
+    local out=$DIR/user-demo-1.log line
+    new_root user
+    if timed "user: make demo (no packages yet)" as_reader "$ROOT" sh -c "cd && $clone_cmd && make demo" >"$out" 2>&1; then
+        say "user: make demo succeeded without the packages installed: it should have printed the apt-get line"
+        tail -n 5 "$out" >&2
+        return 1
+    fi
+    line=$(grep -A1 -m1 'As root, run:' "$out" | tail -n 1 | sed 's/^ *//')
+    case $line in
+    "apt-get update && apt-get install -y --no-install-recommends "*) say "user: make demo printed: $line" ;;
+    *)
+        say "user: make demo did not print the one apt-get line; its last lines:"
+        tail -n 5 "$out" >&2
+        return 1
+        ;;
+    esac
+    timed "user: that line as root" in_root "$ROOT" env DEBIAN_FRONTEND=noninteractive sh -c "$line" \
+        >"$DIR/user-apt.log" 2>&1 || { tail -n 8 "$DIR/user-apt.log" >&2; return 1; }
+    timed "user: make demo" as_reader "$ROOT" sh -c 'cd ~/sbfx && make demo' >"$DIR/user-demo-2.log" 2>&1 || {
+        tail -n 8 "$DIR/user-demo-2.log" >&2
+        return 1
+    }
+    [ -s "$ROOT/home/$USER_NAME/sbfx/build/demo/contact-sheet.png" ] || {
+        say "user: make demo left no build/demo/contact-sheet.png"
+        return 1
+    }
+    tail -n 2 "$DIR/user-demo-2.log" | sed "s/^/fresh $DIST: user: /" >&2
+    done_root
+}
+
+# As root, the README's two commands.
+scenario_root() {
+    new_root root
+    timed "root: make demo" in_root "$ROOT" sh -c "cd && $clone_cmd && make demo" >"$DIR/root-demo.log" 2>&1 || {
+        tail -n 20 "$DIR/root-demo.log" >&2
+        return 1
+    }
+    tail -n 2 "$DIR/root-demo.log" | sed "s/^/fresh $DIST: root: /" >&2
+    timed "root: make test" in_root "$ROOT" sh -c 'cd ~/sbfx && make test' 2>&1 | tee "$DIR/root-test.log" || return 1
+    done_root
+}
+
+start=$SECONDS
+unmount_leftovers
+if [ "$(cat "$DIR/base.stamp" 2>/dev/null)" != "$(base_stamp)" ] || ! [ -x "$BASE/usr/bin/git" ]; then
+    timed "bare root" make_base
+fi
+say "bare root: $(in_root "$BASE" sh -c '. /etc/os-release; echo "$PRETTY_NAME"'), $(du -sm "$BASE" | cut -f1) MB, commit $(git log -1 --format=%h "$COMMIT")"
+rc=0
+for s in $SCENARIOS; do
+    case $s in
+    user | root) timed "scenario $s" "scenario_$s" || { rc=1; say "scenario $s FAILED (its root is kept in $DIR/$s)"; unmount_all; } ;;
+    *) say "FRESH_AS: unknown scenario '$s' (user, root)"; rc=2 ;;
+    esac
+done
+say "$([ $rc -eq 0 ] && echo passed || echo FAILED) after $((SECONDS - start)) s"
+exit "$rc"
