@@ -15,8 +15,8 @@
 #      apt-get line; that line is run as root; then `make demo` as the user must render.
 #   4. Scenario "root": as root, `make demo` then `make test`, as the README shows them; they
 #      install what they need. The run fails when either fails.
-#   Downloaded packages are shared (debootstrap's and apt's cache: $FRESH_DIR/DIST/apt, or the
-#   machine's own /var/cache/apt/archives when DIST is the machine's release), so a second
+#   Downloaded packages are shared (debootstrap's and apt's cache: $FRESH_DIR/DIST/apt, which
+#   starts with the machine's own downloads when DIST is the machine's release), so a second
 #   scenario or a second run downloads nothing again. A scenario's root is removed after it
 #   passes (FRESH_KEEP=1 keeps it) and kept for a look when it fails.
 # Environment: DIST, FRESH_DIR (build/fresh), FRESH_AS ("user root"), FRESH_REF (HEAD; a branch or tag).
@@ -60,15 +60,15 @@ archive_uri() {
     fi
 }
 
-# The package cache the roots share: the machine's own for its own release (the host's
-# tools/deps.sh filled it), a folder of this run's otherwise.
-host_codename=$(. /etc/os-release 2>/dev/null && echo "${VERSION_CODENAME:-}")
-if [ "$host_codename" = "$DIST" ] && [ -d /var/cache/apt/archives ]; then
-    CACHE=/var/cache/apt/archives
-else
-    CACHE=$DIR/apt
-fi
+# The package cache the roots share, $DIR/apt. For the machine's own release it starts with
+# hard links to what the machine's apt has downloaded (its tools/deps.sh, in CI): not the folder
+# itself, whose lock the machine's own apt may hold meanwhile.
+CACHE=$DIR/apt
 mkdir -p "$CACHE/partial"
+host_codename=$(. /etc/os-release 2>/dev/null && echo "${VERSION_CODENAME:-}")
+if [ "$host_codename" = "$DIST" ]; then
+    find /var/cache/apt/archives -maxdepth 1 -name '*.deb' -exec cp -l -n -t "$CACHE" {} + 2>/dev/null || true
+fi
 
 # Mounts, undone in reverse order on every exit path.
 MOUNTED=()
