@@ -11,6 +11,7 @@
 #                      inclusive). PATH must be built by the tests: named (it or its folder) in
 #                      the Makefile, .ci/ or a test script.
 #   docs/make-help     `make help` lists every .PHONY target a user runs.
+#   docs/requirements  README's Requirements name the packages make test-fresh's bare root has.
 # Usage: tests/docs.sh. Prints "ok - docs/..." / "not ok - docs/...: why"; exits 1 on a failure.
 set -u
 cd "$(dirname "$0")/.." || exit 1
@@ -195,6 +196,20 @@ check_make_help() {
     fi
 }
 check_make_help
+
+# README's Requirements name what tests/fresh/run.sh (make test-fresh) puts in the bare root
+# before the quick start: the `apt-get install ...` line there is its REQUIREMENTS, word for word.
+check_requirements() {
+    local want said
+    want=$(sed -n 's/^REQUIREMENTS="\(.*\)"$/\1/p' tests/fresh/run.sh)
+    said=$(sed -n '/^## Requirements/,/^## /p' README.md | grep -o '`apt-get install [^`]*`' | head -n 1 | tr -d '`')
+    if [ -n "$want" ] && [ "$said" = "apt-get install $want" ]; then
+        ok "requirements (README: '$said'; make test-fresh's bare root has the same)"
+    else
+        not_ok requirements "README's Requirements say '$said', tests/fresh/run.sh installs '$want'"
+    fi
+}
+check_requirements
 
 files=$( { echo README.md; find docs -name '*.md' 2>/dev/null | sort; } )
 for md in $files; do

@@ -40,7 +40,10 @@ COMMIT=$(git rev-parse --verify "$REF^{commit}")
 REQUIREMENTS="git make"
 USER_NAME=reader
 
-say() { printf 'fresh %s: %s\n' "$DIST" "$*" >&2; }
+# what the run says goes to fd 3, the run's stderr, also from inside commands whose output goes
+# to a log
+exec 3>&2
+say() { printf 'fresh %s: %s\n' "$DIST" "$*" >&3; }
 [ "$(id -u)" -eq 0 ] || { say "needs root (debootstrap, chroot, mount)"; exit 1; }
 command -v debootstrap >/dev/null || { say "debootstrap is missing (tools/deps.sh fresh)"; exit 1; }
 [ -z "$(git status --porcelain --untracked-files=no)" ] ||
@@ -119,7 +122,7 @@ in_root() {
     shift
     case $1 in --userspec=*) spec=("$1") home=/home/$USER_NAME; shift ;; esac
     chroot "${spec[@]}" "$root" /usr/bin/env -i PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
-        HOME="$home" USER="${spec:+$USER_NAME}" LANG=C.UTF-8 "$@"
+        HOME="$home" USER="${spec:+$USER_NAME}" LANG=C.UTF-8 "$@" 3>&- 9>&-
 }
 as_reader() { in_root "$1" --userspec="$USER_NAME:$USER_NAME" "${@:2}"; }
 
@@ -133,7 +136,7 @@ make_base() {
     mkdir -p "$DIR"
     debootstrap --variant=minbase --include="${REQUIREMENTS// /,}" --cache-dir="$CACHE" \
         "$DIST" "$BASE" "$uri" >"$DIR/debootstrap.log" 2>&1 || {
-        tail -n 5 "$DIR/debootstrap.log" >&2
+        tail -n 5 "$DIR/debootstrap.log" >&3
         exit 1
     }
     in_root "$BASE" useradd --create-home --shell /bin/sh "$USER_NAME"
@@ -171,7 +174,7 @@ scenario_user() {
     new_root user
     if timed "user: make demo (no packages yet)" as_reader "$ROOT" sh -c "cd && $clone_cmd && make demo" >"$out" 2>&1; then
         say "user: make demo succeeded without the packages installed: it should have printed the apt-get line"
-        tail -n 5 "$out" >&2
+        tail -n 5 "$out" >&3
         return 1
     fi
     line=$(grep -A1 -m1 'As root, run:' "$out" | tail -n 1 | sed 's/^ *//')
@@ -179,21 +182,21 @@ scenario_user() {
     "apt-get update && apt-get install -y --no-install-recommends "*) say "user: make demo printed: $line" ;;
     *)
         say "user: make demo did not print the one apt-get line; its last lines:"
-        tail -n 5 "$out" >&2
+        tail -n 5 "$out" >&3
         return 1
         ;;
     esac
     timed "user: that line as root" in_root "$ROOT" env DEBIAN_FRONTEND=noninteractive sh -c "$line" \
-        >"$DIR/user-apt.log" 2>&1 || { tail -n 8 "$DIR/user-apt.log" >&2; return 1; }
+        >"$DIR/user-apt.log" 2>&1 || { tail -n 8 "$DIR/user-apt.log" >&3; return 1; }
     timed "user: make demo" as_reader "$ROOT" sh -c 'cd ~/sbfx && make demo' >"$DIR/user-demo-2.log" 2>&1 || {
-        tail -n 8 "$DIR/user-demo-2.log" >&2
+        tail -n 8 "$DIR/user-demo-2.log" >&3
         return 1
     }
     [ -s "$ROOT/home/$USER_NAME/sbfx/build/demo/contact-sheet.png" ] || {
         say "user: make demo left no build/demo/contact-sheet.png"
         return 1
     }
-    tail -n 2 "$DIR/user-demo-2.log" | sed "s/^/fresh $DIST: user: /" >&2
+    tail -n 2 "$DIR/user-demo-2.log" | sed "s/^/fresh $DIST: user: /" >&3
     done_root
 }
 
@@ -201,15 +204,19 @@ scenario_user() {
 scenario_root() {
     new_root root
     timed "root: make demo" in_root "$ROOT" sh -c "cd && $clone_cmd && make demo" >"$DIR/root-demo.log" 2>&1 || {
-        tail -n 20 "$DIR/root-demo.log" >&2
+        tail -n 20 "$DIR/root-demo.log" >&3
         return 1
     }
-    tail -n 2 "$DIR/root-demo.log" | sed "s/^/fresh $DIST: root: /" >&2
+    tail -n 2 "$DIR/root-demo.log" | sed "s/^/fresh $DIST: root: /" >&3
     timed "root: make test" in_root "$ROOT" sh -c 'cd ~/sbfx && make test' 2>&1 | tee "$DIR/root-test.log" || return 1
     done_root
 }
 
 start=$SECONDS
+# one run at a time in a DIST's folder: a second would unmount the first one's roots
+mkdir -p "$DIR"
+exec 9>"$DIR/.lock"
+flock -n 9 || { say "another make test-fresh DIST=$DIST runs in $DIR"; exit 1; }
 unmount_leftovers
 if [ "$(cat "$DIR/base.stamp" 2>/dev/null)" != "$(base_stamp)" ] || ! [ -x "$BASE/usr/bin/git" ]; then
     timed "bare root" make_base
