@@ -8,17 +8,18 @@
 #      uses (its URI read from the apt sources at run time), plus what the README's
 #      Requirements ask a reader to have before the two commands: git and make. Nothing else.
 #      Made once per DIST and kept in $FRESH_DIR/DIST/base (base.stamp: the suite and that
-#      package list); every scenario below runs in a fresh copy of it.
+#      package list); each run works in a fresh copy of it, $FRESH_DIR/DIST/root.
 #   2. The commit under test (HEAD, or the ref FRESH_REF), not the working tree: a git bundle of it,
 #      cloned inside the root with `git clone`, as a reader clones the project.
-#   3. Scenario "user" (FRESH_AS): as a plain user, `make demo` must stop and print the one
-#      apt-get line; that line is run as root; then `make demo` as the user must render.
-#   4. Scenario "root": as root, `make demo` then `make test`, as the README shows them; they
-#      install what they need. The run fails when either fails.
+#   3. As a plain user (scenario "user"): `make demo` must stop and print the one apt-get line;
+#      that line is run as root; then `make demo` as the user must render.
+#   4. Then as root in the same root (scenario "root"): `make demo` and `make test` in a clone of
+#      its own, as the README shows them; they install what is still missing (make test: the
+#      test packages). The run fails when any step fails. FRESH_AS="root" skips the user.
 #   Downloaded packages are shared (debootstrap's and apt's cache: $FRESH_DIR/DIST/apt, which
 #   starts with the machine's own downloads when DIST is the machine's release), so a second
-#   scenario or a second run downloads nothing again. A scenario's root is removed after it
-#   passes (FRESH_KEEP=1 keeps it) and kept for a look when it fails.
+#   run downloads nothing again. The root is removed after a run that passes (FRESH_KEEP=1 keeps
+#   it) and kept for a look when it fails.
 # Environment: DIST, FRESH_DIR (build/fresh), FRESH_AS ("user root"), FRESH_REF (HEAD; a branch or tag).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -64,8 +65,8 @@ archive_uri() {
 }
 
 # The package cache the roots share, $DIR/apt. For the machine's own release it starts with
-# hard links to what the machine's apt has downloaded (its tools/deps.sh, in CI): not the folder
-# itself, whose lock the machine's own apt may hold meanwhile.
+# hard links to what the machine's apt has downloaded, and gives back what it downloaded at the
+# end: not the folder itself, whose lock the machine's own apt may hold meanwhile.
 CACHE=$DIR/apt
 mkdir -p "$CACHE/partial"
 host_codename=$(. /etc/os-release 2>/dev/null && echo "${VERSION_CODENAME:-}")
@@ -103,6 +104,9 @@ mount_all() { # mount_all ROOT
     # POSIX shared memory of its own (the bind above does not carry the host's /dev/shm): cage 0.2's
     # wlroots 0.18 allocates its headless output's buffers there (tests/wayland.sh)
     mount_in "$1" /dev/shm -t tmpfs -o mode=1777 tmpfs
+    # the unified cgroup hierarchy, as a Debian machine mounts it (tests/wayland.sh delegates a
+    # subtree of it to a user manager)
+    mount_in "$1" /sys/fs/cgroup -t cgroup2 cgroup2
     mount_in "$1" /var/cache/apt/archives --bind "$CACHE"
 }
 
@@ -143,18 +147,14 @@ make_base() {
     base_stamp >"$DIR/base.stamp"
 }
 
-# new_root NAME: a fresh copy of the bare root with the commit's bundle in /tmp; sets ROOT.
+# new_root: a fresh copy of the bare root with the commit's bundle in /tmp, mounted.
+ROOT=$DIR/root
 new_root() {
-    ROOT=$DIR/$1
     rm -rf --one-file-system "$ROOT"
     cp -a "$BASE" "$ROOT"
     git bundle create -q "$ROOT/tmp/sbfx.bundle" "$REF"
     chmod 644 "$ROOT/tmp/sbfx.bundle"
     mount_all "$ROOT"
-}
-done_root() {
-    unmount_all
-    [ -n "${FRESH_KEEP:-}" ] || rm -rf --one-file-system "$ROOT"
 }
 
 # timed LABEL COMMAND...: runs COMMAND, says how long it took; its status is COMMAND's.
@@ -171,7 +171,6 @@ clone_cmd="git clone -q /tmp/sbfx.bundle sbfx && cd sbfx && git checkout -q $COM
 # As a plain user: make demo names the packages and stops; the line as root; make demo renders.
 scenario_user() {
     local out=$DIR/user-demo-1.log line
-    new_root user
     if timed "user: make demo (no packages yet)" as_reader "$ROOT" sh -c "cd && $clone_cmd && make demo" >"$out" 2>&1; then
         say "user: make demo succeeded without the packages installed: it should have printed the apt-get line"
         tail -n 5 "$out" >&3
@@ -197,19 +196,16 @@ scenario_user() {
         return 1
     }
     tail -n 2 "$DIR/user-demo-2.log" | sed "s/^/fresh $DIST: user: /" >&3
-    done_root
 }
 
 # As root, the README's two commands.
 scenario_root() {
-    new_root root
     timed "root: make demo" in_root "$ROOT" sh -c "cd && $clone_cmd && make demo" >"$DIR/root-demo.log" 2>&1 || {
         tail -n 20 "$DIR/root-demo.log" >&3
         return 1
     }
     tail -n 2 "$DIR/root-demo.log" | sed "s/^/fresh $DIST: root: /" >&3
     timed "root: make test" in_root "$ROOT" sh -c 'cd ~/sbfx && make test' 2>&1 | tee "$DIR/root-test.log" || return 1
-    done_root
 }
 
 start=$SECONDS
@@ -222,12 +218,22 @@ if [ "$(cat "$DIR/base.stamp" 2>/dev/null)" != "$(base_stamp)" ] || ! [ -x "$BAS
     timed "bare root" make_base
 fi
 say "bare root: $(in_root "$BASE" sh -c '. /etc/os-release; echo "$PRETTY_NAME"'), $(du -sm "$BASE" | cut -f1) MB, commit $(git log -1 --format=%h "$COMMIT")"
+# One root: the plain user first (the packages are not there yet), then root.
 rc=0
-for s in $SCENARIOS; do
-    case $s in
-    user | root) timed "scenario $s" "scenario_$s" || { rc=1; say "scenario $s FAILED (its root is kept in $DIR/$s)"; unmount_all; } ;;
-    *) say "FRESH_AS: unknown scenario '$s' (user, root)"; rc=2 ;;
-    esac
+new_root
+for s in user root; do
+    case " $SCENARIOS " in *" $s "*) ;; *) continue ;; esac
+    timed "scenario $s" "scenario_$s" || { rc=1; say "scenario $s FAILED"; break; }
 done
+unmount_all
+if [ $rc -eq 0 ] && [ -z "${FRESH_KEEP:-}" ]; then
+    rm -rf --one-file-system "$ROOT"
+else
+    say "the root is kept in $ROOT"
+fi
+# and what the roots downloaded serves the machine's own apt next (CI installs the same packages)
+if [ "$host_codename" = "$DIST" ]; then
+    find "$CACHE" -maxdepth 1 -name '*.deb' -exec cp -l -n -t /var/cache/apt/archives {} + 2>/dev/null || true
+fi
 say "$([ $rc -eq 0 ] && echo passed || echo FAILED) after $((SECONDS - start)) s"
 exit "$rc"
