@@ -21,6 +21,9 @@
 #   run downloads nothing again. The root is removed after a run that passes (FRESH_KEEP=1 keeps
 #   it) and kept for a look when it fails.
 # Environment: DIST, FRESH_DIR (build/fresh), FRESH_AS ("user root"), FRESH_REF (HEAD; a branch or tag).
+# The whole script is one brace group: bash reads it all before running it, so editing this file
+# while a run (half an hour) goes on does not change what that run does.
+{
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 DIST=${DIST:-bookworm}
@@ -237,3 +240,4 @@ if [ "$host_codename" = "$DIST" ]; then
 fi
 say "$([ $rc -eq 0 ] && echo passed || echo FAILED) after $((SECONDS - start)) s"
 exit "$rc"
+}
