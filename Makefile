@@ -318,7 +318,7 @@ NPROC := $(shell nproc 2>/dev/null || echo 1)
 JOBS_FLAG = $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(NPROC))
 
 # TEST_ASAN=cpu: the ASan+UBSan tier runs the unit and platform suites only, not the suites that
-# render on Mesa (make test-debian13: docs/testing.md says why that is no loss there).
+# render on Mesa: a lighter run for a slow machine (docs/testing.md says what it leaves out).
 TEST_ASAN ?= full
 ASAN_TEST_TARGETS := $(if $(filter cpu,$(TEST_ASAN)),lib test-unit test-platform,all test-unit test-gl test-platform)
 

@@ -123,12 +123,19 @@ unmount_leftovers() {
     done
 }
 
-# in_root ROOT [--userspec=U:G] COMMAND...: a clean environment, as a login would give.
+# in_root ROOT [--userspec=U:G] COMMAND...: COMMAND in the root, in a clean environment as a
+# login would give. The root is entered as a container would be, not with chroot alone: a mount
+# namespace of its own whose root is ROOT (pivot_root; the machine's own tree unmounted in it).
+# The kernel refuses user namespaces to a chrooted process, and the tests start a user manager
+# whose services use one (tests/wayland.sh), as they would on a machine of their own.
 in_root() {
     local root=$1 home=/root spec=()
     shift
     case $1 in --userspec=*) spec=("$1") home=/home/$USER_NAME; shift ;; esac
-    chroot "${spec[@]}" "$root" /usr/bin/env -i PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
+    unshare --mount --propagation private /bin/sh -c '
+        cd "$1" && pivot_root . .fresh-host && cd / && umount -l /.fresh-host || exit 125
+        shift
+        exec "$@"' sh "$root" chroot "${spec[@]}" / /usr/bin/env -i PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
         HOME="$home" USER="${spec:+$USER_NAME}" LANG=C.UTF-8 "$@" 3>&- 9>&-
 }
 as_reader() { in_root "$1" --userspec="$USER_NAME:$USER_NAME" "${@:2}"; }
@@ -146,7 +153,7 @@ make_base() {
         tail -n 5 "$DIR/debootstrap.log" >&3
         exit 1
     }
-    in_root "$BASE" useradd --create-home --shell /bin/sh "$USER_NAME"
+    chroot "$BASE" useradd --create-home --shell /bin/sh "$USER_NAME"
     base_stamp >"$DIR/base.stamp"
 }
 
@@ -155,6 +162,7 @@ ROOT=$DIR/root
 new_root() {
     rm -rf --one-file-system "$ROOT"
     cp -a "$BASE" "$ROOT"
+    mkdir "$ROOT/.fresh-host" # where in_root's pivot_root puts the machine's tree, unmounted at once
     git bundle create -q "$ROOT/tmp/sbfx.bundle" "$REF"
     chmod 644 "$ROOT/tmp/sbfx.bundle"
     mount_all "$ROOT"
@@ -220,7 +228,7 @@ unmount_leftovers
 if [ "$(cat "$DIR/base.stamp" 2>/dev/null)" != "$(base_stamp)" ] || ! [ -x "$BASE/usr/bin/git" ]; then
     timed "bare root" make_base
 fi
-say "bare root: $(in_root "$BASE" sh -c '. /etc/os-release; echo "$PRETTY_NAME"'), $(du -sm "$BASE" | cut -f1) MB, commit $(git log -1 --format=%h "$COMMIT")"
+say "bare root: $(. "$BASE/etc/os-release" && echo "$PRETTY_NAME"), $(du -sm "$BASE" | cut -f1) MB, commit $(git log -1 --format=%h "$COMMIT")"
 # One root: the plain user first (the packages are not there yet), then root.
 rc=0
 new_root
