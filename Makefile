@@ -21,7 +21,9 @@
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
 #   make test-vm      real-kernel tests in a qemu VM (vkms, vivid, gpio-sim; tests/vm/)
-#   make test-debian13  make test in a Debian 13 root (debootstrap; tests/debian13/run.sh), as root
+#   make test-fresh   the README's quick start in a bare Debian root: DIST=bookworm (12) or trixie
+#                     (13); debootstrap, a clone of HEAD, make demo and make test (tests/fresh/run.sh), as root
+#   make test-debian13  make test-fresh DIST=trixie
 #   make test-gpus    every scene's shaders through Mesa's Mali, V3D, Adreno, Vivante compilers
 #                     (drm-shims; builds Mesa 25 into build/mesa-shim/ once; docs/gpus.md)
 #   make gpiod2       sbfx-play again against libgpiod 2.x built from Debian 13's source (docs/gpio.md)
@@ -328,7 +330,7 @@ NPROC := $(shell nproc 2>/dev/null || echo 1)
 JOBS_FLAG = $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(NPROC))
 
 # TEST_ASAN=cpu: the ASan+UBSan tier runs the unit and platform suites only, not the suites that
-# render on Mesa (make test-debian13: docs/testing.md says why that is no loss there).
+# render on Mesa: a lighter run for a slow machine (docs/testing.md says what it leaves out).
 TEST_ASAN ?= full
 ASAN_TEST_TARGETS := $(if $(filter cpu,$(TEST_ASAN)),lib test-unit test-platform,all test-unit test-gl test-platform)
 
@@ -757,14 +759,18 @@ uninstall-kiosk:
 	rm -f $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT) $(DESTDIR)$(UDEVRULESDIR)/$(KIOSK_UDEV_RULE) \
 		$(DESTDIR)$(SYSUSERSDIR)/sbfx.conf
 
-# ---- Debian 13 beside Debian 12 (issue 20; docs/distributions.md) ---------------------------
-# make test in a Debian 13 root made with debootstrap (GCC 14, Mesa 25, libgpiod 2), cached in
-# build/debian13/ (tests/debian13/run.sh says how). As root. Its ASan+UBSan tier runs the unit
-# and platform suites and the fuzzer 10 s, not 60: docs/testing.md says why that loses nothing.
-.PHONY: test-debian13
+# ---- a fresh machine (issue 36; docs/testing.md "A fresh machine") ---------------------------
+# The README's quick start, verbatim, in a bare Debian root (debootstrap minbase plus git and
+# make): the commit under test cloned, then make demo and make test as root, and make demo as a
+# plain user (the one apt-get line, run as root, then the demo). DIST=bookworm (Debian 12) or
+# trixie (Debian 13: GCC 14, Mesa 25, libgpiod 2). As root; tests/fresh/run.sh says how.
+# make test-debian13 is make test-fresh DIST=trixie.
+.PHONY: test-fresh test-debian13
+test-fresh:
+	@tools/deps.sh fresh
+	@DIST=$(or $(DIST),bookworm) tests/fresh/run.sh
 test-debian13:
-	@tools/deps.sh debian13
-	@MAKE_TARGET="$${MAKE_TARGET:-test TEST_ASAN=cpu FUZZ_SECONDS=10}" tests/debian13/run.sh
+	@$(MAKE) --no-print-directory test-fresh DIST=trixie
 
 # ---- the look (issue 17): the β metric (tests/look/look_metrics.c, docs/look.md) ----------
 $(BUILD)/tests/unit/test_look_metrics: tests/unit/test_look_metrics.c $(BUILD)/obj/look/look_metrics.o $(REF_LIBS) \

@@ -145,6 +145,11 @@ if command -v systemd-analyze >/dev/null 2>&1 && [ -f "$cage_unit" ] && [ -f "$u
     level=$(sed -n 's/.*Overall exposure level for sbfx-kiosk-cage.service: \([0-9.]*\).*/\1/p' "$tmp/wsecurity.log")
     if [ -n "$level" ] && awk -v l="$level" 'BEGIN { exit !(l <= 1.5) }'; then ok "wayland-exposure ($level <= 1.5)"
     else not_ok wayland-exposure "'$level' > 1.5: $(grep '✗' "$tmp/wsecurity.log" | awk '{print $2}' | tr '\n' ' ')"; fi
+    # the user unit, hardened as far as a user manager allows (tests/wayland.sh starts it in one)
+    systemd-analyze security --offline=true "$user_unit" >"$tmp/usecurity.log" 2>&1
+    level=$(sed -n 's/.*Overall exposure level for sbfx-kiosk-wayland.service: \([0-9.]*\).*/\1/p' "$tmp/usecurity.log")
+    if [ -n "$level" ] && awk -v l="$level" 'BEGIN { exit !(l <= 2.5) }'; then ok "user-unit-exposure ($level <= 2.5)"
+    else not_ok user-unit-exposure "'$level' > 2.5: $(grep '✗' "$tmp/usecurity.log" | awk '{print $2}' | tr '\n' ' ')"; fi
 fi
 if [ "$(uvalue "$cage_unit" User)" = sbfx ] && grep -q '^u sbfx ' "$sysusers" && { ! command -v systemd-sysusers >/dev/null 2>&1 ||
     grep -q '^sbfx:' "$root/etc/passwd"; }; then ok "wayland-user (sbfx, made by sysusers.d)"

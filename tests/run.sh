@@ -37,8 +37,8 @@
 #              driver the loader finds: Mesa here, a GPU's driver where there is one
 #   --check    the edit-compile tier of `make check`: unit tests, test_gl_smoke, the shaders, the
 #              rooms' dependencies
-#   --asan=cpu the ASan+UBSan tier without the suites that render on Mesa (make test TEST_ASAN=cpu,
-#              which make test-debian13 runs)
+#   --asan=cpu the ASan+UBSan tier without the suites that render on Mesa (make test TEST_ASAN=cpu:
+#              a lighter run for a slow machine; docs/testing.md)
 #   --list     print the suites' names and stop
 #   PATTERN    only the suites whose name (with its "asan:" prefix) matches one of these shell
 #              patterns: tests/run.sh test_gl_module 'asan:*'
