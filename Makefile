@@ -27,7 +27,8 @@
 #   make gpiod2       sbfx-play again against libgpiod 2.x built from Debian 13's source (docs/gpio.md)
 #   make mesa-shim    Mesa 25 with the drm-shims of panfrost, v3d, freedreno, etnaviv (docs/gpus.md)
 #   make soak         SOAK_HOURS (10) simulated hours of the kiosk loop: build/soak/soak.csv, .png
-#   make fuzz         FUZZ_SECONDS (60) of libFuzzer on the scene parser (clang)
+#   make fuzz         FUZZ_SECONDS (60) of libFuzzer on the scene parser, FUZZ_DIS_SECONDS (15) on the
+#                     DIS parser and receiver (clang)
 #   make clean        remove build/
 #   make V=1 ...      print every command line (quiet by default: "  CC      build/obj/src/sim.o")
 # Every build first checks the Debian packages it needs (tools/deps.sh $(DEPS): as root it
@@ -224,12 +225,15 @@ $(BUILD)/obj/platform/display/display_wayland.o: $(WAYLAND_HEADERS)
 $(BUILD)/obj/platform/display/display_wayland.o $(BUILD)/obj/platform/wayland/wayland_egl.o: \
 	PLATFORM_CFLAGS += $(WAYLAND_PKG_CFLAGS) -I$(WAYLAND_GEN)
 
-# sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera and GPIO inputs (platform/)
+# Network triggers (platform/net/, docs/triggers.md): DIS over UDP (libc), MQTT through libmosquitto
+NET_SRC := dis_pdu dis_effects dis_events dis_receiver dis_config geodesy net_address udp_socket mqtt_client
+# sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera, GPIO and network inputs (platform/)
 PLAYER_SRC := $(addprefix player/,player module loop host reset authoring clock) \
 	$(addprefix player/options/,args usage board) $(addprefix player/outputs/,stats notify) \
-	$(addprefix player/inputs/,triggers gpio_source detail watch signals) \
+	$(addprefix player/inputs/,triggers trigger_queue gpio_source dis_source mqtt_source detail watch signals) \
 	$(addprefix video/,luma live_detail v4l2_source clip_detail) \
-	$(addprefix gpio/,gpio_backend effect_names gpio_triggers trigger_filter) \
+	$(addprefix gpio/,gpio_backend effect_names effect_at gpio_triggers trigger_filter) \
+	$(addprefix net/,$(NET_SRC)) \
 	$(addprefix display/,display_headless display_drm display_link display_wayland) \
 	$(addprefix drm/,drm_device drm_fb drm_atomic drm_legacy drm_writeback gbm_egl) \
 	$(addprefix wayland/,wayland_egl present_feedback)
@@ -249,7 +253,11 @@ $(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
-	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS) $(WAYLAND_PKG_LIBS)
+	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS) $(WAYLAND_PKG_LIBS) $(MQTT_PKG_LIBS)
+# libmosquitto runs the MQTT client on a thread of its own (net/mqtt_client.h); the player only
+MQTT_PKG_CFLAGS = $(call pkg_config,MQTT_PKG_CFLAGS,--cflags libmosquitto)
+MQTT_PKG_LIBS = $(call pkg_config,MQTT_PKG_LIBS,--libs libmosquitto) -pthread
+$(BUILD)/obj/platform/net/mqtt_client.o: PLATFORM_CFLAGS += $(MQTT_PKG_CFLAGS) -pthread
 # READY=1 and the watchdog's pings for systemd (player/outputs/notify.c): libsystemd, the player only
 NOTIFY_PKG_CFLAGS = $(call pkg_config,NOTIFY_PKG_CFLAGS,--cflags libsystemd)
 NOTIFY_PKG_LIBS = $(call pkg_config,NOTIFY_PKG_LIBS,--libs libsystemd)
