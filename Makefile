@@ -543,7 +543,7 @@ bench: $(BUILD)/bench/bench_shadow
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,
 # the --gpio/--mode syntax), run by tests/run.sh like the unit tests.
 PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,video/luma.o gpio/trigger_filter.o player/options/board.o \
-	player/options/args.o display/display_link.o) $(BUILD)/obj/tools/soak/soak_check.o
+	player/options/args.o display/display_link.o gpio/effect_at.o net/net_address.o) $(BUILD)/obj/tools/soak/soak_check.o
 PLATFORM_TESTS := $(patsubst tests/platform/%.c,$(BUILD)/tests/platform/%,$(wildcard tests/platform/*.c))
 $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h
 	@mkdir -p $(@D)
@@ -555,6 +555,19 @@ $(BUILD)/tests/platform/test_gpio_recovery: tests/platform/test_gpio_recovery.c 
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio/gpio_triggers.o \
 		$(BUILD)/obj/platform/gpio/trigger_filter.o $(BUILD)/obj/platform/gpio/effect_names.o $(PLATFORM_LIBS)
+# DIS without a network and the one trigger queue (test_dis), the network's flags, board keys and
+# scene keys (test_net_config): platform/net/ but its MQTT client, which the player's runs test
+NET_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,$(patsubst %,net/%.o,$(filter-out mqtt_client net_address,$(NET_SRC))) \
+	player/inputs/trigger_queue.o)
+$(BUILD)/tests/platform/test_dis $(BUILD)/tests/platform/test_net_config: $(BUILD)/tests/platform/%: \
+		tests/platform/%.c $(NET_TEST_OBJ) $(PLATFORM_TEST_OBJ) $(BUILD)/libsbfx.a tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(NET_TEST_OBJ) $(PLATFORM_TEST_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+# tests/dis.sh's sender: DIS PDUs encoded from the standard's layout, on its own
+$(BUILD)/tests/net/dis_send: tests/net/dis_send.c | deps
+	@mkdir -p $(@D)
+	$(CC) -std=c11 -O1 -g $(WARN) -o $@ $< -lm
+test-platform: $(BUILD)/tests/net/dis_send $(BUILD)/tests/vm/alloc_count.so
 # the GPIO backend this build chose, where no chip is needed (errors, calls on no line)
 $(BUILD)/tests/platform/test_gpio_backend: tests/platform/test_gpio_backend.c \
 		$(BUILD)/obj/platform/gpio/gpio_backend.o tests/check.h
