@@ -430,7 +430,9 @@ clean:
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
 
 # ---- fuzzing (clang, libFuzzer): FUZZ_SECONDS bounded, the example scenes as corpus ----
+# and FUZZ_DIS_SECONDS of the DIS parser and receiver, valid v6 and v7 PDUs as corpus
 FUZZ_SECONDS ?= 60
+FUZZ_DIS_SECONDS ?= 15
 FUZZ_SRC := src/scene/scene.c src/scene/effects.c src/scene/quality_name.c
 $(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) src/sbfx.h src/scene/scene.h
 	@mkdir -p $(@D)
@@ -438,14 +440,31 @@ $(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) src/sbfx.h src/sce
 		$(shell $(PKG_CONFIG) --cflags glesv2 libconfig) -o $@ tests/fuzz/fuzz_scene.c $(FUZZ_SRC) \
 		$(shell $(PKG_CONFIG) --libs libconfig)
 
+FUZZ_DIS_SRC := $(addprefix platform/net/,dis_pdu.c dis_receiver.c dis_events.c dis_effects.c geodesy.c udp_socket.c \
+	net_address.c)
+$(BUILD)/fuzz/fuzz_dis: tests/fuzz/fuzz_dis.c $(FUZZ_DIS_SRC) $(wildcard platform/net/*.h)
+	@mkdir -p $(@D)
+	clang -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined \
+		-Iplatform -o $@ tests/fuzz/fuzz_dis.c $(FUZZ_DIS_SRC) -lm
+
 .PHONY: fuzz
-fuzz: $(BUILD)/fuzz/fuzz_scene
+fuzz: $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_dis $(BUILD)/tests/net/dis_send
 	@rm -rf $(BUILD)/fuzz/corpus && mkdir -p $(BUILD)/fuzz/corpus && cp scenes/*.cfg $(BUILD)/fuzz/corpus/
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0 \
 		$(BUILD)/fuzz/fuzz_scene -max_total_time=$(FUZZ_SECONDS) -max_len=8192 -timeout=10 \
 		-artifact_prefix=$(BUILD)/fuzz/ -print_final_stats=1 $(BUILD)/fuzz/corpus > $(BUILD)/fuzz/log 2>&1 \
 		|| { tail -n 40 $(BUILD)/fuzz/log; exit 1; }
 	@grep -E "stat::number_of_executed_units|Done" $(BUILD)/fuzz/log | tail -n 2
+	@rm -rf $(BUILD)/fuzz/dis-corpus && mkdir -p $(BUILD)/fuzz/dis-corpus
+	@d=$(BUILD)/fuzz/dis-corpus; s=$(BUILD)/tests/net/dis_send; o=48.137154,11.576124,519; \
+		$$s --file $$d/v6 --version 6 --origin $$o --enu 100,0,0 detonation && \
+		$$s --file $$d/v7-records --version 7 --vp 2 --origin $$o --enu 0,100,50 --result 7 detonation && \
+		$$s --file $$d/v7-bundle --count 2 --origin $$o detonation && \
+		$$s --file $$d/entity-state entity-state
+	$(BUILD)/fuzz/fuzz_dis -max_total_time=$(FUZZ_DIS_SECONDS) -max_len=9000 -timeout=10 \
+		-artifact_prefix=$(BUILD)/fuzz/dis- -print_final_stats=1 $(BUILD)/fuzz/dis-corpus > $(BUILD)/fuzz/dis.log 2>&1 \
+		|| { tail -n 40 $(BUILD)/fuzz/dis.log; exit 1; }
+	@grep -E "stat::number_of_executed_units|Done" $(BUILD)/fuzz/dis.log | tail -n 2
 
 # ---- bench (issue #4: what accuracy costs) ------------------------------------------------
 # tests/bench/*.c link into one program. --wrap lets the bench time the module's particle pass
