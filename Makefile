@@ -753,7 +753,8 @@ FORCE:
 
 # ---- the kiosk's deployment (issue 20; docs/kiosk-deploy.md) --------------------------------
 # make install also installs the example scenes and board profiles under $(DATADIR)/sbfx, the
-# hardened unit dist/systemd/sbfx-kiosk.service.in with its paths filled in, the udev rule that
+# hardened unit dist/systemd/sbfx-kiosk.service.in with its paths filled in (and the drop-in that
+# opens the network to DIS and MQTT triggers, dist/systemd/network.conf, to copy), the udev rule that
 # gives /dev/gpiochip* to the group gpio and the sysusers.d file that makes that group. udev
 # reads rules only from /usr/lib/udev/rules.d and /etc/udev/rules.d, so a PREFIX other than
 # /usr puts the rule under /etc. On the live system (no DESTDIR, as root) the group is made
@@ -784,6 +785,8 @@ install-kiosk:
 	$(call kiosk_unit_from,dist/systemd/$(KIOSK_CAGE_UNIT).in,$(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_CAGE_UNIT))
 	$(call kiosk_unit_from,dist/systemd/user/$(KIOSK_USER_UNIT).in,$(DESTDIR)$(SYSTEMDUSERUNITDIR)/$(KIOSK_USER_UNIT))
 	install -m 644 dist/udev/$(KIOSK_UDEV_RULE) $(DESTDIR)$(UDEVRULESDIR)/
+	install -d $(DESTDIR)$(DATADIR)/sbfx/systemd
+	$(call kiosk_unit_from,dist/systemd/network.conf,$(DESTDIR)$(DATADIR)/sbfx/systemd/network.conf)
 	install -m 644 dist/sysusers/sbfx.conf $(DESTDIR)$(SYSUSERSDIR)/
 	@if [ -z "$(DESTDIR)" ] && [ "$$(id -u)" -eq 0 ]; then \
 		if command -v systemd-sysusers >/dev/null; then systemd-sysusers $(SYSUSERSDIR)/sbfx.conf; fi; \
