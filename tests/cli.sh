@@ -273,6 +273,19 @@ test_platform_arguments() {
     fi
     usage_error gpio-unknown-effect "its effects: explosion" --gpio sbfx-no-such-chip:3=nosuch \
         --size 160x90 --frames 1 --out "$tmp/gpio"
+    # network trigger sources (docs/triggers.md): a DIS address that is not this machine's stops
+    # the run, naming it; a broker that is not there is retried while the run goes on
+    usage_error dis-unbindable "--dis 192.0.2.1:3000: binding 192.0.2.1:3000: " --scene tests/net/range.cfg \
+        --dis 192.0.2.1:3000 --size 160x90 --frames 1 --out "$tmp/dis"
+    play --mqtt 127.0.0.1:1 --size 160x90 --frames 2 --out "$tmp/mqtt" --quiet --stats "$tmp/mqtt.json"
+    if [ "$rc" -ne 0 ]; then
+        fail mqtt-missing-broker "a run with no broker there exited with $rc: $(first_error_line)"
+    elif ! grep -qF "cannot reach the broker at 127.0.0.1:1" "$tmp/err" || ! grep -qF "retrying" "$tmp/err" ||
+        [ "$(json_number "$tmp/mqtt.json" mqtt_messages)" != 0 ]; then
+        fail mqtt-missing-broker "the log does not name the broker and the retry, or no mqtt_* keys: $(first_error_line)"
+    else
+        ok mqtt-missing-broker
+    fi
     usage_error board-missing "none-board.cfg" --board "$tmp/none-board.cfg"
     printf 'board = "t";\ndisplay = {\n  conector = "HDMI-A-1"; };\n' >"$tmp/typo-board.cfg"
     usage_error board-typo "typo-board.cfg:3: unknown key 'conector' in display" --board "$tmp/typo-board.cfg"
