@@ -223,6 +223,10 @@ list_all() {
     # the authoring loop: sbfx-play --headless --watch edited the ways editors save (issue 29)
     WEIGHT=30
     run_suite "" reload tests/reload.sh "$BUILD/sbfx-play"
+    # triggers from the network: DIS over loopback, MQTT through a broker of its own (issue 35)
+    WEIGHT=15
+    run_suite "" dis tests/dis.sh "$BUILD"
+    run_suite "" mqtt tests/mqtt.sh "$BUILD"
     WEIGHT=10
     run_suite "" install tests/install.sh "$BUILD"
     run_suite "" docs tests/docs.sh
@@ -234,8 +238,9 @@ list_all() {
     for part in $(tests/precision.sh --parts); do
         run_suite "precision:" "$part" env "$(detail_cache normal)" tests/precision.sh "$BUILD" "$part"
     done
-    # the scene parser under libFuzzer for FUZZ_SECONDS (60), the example scenes as corpus
-    WEIGHT=$((${FUZZ_SECONDS:-60} + 30))
+    # the scene parser under libFuzzer for FUZZ_SECONDS (60), the example scenes as corpus; the DIS
+    # parser for FUZZ_DIS_SECONDS (15)
+    WEIGHT=$((${FUZZ_SECONDS:-60} + ${FUZZ_DIS_SECONDS:-15} + 30))
     run_suite "" fuzz tests/fuzz.sh "$BUILD"
 
     if [ -d "$ASAN_BUILD" ]; then
