@@ -237,7 +237,7 @@ PLAYER_SRC := $(addprefix player/,player module loop host reset authoring clock)
 	$(addprefix gpio/,gpio_backend effect_names effect_at gpio_triggers trigger_filter) \
 	$(addprefix net/,$(NET_SRC)) \
 	$(addprefix display/,display_headless display_drm display_link display_wayland) \
-	$(addprefix drm/,drm_device drm_fb drm_atomic drm_legacy drm_writeback gbm_egl) \
+	$(addprefix drm/,drm_mode_spec drm_device drm_fb drm_atomic drm_legacy drm_writeback gbm_egl) \
 	$(addprefix wayland/,wayland_egl present_feedback)
 PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o) $(WAYLAND_PROTOCOL_OBJ)
 # --version prints the Makefile's VERSION (the library's)
@@ -563,7 +563,7 @@ bench: $(BUILD)/bench/bench_shadow
 # ---- platform (issue #5: DRM/KMS kiosk, V4L2 detail, GPIO triggers, boards) ---------------
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,
 # the --gpio/--mode syntax), run by tests/run.sh like the unit tests.
-PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,video/luma.o gpio/trigger_filter.o player/options/board.o \
+PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,video/luma.o gpio/trigger_filter.o player/options/board.o drm/drm_mode_spec.o \
 	player/options/args.o display/display_link.o gpio/effect_at.o net/net_address.o) $(BUILD)/obj/tools/soak/soak_check.o
 PLATFORM_TESTS := $(patsubst tests/platform/%.c,$(BUILD)/tests/platform/%,$(wildcard tests/platform/*.c))
 $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h

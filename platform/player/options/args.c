@@ -4,7 +4,8 @@
 
 #include "gpio/effect_at.h" /* EFFECT[@X,Y,Z] */
 #include "net/net_address.h" /* --dis, --mqtt */
-#include "player/options/board.h" /* enum modeset_kind, mode_spec_parse */
+#include "drm/drm_mode_spec.h"
+#include "player/options/board.h"
 
 #include <ctype.h>
 #include <errno.h>

@@ -25,11 +25,10 @@
 
 #include <stddef.h>
 
+#include "drm/drm_mode_spec.h" /* enum modeset_kind, mode_spec_parse: the display keys */
 #include "gpio/gpio_triggers.h"
 #include "net/mqtt_client.h"
 #include "net/net_address.h"
-
-enum modeset_kind { MODESET_AUTO, MODESET_ATOMIC, MODESET_LEGACY };
 
 struct board_profile {
     char name[64];
@@ -57,7 +56,5 @@ void board_profile_defaults(struct board_profile *b);
 /* 0, or -ENOENT / -EINVAL with "FILE:LINE: what" in err. */
 int board_load(const char *path, struct board_profile *b, char *err, size_t n);
 
-/* "WxH" or "WxH@HZ" (a mode name); refresh 0 when not given. 0 or -EINVAL. */
-int mode_spec_parse(const char *text, int *width, int *height, int *refresh);
 
 #endif
