@@ -752,6 +752,10 @@ test-gpus: mesa-shim all
 
 .PHONY: FORCE
 FORCE:
+# Nothing made is an intermediate file: make would delete the generated sources that only a pattern
+# rule reaches (the Wayland protocols' code, Qt's moc output) after a build, and the next make
+# (make install, or a test suite's) would make them again and relink sbfx-play while tests run it.
+.SECONDARY:
 
 # ---- the kiosk's deployment (issue 20; docs/kiosk-deploy.md) --------------------------------
 # make install also installs the example scenes and board profiles under $(DATADIR)/sbfx, the
