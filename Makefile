@@ -782,3 +782,34 @@ $(BUILD)/tests/gl/test_gl_look: tests/gl/test_gl_look.c $(LOOK_OBJ) $(PLATFORM_C
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(GL_TEST_WRAP) $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) \
 		$(REF_LIBS) $(PLATFORM_LIBS)
+
+# ---- GStreamer (issue 34): the element sbfx in the plugin libgstsbfx.so ---------------------
+# integrations/gstreamer/ (docs/hosts/gstreamer.md): a GstGLFilter linked against libsbfx.so
+# (NEEDED libsbfx.so.1), with the player's luma normalisation and clip decoding
+# (platform/video/luma.c, clip_detail.c: FFmpeg's libraries). Part of `make` where pkg-config
+# finds GStreamer's GL library (tools/deps.sh build installs its -dev packages), else skipped
+# with a note; not under SANITIZE=1 (gst-launch-1.0 and GStreamer's plugin scanner load it, and
+# they are not ASan programs). It exports GStreamer's entry point only (plugin.map).
+GST_PKGS := gstreamer-1.0 gstreamer-base-1.0 gstreamer-video-1.0 gstreamer-gl-1.0
+GST_PKG_CFLAGS = $(call pkg_config,GST_PKG_CFLAGS,--cflags $(GST_PKGS))
+GST_PKG_LIBS = $(call pkg_config,GST_PKG_LIBS,--libs $(GST_PKGS))
+GST_PLUGIN := $(BUILD)/gstreamer/libgstsbfx.so
+GST_OBJ := $(patsubst %.c,$(BUILD)/obj/%.o,$(wildcard integrations/gstreamer/*.c))
+GST_PLATFORM_OBJ := $(BUILD)/obj/platform/video/luma.o $(BUILD)/obj/platform/video/clip_detail.o
+$(BUILD)/obj/integrations/gstreamer/%.o: integrations/gstreamer/%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) $(GST_PKG_CFLAGS) -fvisibility=hidden -DSBFX_VERSION='"$(VERSION)"' -c -o $@ $<
+$(GST_PLUGIN): $(GST_OBJ) $(GST_PLATFORM_OBJ) $(SO_LINKS) integrations/gstreamer/plugin.map
+	@mkdir -p $(@D)
+	$(CC) -shared -Wl,-z,defs -Wl,--version-script=integrations/gstreamer/plugin.map -o $@ $(GST_OBJ) \
+		$(GST_PLATFORM_OBJ) -L$(BUILD) -lsbfx $(GST_PKG_LIBS) $(CLIP_PKG_LIBS) $(call pkg_config,GLES_LIBS,--libs glesv2) -lm
+.PHONY: gstreamer
+all: gstreamer
+gstreamer: lib
+ifeq ($(SANITIZE),1)
+	@echo "gstreamer: libgstsbfx.so is not built under SANITIZE=1 (it is loaded by programs that are not ASan's)"
+else
+	@if $(PKG_CONFIG) --exists $(GST_PKGS); then \
+		$(MAKE) --no-print-directory BUILD=$(BUILD) $(GST_PLUGIN); \
+	else echo "gstreamer: no GStreamer -dev packages (tools/deps.sh build installs them): $(GST_PLUGIN) not built"; fi
+endif
