@@ -813,3 +813,18 @@ else
 		$(MAKE) --no-print-directory BUILD=$(BUILD) $(GST_PLUGIN); \
 	else echo "gstreamer: no GStreamer -dev packages (tools/deps.sh build installs them): $(GST_PLUGIN) not built"; fi
 endif
+# Its tests (tests/gstreamer/, run by tests/run.sh with tests/gstreamer/env.sh): C programs on
+# GStreamer's libraries and appsink, built by make test where the plugin is.
+GST_TEST_PKGS := $(GST_PKGS) gstreamer-app-1.0 glesv2
+GST_TEST_PKG_CFLAGS = $(call pkg_config,GST_TEST_PKG_CFLAGS,--cflags $(GST_TEST_PKGS))
+GST_TEST_PKG_LIBS = $(call pkg_config,GST_TEST_PKG_LIBS,--libs $(GST_TEST_PKGS))
+GST_TESTS := $(patsubst tests/gstreamer/%.c,$(BUILD)/tests/gstreamer/%,$(wildcard tests/gstreamer/*.c))
+$(BUILD)/tests/gstreamer/%: tests/gstreamer/%.c tests/gstreamer/gst_harness.h tests/check.h tests/gl/gl_snapshot.h | deps
+	@mkdir -p $(@D)
+	$(CC) $(BASE_CFLAGS) $(GST_TEST_PKG_CFLAGS) -Itests -Itests/gl $(CFLAGS) -o $@ $< $(GST_TEST_PKG_LIBS) -lm
+.PHONY: test-gstreamer
+test-gstreamer: gstreamer
+ifneq ($(SANITIZE),1)
+	@if $(PKG_CONFIG) --exists $(GST_PKGS) gstreamer-app-1.0; then \
+		$(MAKE) --no-print-directory BUILD=$(BUILD) $(GST_TESTS); fi
+endif
