@@ -38,7 +38,7 @@ typedef struct run {
 static bool gst_gles; /* GstGL's context is OpenGL ES (GST_GL_API=gles2), else desktop OpenGL */
 
 /* The API of the context the probe pipeline's glupload got. */
-static void note_api(GstElement *pipeline)
+static inline void note_api(GstElement *pipeline)
 {
     GstElement *up = gst_bin_get_by_name(GST_BIN(pipeline), "up");
     GstGLContext *context = NULL;
@@ -49,7 +49,7 @@ static void note_api(GstElement *pipeline)
 }
 
 /* GStreamer, started in this (forked) test; skips the test when GstGL gets no context here. */
-static void gst_start(void)
+static inline void gst_start(void)
 {
     setenv("GST_GL_PLATFORM", getenv("GST_GL_PLATFORM") ? getenv("GST_GL_PLATFORM") : "egl", 1);
     setenv("GST_GL_WINDOW", getenv("GST_GL_WINDOW") ? getenv("GST_GL_WINDOW") : "egl-device", 1);
@@ -96,7 +96,7 @@ static GstElement *by_name(GstElement *pipeline, const char *name)
 }
 
 /* What the bus says: the first error and warning, into r. */
-static void drain_bus(GstElement *pipeline, run *r)
+static inline void drain_bus(GstElement *pipeline, run *r)
 {
     GstBus *bus = gst_element_get_bus(pipeline);
     GstMessage *m;
@@ -116,7 +116,7 @@ static void drain_bus(GstElement *pipeline, run *r)
 }
 
 /* The next frame from appsink "out" into r; false at EOS, an error or after 30 s. */
-static bool pull(GstElement *pipeline, run *r)
+static inline bool pull(GstElement *pipeline, run *r)
 {
     GstElement *out = by_name(pipeline, "out");
     GstSample *s = gst_app_sink_try_pull_sample(GST_APP_SINK(out), 30 * GST_SECOND);
@@ -136,7 +136,7 @@ static bool pull(GstElement *pipeline, run *r)
     return ok;
 }
 
-static void keep_stats(GstElement *pipeline, run *r)
+static inline void keep_stats(GstElement *pipeline, run *r)
 {
     GstElement *fx = by_name(pipeline, "fx");
     if (!fx) return;
@@ -146,7 +146,7 @@ static void keep_stats(GstElement *pipeline, run *r)
 }
 
 /* Plays a pipeline built from `description` to its end (or max frames), its frames into r. */
-static void play_pipeline(GstElement *p, int max, run *r)
+static inline void play_pipeline(GstElement *p, int max, run *r)
 {
     memset(r, 0, sizeof(*r));
     gst_element_set_state(p, GST_STATE_PLAYING);
@@ -156,35 +156,35 @@ static void play_pipeline(GstElement *p, int max, run *r)
     gst_element_set_state(p, GST_STATE_NULL);
 }
 
-static void play(const char *description, int max, run *r)
+static inline void play(const char *description, int max, run *r)
 {
     GstElement *p = pipeline_of(description);
     play_pipeline(p, max, r);
     gst_object_unref(p);
 }
 
-static void run_free(run *r)
+static inline void run_free(run *r)
 {
     for (int i = 0; i < r->count; i++) free(r->frames[i]);
     if (r->stats) gst_structure_free(r->stats);
     memset(r, 0, sizeof(*r));
 }
 
-static guint64 stat_u64(const run *r, const char *field)
+static inline guint64 stat_u64(const run *r, const char *field)
 {
     guint64 v = 0;
     if (r->stats) gst_structure_get_uint64(r->stats, field, &v);
     return v;
 }
 
-static int stat_int(const run *r, const char *field)
+static inline int stat_int(const run *r, const char *field)
 {
     gint v = 0;
     if (r->stats) gst_structure_get_int(r->stats, field, &v);
     return v;
 }
 
-static double stat_double(const run *r, const char *field)
+static inline double stat_double(const run *r, const char *field)
 {
     gdouble v = 0;
     if (r->stats) gst_structure_get_double(r->stats, field, &v);
@@ -192,7 +192,7 @@ static double stat_double(const run *r, const char *field)
 }
 
 /* Pixels of two frames whose colour differs by more than `tolerance` in any channel. */
-static int pixels_differing(const uint8_t *a, const uint8_t *b, int tolerance)
+static inline int pixels_differing(const uint8_t *a, const uint8_t *b, int tolerance)
 {
     int n = 0;
     for (size_t i = 0; i < (size_t)W * H; i++)

@@ -463,6 +463,97 @@ CHECK_TEST(gl_element_after_it_renders_as_without_it)
     run_free(&negated);
 }
 
+CHECK_TEST(detail_from_input_feeds_the_video_as_detail)
+{
+    gst_start();
+    run procedural, fed;
+    char d[512];
+    /* a moving ball: each frame a different slice */
+    snprintf(d, sizeof(d), "videotestsrc pattern=ball num-buffers=16 ! video/x-raw,width=96,height=64,"
+             "framerate=30/1 ! glupload ! sbfx name=fx scene=%s ! " SINK, EXPLOSION);
+    play(d, 16, &procedural);
+    snprintf(d, sizeof(d), "videotestsrc pattern=ball num-buffers=16 ! video/x-raw,width=96,height=64,"
+             "framerate=30/1 ! glupload ! sbfx name=fx scene=%s detail-from-input=true ! " SINK, EXPLOSION);
+    play(d, 16, &fed);
+    CHECK(fed.count == 16 && !fed.error[0] && !fed.warning[0], "%d frames: %s %s", fed.count, fed.error, fed.warning);
+    /* one frame late: the first frame's read-back is taken with the second */
+    CHECK(stat_u64(&fed, "detail-slices") == 15 && stat_u64(&fed, "detail-distinct") >= 10,
+          "%llu slices pushed, %llu distinct", (unsigned long long)stat_u64(&fed, "detail-slices"),
+          (unsigned long long)stat_u64(&fed, "detail-distinct"));
+    int differ = 0;
+    for (int i = 0; i < fed.count && i < procedural.count; i++)
+        differ += pixels_differing(procedural.frames[i], fed.frames[i], 2) > 0;
+    CHECK(differ >= 8, "only %d frames look different with the video's detail", differ);
+    CHECK(stat_u64(&fed, "heap-allocs-after-load") == 0, "sbfx allocated after load");
+    run_free(&procedural);
+    run_free(&fed);
+}
+
+CHECK_TEST(background_plane_hides_what_is_behind_it)
+{
+    gst_start();
+    run in, near, far;
+    reference(12, &in);
+    play_fx("scene=" EXPLOSION " background-distance=3", 12, &near); /* the explosion is about 6.5 m away */
+    play_fx("scene=" EXPLOSION " background-distance=20", 12, &far);
+    int hidden = 0, shown = 0;
+    for (int i = 0; i < in.count && i < near.count && i < far.count; i++) {
+        hidden += pixels_differing(in.frames[i], near.frames[i], 1);
+        shown += pixels_differing(in.frames[i], far.frames[i], 8);
+    }
+    CHECK(stat_u64(&near, "frames-rendered") >= 10 && hidden == 0, "%llu frames rendered, %d pixels changed in "
+          "front of a plane at 3 m", (unsigned long long)stat_u64(&near, "frames-rendered"), hidden);
+    CHECK(shown > 1000, "a plane at 20 m leaves %d pixels changed in 12 frames", shown);
+    run_free(&in);
+    run_free(&near);
+    run_free(&far);
+}
+
+static void pull_n(GstElement *p, run *r, int n)
+{
+    for (int i = 0; i < n; i++) pull(p, r);
+}
+
+CHECK_TEST(scene_and_quality_change_while_playing)
+{
+    gst_start();
+    char d[512], dir[] = "/tmp/sbfx-gst-XXXXXX", bad[256];
+    CHECK(mkdtemp(dir) != NULL);
+    snprintf(bad, sizeof(bad), "%s/broken.cfg", dir);
+    FILE *f = fopen(bad, "w");
+    fputs("render = {\n  target_scale = 5;\n};\n", f);
+    fclose(f);
+    GstElement *p = pipeline_of(pipeline_with("sbfx name=fx scene=" EXPLOSION, d, sizeof(d)));
+    GstElement *fx = by_name(p, "fx");
+    run r;
+    memset(&r, 0, sizeof(r));
+    gst_element_set_state(p, GST_STATE_PLAYING);
+    pull_n(p, &r, 6);
+    g_object_set(fx, "scene", "scenes/barrage.cfg", "scale", 8, NULL);
+    pull_n(p, &r, 14); /* barrage's timeline from now: explosions at 0, 0.12, 0.24, 0.36 s */
+    keep_stats(p, &r);
+    char quality[64] = "";
+    snprintf(quality, sizeof(quality), "%s", r.stats ? gst_structure_get_string(r.stats, "quality") : "");
+    CHECK(stat_u64(&r, "scene-reloads") == 1 && stat_int(&r, "triggers-fired") >= 4 && strstr(quality, "/8/"),
+          "reloads %llu, fired %d, quality %s", (unsigned long long)stat_u64(&r, "scene-reloads"),
+          stat_int(&r, "triggers-fired"), quality);
+    g_object_set(fx, "scene", bad, NULL);
+    pull_n(p, &r, 3);
+    keep_stats(p, &r);
+    drain_bus(p, &r);
+    gst_element_set_state(p, GST_STATE_NULL);
+    char want[300];
+    snprintf(want, sizeof(want), "%s:2", bad);
+    CHECK(r.count == 23 && !r.error[0] && strstr(r.warning, want), "%d frames; error \"%s\", warning \"%s\"",
+          r.count, r.error, r.warning);
+    CHECK(stat_u64(&r, "scene-reloads") == 1, "a broken scene was taken over");
+    gst_object_unref(fx);
+    gst_object_unref(p);
+    run_free(&r);
+    unlink(bad);
+    rmdir(dir);
+}
+
 /* The leaks tracer's live objects (its get-live-objects action): how many. */
 static int live_objects(GstTracer *leaks)
 {
