@@ -10,13 +10,17 @@
 #   make test-hosts   the SDL2, desktop OpenGL and Qt Quick hosts and their tests (docs/hosts/;
 #                     make test runs them)
 #   make test-qt-quick  the Qt Quick item, its example and test where Qt 6 is installed (test-hosts)
+#   make gstreamer    the GStreamer element sbfx, build/gstreamer/libgstsbfx.so (docs/hosts/gstreamer.md;
+#                     part of make where GStreamer's -dev packages are)
+#   make test-gstreamer  the element and its tests (tests/gstreamer/; make test runs them)
 #   make test-precision  the accuracy suites at GPU precision: SBFX_MEDIUMP=native SBFX_FILTER_BITS=8
 #                     (and 6 bits for NVIDIA's cases; tests/precision.sh; make test runs it)
 #   make bench        timings into build/bench/
 #   make figures      the seed's figures rendered into docs/figures/ (docs/figures.md)
 #   make ladder       src/budget/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
 #   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR, MANDIR, DATADIR); also
-#                     scenes, boards and the kiosk's unit and udev rule (dist/)
+#                     scenes, boards, the kiosk's unit and udev rule (dist/), and libgstsbfx.so into
+#                     GStreamer's plugin folder under PREFIX (GST_PLUGINDIR)
 #   make uninstall    remove what make install put there (same PREFIX, DESTDIR)
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
@@ -336,7 +340,7 @@ ASAN_TEST_TARGETS := $(if $(filter cpu,$(TEST_ASAN)),lib test-unit test-platform
 .PHONY: test-build test-build-normal test-build-asan check
 test-build: test-build-normal test-build-asan
 test-build-normal:
-	@$(MAKE) --no-print-directory all test-unit test-gl test-platform test-hosts
+	@$(MAKE) --no-print-directory all test-unit test-gl test-platform test-hosts test-gstreamer
 test-build-asan:
 	@$(MAKE) --no-print-directory BUILD=build/asan SANITIZE=1 $(ASAN_TEST_TARGETS)
 
@@ -828,3 +832,20 @@ ifneq ($(SANITIZE),1)
 	@if $(PKG_CONFIG) --exists $(GST_PKGS) gstreamer-app-1.0; then \
 		$(MAKE) --no-print-directory BUILD=$(BUILD) $(GST_TESTS); fi
 endif
+# GStreamer's plugin folder under PREFIX: pkg-config's pluginsdir with GStreamer's own prefix
+# replaced by PREFIX (/usr/lib/x86_64-linux-gnu/gstreamer-1.0 -> $(PREFIX)/lib/x86_64-linux-gnu/
+# gstreamer-1.0). GStreamer scans only its own folder, the user's and GST_PLUGIN_PATH: PREFIX=/usr
+# installs where every GStreamer program finds it; another PREFIX needs GST_PLUGIN_PATH set to that
+# folder (docs/hosts/gstreamer.md). GST_PLUGINDIR= overrides it.
+GST_PKG_PREFIX = $(call pkg_config,GST_PKG_PREFIX,--variable=prefix gstreamer-1.0)
+GST_PKG_PLUGINSDIR = $(call pkg_config,GST_PKG_PLUGINSDIR,--variable=pluginsdir gstreamer-1.0)
+GST_PLUGINDIR ?= $(patsubst $(GST_PKG_PREFIX)/%,$(PREFIX)/%,$(GST_PKG_PLUGINSDIR))
+.PHONY: install-gstreamer uninstall-gstreamer
+install: install-gstreamer
+uninstall: uninstall-gstreamer
+install-gstreamer: all
+	@if [ -f $(GST_PLUGIN) ]; then \
+		install -d $(DESTDIR)$(GST_PLUGINDIR) && install -m 755 $(GST_PLUGIN) $(DESTDIR)$(GST_PLUGINDIR)/; \
+	else echo "install: $(GST_PLUGIN) was not built (no GStreamer -dev packages): not installed"; fi
+uninstall-gstreamer:
+	@if $(PKG_CONFIG) --exists gstreamer-1.0; then rm -f $(DESTDIR)$(GST_PLUGINDIR)/libgstsbfx.so; fi

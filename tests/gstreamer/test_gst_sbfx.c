@@ -143,7 +143,9 @@ static GstPadProbeReturn emit_at(GstPad *pad, GstPadProbeInfo *info, gpointer us
 static void play_triggered(const char *effect, GstClockTime at, int frames, run *out)
 {
     char d[512];
-    GstElement *p = pipeline_of(pipeline_with("sbfx name=fx scene=" EXPLOSION " timeline=false", d, sizeof(d)));
+    snprintf(d, sizeof(d), "videotestsrc pattern=colors num-buffers=%d ! video/x-raw,width=96,height=64,"
+             "framerate=30/1 ! glupload ! sbfx name=fx scene=%s timeline=false ! " SINK, frames, EXPLOSION);
+    GstElement *p = pipeline_of(d);
     trigger_at t = {.fx = by_name(p, "fx"), .at = at, .effect = effect};
     probe(p, "fx", "sink", emit_at, &t);
     play_pipeline(p, frames, out);
