@@ -274,9 +274,23 @@ static gboolean gst_sbfx_start(GstBaseTransform *bt)
     return GST_BASE_TRANSFORM_CLASS(parent_class)->start(bt);
 }
 
+/* What the run did, in the log (GST_DEBUG=sbfx:4): what a command line's user can see of stats. */
+static void log_summary(GstSbfx *self)
+{
+    GST_OBJECT_LOCK(self);
+    struct gst_sbfx_counts c = self->counts;
+    GST_OBJECT_UNLOCK(self);
+    GST_INFO_OBJECT(self, "stopped after %" G_GUINT64_FORMAT " frames: %" G_GUINT64_FORMAT " rendered, %"
+                    G_GUINT64_FORMAT " forwarded; %d triggers fired, %" G_GUINT64_FORMAT " taps; %" G_GUINT64_FORMAT
+                    " detail slices (%" G_GUINT64_FORMAT " distinct); %.2f ms a rendered frame (mean), %.2f max",
+                    c.frames, c.rendered, c.forwarded, c.have_module ? c.module.triggers_fired : 0, c.taps,
+                    c.detail_slices, c.detail_distinct, c.rendered ? c.sum_ms / (double)c.rendered : 0.0, c.max_ms);
+}
+
 static gboolean gst_sbfx_stop(GstBaseTransform *bt)
 {
     GstSbfx *self = GST_SBFX(bt);
+    log_summary(self);
     gboolean ok = GST_BASE_TRANSFORM_CLASS(parent_class)->stop(bt); /* gl_stop: the module goes */
     sbfx_scene_free(self->scene);
     self->scene = NULL;

@@ -402,6 +402,47 @@ test_video_frames() {
     note "$(grep -m1 'feeds the detail volume' "$L/video.err"); frames $frames, distinct $distinct ($((SECONDS - t0)) s)"
 }
 
+# The GStreamer camera kiosk (examples/gstreamer/camera-kms.sh, docs/hosts/gstreamer.md): vivid's
+# frames through v4l2src, the element sbfx with the video as its detail (detail-from-input), the
+# frames to vkms through kmssink. While it plays a CRTC scans a framebuffer out; at the end the
+# element's summary (GST_DEBUG=sbfx:4) says it rendered the explosion and pushed detail slices.
+test_gst_camera() {
+    local t0=$SECONDS
+    if ! command -v gst-launch-1.0 >/dev/null; then
+        skip gst-camera "gst-launch-1.0 is not installed (tools/deps.sh vm)"
+        return
+    fi
+    if [ ! -f "$B/gstreamer/libgstsbfx.so" ]; then
+        fail gst-camera "$B/gstreamer/libgstsbfx.so was not built (make gstreamer)"
+        return
+    fi
+    step "camera-kms.sh: vivid -> sbfx -> kmssink"
+    env GST_PLUGIN_PATH="$B/gstreamer" LD_LIBRARY_PATH="$B" GST_REGISTRY="$T/gst-registry.bin" GST_DEBUG=sbfx:4 \
+        GST_DEBUG_NO_COLOR=1 SCENE="$SRC/scenes/explosion.cfg" KMS_DRIVER=vkms \
+        CAMERA="v4l2src device=/dev/video0 num-buffers=60 ! video/x-raw,width=320,height=180" \
+        timeout -k 5 150 examples/gstreamer/camera-kms.sh >"$L/gst-camera.out" 2>"$L/gst-camera.err" &
+    local pid=$! crtc=""
+    if wait_for "$L/gst-camera.out" "Setting pipeline to PLAYING" 120; then
+        sleep 2
+        crtc=$("$DRM_STATE" "$CARD" 2>&1 | grep -v ' fb 0 ' | grep -m1 ' mode ')
+    fi
+    wait "$pid"
+    local rc=$? summary rendered slices
+    summary=$(grep -o 'stopped after.*' "$L/gst-camera.err" | tail -n 1)
+    rendered=$(printf '%s' "$summary" | sed -n 's/.* \([0-9]*\) rendered.*/\1/p')
+    slices=$(printf '%s' "$summary" | sed -n 's/.* \([0-9]*\) detail slices.*/\1/p')
+    if [ "$rc" -ne 0 ]; then
+        fail gst-camera "exit $rc: $(grep -m1 -e ERROR -e CRITICAL "$L/gst-camera.out" "$L/gst-camera.err" | cut -c 1-200)"
+    elif [ -z "$crtc" ]; then
+        fail gst-camera "no CRTC scanned a framebuffer out while kmssink played"
+    elif [ "${rendered:-0}" -lt 30 ] || [ "${slices:-0}" -lt 30 ]; then
+        fail gst-camera "the element: '$summary'"
+    else
+        ok gst-camera
+    fi
+    note "gst-camera: $crtc; $summary ($((SECONDS - t0)) s)"
+}
+
 # stats_lines NAME: how many once-a-second stats lines the kiosk NAME printed so far.
 stats_lines() { grep -c 'fps, frame' "$L/$1.out"; }
 
@@ -951,6 +992,7 @@ group drm-errors 60 test_drm_errors
 group drm-kiosk 90 test_kiosk_and_busy
 group video-frames 60 test_video_frames
 group video-outages 150 test_video_outages
+group gst-camera 180 test_gst_camera
 run_test gpio-sim 30 setup_gpio_sim
 if [ -s "$T/gpio.env" ]; then
     . "$T/gpio.env"
