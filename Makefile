@@ -826,6 +826,11 @@ GST_TESTS := $(patsubst tests/gstreamer/%.c,$(BUILD)/tests/gstreamer/%,$(wildcar
 $(BUILD)/tests/gstreamer/%: tests/gstreamer/%.c tests/gstreamer/gst_harness.h tests/check.h tests/gl/gl_snapshot.h | deps
 	@mkdir -p $(@D)
 	$(CC) $(BASE_CFLAGS) $(GST_TEST_PKG_CFLAGS) -Itests -Itests/gl $(CFLAGS) -o $@ $< $(GST_TEST_PKG_LIBS) -lm
+# the element's arithmetic alone (stream_clock.c, ground_tap.c), with sbfx's matrix helpers
+GST_UNIT_OBJ := $(BUILD)/obj/integrations/gstreamer/stream_clock.o $(BUILD)/obj/integrations/gstreamer/ground_tap.o
+$(BUILD)/tests/gstreamer/test_gst_units: tests/gstreamer/test_gst_units.c $(GST_UNIT_OBJ) $(BUILD)/libsbfx.a tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(SRC_CFLAGS) -Itests -Iintegrations/gstreamer -o $@ $< $(GST_UNIT_OBJ) $(BUILD)/libsbfx.a $(SRC_LIBS)
 .PHONY: test-gstreamer
 test-gstreamer: gstreamer
 ifneq ($(SANITIZE),1)

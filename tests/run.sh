@@ -185,6 +185,7 @@ NO_LEAKS=ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0
 gstreamer_suites() {
     local t
     check_built "" gstreamer "$BUILD"
+    [ -x "$BUILD/tests/gstreamer/test_gst_units" ] && run_suite "" test_gst_units "$BUILD/tests/gstreamer/test_gst_units"
     for t in test_gst_sbfx test_gst_gl_state; do
         [ -x "$BUILD/tests/gstreamer/$t" ] || continue
         run_suite "" "$t" tests/gstreamer/with_plugin.sh "$BUILD" "$BUILD/tests/gstreamer/$t"

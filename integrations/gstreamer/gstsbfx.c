@@ -297,6 +297,16 @@ static gboolean gst_sbfx_stop(GstBaseTransform *bt)
     return ok;
 }
 
+/* ---- caps: the frame's size goes through unchanged ---- */
+
+/* GstGLFilter's own lets the output take any size (it scales): sbfx draws over the input picture
+ * pixel for pixel, and a sink that asks for its display's size (kmssink) must get a scaler
+ * before or after the element, not a different output size from it. */
+static GstCaps *same_caps(GstGLFilter *filter, GstPadDirection direction, GstCaps *caps, GstCaps *filter_caps)
+{
+    return gst_caps_ref(caps);
+}
+
 /* ---- the type ---- */
 
 static void gst_sbfx_finalize(GObject *object)
@@ -333,6 +343,7 @@ static void gst_sbfx_class_init(GstSbfxClass *klass)
     gc->gl_stop = gst_sbfx_gl_stop;
     gc->gl_set_caps = gst_sbfx_gl_set_caps;
     GST_GL_FILTER_CLASS(klass)->filter_texture = gst_sbfx_filter_texture;
+    GST_GL_FILTER_CLASS(klass)->transform_internal_caps = same_caps;
     gst_type_mark_as_plugin_api(opacity_type(), 0);
     gst_type_mark_as_plugin_api(upsample_type(), 0);
     gst_type_mark_as_plugin_api(format_type(), 0);

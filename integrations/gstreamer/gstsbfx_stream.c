@@ -174,8 +174,9 @@ static void apply_changes(GstSbfx *self)
     gboolean quality_changed = self->quality_changed;
     self->quality_changed = FALSE;
     GST_OBJECT_UNLOCK(self);
+    if (!quality_changed) return;
     sbfx_quality q = gst_sbfx_wanted_quality(self);
-    if (quality_changed && !gst_sbfx_run_set_quality(self, &q))
+    if (!gst_sbfx_run_set_quality(self, &q))
         GST_ELEMENT_WARNING(self, LIBRARY, SETTINGS, ("sbfx: quality: %s", self->error), ("the quality is kept"));
 }
 

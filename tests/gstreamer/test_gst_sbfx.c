@@ -556,6 +556,20 @@ CHECK_TEST(scene_and_quality_change_while_playing)
     rmdir(dir);
 }
 
+CHECK_TEST(output_is_the_input_size)
+{
+    gst_start();
+    GError *e = NULL;
+    GstElement *p = gst_parse_launch("videotestsrc num-buffers=1 ! video/x-raw,width=96,height=64 ! glupload ! "
+                                     "sbfx scene=" EXPLOSION " ! video/x-raw(memory:GLMemory),width=192,height=128 ! "
+                                     "fakesink", &e);
+    /* GstGLFilter scales; sbfx draws over the picture pixel for pixel: a scaler goes before or after it */
+    CHECK(e && strstr(e->message, "could not link sbfx"), "a 96x64 input linked to a 192x128 output: %s",
+          e ? e->message : "no error");
+    g_clear_error(&e);
+    if (p) gst_object_unref(p);
+}
+
 /* The leaks tracer's live objects (its get-live-objects action): how many. */
 static int live_objects(GstTracer *leaks)
 {
