@@ -395,6 +395,31 @@ CHECK_TEST(tap_starts_the_first_effect_on_the_ground)
     run_free(&in);
 }
 
+/* The element's clock and the running time of its last buffer, from its stats. */
+static void clock_of(GstElement *fx, double *elapsed, double *running)
+{
+    run r = {0};
+    g_object_get(fx, "stats", &r.stats, NULL);
+    *elapsed = stat_double(&r, "elapsed");
+    *running = stat_double(&r, "running-time");
+    if (r.stats) gst_structure_free(r.stats);
+}
+
+/* Waits until the element's clock reaches `until`: the frames come when a loaded machine lets
+ * them, so the test waits for them rather than for a time (10 s at most). */
+static bool wait_clock(GstElement *fx, double until, double *elapsed, double *running)
+{
+    gint64 end = g_get_monotonic_time() + 10 * G_USEC_PER_SEC;
+    do {
+        clock_of(fx, elapsed, running);
+        if (*elapsed >= until) return true;
+        g_usleep(20000);
+    } while (g_get_monotonic_time() < end);
+    return false;
+}
+
+/* A live source paused for 1 s: the running time, and the effect's clock with it, goes on after
+ * the pause from where it stood; had the pause counted, the clock would jump by 1 s or more. */
 CHECK_TEST(paused_live_pipeline_pauses_the_effect)
 {
     gst_start();
@@ -402,23 +427,22 @@ CHECK_TEST(paused_live_pipeline_pauses_the_effect)
     snprintf(d, sizeof(d), "videotestsrc is-live=true pattern=colors ! video/x-raw,width=32,height=24,"
              "framerate=30/1 ! glupload ! sbfx name=fx scene=%s ! gldownload ! fakesink sync=true", EXPLOSION);
     GstElement *p = pipeline_of(d), *fx = by_name(p, "fx");
-    gint64 t0 = g_get_monotonic_time();
+    double e0 = 0, r0 = 0, e1 = 0, r1 = 0;
     gst_element_set_state(p, GST_STATE_PLAYING);
-    g_usleep(400000);
+    bool started = wait_clock(fx, 0.3, &e0, &r0);
+    gint64 t0 = g_get_monotonic_time();
     gst_element_set_state(p, GST_STATE_PAUSED);
     g_usleep(1000000);
     gst_element_set_state(p, GST_STATE_PLAYING);
-    g_usleep(400000);
-    run r = {0};
-    g_object_get(fx, "stats", &r.stats, NULL);
+    bool resumed = started && wait_clock(fx, e0 + 0.1, &e1, &r1);
     double wall = (double)(g_get_monotonic_time() - t0) / 1e6;
     gst_element_set_state(p, GST_STATE_NULL);
-    double elapsed = stat_double(&r, "elapsed"), running = stat_double(&r, "running-time");
-    printf("# %.2f s of wall time, paused 1 s: the effect's clock %.3f s, the stream's running time %.3f s\n", wall,
-           elapsed, running);
-    CHECK(elapsed > 0.3 && elapsed <= running + 1e-9 && elapsed < wall - 0.8,
-          "the effect's clock %.3f s after %.2f s with 1 s paused (running time %.3f s)", elapsed, wall, running);
-    gst_structure_free(r.stats);
+    printf("# paused 1 s: the effect's clock %.3f -> %.3f s, the stream's running time %.3f -> %.3f s, %.2f s of "
+           "wall time apart\n", e0, e1, r0, r1, wall);
+    CHECK(started && resumed, "the effect's clock at %.3f s and %.3f s after 10 s each (0.3 s, then 0.1 s more, "
+          "wanted)", e0, e1);
+    CHECK(e1 <= r1 + 1e-9 && e1 - e0 < 0.9 && r1 - r0 < 0.9,
+          "the effect's clock %.3f -> %.3f s, running time %.3f -> %.3f s across a pause of 1 s", e0, e1, r0, r1);
     gst_object_unref(fx);
     gst_object_unref(p);
 }
