@@ -36,15 +36,16 @@ cleanup() {
     [ -n "${SINKS_KEEP:-}" ] && echo "# kept $tmp" || rm -rf "$tmp"
 }
 trap cleanup EXIT
-# a white picture, 90 frames at 15 fps: the smoke is what is dark in it. The sinks show frames at
-# their time and drop late ones, and the first second's are late on a loaded machine (the
-# element starts meanwhile): the scene is the explosion again every second, from 0.5 s.
-CAMERA="videotestsrc pattern=white num-buffers=90 ! video/x-raw,width=160,height=120,framerate=15/1"
+# a white picture at 5 fps for the whole wait: the smoke is what is dark in it. The sinks show
+# frames at their time and drop late ones (on a loaded machine, at 15 fps, waylandsink dropped
+# nearly all), and a grab takes seconds there: the stream goes on until a grab shows smoke, then
+# stops. The scene is the explosion again every second, from 0.5 s.
+CAMERA="videotestsrc pattern=white num-buffers=$((WAIT * 5)) ! video/x-raw,width=160,height=120,framerate=5/1"
 sed '/^triggers = {/,$d' scenes/explosion.cfg >"$tmp/again.cfg"
 {
     echo 'triggers = { timeline = ('
-    for t in 0.5 1.5 2.5 3.5 4.5 5.5; do echo "  { effect = \"explosion\"; time = $t; position = [0.0, 0.0, 0.0]; },"; done
-    echo '  { effect = "explosion"; time = 6.5; position = [0.0, 0.0, 0.0]; } ); };'
+    for ((t = 0; t < WAIT - 1; t++)); do echo "  { effect = \"explosion\"; time = $t.5; position = [0.0, 0.0, 0.0]; },"; done
+    echo "  { effect = \"explosion\"; time = $((WAIT - 1)).5; position = [0.0, 0.0, 0.0]; } ); };"
 } >>"$tmp/again.cfg"
 chmod a+r "$tmp/again.cfg"
 
@@ -89,8 +90,8 @@ test_glimagesink() {
         return
     fi
     tests/gstreamer/with_plugin.sh "$BUILD" env -u GST_GL_PLATFORM -u GST_GL_WINDOW DISPLAY=":$display" \
-        CAMERA="$CAMERA" SCENE="$tmp/again.cfg" timeout 60 examples/gstreamer/desktop.sh >"$tmp/gl.log" 2>&1 &
-    local player=$!
+        CAMERA="$CAMERA" SCENE="$tmp/again.cfg" timeout $((WAIT * 2)) examples/gstreamer/desktop.sh >"$tmp/gl.log" 2>&1 &
+    local player=$! # timeout's (with_plugin.sh and env exec it): it passes a SIGTERM on to the pipeline
     pids+=("$player")
     # the window opens at the video's size in the top left corner (no window manager)
     if grab_until x_grab 160x120+0+0; then
@@ -98,16 +99,24 @@ test_glimagesink() {
     else
         fail glimagesink "no smoke in the window within $WAIT s ($dark dark pixels): $(tail -n 3 "$tmp/gl.log" | tr '\n' ' ')"
     fi
+    kill "$player" 2>/dev/null
     wait "$player" 2>/dev/null
 }
 
 # ---- waylandsink in cage -------------------------------------------------------------------------
-# as_user COMMAND...: as nobody when root (cage refuses root), in a clean environment
+# user_command COMMAND...: sets ucmd to COMMAND as nobody when root (cage refuses root), in a
+# clean environment; "${ucmd[@]}" & then gives the command's own id (what a function run in the
+# background would not), for kill
+user_command() {
+    ucmd=()
+    [ "$(id -u)" -eq 0 ] && ucmd=(setpriv --reuid="$(id -u nobody)" --regid="$(id -g nobody)" --clear-groups)
+    ucmd+=(env -i PATH=/usr/bin:/bin HOME="$tmp/home" XDG_RUNTIME_DIR="$tmp/xdg" WLR_BACKENDS=headless
+        WLR_RENDERER=pixman WLR_LIBINPUT_NO_DEVICES=1 "$@")
+}
 as_user() {
-    local run_as=()
-    [ "$(id -u)" -eq 0 ] && run_as=(setpriv --reuid="$(id -u nobody)" --regid="$(id -g nobody)" --clear-groups)
-    "${run_as[@]}" env -i PATH=/usr/bin:/bin HOME="$tmp/home" XDG_RUNTIME_DIR="$tmp/xdg" WLR_BACKENDS=headless \
-        WLR_RENDERER=pixman WLR_LIBINPUT_NO_DEVICES=1 "$@"
+    local ucmd
+    user_command "$@"
+    "${ucmd[@]}"
 }
 w_grab() { as_user env WAYLAND_DISPLAY=wayland-0 timeout 20 grim "$tmp/home/grab.png" && cp "$tmp/home/grab.png" "$1"; }
 test_waylandsink() {
@@ -123,7 +132,9 @@ test_waylandsink() {
     # the output keeps being composited (not scanned out directly: tests/wayland.sh says why)
     local flags=()
     cage -h 2>&1 | grep -q '^ *-r' && flags=(-r -r)
-    as_user cage "${flags[@]}" -- sleep $((WAIT * 2)) >"$tmp/cage.log" 2>&1 &
+    local ucmd
+    user_command cage "${flags[@]}" -- sleep $((WAIT * 2))
+    "${ucmd[@]}" >"$tmp/cage.log" 2>&1 &
     pids+=($!)
     disown
     local i
@@ -132,10 +143,11 @@ test_waylandsink() {
         fail waylandsink "cage did not start: $(tail -n 3 "$tmp/cage.log" | tr '\n' ' ')"
         return
     fi
-    as_user env WAYLAND_DISPLAY=wayland-0 GST_PLUGIN_PATH="$BUILD/gstreamer" LD_LIBRARY_PATH="$BUILD" \
+    user_command env WAYLAND_DISPLAY=wayland-0 GST_PLUGIN_PATH="$BUILD/gstreamer" LD_LIBRARY_PATH="$BUILD" \
         GST_REGISTRY="$tmp/home/registry.bin" CAMERA="$CAMERA" SCENE="$tmp/again.cfg" \
-        timeout 60 examples/gstreamer/camera-wayland.sh >"$tmp/wl.log" 2>&1 &
-    local player=$!
+        timeout $((WAIT * 2)) examples/gstreamer/camera-wayland.sh
+    "${ucmd[@]}" >"$tmp/wl.log" 2>&1 &
+    local player=$! # timeout's: it passes a SIGTERM on to the pipeline
     pids+=("$player")
     # cage's headless output is 1280x720; the video in its middle (no wp_viewporter to scale)
     if grab_until w_grab 1280x720+0+0; then
@@ -144,6 +156,7 @@ test_waylandsink() {
         fail waylandsink "no smoke on cage's output within $WAIT s ($dark dark pixels): $(grep -v '^$' "$tmp/wl.log" |
             tail -n 3 | tr '\n' ' ')"
     fi
+    kill "$player" 2>/dev/null
     wait "$player" 2>/dev/null
 }
 
