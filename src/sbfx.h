@@ -322,6 +322,21 @@ SBFX_API sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float posi
  * first simulation step at or after that time, so results do not depend on frame times. */
 SBFX_API sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds,
                                    const float position[3]);
+/* Where an effect instance the module started came from (sbfx_set_trigger_listener). */
+typedef enum sbfx_trigger_origin {
+    SBFX_TRIGGER_CALL,     /* sbfx_trigger */
+    SBFX_TRIGGER_SCHEDULE, /* sbfx_schedule */
+    SBFX_TRIGGER_TIMELINE  /* the scene's timeline */
+} sbfx_trigger_origin;
+/* Told of every effect instance the module starts, as it starts: inside sbfx_trigger, or inside
+ * sbfx_update at the step a scheduled or timeline trigger fires at. `time` is the clock
+ * (sbfx_time) at the instance's first step; refused triggers (pool full) are not told. The
+ * listener must not call the module back (sbfx_time and sbfx_elapsed excepted). */
+typedef void (*sbfx_trigger_fn)(const char *effect, const float position[3], double time,
+                                sbfx_trigger_origin origin, void *user);
+/* Sets the listener (NULL: none); it stays across sbfx_set_scene. A host that logs what fired
+ * learns here of the scene's timeline, which it does not see otherwise. */
+SBFX_API void sbfx_set_trigger_listener(sbfx *fx, sbfx_trigger_fn fn, void *user);
 /* True when the module has an effect of that name (the scene's, or the built-in "explosion"):
  * lets a host check at start the names it will trigger later (GPIO lines, remote commands). */
 SBFX_API bool sbfx_has_effect(const sbfx *fx, const char *effect);

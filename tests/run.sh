@@ -40,8 +40,8 @@
 #              driver the loader finds: Mesa here, a GPU's driver where there is one
 #   --check    the edit-compile tier of `make check`: unit tests, test_gl_smoke, the shaders, the
 #              rooms' dependencies
-#   --asan=cpu the ASan+UBSan tier without the suites that render on Mesa (make test TEST_ASAN=cpu,
-#              which make test-debian13 runs)
+#   --asan=cpu the ASan+UBSan tier without the suites that render on Mesa (make test TEST_ASAN=cpu:
+#              a lighter run for a slow machine; docs/testing.md)
 #   --list     print the suites' names and stop
 #   PATTERN    only the suites whose name (with its "asan:" prefix) matches one of these shell
 #              patterns: tests/run.sh test_gl_module 'asan:*'
@@ -245,6 +245,10 @@ list_all() {
     # the authoring loop: sbfx-play --headless --watch edited the ways editors save (issue 29)
     WEIGHT=30
     run_suite "" reload tests/reload.sh "$BUILD/sbfx-play"
+    # triggers from the network: DIS over loopback, MQTT through a broker of its own (issue 35)
+    WEIGHT=15
+    run_suite "" dis tests/dis.sh "$BUILD"
+    run_suite "" mqtt tests/mqtt.sh "$BUILD"
     WEIGHT=10
     run_suite "" install tests/install.sh "$BUILD"
     run_suite "" docs tests/docs.sh
@@ -256,8 +260,9 @@ list_all() {
     for part in $(tests/precision.sh --parts); do
         run_suite "precision:" "$part" env "$(detail_cache normal)" tests/precision.sh "$BUILD" "$part"
     done
-    # the scene parser under libFuzzer for FUZZ_SECONDS (60), the example scenes as corpus
-    WEIGHT=$((${FUZZ_SECONDS:-60} + 30))
+    # the scene parser under libFuzzer for FUZZ_SECONDS (60), the example scenes as corpus; the DIS
+    # parser for FUZZ_DIS_SECONDS (15)
+    WEIGHT=$((${FUZZ_SECONDS:-60} + ${FUZZ_DIS_SECONDS:-15} + 30))
     run_suite "" fuzz tests/fuzz.sh "$BUILD"
 
     if [ -d "$ASAN_BUILD" ]; then
