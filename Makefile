@@ -10,13 +10,17 @@
 #   make test-hosts   the SDL2, desktop OpenGL and Qt Quick hosts and their tests (docs/hosts/;
 #                     make test runs them)
 #   make test-qt-quick  the Qt Quick item, its example and test where Qt 6 is installed (test-hosts)
+#   make gstreamer    the GStreamer element sbfx, build/gstreamer/libgstsbfx.so (docs/hosts/gstreamer.md;
+#                     part of make where GStreamer's -dev packages are)
+#   make test-gstreamer  the element and its tests (tests/gstreamer/; make test runs them)
 #   make test-precision  the accuracy suites at GPU precision: SBFX_MEDIUMP=native SBFX_FILTER_BITS=8
 #                     (and 6 bits for NVIDIA's cases; tests/precision.sh; make test runs it)
 #   make bench        timings into build/bench/
 #   make figures      the seed's figures rendered into docs/figures/ (docs/figures.md)
 #   make ladder       src/budget/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
 #   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR, MANDIR, DATADIR); also
-#                     scenes, boards and the kiosk's unit and udev rule (dist/)
+#                     scenes, boards, the kiosk's unit and udev rule (dist/), and libgstsbfx.so into
+#                     GStreamer's plugin folder under PREFIX (GST_PLUGINDIR)
 #   make uninstall    remove what make install put there (same PREFIX, DESTDIR)
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
@@ -346,7 +350,7 @@ ASAN_TEST_TARGETS := $(if $(filter cpu,$(TEST_ASAN)),lib test-unit test-platform
 .PHONY: test-build test-build-normal test-build-asan check
 test-build: test-build-normal test-build-asan
 test-build-normal:
-	@$(MAKE) --no-print-directory all test-unit test-gl test-platform test-hosts
+	@$(MAKE) --no-print-directory all test-unit test-gl test-platform test-hosts test-gstreamer
 test-build-asan:
 	@$(MAKE) --no-print-directory BUILD=build/asan SANITIZE=1 $(ASAN_TEST_TARGETS)
 
@@ -835,3 +839,71 @@ $(BUILD)/tests/gl/test_gl_look: tests/gl/test_gl_look.c $(LOOK_OBJ) $(PLATFORM_C
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(GL_TEST_WRAP) $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) \
 		$(REF_LIBS) $(PLATFORM_LIBS)
+
+# ---- GStreamer (issue 34): the element sbfx in the plugin libgstsbfx.so ---------------------
+# integrations/gstreamer/ (docs/hosts/gstreamer.md): a GstGLFilter linked against libsbfx.so
+# (NEEDED libsbfx.so.1), with the player's luma normalisation and clip decoding
+# (platform/video/luma.c, clip_detail.c: FFmpeg's libraries). Part of `make` where pkg-config
+# finds GStreamer's GL library (tools/deps.sh build installs its -dev packages), else skipped
+# with a note; not under SANITIZE=1 (gst-launch-1.0 and GStreamer's plugin scanner load it, and
+# they are not ASan programs). It exports GStreamer's entry point only (plugin.map).
+GST_PKGS := gstreamer-1.0 gstreamer-base-1.0 gstreamer-video-1.0 gstreamer-gl-1.0
+GST_PKG_CFLAGS = $(call pkg_config,GST_PKG_CFLAGS,--cflags $(GST_PKGS))
+GST_PKG_LIBS = $(call pkg_config,GST_PKG_LIBS,--libs $(GST_PKGS))
+GST_PLUGIN := $(BUILD)/gstreamer/libgstsbfx.so
+GST_OBJ := $(patsubst %.c,$(BUILD)/obj/%.o,$(wildcard integrations/gstreamer/*.c))
+GST_PLATFORM_OBJ := $(BUILD)/obj/platform/video/luma.o $(BUILD)/obj/platform/video/clip_detail.o
+$(BUILD)/obj/integrations/gstreamer/%.o: integrations/gstreamer/%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) $(GST_PKG_CFLAGS) -fvisibility=hidden -DSBFX_VERSION='"$(VERSION)"' -c -o $@ $<
+$(GST_PLUGIN): $(GST_OBJ) $(GST_PLATFORM_OBJ) $(SO_LINKS) integrations/gstreamer/plugin.map
+	@mkdir -p $(@D)
+	$(CC) -shared -Wl,-z,defs -Wl,--version-script=integrations/gstreamer/plugin.map -o $@ $(GST_OBJ) \
+		$(GST_PLATFORM_OBJ) -L$(BUILD) -lsbfx $(GST_PKG_LIBS) $(CLIP_PKG_LIBS) $(call pkg_config,GLES_LIBS,--libs glesv2) -lm
+.PHONY: gstreamer
+all: gstreamer
+gstreamer: lib
+ifeq ($(SANITIZE),1)
+	@echo "gstreamer: libgstsbfx.so is not built under SANITIZE=1 (it is loaded by programs that are not ASan's)"
+else
+	@if $(PKG_CONFIG) --exists $(GST_PKGS); then \
+		$(MAKE) --no-print-directory BUILD=$(BUILD) $(GST_PLUGIN); \
+	else echo "gstreamer: no GStreamer -dev packages (tools/deps.sh build installs them): $(GST_PLUGIN) not built"; fi
+endif
+# Its tests (tests/gstreamer/, run by tests/run.sh with tests/gstreamer/env.sh): C programs on
+# GStreamer's libraries and appsink, built by make test where the plugin is.
+GST_TEST_PKGS := $(GST_PKGS) gstreamer-app-1.0 glesv2
+GST_TEST_PKG_CFLAGS = $(call pkg_config,GST_TEST_PKG_CFLAGS,--cflags $(GST_TEST_PKGS))
+GST_TEST_PKG_LIBS = $(call pkg_config,GST_TEST_PKG_LIBS,--libs $(GST_TEST_PKGS))
+GST_TESTS := $(patsubst tests/gstreamer/%.c,$(BUILD)/tests/gstreamer/%,$(wildcard tests/gstreamer/*.c))
+$(BUILD)/tests/gstreamer/%: tests/gstreamer/%.c tests/gstreamer/gst_harness.h tests/check.h tests/gl/gl_snapshot.h | deps
+	@mkdir -p $(@D)
+	$(CC) $(BASE_CFLAGS) $(GST_TEST_PKG_CFLAGS) -Itests -Itests/gl $(CFLAGS) -o $@ $< $(GST_TEST_PKG_LIBS) -lm
+# the element's arithmetic alone (stream_clock.c, ground_tap.c), with sbfx's matrix helpers
+GST_UNIT_OBJ := $(BUILD)/obj/integrations/gstreamer/stream_clock.o $(BUILD)/obj/integrations/gstreamer/ground_tap.o
+$(BUILD)/tests/gstreamer/test_gst_units: tests/gstreamer/test_gst_units.c $(GST_UNIT_OBJ) $(BUILD)/libsbfx.a tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(SRC_CFLAGS) -Itests -Iintegrations/gstreamer -o $@ $< $(GST_UNIT_OBJ) $(BUILD)/libsbfx.a $(SRC_LIBS)
+.PHONY: test-gstreamer
+test-gstreamer: gstreamer
+ifneq ($(SANITIZE),1)
+	@if $(PKG_CONFIG) --exists $(GST_PKGS) gstreamer-app-1.0; then \
+		$(MAKE) --no-print-directory BUILD=$(BUILD) $(GST_TESTS); fi
+endif
+# GStreamer's plugin folder under PREFIX: pkg-config's pluginsdir with GStreamer's own prefix
+# replaced by PREFIX (/usr/lib/x86_64-linux-gnu/gstreamer-1.0 -> $(PREFIX)/lib/x86_64-linux-gnu/
+# gstreamer-1.0). GStreamer scans only its own folder, the user's and GST_PLUGIN_PATH: PREFIX=/usr
+# installs where every GStreamer program finds it; another PREFIX needs GST_PLUGIN_PATH set to that
+# folder (docs/hosts/gstreamer.md). GST_PLUGINDIR= overrides it.
+GST_PKG_PREFIX = $(call pkg_config,GST_PKG_PREFIX,--variable=prefix gstreamer-1.0)
+GST_PKG_PLUGINSDIR = $(call pkg_config,GST_PKG_PLUGINSDIR,--variable=pluginsdir gstreamer-1.0)
+GST_PLUGINDIR ?= $(patsubst $(GST_PKG_PREFIX)/%,$(PREFIX)/%,$(GST_PKG_PLUGINSDIR))
+.PHONY: install-gstreamer uninstall-gstreamer
+install: install-gstreamer
+uninstall: uninstall-gstreamer
+install-gstreamer: all
+	@if [ -f $(GST_PLUGIN) ]; then \
+		install -d $(DESTDIR)$(GST_PLUGINDIR) && install -m 755 $(GST_PLUGIN) $(DESTDIR)$(GST_PLUGINDIR)/; \
+	else echo "install: $(GST_PLUGIN) was not built (no GStreamer -dev packages): not installed"; fi
+uninstall-gstreamer:
+	@if $(PKG_CONFIG) --exists gstreamer-1.0; then rm -f $(DESTDIR)$(GST_PLUGINDIR)/libgstsbfx.so; fi

@@ -355,6 +355,21 @@ SBFX_API double sbfx_elapsed(const sbfx *fx);
  * there, so the simulation never spins to catch up; hosts that want more call it again. */
 SBFX_API sbfx_result sbfx_update(sbfx *fx, double dt);
 SBFX_API sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);
+/* For hosts that play a stream (a video filter: docs/hosts/gstreamer.md). Since 1.3.0.
+ * sbfx_restart puts the module back where sbfx_create left it, with this scene (NULL: the
+ * built-in explosion) planned from the desc given to sbfx_create: the clock at zero
+ * (sbfx_elapsed() = 0, sbfx_time() = desc.start_time), the scene's timeline scheduled from
+ * there, no particle, flash or pending trigger, the same random streams; what a stream's seek
+ * needs, so that the frames after a seek back to the start are those of the first pass. It is
+ * sbfx_set_scene otherwise: GL objects made the same way are taken over (a restart with the
+ * same scene compiles nothing), it may allocate, it saves and restores the GL state it
+ * changes, detail pushed with sbfx_detail_push_slice is not kept, and on failure the module
+ * goes on unchanged, clock included. */
+SBFX_API sbfx_result sbfx_restart(sbfx *fx, const sbfx_scene *scene);
+/* True when an sbfx_render now would draw nothing and make no GL call: no particle is live
+ * past its emitter's delay and the scene has no post effect (those pass every frame). Asked
+ * after sbfx_update, it lets a host pass its picture on unchanged, without a copy. No GL call. */
+SBFX_API bool sbfx_idle(const sbfx *fx);
 SBFX_API void sbfx_stats(const sbfx *fx, sbfx_counters *out);
 
 /* Fire lights the host (docs/embedding.md "Fire lights your scene"). Each frame the live fire

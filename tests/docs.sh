@@ -193,7 +193,7 @@ check_make_help() {
     local help missing="" t
     help=$(make --no-print-directory help 2>&1)
     for t in $(sed -n 's/^\.PHONY://p' Makefile); do
-        case "$t" in deps | lib | test-unit | test-gl | test-asan | test-platform | test-build | test-build-normal | test-build-asan | install-kiosk | uninstall-kiosk | FORCE) continue ;; esac
+        case "$t" in deps | lib | test-unit | test-gl | test-asan | test-platform | test-build | test-build-normal | test-build-asan | install-kiosk | uninstall-kiosk | install-gstreamer | uninstall-gstreamer | FORCE) continue ;; esac
         printf '%s\n' "$help" | grep -q "^make \(\[\)\?$t\b" || missing="$missing $t"
     done
     if [ -z "$missing" ]; then

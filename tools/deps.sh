@@ -13,6 +13,9 @@ build_pkgs="$build_pkgs libmosquitto-dev"
 # the Wayland display (display_wayland.c): libwayland-client, wayland-egl, and the protocols'
 # XML turned into C by wayland-scanner (libwayland-bin) at build time
 build_pkgs="$build_pkgs libwayland-dev wayland-protocols libwayland-bin"
+# the GStreamer element, libgstsbfx.so (integrations/gstreamer/): GStreamer's core, base and GL
+# libraries (gstreamer-1.0, -base, -video, -gl, -app for its tests)
+build_pkgs="$build_pkgs libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev"
 # Debian 13 (trixie) names some packages differently: its clang is 19 (libgpiod-dev is 2.x
 # there under the same name; the GPIO backend follows pkg-config's version)
 clang_rt=libclang-rt-14-dev
@@ -37,9 +40,16 @@ if ! [ -r /etc/os-release ] || ! grep -qx 'VERSION_CODENAME=trixie' /etc/os-rele
 fi
 # tests/mqtt.sh: a mosquitto broker of its own and mosquitto_pub / mosquitto_sub as the clients
 test_pkgs="$test_pkgs mosquitto mosquitto-clients"
+# the GStreamer element's tests (tests/gstreamer/): gst-launch-1.0 and gst-inspect-1.0, GstGL's
+# elements, videotestsrc and appsink (base), mp4mux and qtdemux (good), x264enc (ugly), kmssink
+# and waylandsink (bad), avdec_h264 for decodebin (libav: the MP4 recording's input)
+gst_runtime_pkgs="gstreamer1.0-tools gstreamer1.0-gl gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-plugins-bad"
+test_pkgs="$test_pkgs $gst_runtime_pkgs gstreamer1.0-plugins-ugly gstreamer1.0-libav"
 # make test-vm: qemu (TCG), the guest's modprobe through the shared root, and what tests/vm/run.sh
 # needs to fetch and unpack Debian's kernel packages and build vkms and gpio-sim out of tree
 vm_pkgs="$build_pkgs qemu-system-x86 kmod xz-utils patch gcc-12 make libelf1"
+# the GStreamer camera kiosk in the VM: v4l2src (good) from vivid through sbfx to kmssink (bad)
+vm_pkgs="$vm_pkgs $gst_runtime_pkgs"
 # make BOARD=<an arm64 board> and make cross-check: Debian's aarch64 toolchain and the arm64
 # multiarch -dev packages, with the host's make, pkg-config and compiler (build/tools/ runs here)
 cross_arm64_pkgs="$host_tools liblcms2-dev colord-data gcc-aarch64-linux-gnu libc6-dev:arm64 libegl-dev:arm64 libgles-dev:arm64 libdrm-dev:arm64 libgbm-dev:arm64 libgpiod-dev:arm64 libpng-dev:arm64 libconfig-dev:arm64 libsystemd-dev:arm64 libavformat-dev:arm64 libavcodec-dev:arm64 libswscale-dev:arm64 libavutil-dev:arm64 libwayland-dev:arm64 wayland-protocols libwayland-bin libmosquitto-dev:arm64"
