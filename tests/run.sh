@@ -276,8 +276,8 @@ list_all() {
         if [ "$asan" = full ]; then
             WEIGHT=8
             gl_suites "asan:" "$ASAN_BUILD" "$NO_LEAKS"
-            WEIGHT=30 # some 20 player runs, each generating its detail volume under ASan
-            run_cli "asan:" "$ASAN_BUILD/sbfx-play" "$NO_LEAKS"
+            WEIGHT=15 # its player runs take the detail volume from the run's cache (Makefile: PLAYER_TEST_WRAP)
+            run_cli "asan:" "$ASAN_BUILD/sbfx-play" "$NO_LEAKS" "$(detail_cache asan)"
         else
             echo "# --asan=cpu: the ASan+UBSan tier runs the unit and platform suites only"
         fi
