@@ -240,6 +240,10 @@ typedef struct sbfx_counters {
     size_t gpu_bytes;         /* texture + buffer storage held */
     int passes;               /* render passes of the last sbfx_render */
     int draw_calls;           /* draw calls of the last sbfx_render */
+    int composite_tiles;      /* screen tiles the last sbfx_render composited: those its particles
+                                 can change (0: it drew no particle); docs/gpus.md "Tiles" */
+    int composite_pixels;     /* output pixels those tiles cover: the composite's and the depth
+                                 downsample's share of the screen */
     int particles_simulated;  /* particles advanced by the last sbfx_update */
     int particles_alive;
     int particles_skipped;    /* bad particles (NaN/Inf/negative radius) skipped last render */
