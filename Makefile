@@ -10,24 +10,31 @@
 #   make test-hosts   the SDL2, desktop OpenGL and Qt Quick hosts and their tests (docs/hosts/;
 #                     make test runs them)
 #   make test-qt-quick  the Qt Quick item, its example and test where Qt 6 is installed (test-hosts)
+#   make gstreamer    the GStreamer element sbfx, build/gstreamer/libgstsbfx.so (docs/hosts/gstreamer.md;
+#                     part of make where GStreamer's -dev packages are)
+#   make test-gstreamer  the element and its tests (tests/gstreamer/; make test runs them)
 #   make test-precision  the accuracy suites at GPU precision: SBFX_MEDIUMP=native SBFX_FILTER_BITS=8
 #                     (and 6 bits for NVIDIA's cases; tests/precision.sh; make test runs it)
 #   make bench        timings into build/bench/
 #   make figures      the seed's figures rendered into docs/figures/ (docs/figures.md)
 #   make ladder       src/budget/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
 #   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR, MANDIR, DATADIR); also
-#                     scenes, boards and the kiosk's unit and udev rule (dist/)
+#                     scenes, boards, the kiosk's unit and udev rule (dist/), and libgstsbfx.so into
+#                     GStreamer's plugin folder under PREFIX (GST_PLUGINDIR)
 #   make uninstall    remove what make install put there (same PREFIX, DESTDIR)
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
 #   make test-vm      real-kernel tests in a qemu VM (vkms, vivid, gpio-sim; tests/vm/)
-#   make test-debian13  make test in a Debian 13 root (debootstrap; tests/debian13/run.sh), as root
+#   make test-fresh   the README's quick start in a bare Debian root: DIST=bookworm (12) or trixie
+#                     (13); debootstrap, a clone of HEAD, make demo and make test (tests/fresh/run.sh), as root
+#   make test-debian13  make test-fresh DIST=trixie
 #   make test-gpus    every scene's shaders through Mesa's Mali, V3D, Adreno, Vivante compilers
 #                     (drm-shims; builds Mesa 25 into build/mesa-shim/ once; docs/gpus.md)
 #   make gpiod2       sbfx-play again against libgpiod 2.x built from Debian 13's source (docs/gpio.md)
 #   make mesa-shim    Mesa 25 with the drm-shims of panfrost, v3d, freedreno, etnaviv (docs/gpus.md)
 #   make soak         SOAK_HOURS (10) simulated hours of the kiosk loop: build/soak/soak.csv, .png
-#   make fuzz         FUZZ_SECONDS (60) of libFuzzer on the scene parser (clang)
+#   make fuzz         FUZZ_SECONDS (60) of libFuzzer on the scene parser, FUZZ_DIS_SECONDS (15) on the
+#                     DIS parser and receiver (clang)
 #   make clean        remove build/
 #   make V=1 ...      print every command line (quiet by default: "  CC      build/obj/src/sim.o")
 # Every build first checks the Debian packages it needs (tools/deps.sh $(DEPS): as root it
@@ -51,7 +58,7 @@ CC ?= cc
 PKG_CONFIG ?= pkg-config
 # The library's version: the minor grows when a function is added to src/sbfx.h, the major
 # (the soname's number) when a signature or a public struct's layout changes.
-VERSION := 1.2.0
+VERSION := 1.3.0
 SOVERSION := $(firstword $(subst ., ,$(VERSION)))
 # tools/deps.sh's package set for this build (a board's .mk names its own)
 DEPS := build
@@ -224,14 +231,17 @@ $(BUILD)/obj/platform/display/display_wayland.o: $(WAYLAND_HEADERS)
 $(BUILD)/obj/platform/display/display_wayland.o $(BUILD)/obj/platform/wayland/wayland_egl.o: \
 	PLATFORM_CFLAGS += $(WAYLAND_PKG_CFLAGS) -I$(WAYLAND_GEN)
 
-# sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera and GPIO inputs (platform/)
+# Network triggers (platform/net/, docs/triggers.md): DIS over UDP (libc), MQTT through libmosquitto
+NET_SRC := dis_pdu dis_effects dis_events dis_receiver dis_config geodesy net_address udp_socket mqtt_client
+# sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera, GPIO and network inputs (platform/)
 PLAYER_SRC := $(addprefix player/,player module loop host reset authoring clock) \
 	$(addprefix player/options/,args usage board) $(addprefix player/outputs/,stats notify) \
-	$(addprefix player/inputs/,triggers gpio_source detail watch signals) \
+	$(addprefix player/inputs/,triggers trigger_queue gpio_source dis_source mqtt_source detail watch signals) \
 	$(addprefix video/,luma live_detail v4l2_source clip_detail) \
-	$(addprefix gpio/,gpio_backend effect_names gpio_triggers trigger_filter) \
+	$(addprefix gpio/,gpio_backend effect_names effect_at gpio_triggers trigger_filter) \
+	$(addprefix net/,$(NET_SRC)) \
 	$(addprefix display/,display_headless display_drm display_link display_wayland) \
-	$(addprefix drm/,drm_device drm_fb drm_atomic drm_legacy drm_writeback gbm_egl) \
+	$(addprefix drm/,drm_mode_spec drm_device drm_fb drm_atomic drm_legacy drm_writeback gbm_egl) \
 	$(addprefix wayland/,wayland_egl present_feedback)
 PLAYER_OBJ := $(PLAYER_SRC:%=$(BUILD)/obj/platform/%.o) $(WAYLAND_PROTOCOL_OBJ)
 # --version prints the Makefile's VERSION (the library's)
@@ -249,7 +259,11 @@ $(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
-	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS) $(WAYLAND_PKG_LIBS)
+	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS) $(WAYLAND_PKG_LIBS) $(MQTT_PKG_LIBS)
+# libmosquitto runs the MQTT client on a thread of its own (net/mqtt_client.h); the player only
+MQTT_PKG_CFLAGS = $(call pkg_config,MQTT_PKG_CFLAGS,--cflags libmosquitto)
+MQTT_PKG_LIBS = $(call pkg_config,MQTT_PKG_LIBS,--libs libmosquitto) -pthread
+$(BUILD)/obj/platform/net/mqtt_client.o: PLATFORM_CFLAGS += $(MQTT_PKG_CFLAGS) -pthread
 # READY=1 and the watchdog's pings for systemd (player/outputs/notify.c): libsystemd, the player only
 NOTIFY_PKG_CFLAGS = $(call pkg_config,NOTIFY_PKG_CFLAGS,--cflags libsystemd)
 NOTIFY_PKG_LIBS = $(call pkg_config,NOTIFY_PKG_LIBS,--libs libsystemd)
@@ -328,7 +342,7 @@ NPROC := $(shell nproc 2>/dev/null || echo 1)
 JOBS_FLAG = $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(NPROC))
 
 # TEST_ASAN=cpu: the ASan+UBSan tier runs the unit and platform suites only, not the suites that
-# render on Mesa (make test-debian13: docs/testing.md says why that is no loss there).
+# render on Mesa: a lighter run for a slow machine (docs/testing.md says what it leaves out).
 TEST_ASAN ?= full
 ASAN_TEST_TARGETS := $(if $(filter cpu,$(TEST_ASAN)),lib test-unit test-platform,all test-unit test-gl test-platform)
 
@@ -336,7 +350,7 @@ ASAN_TEST_TARGETS := $(if $(filter cpu,$(TEST_ASAN)),lib test-unit test-platform
 .PHONY: test-build test-build-normal test-build-asan check
 test-build: test-build-normal test-build-asan
 test-build-normal:
-	@$(MAKE) --no-print-directory all test-unit test-gl test-platform test-hosts
+	@$(MAKE) --no-print-directory all test-unit test-gl test-platform test-hosts test-gstreamer
 test-build-asan:
 	@$(MAKE) --no-print-directory BUILD=build/asan SANITIZE=1 $(ASAN_TEST_TARGETS)
 
@@ -422,7 +436,9 @@ clean:
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
 
 # ---- fuzzing (clang, libFuzzer): FUZZ_SECONDS bounded, the example scenes as corpus ----
+# and FUZZ_DIS_SECONDS of the DIS parser and receiver, valid v6 and v7 PDUs as corpus
 FUZZ_SECONDS ?= 60
+FUZZ_DIS_SECONDS ?= 15
 FUZZ_SRC := src/scene/scene.c src/scene/effects.c src/scene/quality_name.c
 $(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) src/sbfx.h src/scene/scene.h
 	@mkdir -p $(@D)
@@ -430,14 +446,31 @@ $(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) src/sbfx.h src/sce
 		$(shell $(PKG_CONFIG) --cflags glesv2 libconfig) -o $@ tests/fuzz/fuzz_scene.c $(FUZZ_SRC) \
 		$(shell $(PKG_CONFIG) --libs libconfig)
 
+FUZZ_DIS_SRC := $(addprefix platform/net/,dis_pdu.c dis_receiver.c dis_events.c dis_effects.c geodesy.c udp_socket.c \
+	net_address.c)
+$(BUILD)/fuzz/fuzz_dis: tests/fuzz/fuzz_dis.c $(FUZZ_DIS_SRC) $(wildcard platform/net/*.h)
+	@mkdir -p $(@D)
+	clang -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined \
+		-Iplatform -o $@ tests/fuzz/fuzz_dis.c $(FUZZ_DIS_SRC) -lm
+
 .PHONY: fuzz
-fuzz: $(BUILD)/fuzz/fuzz_scene
+fuzz: $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_dis $(BUILD)/tests/net/dis_send
 	@rm -rf $(BUILD)/fuzz/corpus && mkdir -p $(BUILD)/fuzz/corpus && cp scenes/*.cfg $(BUILD)/fuzz/corpus/
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0 \
 		$(BUILD)/fuzz/fuzz_scene -max_total_time=$(FUZZ_SECONDS) -max_len=8192 -timeout=10 \
 		-artifact_prefix=$(BUILD)/fuzz/ -print_final_stats=1 $(BUILD)/fuzz/corpus > $(BUILD)/fuzz/log 2>&1 \
 		|| { tail -n 40 $(BUILD)/fuzz/log; exit 1; }
 	@grep -E "stat::number_of_executed_units|Done" $(BUILD)/fuzz/log | tail -n 2
+	@rm -rf $(BUILD)/fuzz/dis-corpus && mkdir -p $(BUILD)/fuzz/dis-corpus
+	@d=$(BUILD)/fuzz/dis-corpus; s=$(BUILD)/tests/net/dis_send; o=48.137154,11.576124,519; \
+		$$s --file $$d/v6 --version 6 --origin $$o --enu 100,0,0 detonation && \
+		$$s --file $$d/v7-records --version 7 --vp 2 --origin $$o --enu 0,100,50 --result 7 detonation && \
+		$$s --file $$d/v7-bundle --count 2 --origin $$o detonation && \
+		$$s --file $$d/entity-state entity-state
+	$(BUILD)/fuzz/fuzz_dis -max_total_time=$(FUZZ_DIS_SECONDS) -max_len=9000 -timeout=10 \
+		-artifact_prefix=$(BUILD)/fuzz/dis- -print_final_stats=1 $(BUILD)/fuzz/dis-corpus > $(BUILD)/fuzz/dis.log 2>&1 \
+		|| { tail -n 40 $(BUILD)/fuzz/dis.log; exit 1; }
+	@grep -E "stat::number_of_executed_units|Done" $(BUILD)/fuzz/dis.log | tail -n 2
 
 # ---- bench (issue #4: what accuracy costs) ------------------------------------------------
 # tests/bench/*.c link into one program. --wrap lets the bench time the module's particle pass
@@ -546,8 +579,8 @@ bench: $(BUILD)/bench/bench_shadow
 # ---- platform (issue #5: DRM/KMS kiosk, V4L2 detail, GPIO triggers, boards) ---------------
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,
 # the --gpio/--mode syntax), run by tests/run.sh like the unit tests.
-PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,video/luma.o gpio/trigger_filter.o player/options/board.o \
-	player/options/args.o display/display_link.o) $(BUILD)/obj/tools/soak/soak_check.o
+PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,video/luma.o gpio/trigger_filter.o player/options/board.o drm/drm_mode_spec.o \
+	player/options/args.o display/display_link.o gpio/effect_at.o net/net_address.o) $(BUILD)/obj/tools/soak/soak_check.o
 PLATFORM_TESTS := $(patsubst tests/platform/%.c,$(BUILD)/tests/platform/%,$(wildcard tests/platform/*.c))
 $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h
 	@mkdir -p $(@D)
@@ -559,6 +592,19 @@ $(BUILD)/tests/platform/test_gpio_recovery: tests/platform/test_gpio_recovery.c 
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio/gpio_triggers.o \
 		$(BUILD)/obj/platform/gpio/trigger_filter.o $(BUILD)/obj/platform/gpio/effect_names.o $(PLATFORM_LIBS)
+# DIS without a network and the one trigger queue (test_dis), the network's flags, board keys and
+# scene keys (test_net_config): platform/net/ but its MQTT client, which the player's runs test
+NET_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,$(patsubst %,net/%.o,$(filter-out mqtt_client net_address,$(NET_SRC))) \
+	player/inputs/trigger_queue.o)
+$(BUILD)/tests/platform/test_dis $(BUILD)/tests/platform/test_net_config: $(BUILD)/tests/platform/%: \
+		tests/platform/%.c $(NET_TEST_OBJ) $(PLATFORM_TEST_OBJ) $(BUILD)/libsbfx.a tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(NET_TEST_OBJ) $(PLATFORM_TEST_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+# tests/dis.sh's sender: DIS PDUs encoded from the standard's layout, on its own
+$(BUILD)/tests/net/dis_send: tests/net/dis_send.c | deps
+	@mkdir -p $(@D)
+	$(CC) -std=c11 -O1 -g $(WARN) -o $@ $< -lm
+test-platform: $(BUILD)/tests/net/dis_send $(BUILD)/tests/vm/alloc_count.so
 # the GPIO backend this build chose, where no chip is needed (errors, calls on no line)
 $(BUILD)/tests/platform/test_gpio_backend: tests/platform/test_gpio_backend.c \
 		$(BUILD)/obj/platform/gpio/gpio_backend.o tests/check.h
@@ -722,10 +768,15 @@ test-gpus: mesa-shim all
 
 .PHONY: FORCE
 FORCE:
+# Nothing made is an intermediate file: make would delete the generated sources that only a pattern
+# rule reaches (the Wayland protocols' code, Qt's moc output) after a build, and the next make
+# (make install, or a test suite's) would make them again and relink sbfx-play while tests run it.
+.SECONDARY:
 
 # ---- the kiosk's deployment (issue 20; docs/kiosk-deploy.md) --------------------------------
 # make install also installs the example scenes and board profiles under $(DATADIR)/sbfx, the
-# hardened unit dist/systemd/sbfx-kiosk.service.in with its paths filled in, the udev rule that
+# hardened unit dist/systemd/sbfx-kiosk.service.in with its paths filled in (and the drop-in that
+# opens the network to DIS and MQTT triggers, dist/systemd/network.conf, to copy), the udev rule that
 # gives /dev/gpiochip* to the group gpio and the sysusers.d file that makes that group. udev
 # reads rules only from /usr/lib/udev/rules.d and /etc/udev/rules.d, so a PREFIX other than
 # /usr puts the rule under /etc. On the live system (no DESTDIR, as root) the group is made
@@ -756,6 +807,8 @@ install-kiosk:
 	$(call kiosk_unit_from,dist/systemd/$(KIOSK_CAGE_UNIT).in,$(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_CAGE_UNIT))
 	$(call kiosk_unit_from,dist/systemd/user/$(KIOSK_USER_UNIT).in,$(DESTDIR)$(SYSTEMDUSERUNITDIR)/$(KIOSK_USER_UNIT))
 	install -m 644 dist/udev/$(KIOSK_UDEV_RULE) $(DESTDIR)$(UDEVRULESDIR)/
+	install -d $(DESTDIR)$(DATADIR)/sbfx/systemd
+	$(call kiosk_unit_from,dist/systemd/network.conf,$(DESTDIR)$(DATADIR)/sbfx/systemd/network.conf)
 	install -m 644 dist/sysusers/sbfx.conf $(DESTDIR)$(SYSUSERSDIR)/
 	@if [ -z "$(DESTDIR)" ] && [ "$$(id -u)" -eq 0 ]; then \
 		if command -v systemd-sysusers >/dev/null; then systemd-sysusers $(SYSUSERSDIR)/sbfx.conf; fi; \
@@ -769,14 +822,18 @@ uninstall-kiosk:
 	rm -f $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT) $(DESTDIR)$(UDEVRULESDIR)/$(KIOSK_UDEV_RULE) \
 		$(DESTDIR)$(SYSUSERSDIR)/sbfx.conf
 
-# ---- Debian 13 beside Debian 12 (issue 20; docs/distributions.md) ---------------------------
-# make test in a Debian 13 root made with debootstrap (GCC 14, Mesa 25, libgpiod 2), cached in
-# build/debian13/ (tests/debian13/run.sh says how). As root. Its ASan+UBSan tier runs the unit
-# and platform suites and the fuzzer 10 s, not 60: docs/testing.md says why that loses nothing.
-.PHONY: test-debian13
+# ---- a fresh machine (issue 36; docs/testing.md "A fresh machine") ---------------------------
+# The README's quick start, verbatim, in a bare Debian root (debootstrap minbase plus git and
+# make): the commit under test cloned, then make demo and make test as root, and make demo as a
+# plain user (the one apt-get line, run as root, then the demo). DIST=bookworm (Debian 12) or
+# trixie (Debian 13: GCC 14, Mesa 25, libgpiod 2). As root; tests/fresh/run.sh says how.
+# make test-debian13 is make test-fresh DIST=trixie.
+.PHONY: test-fresh test-debian13
+test-fresh:
+	@tools/deps.sh fresh
+	@DIST=$(or $(DIST),bookworm) tests/fresh/run.sh
 test-debian13:
-	@tools/deps.sh debian13
-	@MAKE_TARGET="$${MAKE_TARGET:-test TEST_ASAN=cpu FUZZ_SECONDS=10}" tests/debian13/run.sh
+	@$(MAKE) --no-print-directory test-fresh DIST=trixie
 
 # ---- the look (issue 17): the β metric (tests/look/look_metrics.c, docs/look.md) ----------
 $(BUILD)/tests/unit/test_look_metrics: tests/unit/test_look_metrics.c $(BUILD)/obj/look/look_metrics.o $(REF_LIBS) \
@@ -794,3 +851,71 @@ $(BUILD)/tests/gl/test_gl_look: tests/gl/test_gl_look.c $(LOOK_OBJ) $(PLATFORM_C
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(GL_TEST_WRAP) $(LOOK_OBJ) $(PLATFORM_COMMON_OBJ) \
 		$(REF_LIBS) $(PLATFORM_LIBS)
+
+# ---- GStreamer (issue 34): the element sbfx in the plugin libgstsbfx.so ---------------------
+# integrations/gstreamer/ (docs/hosts/gstreamer.md): a GstGLFilter linked against libsbfx.so
+# (NEEDED libsbfx.so.1), with the player's luma normalisation and clip decoding
+# (platform/video/luma.c, clip_detail.c: FFmpeg's libraries). Part of `make` where pkg-config
+# finds GStreamer's GL library (tools/deps.sh build installs its -dev packages), else skipped
+# with a note; not under SANITIZE=1 (gst-launch-1.0 and GStreamer's plugin scanner load it, and
+# they are not ASan programs). It exports GStreamer's entry point only (plugin.map).
+GST_PKGS := gstreamer-1.0 gstreamer-base-1.0 gstreamer-video-1.0 gstreamer-gl-1.0
+GST_PKG_CFLAGS = $(call pkg_config,GST_PKG_CFLAGS,--cflags $(GST_PKGS))
+GST_PKG_LIBS = $(call pkg_config,GST_PKG_LIBS,--libs $(GST_PKGS))
+GST_PLUGIN := $(BUILD)/gstreamer/libgstsbfx.so
+GST_OBJ := $(patsubst %.c,$(BUILD)/obj/%.o,$(wildcard integrations/gstreamer/*.c))
+GST_PLATFORM_OBJ := $(BUILD)/obj/platform/video/luma.o $(BUILD)/obj/platform/video/clip_detail.o
+$(BUILD)/obj/integrations/gstreamer/%.o: integrations/gstreamer/%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) $(GST_PKG_CFLAGS) -fvisibility=hidden -DSBFX_VERSION='"$(VERSION)"' -c -o $@ $<
+$(GST_PLUGIN): $(GST_OBJ) $(GST_PLATFORM_OBJ) $(SO_LINKS) integrations/gstreamer/plugin.map
+	@mkdir -p $(@D)
+	$(CC) -shared -Wl,-z,defs -Wl,--version-script=integrations/gstreamer/plugin.map -o $@ $(GST_OBJ) \
+		$(GST_PLATFORM_OBJ) -L$(BUILD) -lsbfx $(GST_PKG_LIBS) $(CLIP_PKG_LIBS) $(call pkg_config,GLES_LIBS,--libs glesv2) -lm
+.PHONY: gstreamer
+all: gstreamer
+gstreamer: lib
+ifeq ($(SANITIZE),1)
+	@echo "gstreamer: libgstsbfx.so is not built under SANITIZE=1 (it is loaded by programs that are not ASan's)"
+else
+	@if $(PKG_CONFIG) --exists $(GST_PKGS); then \
+		$(MAKE) --no-print-directory BUILD=$(BUILD) $(GST_PLUGIN); \
+	else echo "gstreamer: no GStreamer -dev packages (tools/deps.sh build installs them): $(GST_PLUGIN) not built"; fi
+endif
+# Its tests (tests/gstreamer/, run by tests/run.sh with tests/gstreamer/env.sh): C programs on
+# GStreamer's libraries and appsink, built by make test where the plugin is.
+GST_TEST_PKGS := $(GST_PKGS) gstreamer-app-1.0 glesv2
+GST_TEST_PKG_CFLAGS = $(call pkg_config,GST_TEST_PKG_CFLAGS,--cflags $(GST_TEST_PKGS))
+GST_TEST_PKG_LIBS = $(call pkg_config,GST_TEST_PKG_LIBS,--libs $(GST_TEST_PKGS))
+GST_TESTS := $(patsubst tests/gstreamer/%.c,$(BUILD)/tests/gstreamer/%,$(wildcard tests/gstreamer/*.c))
+$(BUILD)/tests/gstreamer/%: tests/gstreamer/%.c tests/gstreamer/gst_harness.h tests/check.h tests/gl/gl_snapshot.h | deps
+	@mkdir -p $(@D)
+	$(CC) $(BASE_CFLAGS) $(GST_TEST_PKG_CFLAGS) -Itests -Itests/gl $(CFLAGS) -o $@ $< $(GST_TEST_PKG_LIBS) -lm
+# the element's arithmetic alone (stream_clock.c, ground_tap.c), with sbfx's matrix helpers
+GST_UNIT_OBJ := $(BUILD)/obj/integrations/gstreamer/stream_clock.o $(BUILD)/obj/integrations/gstreamer/ground_tap.o
+$(BUILD)/tests/gstreamer/test_gst_units: tests/gstreamer/test_gst_units.c $(GST_UNIT_OBJ) $(BUILD)/libsbfx.a tests/check.h
+	@mkdir -p $(@D)
+	$(CC) $(SRC_CFLAGS) -Itests -Iintegrations/gstreamer -o $@ $< $(GST_UNIT_OBJ) $(BUILD)/libsbfx.a $(SRC_LIBS)
+.PHONY: test-gstreamer
+test-gstreamer: gstreamer
+ifneq ($(SANITIZE),1)
+	@if $(PKG_CONFIG) --exists $(GST_PKGS) gstreamer-app-1.0; then \
+		$(MAKE) --no-print-directory BUILD=$(BUILD) $(GST_TESTS); fi
+endif
+# GStreamer's plugin folder under PREFIX: pkg-config's pluginsdir with GStreamer's own prefix
+# replaced by PREFIX (/usr/lib/x86_64-linux-gnu/gstreamer-1.0 -> $(PREFIX)/lib/x86_64-linux-gnu/
+# gstreamer-1.0). GStreamer scans only its own folder, the user's and GST_PLUGIN_PATH: PREFIX=/usr
+# installs where every GStreamer program finds it; another PREFIX needs GST_PLUGIN_PATH set to that
+# folder (docs/hosts/gstreamer.md). GST_PLUGINDIR= overrides it.
+GST_PKG_PREFIX = $(call pkg_config,GST_PKG_PREFIX,--variable=prefix gstreamer-1.0)
+GST_PKG_PLUGINSDIR = $(call pkg_config,GST_PKG_PLUGINSDIR,--variable=pluginsdir gstreamer-1.0)
+GST_PLUGINDIR ?= $(patsubst $(GST_PKG_PREFIX)/%,$(PREFIX)/%,$(GST_PKG_PLUGINSDIR))
+.PHONY: install-gstreamer uninstall-gstreamer
+install: install-gstreamer
+uninstall: uninstall-gstreamer
+install-gstreamer: all
+	@if [ -f $(GST_PLUGIN) ]; then \
+		install -d $(DESTDIR)$(GST_PLUGINDIR) && install -m 755 $(GST_PLUGIN) $(DESTDIR)$(GST_PLUGINDIR)/; \
+	else echo "install: $(GST_PLUGIN) was not built (no GStreamer -dev packages): not installed"; fi
+uninstall-gstreamer:
+	@if $(PKG_CONFIG) --exists gstreamer-1.0; then rm -f $(DESTDIR)$(GST_PLUGINDIR)/libgstsbfx.so; fi

@@ -458,7 +458,7 @@ int sbfx_rf_fire_lights(const sbfx_rf_frame *f, const sbfx_rf_particle *particle
 }
 
 /* The frame's fire light at each dust or smoke particle of the phase model (the module's
- * particle_fire, src/render/passes.c). */
+ * particle_fire, src/render/particles.c). */
 static int light_by_fire(const sbfx_rf_frame *f, sbfx_rf_particle *valid, int count)
 {
     sbfx_fire_gathered lights[SBFX_FIRE_GATHER_MAX];

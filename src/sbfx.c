@@ -97,7 +97,7 @@ static void schedule_timeline(sbfx *fx, const sbfx_scene *scene)
     if (fx->scene->desc.ignore_timeline) return;
     for (int i = 0; i < scene->timeline_count; i++) {
         const sbfx_timeline_entry *t = &scene->timeline[i];
-        sbfx_schedule(fx, fx->scene->effects[t->effect].name, fx->sim->time + t->time, t->position);
+        sbfx_timeline_add(fx, t->effect, fx->sim->time + t->time, t->position, SBFX_TRIGGER_TIMELINE);
     }
 }
 
@@ -206,7 +206,14 @@ sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float position[3])
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "trigger \"%s\": position is not finite", effect);
     int index = sbfx_effect_index(fx, effect);
     if (index < 0) return sbfx_fail(fx, SBFX_ERR_UNKNOWN_EFFECT, "trigger: no effect named \"%s\"", effect);
-    return sbfx_fire(fx, index, position);
+    return sbfx_fire(fx, index, position, SBFX_TRIGGER_CALL);
+}
+
+void sbfx_set_trigger_listener(sbfx *fx, sbfx_trigger_fn fn, void *user)
+{
+    if (!fx) return;
+    fx->sim->trigger_listener = fn;
+    fx->sim->trigger_listener_user = user;
 }
 
 sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds, const float position[3])
@@ -216,7 +223,7 @@ sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds, const fl
         return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "schedule \"%s\": time or position is not finite", effect);
     int index = sbfx_effect_index(fx, effect);
     if (index < 0) return sbfx_fail(fx, SBFX_ERR_UNKNOWN_EFFECT, "schedule: no effect named \"%s\"", effect);
-    return sbfx_timeline_add(fx, index, seconds, position);
+    return sbfx_timeline_add(fx, index, seconds, position, SBFX_TRIGGER_SCHEDULE);
 }
 
 double sbfx_time(const sbfx *fx) { return fx ? fx->scene->desc.start_time + fx->sim->time : 0.0; }

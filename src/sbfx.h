@@ -326,6 +326,21 @@ SBFX_API sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float posi
  * first simulation step at or after that time, so results do not depend on frame times. */
 SBFX_API sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds,
                                    const float position[3]);
+/* Where an effect instance the module started came from (sbfx_set_trigger_listener). */
+typedef enum sbfx_trigger_origin {
+    SBFX_TRIGGER_CALL,     /* sbfx_trigger */
+    SBFX_TRIGGER_SCHEDULE, /* sbfx_schedule */
+    SBFX_TRIGGER_TIMELINE  /* the scene's timeline */
+} sbfx_trigger_origin;
+/* Told of every effect instance the module starts, as it starts: inside sbfx_trigger, or inside
+ * sbfx_update at the step a scheduled or timeline trigger fires at. `time` is the clock
+ * (sbfx_time) at the instance's first step; refused triggers (pool full) are not told. The
+ * listener must not call the module back (sbfx_time and sbfx_elapsed excepted). */
+typedef void (*sbfx_trigger_fn)(const char *effect, const float position[3], double time,
+                                sbfx_trigger_origin origin, void *user);
+/* Sets the listener (NULL: none); it stays across sbfx_set_scene. A host that logs what fired
+ * learns here of the scene's timeline, which it does not see otherwise. */
+SBFX_API void sbfx_set_trigger_listener(sbfx *fx, sbfx_trigger_fn fn, void *user);
 /* True when the module has an effect of that name (the scene's, or the built-in "explosion"):
  * lets a host check at start the names it will trigger later (GPIO lines, remote commands). */
 SBFX_API bool sbfx_has_effect(const sbfx *fx, const char *effect);
@@ -344,6 +359,21 @@ SBFX_API double sbfx_elapsed(const sbfx *fx);
  * there, so the simulation never spins to catch up; hosts that want more call it again. */
 SBFX_API sbfx_result sbfx_update(sbfx *fx, double dt);
 SBFX_API sbfx_result sbfx_render(sbfx *fx, const sbfx_frame *frame);
+/* For hosts that play a stream (a video filter: docs/hosts/gstreamer.md). Since 1.3.0.
+ * sbfx_restart puts the module back where sbfx_create left it, with this scene (NULL: the
+ * built-in explosion) planned from the desc given to sbfx_create: the clock at zero
+ * (sbfx_elapsed() = 0, sbfx_time() = desc.start_time), the scene's timeline scheduled from
+ * there, no particle, flash or pending trigger, the same random streams; what a stream's seek
+ * needs, so that the frames after a seek back to the start are those of the first pass. It is
+ * sbfx_set_scene otherwise: GL objects made the same way are taken over (a restart with the
+ * same scene compiles nothing), it may allocate, it saves and restores the GL state it
+ * changes, detail pushed with sbfx_detail_push_slice is not kept, and on failure the module
+ * goes on unchanged, clock included. */
+SBFX_API sbfx_result sbfx_restart(sbfx *fx, const sbfx_scene *scene);
+/* True when an sbfx_render now would draw nothing and make no GL call: no particle is live
+ * past its emitter's delay and the scene has no post effect (those pass every frame). Asked
+ * after sbfx_update, it lets a host pass its picture on unchanged, without a copy. No GL call. */
+SBFX_API bool sbfx_idle(const sbfx *fx);
 SBFX_API void sbfx_stats(const sbfx *fx, sbfx_counters *out);
 
 /* Fire lights the host (docs/embedding.md "Fire lights your scene"). Each frame the live fire

@@ -37,8 +37,8 @@ static sbfx_desc host_desc(const sbfx *fx, const sbfx_scene *scene, const char *
     return d;
 }
 
-/* What goes on across the reload: the clock, what the module learnt about the host, counts
- * since create. */
+/* What goes on across the reload: the clock, what the module learnt about the host, the host's
+ * trigger listener, counts since create. */
 static void carry_over(sbfx *next, const sbfx *live)
 {
     next->scene->host_desc = live->scene->host_desc;
@@ -49,6 +49,8 @@ static void carry_over(sbfx *next, const sbfx *live)
     memcpy(next->sim->previous_view, live->sim->previous_view, sizeof(next->sim->previous_view));
     next->sim->previous_render_time = live->sim->previous_render_time;
     next->sim->have_previous_view = live->sim->have_previous_view;
+    next->sim->trigger_listener = live->sim->trigger_listener;
+    next->sim->trigger_listener_user = live->sim->trigger_listener_user;
     next->counters.programs_compiled += live->counters.programs_compiled;
     next->counters.targets_created += live->counters.targets_created;
     next->counters.scene_reloads = live->counters.scene_reloads + 1;

@@ -43,6 +43,27 @@ usage_error() {
     fi
 }
 
+# goes_on NAME "TEXT|TEXT..." KEY VALUE FLAGS...: a run whose input is not there (retried while
+# the run goes on) ends with status 0, its log says every TEXT, and its --stats KEY is VALUE.
+goes_on() {
+    local name=$1 texts=$2 key=$3 value=$4 text missing=""
+    shift 4
+    play "$@" --stats "$tmp/$name.json"
+    if [ "$rc" -ne 0 ]; then
+        fail "$name" "'$*' exited with $rc: $(first_error_line)"
+        return
+    fi
+    IFS='|' read -ra texts <<<"$texts"
+    for text in "${texts[@]}"; do grep -qF -- "$text" "$tmp/err" || missing="$missing '$text'"; done
+    local got
+    got=$(json_number "$tmp/$name.json" "$key")
+    if [ -n "$missing" ] || [ "$got" != "$value" ]; then
+        fail "$name" "the log does not say$missing, or $key is '$got', not $value: $(first_error_line)"
+    else
+        ok "$name"
+    fi
+}
+
 # json_number FILE KEY: the value of "KEY": N in the one-object stats file.
 json_number() {
     sed -n "s/.*\"$2\"[[:space:]]*:[[:space:]]*\([0-9][0-9]*\).*/\1/p" "$1"
@@ -57,7 +78,8 @@ test_help() {
     local missing="" flag
     for flag in --headless --size --frames --fps --start-time --out --contact-sheet --stats --trigger \
         --no-timeline --scale --opacity --format --upsample --tone-map --exposure --budget-ms --seed --scene --quiet --help --version \
-        --display --device --connector --mode --modeset --screenshot --board --video --gpio; do
+        --display --device --connector --mode --modeset --screenshot --board --video --gpio --dis --dis-exercise \
+        --mqtt --mqtt-topic; do
         grep -qF -- "$flag" "$tmp/out" || missing="$missing $flag"
     done
     if [ "$rc" -ne 0 ]; then
@@ -271,18 +293,16 @@ test_platform_arguments() {
     usage_error gpio-bad-line --gpio --gpio gpiochip0:seventeen=explosion
     usage_error gpio-bad-position --gpio --gpio gpiochip0:17=explosion@1,2
     # a chip that is not there is not fatal (docs/gpio.md): logged naming it, retried, the run goes on
-    play --gpio sbfx-no-such-chip:3=explosion --size 160x90 --frames 2 --out "$tmp/gpio" --quiet \
-        --stats "$tmp/gpio.json"
-    if [ "$rc" -ne 0 ]; then
-        fail gpio-missing-chip "a run with a missing GPIO chip exited with $rc: $(first_error_line)"
-    elif ! grep -qF "sbfx-no-such-chip" "$tmp/err" || ! grep -qF "until it appears" "$tmp/err" ||
-        [ "$(json_number "$tmp/gpio.json" gpio_absent)" != 1 ]; then
-        fail gpio-missing-chip "the log does not name the chip and the retry, or gpio_absent != 1: $(first_error_line)"
-    else
-        ok gpio-missing-chip
-    fi
+    goes_on gpio-missing-chip "sbfx-no-such-chip|until it appears" gpio_absent 1 \
+        --gpio sbfx-no-such-chip:3=explosion --size 160x90 --frames 2 --out "$tmp/gpio" --quiet
     usage_error gpio-unknown-effect "its effects: explosion" --gpio sbfx-no-such-chip:3=nosuch \
         --size 160x90 --frames 1 --out "$tmp/gpio"
+    # network trigger sources (docs/triggers.md): a DIS address that is not this machine's stops
+    # the run, naming it; a broker that is not there is retried while the run goes on
+    usage_error dis-unbindable "--dis 192.0.2.1:3000: binding 192.0.2.1:3000: " --scene tests/net/range.cfg \
+        --dis 192.0.2.1:3000 --size 160x90 --frames 1 --out "$tmp/dis"
+    goes_on mqtt-missing-broker "cannot reach the broker at 127.0.0.1:1|retrying" mqtt_messages 0 \
+        --mqtt 127.0.0.1:1 --size 160x90 --frames 2 --out "$tmp/mqtt" --quiet
     usage_error board-missing "none-board.cfg" --board "$tmp/none-board.cfg"
     printf 'board = "t";\ndisplay = {\n  conector = "HDMI-A-1"; };\n' >"$tmp/typo-board.cfg"
     usage_error board-typo "typo-board.cfg:3: unknown key 'conector' in display" --board "$tmp/typo-board.cfg"

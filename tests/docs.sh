@@ -18,6 +18,7 @@
 #                      it gives in backquotes exists; one followed by "(ROOM)" lies in that room
 #                      (src/ and platform/player/: their rooms.txt; src/sbfx.h: public); every
 #                      name it gives in backquotes (a C identifier) occurs in one of its files
+#   docs/requirements  README's Requirements name the packages make test-fresh's bare root has.
 # Usage: tests/docs.sh. Prints "ok - docs/..." / "not ok - docs/...: why"; exits 1 on a failure.
 set -u
 cd "$(dirname "$0")/.." || exit 1
@@ -192,7 +193,7 @@ check_make_help() {
     local help missing="" t
     help=$(make --no-print-directory help 2>&1)
     for t in $(sed -n 's/^\.PHONY://p' Makefile); do
-        case "$t" in deps | lib | test-unit | test-gl | test-asan | test-platform | test-build | test-build-normal | test-build-asan | install-kiosk | uninstall-kiosk | FORCE) continue ;; esac
+        case "$t" in deps | lib | test-unit | test-gl | test-asan | test-platform | test-build | test-build-normal | test-build-asan | install-kiosk | uninstall-kiosk | install-gstreamer | uninstall-gstreamer | FORCE) continue ;; esac
         printf '%s\n' "$help" | grep -q "^make \(\[\)\?$t\b" || missing="$missing $t"
     done
     if [ -z "$missing" ]; then
@@ -306,6 +307,20 @@ if [ -f docs/hacking.md ]; then
     check_room_map player platform/player "The player's rooms"
     check_walkthroughs
 fi
+
+# README's Requirements name what tests/fresh/run.sh (make test-fresh) puts in the bare root
+# before the quick start: the `apt-get install ...` line there is its REQUIREMENTS, word for word.
+check_requirements() {
+    local want said
+    want=$(sed -n 's/^REQUIREMENTS="\(.*\)"$/\1/p' tests/fresh/run.sh)
+    said=$(sed -n '/^## Requirements/,/^## /p' README.md | grep -o '`apt-get install [^`]*`' | head -n 1 | tr -d '`')
+    if [ -n "$want" ] && [ "$said" = "apt-get install $want" ]; then
+        ok "requirements (README: '$said'; make test-fresh's bare root has the same)"
+    else
+        not_ok requirements "README's Requirements say '$said', tests/fresh/run.sh installs '$want'"
+    fi
+}
+check_requirements
 
 files=$( { echo README.md; find docs -name '*.md' 2>/dev/null | sort; } )
 for md in $files; do

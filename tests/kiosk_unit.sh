@@ -4,6 +4,8 @@
 #   - scenes and board profiles under share/sbfx; the unit, udev rule and sysusers.d file;
 #   - the unit's paths filled in and pointing at installed files; systemd-analyze verify;
 #   - exposure <= 1.0 by `systemd-analyze security --offline=true` (systemd's own scoring);
+#   - no network (AF_UNIX only); the network drop-in for DIS and MQTT opens AF_INET only and keeps
+#     the exposure <= 1.5;
 #   - what the kiosk relies on: Type=notify with a watchdog, restarts that never give up,
 #     devices by DevicePolicy=closed + DeviceAllow= (DRM, V4L2, GPIO; no private /dev), a shader
 #     cache directory, every Wants= also ordered by After=;
@@ -71,6 +73,35 @@ else
     if [ -z "$level" ]; then not_ok exposure "no exposure level: $(tail -n 2 "$tmp/security.log" | tr '\n' ' ')"
     elif awk -v l="$level" 'BEGIN { exit !(l <= 1.0) }'; then ok "exposure ($level <= 1.0, systemd-analyze security --offline=true)"
     else not_ok exposure "$level > 1.0: $(grep '✗' "$tmp/security.log" | awk '{print $2}' | tr '\n' ' ')"; fi
+fi
+
+# Triggers from the network (docs/triggers.md): the unit has none (AF_UNIX only, PrivateNetwork=yes);
+# the drop-in make install puts in share/sbfx/systemd/ opens IPv4 only (AF_INET, no AF_INET6,
+# AF_PACKET or AF_NETLINK) to the networks it names, and the unit with it still rates 1.5 or less.
+dropin=$root/usr/share/sbfx/systemd/network.conf
+families() { sed -n 's/^RestrictAddressFamilies=//p' "$@" | tr ' ' '\n' | sort -u | tr '\n' ' '; }
+if [ "$(families "$unit")" != "AF_UNIX " ] || [ "$(value PrivateNetwork)" != yes ]; then
+    not_ok network "the unit allows '$(families "$unit")', PrivateNetwork=$(value PrivateNetwork): want AF_UNIX and yes"
+elif [ ! -f "$dropin" ] || grep -q '@[A-Z]*@' "$dropin"; then
+    not_ok network "$dropin not installed, or placeholders left in it"
+elif [ "$(families "$unit" "$dropin")" != "AF_INET AF_UNIX " ]; then
+    not_ok network "with the drop-in the families are '$(families "$unit" "$dropin")': want AF_UNIX and AF_INET only"
+elif ! command -v systemd-analyze >/dev/null 2>&1; then
+    not_ok network "systemd-analyze not found (tools/deps.sh test installs systemd)"
+else
+    mkdir -p "$root/etc/systemd/system/sbfx-kiosk.service.d" "$tmp/verify/sbfx-kiosk.service.d"
+    cp "$dropin" "$root/etc/systemd/system/sbfx-kiosk.service.d/"
+    cp "$dropin" "$tmp/verify/sbfx-kiosk.service.d/"
+    systemd-analyze security --offline=true --root="$root" sbfx-kiosk.service >"$tmp/netsec.log" 2>&1
+    level=$(sed -n 's/.*Overall exposure level for sbfx-kiosk.service: \([0-9.]*\).*/\1/p' "$tmp/netsec.log")
+    if ! systemd-analyze verify --man=no "$tmp/verify/sbfx-kiosk.service" >"$tmp/netverify.log" 2>&1 ||
+        [ -s "$tmp/netverify.log" ]; then
+        not_ok network "verify with the drop-in: $(head -n 3 "$tmp/netverify.log" | tr '\n' ' ')"
+    elif [ -n "$level" ] && awk -v l="$level" 'BEGIN { exit !(l <= 1.5) }'; then
+        ok "network (the unit: AF_UNIX, no network; with share/sbfx/systemd/network.conf: AF_INET to the networks named, exposure $level <= 1.5)"
+    else
+        not_ok network "with the drop-in: exposure '$level' > 1.5: $(grep '✗' "$tmp/netsec.log" | awk '{print $2}' | tr '\n' ' ')"
+    fi
 fi
 
 # what the kiosk relies on
@@ -145,6 +176,11 @@ if command -v systemd-analyze >/dev/null 2>&1 && [ -f "$cage_unit" ] && [ -f "$u
     level=$(sed -n 's/.*Overall exposure level for sbfx-kiosk-cage.service: \([0-9.]*\).*/\1/p' "$tmp/wsecurity.log")
     if [ -n "$level" ] && awk -v l="$level" 'BEGIN { exit !(l <= 1.5) }'; then ok "wayland-exposure ($level <= 1.5)"
     else not_ok wayland-exposure "'$level' > 1.5: $(grep '✗' "$tmp/wsecurity.log" | awk '{print $2}' | tr '\n' ' ')"; fi
+    # the user unit, hardened as far as a user manager allows (tests/wayland.sh starts it in one)
+    systemd-analyze security --offline=true "$user_unit" >"$tmp/usecurity.log" 2>&1
+    level=$(sed -n 's/.*Overall exposure level for sbfx-kiosk-wayland.service: \([0-9.]*\).*/\1/p' "$tmp/usecurity.log")
+    if [ -n "$level" ] && awk -v l="$level" 'BEGIN { exit !(l <= 2.5) }'; then ok "user-unit-exposure ($level <= 2.5)"
+    else not_ok user-unit-exposure "'$level' > 2.5: $(grep '✗' "$tmp/usecurity.log" | awk '{print $2}' | tr '\n' ' ')"; fi
 fi
 if [ "$(uvalue "$cage_unit" User)" = sbfx ] && grep -q '^u sbfx ' "$sysusers" && { ! command -v systemd-sysusers >/dev/null 2>&1 ||
     grep -q '^sbfx:' "$root/etc/passwd"; }; then ok "wayland-user (sbfx, made by sysusers.d)"

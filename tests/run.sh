@@ -8,7 +8,10 @@
 #   1. every test binary in $BUILD/tests/unit/, $BUILD/tests/gl/, $BUILD/tests/platform/ and
 #      $BUILD/tests/hosts/ (the SDL2 host, docs/hosts/), the GL state and host-error tests again
 #      on desktop OpenGL (core and compatibility), the SDL2 and desktop OpenGL example programs,
-#      the Qt Quick item's test and example under Xvfb (tests/hosts/qt_quick.sh)
+#      the Qt Quick item's test and example under Xvfb (tests/hosts/qt_quick.sh), the GStreamer
+#      element's tests in $BUILD/tests/gstreamer/ (its GL state test also on OpenGL ES), its
+#      command line, installed copy and MP4 recording (tests/gstreamer/gst.sh) and its display
+#      sinks under Xvfb and cage (tests/gstreamer/sinks.sh)
 #   2. the shaders through glslangValidator and their "#version 300 es" line (tests/shaders.sh),
 #      the rooms' one-way dependencies (tests/layers.sh)
 #   3. the sbfx-play command-line tests (tests/cli.sh), the probe's (tests/probe.sh), what
@@ -37,8 +40,8 @@
 #              driver the loader finds: Mesa here, a GPU's driver where there is one
 #   --check    the edit-compile tier of `make check`: unit tests, test_gl_smoke, the shaders, the
 #              rooms' dependencies
-#   --asan=cpu the ASan+UBSan tier without the suites that render on Mesa (make test TEST_ASAN=cpu,
-#              which make test-debian13 runs)
+#   --asan=cpu the ASan+UBSan tier without the suites that render on Mesa (make test TEST_ASAN=cpu:
+#              a lighter run for a slow machine; docs/testing.md)
 #   --list     print the suites' names and stop
 #   PATTERN    only the suites whose name (with its "asan:" prefix) matches one of these shell
 #              patterns: tests/run.sh test_gl_module 'asan:*'
@@ -178,6 +181,22 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # Mesa's drivers keep allocations until exit that LeakSanitizer would report as ours.
 NO_LEAKS=ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0
 
+# The GStreamer element's suites (tests/gstreamer/), headless through GstGL's EGL device.
+gstreamer_suites() {
+    local t
+    check_built "" gstreamer "$BUILD"
+    [ -x "$BUILD/tests/gstreamer/test_gst_units" ] && run_suite "" test_gst_units "$BUILD/tests/gstreamer/test_gst_units"
+    for t in test_gst_sbfx test_gst_gl_state; do
+        [ -x "$BUILD/tests/gstreamer/$t" ] || continue
+        run_suite "" "$t" tests/gstreamer/with_plugin.sh "$BUILD" "$BUILD/tests/gstreamer/$t"
+    done
+    [ -x "$BUILD/tests/gstreamer/test_gst_gl_state" ] &&
+        run_suite "gles:" test_gst_gl_state env GST_GL_API=gles2 tests/gstreamer/with_plugin.sh "$BUILD" \
+            "$BUILD/tests/gstreamer/test_gst_gl_state"
+    run_suite "" gstreamer tests/gstreamer/gst.sh "$BUILD"
+    run_suite "" gstreamer-sinks tests/gstreamer/sinks.sh "$BUILD"
+}
+
 list_check() {
     WEIGHT=2
     check_built "" unit "$BUILD"
@@ -209,6 +228,9 @@ list_all() {
     run_suite "" desktop-gl-example tests/hosts/desktop_gl_example.sh "$BUILD"
     # the Qt Quick item's test and example under Xvfb (skipped, with the reason, without Qt 6)
     run_suite "" qt-quick tests/hosts/qt_quick.sh "$BUILD"
+    # the GStreamer element (issue 34): its C tests on desktop OpenGL (the GL state also on
+    # OpenGL ES), the command line and the installed copy, the display sinks
+    gstreamer_suites
     run_suite "" shaders tests/shaders.sh "$BUILD"
     run_suite "" layers tests/layers.sh "$BUILD"
     run_cli "" "$BUILD/sbfx-play"
@@ -223,6 +245,10 @@ list_all() {
     # the authoring loop: sbfx-play --headless --watch edited the ways editors save (issue 29)
     WEIGHT=30
     run_suite "" reload tests/reload.sh "$BUILD/sbfx-play"
+    # triggers from the network: DIS over loopback, MQTT through a broker of its own (issue 35)
+    WEIGHT=15
+    run_suite "" dis tests/dis.sh "$BUILD"
+    run_suite "" mqtt tests/mqtt.sh "$BUILD"
     WEIGHT=10
     run_suite "" install tests/install.sh "$BUILD"
     run_suite "" docs tests/docs.sh
@@ -234,8 +260,9 @@ list_all() {
     for part in $(tests/precision.sh --parts); do
         run_suite "precision:" "$part" env "$(detail_cache normal)" tests/precision.sh "$BUILD" "$part"
     done
-    # the scene parser under libFuzzer for FUZZ_SECONDS (60), the example scenes as corpus
-    WEIGHT=$((${FUZZ_SECONDS:-60} + 30))
+    # the scene parser under libFuzzer for FUZZ_SECONDS (60), the example scenes as corpus; the DIS
+    # parser for FUZZ_DIS_SECONDS (15)
+    WEIGHT=$((${FUZZ_SECONDS:-60} + ${FUZZ_DIS_SECONDS:-15} + 30))
     run_suite "" fuzz tests/fuzz.sh "$BUILD"
 
     if [ -d "$ASAN_BUILD" ]; then

@@ -121,8 +121,25 @@ start_cage() {
     (as_user "$xdg" cage "${CAGE_FLAGS[@]}" -- sleep $((WAIT * 3))) >"$tmp/out/$1-cage.log" 2>&1 &
     cage_pid=$!
     pids+=("$cage_pid")
-    wait_for 20 test -S "$xdg/wayland-0"
+    compositor_up "$cage_pid" "$xdg" "$tmp/out/$1-cage.log"
 }
+
+# compositor_up PID XDG LOG: waits (20 s at most) for the compositor's socket; returns at once,
+# with why_not set to the reason, when the compositor exits first (a compositor that cannot
+# start: waiting would only add 20 s to a failure).
+compositor_up() {
+    why_not=""
+    wait_for 20 socket_or_gone "$1" "$2/wayland-0" || why_not="it did not start within 20 s"
+    if [ -z "$why_not" ] && ! [ -S "$2/wayland-0" ]; then
+        why_not="it exited before its socket appeared: $(tail -n 3 "$3" | tr '\n' ' ')"
+        # cage 0.1.4 (Debian 12) cannot start without Xwayland, which it only recommends
+        if grep -q "Cannot find Xwayland binary" "$3"; then
+            why_not="it needs Xwayland: install xwayland (tools/deps.sh test). $why_not"
+        fi
+    fi
+    [ -z "$why_not" ]
+}
+socket_or_gone() { [ -S "$2" ] || ! kill -0 "$1" 2>/dev/null; }
 
 # children_of PID: the processes whose parent is PID (from /proc: procps may be absent)
 children_of() {
@@ -202,7 +219,7 @@ grab_until_two() {
 
 test_picture() {
     if ! start_cage picture; then
-        fail picture "cage did not start within 20 s: $(tail -n 3 "$tmp/out/picture-cage.log" | tr '\n' ' ')"
+        fail picture "cage: $why_not"
         return
     fi
     # --size: the first buffer is 320x180, cage then configures the output's size: a resize
@@ -301,7 +318,7 @@ check_frames() {
 # ---- the compositor going away --------------------------------------------------------------
 test_compositor_killed() {
     if ! start_cage killed; then
-        fail compositor-killed "cage did not start within 20 s"
+        fail compositor-killed "cage: $why_not"
         return
     fi
     play killed --scene "$tmp/bin/explosion.cfg"
@@ -332,7 +349,7 @@ start_weston() {
         --socket=wayland-0 --width=640 --height=360 --idle-time=0) >"$tmp/out/weston-$1.log" 2>&1 &
     weston_pid=$!
     pids+=("$weston_pid")
-    wait_for 20 test -S "$xdg/wayland-0"
+    compositor_up "$weston_pid" "$xdg" "$tmp/out/weston-$1.log"
 }
 
 # ---- presentation-time feedback: weston (headless, pixman, desktop shell) ----------------------
@@ -344,7 +361,7 @@ test_presentation() {
         return
     fi
     if ! start_weston weston desktop-shell.so; then
-        fail presentation "weston did not start within 20 s: $(tail -n 2 "$tmp/out/weston-weston.log" | tr '\n' ' ')"
+        fail presentation "weston: $why_not"
         return
     fi
     play weston --scene "$tmp/bin/explosion.cfg" --frames 40 --stats "$tmp/out/weston.json"
@@ -375,7 +392,7 @@ test_hidden() {
         return
     fi
     if ! start_weston kiosk kiosk-shell.so; then
-        fail hidden "weston did not start within 20 s: $(tail -n 2 "$tmp/out/weston-kiosk.log" | tr '\n' ' ')"
+        fail hidden "weston: $why_not"
         return
     fi
     play hidden --scene "$tmp/bin/explosion.cfg" --frames 20 --stats "$tmp/out/hidden.json"
@@ -394,6 +411,124 @@ test_hidden() {
     else
         ok "hidden (no frame callbacks: logged, $paused of 20 frames rendered unshown at 10 Hz, exit 0)"
     fi
+}
+
+# ---- the user unit, started by a user manager in a weston session ---------------------------
+# dist/systemd/user/sbfx-kiosk-wayland.service.in as `make install` writes it, started by a real
+# `systemd --user` of the unprivileged user in a weston (desktop shell) session: it must become
+# active (READY=1 after its first frame) with its sandbox in force, and stop with status 0. Its
+# files and the session's XDG_RUNTIME_DIR live under /run: the unit's PrivateTmp= hides /tmp.
+# A user manager needs a cgroup subtree of its own (made here, as logind's user@.service would
+# delegate it) and /run/systemd/system (present where systemd booted the machine, made in a
+# private mount namespace otherwise).
+cgroup_for_manager() {
+    local h
+    for h in /sys/fs/cgroup/unified /sys/fs/cgroup/systemd /sys/fs/cgroup; do
+        if [ -f "$h/cgroup.procs" ] && [ -w "$h" ]; then echo "$h"; fi
+    done
+}
+test_user_unit() {
+    local name=user-unit
+    if [ "$(id -u)" -ne 0 ]; then skip $name "needs root (a cgroup subtree delegated to a user manager)"; return; fi
+    if ! command -v weston >/dev/null 2>&1 || ! [ -x /lib/systemd/systemd ] || ! command -v unshare >/dev/null 2>&1; then
+        skip $name "weston, systemd or unshare is not installed (tools/deps.sh test)"
+        return
+    fi
+    local hier
+    hier=$(cgroup_for_manager)
+    if [ -z "$hier" ]; then skip $name "no writable cgroup hierarchy under /sys/fs/cgroup for a user manager"; return; fi
+    local run cg=() h uid gid
+    run=$(mktemp -d -p /run sbfx-user-unit.XXXXXX)
+    chmod 755 "$run"
+    uid=$(id -u nobody) gid=$(id -g nobody)
+    mkdir -p "$run/bin" "$run/share/sbfx/scenes" "$run/xdg" "$run/home/.config/systemd/user/sbfx-kiosk-wayland.service.d"
+    cp "$player" "$run/bin/sbfx-play"
+    cp scenes/explosion.cfg "$run/share/sbfx/scenes/"
+    sed -e "s|@BINDIR@|$run/bin|g" -e "s|@DATADIR@|$run/share|g" dist/systemd/user/sbfx-kiosk-wayland.service.in \
+        >"$run/home/.config/systemd/user/sbfx-kiosk-wayland.service"
+    # the test reads the player's log (no journal here): where its output goes, nothing else
+    printf '[Service]\nStandardOutput=file:%s\nStandardError=file:%s\n' "$run/home/unit.log" "$run/home/unit.log" \
+        >"$run/home/.config/systemd/user/sbfx-kiosk-wayland.service.d/log.conf"
+    chown -R "$uid:$gid" "$run/xdg" "$run/home"
+    chmod 700 "$run/xdg"
+    for h in $hier; do mkdir "$h/sbfx-user-unit.$$" && chown -R "$uid:$gid" "$h/sbfx-user-unit.$$" && cg+=("$h/sbfx-user-unit.$$"); done
+    local sess=(setpriv --reuid="$uid" --regid="$gid" --clear-groups env -i PATH=/usr/bin:/bin HOME="$run/home"
+        XDG_RUNTIME_DIR="$run/xdg" XDG_CONFIG_HOME="$run/home/.config")
+    (exec "${sess[@]}" weston --backend=headless-backend.so --shell=desktop-shell.so --use-pixman --socket=wayland-0 \
+        --width=640 --height=360 --idle-time=0) >"$tmp/out/user-unit-weston.log" 2>&1 &
+    local weston=$!
+    pids+=("$weston")
+    if ! compositor_up "$weston" "$run/xdg" "$tmp/out/user-unit-weston.log"; then
+        fail $name "weston: $why_not"
+        user_unit_cleanup "$run" "$weston" "" "${cg[@]}"
+        return
+    fi
+    # the user manager, in the cgroup subtree delegated to it
+    CGROUPS="${cg[*]}" unshare -m --propagation private sh -c '
+        [ -d /run/systemd/system ] || { mkdir -p /run/systemd && mount -t tmpfs tmpfs /run/systemd && mkdir /run/systemd/system; } || exit 1
+        for c in $CGROUPS; do echo $$ >"$c/cgroup.procs" || exit 1; done
+        exec "$@" /lib/systemd/systemd --user' sh "${sess[@]}" >>"$tmp/out/user-unit-manager.log" 2>&1 &
+    local manager=$!
+    pids+=("$manager")
+    local ctl=("${sess[@]}" systemctl --user)
+    if ! wait_for 20 test -S "$run/xdg/systemd/private"; then
+        skip $name "cannot start a user manager here: $(tail -n 2 "$tmp/out/user-unit-manager.log" | tr '\n' ' ')"
+        user_unit_cleanup "$run" "$weston" "$manager" "${cg[@]}"
+        return
+    fi
+    "${ctl[@]}" set-environment WAYLAND_DISPLAY=wayland-0
+    local rc=0 state pid
+    timeout "$WAIT" "${ctl[@]}" start sbfx-kiosk-wayland.service >"$tmp/out/user-unit-start.log" 2>&1 || rc=$?
+    [ "$rc" -eq 0 ] || echo "its main process: $("${ctl[@]}" show -P ExecMainStatus sbfx-kiosk-wayland.service)" \
+        "(systemd.exec(5), PROCESS EXIT CODES)" >>"$tmp/out/user-unit-start.log"
+    sleep 2 # frames go on: the watchdog and the sandbox's system call filter let it run
+    state=$("${ctl[@]}" show -P ActiveState sbfx-kiosk-wayland.service)/$("${ctl[@]}" show -P NRestarts sbfx-kiosk-wayland.service)
+    pid=$("${ctl[@]}" show -P MainPID sbfx-kiosk-wayland.service)
+    local sandbox=""
+    if [ "${pid:-0}" -gt 0 ] && [ -r "/proc/$pid/status" ]; then
+        grep -q '^NoNewPrivs:[[:space:]]*1' "/proc/$pid/status" && sandbox+="no-new-privileges "
+        grep -q '^Seccomp:[[:space:]]*2' "/proc/$pid/status" && sandbox+="seccomp "
+        grep -q '^CapBnd:[[:space:]]*0*$' "/proc/$pid/status" && sandbox+="no-capabilities "
+        local ns
+        for ns in user mnt; do
+            [ "$(readlink "/proc/$pid/ns/$ns")" != "$(readlink "/proc/$$/ns/$ns")" ] && sandbox+="$ns-namespace "
+        done
+    fi
+    "${ctl[@]}" stop sbfx-kiosk-wayland.service >/dev/null 2>&1
+    local status
+    status=$("${ctl[@]}" show -P ExecMainStatus sbfx-kiosk-wayland.service)
+    user_unit_cleanup "$run" "$weston" "$manager" "${cg[@]}"
+    local want="no-new-privileges seccomp no-capabilities user-namespace mnt-namespace "
+    if [ "$rc" -ne 0 ] || [ "$state" != active/0 ]; then
+        fail $name "start exit status $rc, state $state: $(tail -n 3 "$tmp/out/user-unit-start.log" | tr '\n' ' ') $(tail -n 3 "$tmp/out/user-unit.log" 2>/dev/null | tr '\n' ' ')"
+    elif [ "$sandbox" != "$want" ]; then
+        fail $name "the sandbox is not in force: has '$sandbox', wants '$want'"
+    elif [ "$status" != 0 ]; then
+        fail $name "stopped with status $status, expected 0"
+    else
+        ok "$name (systemd --user started it in a weston session: active after its first frame, sandboxed (${sandbox% }), stopped with status 0)"
+    fi
+}
+# user_unit_cleanup RUN WESTON MANAGER CGROUP...
+user_unit_cleanup() {
+    local run=$1 p c
+    cp "$run/home/unit.log" "$tmp/out/user-unit.log" 2>/dev/null
+    for p in "$3" "$2"; do
+        [ -n "$p" ] || continue
+        kill -TERM "$p" 2>/dev/null
+        wait_for 10 bash -c "! kill -0 $p 2>/dev/null" || kill -KILL "$p" 2>/dev/null
+        wait "$p" 2>/dev/null
+    done
+    shift 3
+    for c in "$@"; do
+        [ -d "$c" ] || continue
+        # what is left in it goes back to the parent, then the subtree goes (deepest first)
+        find "$c" -depth -type d | while read -r d; do
+            while read -r p; do echo "$p" >"$(dirname "$c")/cgroup.procs" 2>/dev/null; done <"$d/cgroup.procs"
+            rmdir "$d" 2>/dev/null
+        done
+    done
+    rm -rf "$run"
 }
 
 # ---- --display auto, no compositor ------------------------------------------------------------
@@ -420,4 +555,5 @@ test_picture
 test_compositor_killed
 test_presentation
 test_hidden
+test_user_unit
 [ "$failures" -eq 0 ]

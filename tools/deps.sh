@@ -1,16 +1,21 @@
 #!/bin/sh
 # Makes sure the Debian packages sbfx needs are installed.
 # As root: installs what is missing (apt-get, non-interactive). Otherwise: prints the exact
-# apt-get line and exits 1. Usage: tools/deps.sh [build|test|vm|cross-arm64|debian13|mesa-shim]
+# apt-get line and exits 1. Usage: tools/deps.sh [build|test|vm|cross-arm64|fresh|mesa-shim]
 set -eu
 set_of="${1:-test}"
 
 # gcc only recommends libc6-dev, which --no-install-recommends leaves out: named here
 host_tools="make gcc libc6-dev pkg-config"
 build_pkgs="$host_tools libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev liblcms2-dev libconfig-dev libdrm-dev libgbm-dev libgpiod-dev colord-data libsystemd-dev libavformat-dev libavcodec-dev libswscale-dev libavutil-dev"
+# MQTT triggers (platform/net/mqtt_client.c, docs/triggers.md): libmosquitto, the player only
+build_pkgs="$build_pkgs libmosquitto-dev"
 # the Wayland display (display_wayland.c): libwayland-client, wayland-egl, and the protocols'
 # XML turned into C by wayland-scanner (libwayland-bin) at build time
 build_pkgs="$build_pkgs libwayland-dev wayland-protocols libwayland-bin"
+# the GStreamer element, libgstsbfx.so (integrations/gstreamer/): GStreamer's core, base and GL
+# libraries (gstreamer-1.0, -base, -video, -gl, -app for its tests)
+build_pkgs="$build_pkgs libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev"
 # Debian 13 (trixie) names some packages differently: its clang is 19 (libgpiod-dev is 2.x
 # there under the same name; the GPIO backend follows pkg-config's version)
 clang_rt=libclang-rt-14-dev
@@ -26,29 +31,44 @@ test_pkgs="$test_pkgs g++ qt6-base-dev qt6-declarative-dev qml6-module-qtquick q
 # procps: /bin/kill, the unit's ExecReload (systemctl reload), which systemd-analyze verify looks for
 test_pkgs="$test_pkgs systemd procps"
 # tests/wayland.sh: sbfx-play under cage (wlroots, headless) read back by grim (wlr-screencopy),
-# and under weston (headless) for presentation-time feedback
+# and under weston (headless) for presentation-time feedback. Debian 12's cage 0.1.4 does not
+# start without Xwayland, which it only recommends (--no-install-recommends leaves it out);
+# Debian 13's cage 0.2 starts without it.
 test_pkgs="$test_pkgs cage grim weston"
+if ! [ -r /etc/os-release ] || ! grep -qx 'VERSION_CODENAME=trixie' /etc/os-release; then
+    test_pkgs="$test_pkgs xwayland"
+fi
+# tests/mqtt.sh: a mosquitto broker of its own and mosquitto_pub / mosquitto_sub as the clients
+test_pkgs="$test_pkgs mosquitto mosquitto-clients"
+# the GStreamer element's tests (tests/gstreamer/): gst-launch-1.0 and gst-inspect-1.0, GstGL's
+# elements, videotestsrc and appsink (base), mp4mux and qtdemux (good), x264enc (ugly), kmssink
+# and waylandsink (bad), avdec_h264 for decodebin (libav: the MP4 recording's input)
+gst_runtime_pkgs="gstreamer1.0-tools gstreamer1.0-gl gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-plugins-bad"
+test_pkgs="$test_pkgs $gst_runtime_pkgs gstreamer1.0-plugins-ugly gstreamer1.0-libav"
 # make test-vm: qemu (TCG), the guest's modprobe through the shared root, and what tests/vm/run.sh
 # needs to fetch and unpack Debian's kernel packages and build vkms and gpio-sim out of tree
 vm_pkgs="$build_pkgs qemu-system-x86 kmod xz-utils patch gcc-12 make libelf1"
+# the GStreamer camera kiosk in the VM: v4l2src (good) from vivid through sbfx to kmssink (bad)
+vm_pkgs="$vm_pkgs $gst_runtime_pkgs"
 # make BOARD=<an arm64 board> and make cross-check: Debian's aarch64 toolchain and the arm64
 # multiarch -dev packages, with the host's make, pkg-config and compiler (build/tools/ runs here)
-cross_arm64_pkgs="$host_tools liblcms2-dev colord-data gcc-aarch64-linux-gnu libc6-dev:arm64 libegl-dev:arm64 libgles-dev:arm64 libdrm-dev:arm64 libgbm-dev:arm64 libgpiod-dev:arm64 libpng-dev:arm64 libconfig-dev:arm64 libsystemd-dev:arm64 libavformat-dev:arm64 libavcodec-dev:arm64 libswscale-dev:arm64 libavutil-dev:arm64 libwayland-dev:arm64 wayland-protocols libwayland-bin"
+cross_arm64_pkgs="$host_tools liblcms2-dev colord-data gcc-aarch64-linux-gnu libc6-dev:arm64 libegl-dev:arm64 libgles-dev:arm64 libdrm-dev:arm64 libgbm-dev:arm64 libgpiod-dev:arm64 libpng-dev:arm64 libconfig-dev:arm64 libsystemd-dev:arm64 libavformat-dev:arm64 libavcodec-dev:arm64 libswscale-dev:arm64 libavutil-dev:arm64 libwayland-dev:arm64 wayland-protocols libwayland-bin libmosquitto-dev:arm64"
 
-# make test-debian13: a Debian 13 root made with debootstrap, checked against the archive's key
-debian13_pkgs="debootstrap debian-archive-keyring"
+# make test-fresh (and test-debian13): bare Debian roots made with debootstrap, checked against
+# the archive's key
+fresh_pkgs="debootstrap debian-archive-keyring"
 # tools/mesa-shim.sh (make bench's Mali columns, make test-gpus): what Mesa 25's meson build of
 # the panfrost, v3d, freedreno and etnaviv drivers and their drm-shims needs from Debian 12
 mesa_shim_pkgs="$build_pkgs flex bison python3-mako python3-yaml python3-ply python3-pycparser libexpat1-dev libdrm-dev ninja-build xz-utils dpkg-dev patch"
 
 case "$set_of" in
     build) want="$build_pkgs" ;;
-    debian13) want="$debian13_pkgs" ;;
+    fresh | debian13) want="$fresh_pkgs" ;;
     test) want="$test_pkgs" ;;
     vm) want="$vm_pkgs" ;;
     cross-arm64) want="$cross_arm64_pkgs" ;;
     mesa-shim) want="$mesa_shim_pkgs" ;;
-    *) echo "deps.sh: unknown package set '$set_of' (build|test|vm|cross-arm64|debian13|mesa-shim)" >&2; exit 2 ;;
+    *) echo "deps.sh: unknown package set '$set_of' (build|test|vm|cross-arm64|fresh|mesa-shim)" >&2; exit 2 ;;
 esac
 
 # arm64 packages need the architecture enabled first (dpkg --add-architecture arm64)

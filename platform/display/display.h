@@ -88,7 +88,7 @@ struct display_drm_desc {
     const char *device;         /* "/dev/dri/card0"; NULL: the first card with a display */
     const char *connector;      /* "HDMI-A-1"; NULL: the first connected one */
     const char *mode;           /* "1920x1080" or "1920x1080@60"; NULL: the preferred mode */
-    int modeset;                /* enum modeset_kind (board.h): auto, atomic, legacy */
+    int modeset;                /* enum modeset_kind (drm/drm_mode_spec.h): auto, atomic, legacy */
     const char *screenshot;     /* PNG of the last frame as scanned out (writeback); NULL */
 };
 

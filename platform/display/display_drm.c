@@ -13,10 +13,10 @@
 #include <string.h>
 #include <time.h>
 
-#include "player/options/board.h"
 #include "drm/drm_device.h"
 #include "drm/drm_fb.h"
 #include "drm/drm_kms.h"
+#include "drm/drm_mode_spec.h"
 #include "drm/drm_writeback.h"
 #include "display/display_link.h"
 #include "egl/egl_headless.h"

@@ -1,6 +1,7 @@
 /* The headless display: EGL surfaceless (egl_headless.h), an RGBA8 framebuffer object, every
  * frame read back with glReadPixels and written as DIR/frame-NNNN.png, optionally shrunk into a
- * contact sheet. The pixel buffer is allocated once. */
+ * contact sheet. The pixel buffer and the PNG writer's row table are allocated once: a frame
+ * allocates nothing of the player's (libpng's own state excepted). */
 #include "egl/gl_check.h"
 #include "display/display.h"
 
@@ -21,6 +22,7 @@ struct display_headless {
     struct egl_headless egl;
     GLuint renderbuffer;
     uint8_t *pixels;
+    struct png_writer png;
     struct contact_sheet sheet;
 };
 
@@ -72,7 +74,7 @@ static int headless_present(struct display *d, int index, char *err, size_t n)
     for (size_t i = 3; i < (size_t)w * hgt * 4; i += 4) h->pixels[i] = 255;
     char path[PATH_MAX + 32];
     snprintf(path, sizeof(path), "%s/frame-%04d.png", h->desc.out_dir, index);
-    rc = png_write_rgba(path, h->pixels, w, hgt, true, err, n);
+    rc = png_writer_write(&h->png, path, h->pixels, true, err, n);
     if (index == 0) h->sheet.count = 0; /* a new take (sbfx-play --watch): a new sheet */
     if (rc == 0 && h->desc.contact_sheet) rc = contact_sheet_add(&h->sheet, h->pixels, true);
     if (rc == 0) d->counts.presented++;
@@ -98,6 +100,7 @@ static void headless_destroy(struct display *d)
     if (!d) return;
     struct display_headless *h = to_headless(d);
     contact_sheet_free(&h->sheet);
+    png_writer_free(&h->png);
     free(h->pixels);
     if (h->egl.display != EGL_NO_DISPLAY) {
         glDeleteFramebuffers(1, &d->framebuffer);
@@ -137,7 +140,8 @@ static int headless_setup(struct display_headless *h, char *err, size_t n)
         snprintf(err, n, "out of memory for a %dx%d frame", desc->width, desc->height);
         return -ENOMEM;
     }
-    if (desc->contact_sheet)
+    rc = png_writer_init(&h->png, desc->width, desc->height, err, n);
+    if (rc == 0 && desc->contact_sheet)
         rc = contact_sheet_init(&h->sheet, desc->frames, desc->width, desc->height,
                                 CONTACT_CELL_WIDTH, err, n);
     snprintf(h->base.description, sizeof(h->base.description), "EGL %s", h->egl.platform);

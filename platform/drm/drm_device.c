@@ -8,7 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "player/options/board.h" /* mode_spec_parse */
+#include "drm/drm_mode_spec.h"
 
 static void connector_name(const drmModeConnector *c, char *out, size_t n)
 {

@@ -156,9 +156,11 @@ static void check_lines(struct gpio_triggers *t, int64_t now_ns, gpio_log_fn log
     }
 }
 
-static int fire(struct gpio_triggers *t, struct gpio_trigger_line *l, sbfx *fx)
+static int fire(struct gpio_triggers *t, struct gpio_trigger_line *l, sbfx *fx, int64_t at_ns)
 {
-    if (sbfx_trigger(fx, l->spec.effect, l->spec.position) != SBFX_OK) {
+    bool taken = t->fire ? t->fire(l->spec.effect, l->spec.position, at_ns, t->fire_user)
+                         : sbfx_trigger(fx, l->spec.effect, l->spec.position) == SBFX_OK;
+    if (!taken) {
         t->counts.refused++;
         return 0;
     }
@@ -177,7 +179,7 @@ static int service_batch(struct gpio_triggers *t, struct gpio_trigger_line *l, s
     for (int i = 0; i < count; i++) {
         int64_t ts = events[i].timestamp_ns;
         if (ts > now_ns + CLOCK_SKEW_NS || ts < now_ns - CLOCK_SKEW_NS) ts = now_ns;
-        if (trigger_filter_edge(&l->filter, ts)) *fired += fire(t, l, fx);
+        if (trigger_filter_edge(&l->filter, ts)) *fired += fire(t, l, fx, ts);
         else t->counts.filtered++;
     }
     if (count < GPIO_KERNEL_FIFO) return 0;

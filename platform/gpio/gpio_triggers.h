@@ -1,5 +1,5 @@
 /* GPIO lines that fire sbfx effects: each line's edges go through its debounce and rate limit
- * (trigger_filter.h) and a passing edge calls sbfx_trigger(effect, position).
+ * (trigger_filter.h) and a passing edge goes to the fire hook (sbfx-play's trigger queue) or sbfx_trigger.
  *
  * The lines come from the scene (sbfx_scene_gpio_triggers), the board profile and --gpio; the
  * player merges them into specs. Everything is requested at start: a line in use or an effect
@@ -69,6 +69,10 @@ struct gpio_triggers {
     int count;
     struct gpio_trigger_counts counts;
     int64_t next_check_ns;
+    /* Where a passing edge goes (set after open): the player's trigger queue, which returns false
+     * when it refuses it (at_ns: the edge's time); NULL: sbfx_trigger at once. */
+    bool (*fire)(const char *effect, const float position[3], int64_t at_ns, void *user);
+    void *fire_user;
 };
 
 typedef void (*gpio_log_fn)(const char *message, void *user);
@@ -81,9 +85,10 @@ int gpio_triggers_open(struct gpio_triggers *t, const struct gpio_trigger_spec *
                        size_t n);
 /* Fills up to max pollfds (POLLIN) for the live lines; returns how many. */
 int gpio_triggers_pollfds(const struct gpio_triggers *t, struct pollfd *fds, int max);
-/* Reads whatever waits on every line and fires what passes; checks the chips once a second and
- * requests lost lines again when their back-off is over; never blocks. now_ns: the monotonic
- * clock now. Returns the number of effects started. */
+/* Reads whatever waits on every line and fires what passes (to the fire hook where it is set:
+ * fx may be NULL then); checks the chips once a second and requests lost lines again when their
+ * back-off is over; never blocks. now_ns: the monotonic clock now. Returns the number of effects
+ * started (or queued). */
 int gpio_triggers_service(struct gpio_triggers *t, sbfx *fx, int64_t now_ns, gpio_log_fn log,
                           void *user);
 void gpio_triggers_close(struct gpio_triggers *t);

@@ -36,19 +36,16 @@ static void on_png_warning(png_structp png, png_const_charp message)
 
 /* Row pointers are set up before setjmp so nothing that libpng may jump over needs to be
  * volatile. */
-static png_bytep *row_pointers(const uint8_t *rgba, int width, int height, bool bottom_up)
+static void point_rows(const uint8_t **rows, const uint8_t *rgba, int width, int height, bool bottom_up)
 {
-    png_bytep *rows = malloc((size_t)height * sizeof(*rows));
-    if (!rows) return NULL;
     size_t stride = (size_t)width * 4;
     for (int y = 0; y < height; y++) {
         int src = bottom_up ? height - 1 - y : y;
-        rows[y] = (png_bytep)(rgba + (size_t)src * stride);
+        rows[y] = rgba + (size_t)src * stride;
     }
-    return rows;
 }
 
-static int encode(FILE *f, png_bytep *rows, int width, int height, struct png_error_sink *sink)
+static int encode(FILE *f, const uint8_t **rows, int width, int height, struct png_error_sink *sink)
 {
     png_infop info = NULL;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, sink, on_png_error,
@@ -64,7 +61,7 @@ static int encode(FILE *f, png_bytep *rows, int width, int height, struct png_er
      * the player's per-frame time includes this. */
     png_set_compression_level(png, 3);
     png_write_info(png, info);
-    png_write_image(png, rows);
+    png_write_image(png, (png_bytepp)rows); /* libpng only reads them */
     png_write_end(png, info);
     png_destroy_write_struct(&png, &info);
     return 0;
@@ -85,6 +82,51 @@ static void remove_partial(const char *path)
     if (stat(path, &st) == 0 && S_ISREG(st.st_mode)) remove(path);
 }
 
+int png_writer_init(struct png_writer *w, int width, int height, char *err, size_t n)
+{
+    *w = (struct png_writer){.width = width, .height = height};
+    if (width <= 0 || height <= 0) {
+        snprintf(err, n, "png_writer_init: invalid size %dx%d", width, height);
+        return -EINVAL;
+    }
+    w->rows = malloc((size_t)height * sizeof(*w->rows));
+    if (!w->rows) {
+        snprintf(err, n, "PNG writer for %dx%d: out of memory", width, height);
+        return -ENOMEM;
+    }
+    return 0;
+}
+
+void png_writer_free(struct png_writer *w)
+{
+    free(w->rows);
+    w->rows = NULL;
+}
+
+int png_writer_write(struct png_writer *w, const char *path, const uint8_t *rgba, bool bottom_up, char *err,
+                     size_t n)
+{
+    if (!path || !rgba || !w->rows) {
+        snprintf(err, n, "png_writer_write: invalid arguments");
+        return -EINVAL;
+    }
+    struct png_error_sink sink = {err, n, path};
+    point_rows(w->rows, rgba, w->width, w->height, bottom_up);
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        int rc = -errno;
+        snprintf(err, n, "%s: cannot create: %s", path, strerror(errno));
+        return rc;
+    }
+    int rc = encode(f, w->rows, w->width, w->height, &sink);
+    if (fclose(f) != 0 && rc == 0) { /* a full disk shows up here, at the last flush */
+        rc = -errno;
+        snprintf(err, n, "%s: write failed: %s", path, strerror(errno));
+    }
+    if (rc) remove_partial(path);
+    return rc;
+}
+
 int png_write_rgba(const char *path, const uint8_t *rgba, int width, int height, bool bottom_up,
                    char *err, size_t n)
 {
@@ -92,27 +134,10 @@ int png_write_rgba(const char *path, const uint8_t *rgba, int width, int height,
         snprintf(err, n, "png_write_rgba: invalid arguments (%dx%d)", width, height);
         return -EINVAL;
     }
-    struct png_error_sink sink = {err, n, path};
-    int rc = 0;
-    png_bytep *rows = row_pointers(rgba, width, height, bottom_up);
-    if (!rows) {
-        snprintf(err, n, "%s: out of memory", path);
-        return -ENOMEM;
-    }
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        rc = -errno;
-        snprintf(err, n, "%s: cannot create: %s", path, strerror(errno));
-        goto err_rows;
-    }
-    rc = encode(f, rows, width, height, &sink);
-    if (fclose(f) != 0 && rc == 0) { /* a full disk shows up here, at the last flush */
-        rc = -errno;
-        snprintf(err, n, "%s: write failed: %s", path, strerror(errno));
-    }
-    if (rc) remove_partial(path);
-err_rows:
-    free(rows);
+    struct png_writer w;
+    int rc = png_writer_init(&w, width, height, err, n);
+    if (rc == 0) rc = png_writer_write(&w, path, rgba, bottom_up, err, n);
+    png_writer_free(&w);
     return rc;
 }
 

@@ -14,6 +14,18 @@
 int png_write_rgba(const char *path, const uint8_t *rgba, int width, int height, bool bottom_up,
                    char *err, size_t n);
 
+/* A writer for many images of one size (a headless run's frames): its table of row pointers is
+ * made once, so writing a frame allocates nothing of the caller's (libpng and zlib allocate
+ * their own state per file). */
+struct png_writer {
+    const uint8_t **rows;            /* height pointers, set for each image */
+    int width, height;
+};
+int png_writer_init(struct png_writer *w, int width, int height, char *err, size_t n);
+int png_writer_write(struct png_writer *w, const char *path, const uint8_t *rgba, bool bottom_up, char *err,
+                     size_t n);
+void png_writer_free(struct png_writer *w);
+
 /* Reads any PNG converted to RGBA8, top row first, into a malloc'ed buffer (*out, free() it). */
 int png_read_rgba(const char *path, uint8_t **out, int *width, int *height, char *err, size_t n);
 

@@ -76,6 +76,7 @@ static int reload_scene(struct player *p)
     player_keep_scene(p, scene);
     schedule_triggers_again(p);
     reopen_clip(p);
+    trigger_sources_reload(&p->triggers, p->fx); /* the dis group's placement and effects */
     fprintf(stderr, "sbfx-play: scene reloaded: %s (%.0f ms)\n", path, ms_since(start));
     sbfx_stats(p->fx, &after);
     if (!p->opt->quiet) /* what the edit cost: nothing for a change of numbers */

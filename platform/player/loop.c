@@ -1,9 +1,11 @@
 /* sbfx-play's frame loop. Per frame: wait until the display can take a frame (a page flip in
- * flight completes; the trigger sources are serviced while waiting, the detail feeds once), draw
- * the test scene, copy it into the display's framebuffer, sbfx_update + sbfx_render over it,
- * present; on a screen, a line of counters once a second. It reaches its inputs and outputs
- * through their contracts only: the display (display/display.h), the trigger sources and the
- * detail feeds (inputs/inputs.h), systemd's notify (outputs/notify.h). Nothing here allocates. */
+ * flight completes; the trigger sources are serviced while waiting, the detail feeds once;
+ * headless with a real-time source, until the frame's time), start the triggers queued
+ * meanwhile, draw the test scene, copy it into the display's framebuffer, sbfx_update +
+ * sbfx_render over it, present; on a screen, a line of counters once a second. It reaches its
+ * inputs and outputs through their contracts only: the display (display/display.h), the trigger
+ * sources, their queue and the detail feeds (inputs/inputs.h), systemd's notify
+ * (outputs/notify.h). Nothing here allocates. */
 #include <errno.h>
 #include <limits.h>
 #include <poll.h>
@@ -65,6 +67,27 @@ static int wait_ready(struct player *p, char *err, size_t n)
     }
     detail_service(&p->detail, player_now_ns());
     return 0;
+}
+
+/* Headless with a real-time trigger source (p->paced: the network's senders keep the wall clock):
+ * waits until the frame's time (the run's start + frames / --fps), the sources serviced
+ * meanwhile; at once otherwise, or when a stop is asked. */
+static int pace(struct player *p, char *err, size_t n)
+{
+    if (!p->paced) return 0;
+    int64_t due = p->run_start_ns + (int64_t)((double)p->frames_done * NS_PER_S / p->opt->fps);
+    for (;;) {
+        trigger_sources_service(&p->triggers, p->fx, player_now_ns());
+        int64_t now = player_now_ns();
+        if (now >= due || player_stop_requested()) return 0;
+        struct pollfd fds[TRIGGER_POLLFDS_MAX];
+        int count = trigger_sources_pollfds(&p->triggers, fds, TRIGGER_POLLFDS_MAX);
+        if (poll(fds, (nfds_t)count, (int)((due - now) / 1000000) + 1) < 0 && errno != EINTR) {
+            int rc = -errno;
+            snprintf(err, n, "poll (waiting for the frame's time): %s", strerror(errno));
+            return rc;
+        }
+    }
 }
 
 /* ---- one frame ------------------------------------------------------------------------ */
@@ -155,6 +178,8 @@ static int play_frame(struct player *p, int64_t index, char *err, size_t n)
     sbfx_frame frame;
     memset(&frame, 0, sizeof(frame));
     p->frame_simulated = 0;
+    /* what arrived during the last frame starts at this one's first step */
+    trigger_sources_fire(&p->triggers, p->fx, player_now_ns());
     rc = player_host_prepare(p, t, err, n);
     if (rc) return rc;
     rc = draw_scene(p, t, &frame, err, n);
@@ -245,6 +270,7 @@ static int run_take(struct player *p, int64_t *next, char *err, size_t n)
         char why[1024];
         if (player_watch_service(p) == PLAYER_RELOADED && takes) p->take_first = i; /* the new scene from frame 0000 */
         int rc = wait_ready(p, why, sizeof(why));
+        if (rc == 0) rc = pace(p, why, sizeof(why));
         if (rc == 0 && (player_stop_requested() || p->display->closed)) {
             player_notify_stopping();
             break;

@@ -89,6 +89,7 @@ int player_create_fx(struct player *p, char *err, size_t n)
         return -EIO;
     }
     if (rc) return rc;
+    trigger_sources_listen(&p->triggers, p->fx); /* the trigger log hears of the timeline and --trigger too */
     p->timeline_start = p->sim_time; /* --loop counts from here */
     p->fx_created_at = p->recovering ? p->sim_time : 0.0;
     return schedule_triggers(p, err, n);

@@ -1,5 +1,6 @@
 /* sbfx-play: renders sbfx effects over the test scene, headless into PNG frames or on a DRM/KMS
- * display as a kiosk, with GPIO lines and a V4L2 camera as inputs.
+ * display as a kiosk, with GPIO lines, DIS detonations, MQTT messages and a V4L2 camera as
+ * inputs.
  *
  * One frame: test scene -> its colour is copied into the display's framebuffer (so an idle
  * sbfx, which issues no pass, still leaves the scene there) -> sbfx_update -> sbfx_render into
@@ -144,13 +145,18 @@ static int load_board(struct player *p, char *err, size_t n)
 }
 
 /* The inputs the scene, the board and the flags name: GPIO lines (the scene's were collected
- * with the scene, player_create_fx), the scene's detail clip, the camera. */
+ * with the scene, player_create_fx), DIS (placed by the scene's dis group), MQTT, the scene's
+ * detail clip, the camera. */
 static int open_inputs(struct player *p, char *err, size_t n)
 {
-    int rc = gpio_source_add_options(&p->gpio, &p->board, p->opt, err, n);
+    const struct player_options *opt = p->opt;
+    int rc = gpio_source_add_options(&p->gpio, &p->board, opt, err, n);
     if (rc == 0) rc = gpio_source_open(&p->gpio, &p->triggers, p->fx, player_now_ns(), player_log, p, err, n);
+    if (rc == 0) rc = dis_source_open(&p->dis, &p->triggers, opt, &p->board, p->fx, player_log, p, err, n);
+    if (rc == 0) rc = mqtt_source_open(&p->mqtt, &p->triggers, opt, &p->board, player_log, p, err, n);
+    p->paced = !player_on_screen(opt) && trigger_sources_realtime(&p->triggers);
     if (rc == 0) rc = detail_open_clip(p->fx, player_log, p, err, n);
-    if (rc == 0) rc = detail_open_camera(&p->detail, p->fx, p->opt->video, &p->board, player_log, p, err, n);
+    if (rc == 0) rc = detail_open_camera(&p->detail, p->fx, opt->video, &p->board, player_log, p, err, n);
     return rc;
 }
 
@@ -183,6 +189,39 @@ static void teardown(struct player *p)
 }
 
 /* ---- results -------------------------------------------------------------------------- */
+
+/* The trigger path's numbers: the queue's refusals and log, DIS's and MQTT's counters. A GPIO
+ * edge the queue took counts as fired by its line until the pool refuses it. */
+static void collect_triggers(const struct player *p, struct player_stats_record *r)
+{
+    const struct trigger_queue *q = &p->triggers.queue;
+    const struct dis_counts *d = dis_source_counts(&p->dis);
+    struct mqtt_counts m;
+    mqtt_source_counts(&p->mqtt, &m);
+    r->dis_on = d != NULL;
+    r->mqtt_on = p->mqtt.client != NULL;
+    r->kiosk_on = r->kiosk_on || r->dis_on || r->mqtt_on;
+    r->triggers_refused += (long long)(trigger_queue_refused(q) + m.overflows);
+    r->gpio_fired -= (long long)q->pool_full[TRIGGER_GPIO];
+    r->gpio_refused += (long long)q->pool_full[TRIGGER_GPIO];
+    _Static_assert(TRIGGER_LOG_MAX <= STATS_TRIGGER_LOG_MAX, "the --stats record holds the whole log");
+    struct trigger_log_entry log[TRIGGER_LOG_MAX];
+    r->trigger_log_count = trigger_queue_log(q, log);
+    for (int i = 0; i < r->trigger_log_count; i++) {
+        struct stats_trigger *t = &r->trigger_log[i];
+        t->source = trigger_kind_name(log[i].kind);
+        snprintf(t->effect, sizeof(t->effect), "%s", log[i].effect);
+        memcpy(t->at, log[i].at, sizeof(t->at));
+        t->time = log[i].time;
+    }
+    if (d) {
+        r->dis_pdus = (long long)d->pdus, r->dis_detonations = (long long)d->detonations;
+        r->dis_ignored = (long long)d->ignored, r->dis_malformed = (long long)d->malformed;
+    }
+    r->mqtt_messages = (long long)m.messages;
+    r->mqtt_malformed = (long long)(p->mqtt.bad_syntax + p->mqtt.bad_effect);
+    r->mqtt_reconnects = (long long)m.reconnects;
+}
 
 static void collect_stats(const struct player *p, struct player_stats_record *r)
 {
@@ -219,6 +258,7 @@ static void collect_stats(const struct player *p, struct player_stats_record *r)
         .gpio_on = p->gpio.on, .video_on = p->detail.camera_on, .presentation_on = p->display->presentation,
     };
     snprintf(r->quality, sizeof(r->quality), "%s", c->quality);
+    collect_triggers(p, r);
 }
 
 /* The --stats file: one JSON object, from the table in outputs/stats.c. */
@@ -328,6 +368,7 @@ static int play(const struct player_options *opt)
         if (!opt->quiet) print_banner(p);
         if (player_on_screen(opt)) player_catch_signals();
         if (opt->watch && !player_on_screen(opt)) player_catch_signals(); /* runs until stopped */
+        if (p->paced) player_catch_signals(); /* stopped early: the stats are still written */
         if (opt->watch || player_on_screen(opt)) player_catch_hup();       /* a reload */
         rc = player_run_frames(p, err, sizeof(err));
     }

@@ -1,7 +1,8 @@
 /* sbfx-play's state, shared by the player's own files (the top of platform/player/rooms.txt):
  *   player.c     main, setup and teardown, results
  *   module.c     sbfx made from the scene and the options (again after a GPU reset), advanced
- *   loop.c       the frame loop: wait (display, trigger sources), draw, simulate, render, present
+ *   loop.c       the frame loop: wait (display, trigger sources), start the queued triggers,
+ *                draw, simulate, render, present
  *   host.c       the test scene as the scene file describes it: daylight, the smoke's shadow,
  *                the fire's lights
  *   reset.c      GPU resets: a new context, its GL objects and sbfx, and the run goes on
@@ -20,8 +21,10 @@
 #include "egl/gl_reset.h"
 #include "host/test_scene.h"
 #include "player/inputs/detail.h"
+#include "player/inputs/dis_source.h"
 #include "player/inputs/gpio_source.h"
 #include "player/inputs/inputs.h"
+#include "player/inputs/mqtt_source.h"
 #include "player/inputs/watch.h"
 #include "player/options/board.h"
 #include "player/options/options.h"
@@ -67,10 +70,15 @@ struct player {
     int64_t frames_done;      /* 64-bit: a kiosk at 60 Hz passes 2^31 frames in 414 days */
     bool realtime;            /* drm or wayland without --fps: the simulation follows the clock */
     bool measure_gpu;         /* glFinish around sbfx (headless timings) */
+    bool paced;               /* headless with a real-time trigger source (--dis, --mqtt): frames
+                                 at --fps on the wall clock */
     int64_t run_start_ns, last_frame_ns;
-    /* inputs (inputs/): the loop polls and services the trigger sources, the detail feeds */
-    struct trigger_sources triggers;
+    /* inputs (inputs/): the loop polls and services the trigger sources, fires their queue,
+     * and services the detail feeds */
+    struct trigger_sources triggers; /* GPIO, DIS, MQTT; with the timeline and --trigger, one path */
     struct gpio_source gpio;  /* the GPIO lines, one of the trigger sources when it has any */
+    struct dis_source dis;    /* --dis: DIS detonations */
+    struct mqtt_source mqtt;  /* --mqtt: MQTT messages */
     struct detail_feed detail;
     struct second_stats second;
     struct player_notify notify; /* READY=1, WATCHDOG=1 (outputs/notify.c) */

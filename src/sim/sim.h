@@ -4,7 +4,8 @@
  * Exports to the rooms above:
  *   - the pool and the view-space particle (particles.h); the fixed-step simulation and effect
  *     instances spawned into the pool (sim.c), the clock and the timeline of triggers
- *     (timeline.c: sbfx_fire, sbfx_timeline_add/advance, sbfx_clock_phase);
+ *     (timeline.c: sbfx_fire, which tells the host's trigger listener, sbfx_timeline_add/advance,
+ *     sbfx_clock_phase);
  *   - the frame's particles in view space (view.c), their back-to-front order (sort.c), the
  *     level of detail that merges them (lod.h);
  *   - orbiting lights on the clock (lights.c);
@@ -28,6 +29,7 @@ typedef struct sbfx_scheduled {
     int effect;
     double time;
     float position[3];
+    sbfx_trigger_origin origin; /* sbfx_schedule, or the scene's timeline */
 } sbfx_scheduled;
 
 typedef struct sbfx_live_flash {
@@ -43,6 +45,8 @@ typedef struct sbfx_sim {
                                     is desc.start_time + time (sbfx_time) */
     uint64_t step_index;
     uint32_t trigger_count;
+    sbfx_trigger_fn trigger_listener; /* sbfx_set_trigger_listener: told of each instance started */
+    void *trigger_listener_user;
     int particles_simulated;
     sbfx_scheduled schedule[SBFX_MAX_SCHEDULE]; /* sorted by time; [next_scheduled, count) pending */
     int schedule_count, next_scheduled;
@@ -83,10 +87,13 @@ sbfx_result sbfx_lod_create(sbfx *fx);
 uint64_t sbfx_state_hash(const sbfx *fx);
 
 /* timeline.c */
-/* Starts one instance of effect `index`: its particles, and its light flashes as live lights. */
-sbfx_result sbfx_fire(sbfx *fx, int index, const float position[3]);
-/* Adds a trigger of effect `index` at `seconds` (simulation time) to the timeline. */
-sbfx_result sbfx_timeline_add(sbfx *fx, int index, double seconds, const float position[3]);
+/* Starts one instance of effect `index`: its particles, and its light flashes as live lights;
+ * the trigger listener is told, with the origin. */
+sbfx_result sbfx_fire(sbfx *fx, int index, const float position[3], sbfx_trigger_origin origin);
+/* Adds a trigger of effect `index` at `seconds` (simulation time) to the timeline; it fires with
+ * its origin (sbfx_schedule's, or the scene's timeline). */
+sbfx_result sbfx_timeline_add(sbfx *fx, int index, double seconds, const float position[3],
+                              sbfx_trigger_origin origin);
 /* Advances the clock by dt in whole steps: the triggers due fired, the particles simulated. */
 void sbfx_timeline_advance(sbfx *fx, double dt);
 /* The clock's phase in a cycle of |period| seconds, in [0, 1), reduced in double precision

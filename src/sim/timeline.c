@@ -6,8 +6,9 @@
 #include <string.h>
 #include "sim/sim.h"
 
-/* Starts one instance: its particles, and its light flashes as live point lights. */
-sbfx_result sbfx_fire(sbfx *fx, int index, const float position[3])
+/* Starts one instance: its particles, and its light flashes as live point lights; the host's
+ * listener hears of it with the clock of its first step. */
+sbfx_result sbfx_fire(sbfx *fx, int index, const float position[3], sbfx_trigger_origin origin)
 {
     const sbfx_effect *e = &fx->scene->effects[index];
     sbfx_result r = sbfx_spawn_effect(fx, e, position);
@@ -16,6 +17,9 @@ sbfx_result sbfx_fire(sbfx *fx, int index, const float position[3])
         return r;
     }
     fx->counters.triggers_fired++;
+    if (fx->sim->trigger_listener)
+        fx->sim->trigger_listener(e->name, position, fx->scene->desc.start_time + fx->sim->time, origin,
+                                  fx->sim->trigger_listener_user);
     for (int i = 0; i < e->flash_count && fx->sim->flash_count < SBFX_MAX_LIVE_FLASHES; i++) {
         const sbfx_flash *f = &e->flashes[i];
         sbfx_live_flash *live = &fx->sim->flashes[fx->sim->flash_count++];
@@ -28,7 +32,8 @@ sbfx_result sbfx_fire(sbfx *fx, int index, const float position[3])
 }
 
 /* Adds a trigger of effect `index` at `seconds` (simulation time) to the timeline. */
-sbfx_result sbfx_timeline_add(sbfx *fx, int index, double seconds, const float position[3])
+sbfx_result sbfx_timeline_add(sbfx *fx, int index, double seconds, const float position[3],
+                              sbfx_trigger_origin origin)
 {
     const char *effect = fx->scene->effects[index].name;
     if (fx->sim->schedule_count == SBFX_MAX_SCHEDULE)
@@ -39,7 +44,7 @@ sbfx_result sbfx_timeline_add(sbfx *fx, int index, double seconds, const float p
         fx->sim->schedule[at] = fx->sim->schedule[at - 1];
         at--;
     }
-    fx->sim->schedule[at] = (sbfx_scheduled){index, seconds, {position[0], position[1], position[2]}};
+    fx->sim->schedule[at] = (sbfx_scheduled){index, seconds, {position[0], position[1], position[2]}, origin};
     fx->sim->schedule_count++;
     return SBFX_OK;
 }
@@ -64,7 +69,7 @@ static void fire_due(sbfx *fx)
     while (fx->sim->next_scheduled < fx->sim->schedule_count &&
            fx->sim->schedule[fx->sim->next_scheduled].time <= fx->sim->time + 1e-9) {
         const sbfx_scheduled *s = &fx->sim->schedule[fx->sim->next_scheduled++];
-        sbfx_fire(fx, s->effect, s->position);
+        sbfx_fire(fx, s->effect, s->position, s->origin);
     }
     if (fx->sim->next_scheduled == fx->sim->schedule_count) fx->sim->next_scheduled = fx->sim->schedule_count = 0;
 }

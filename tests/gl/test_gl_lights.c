@@ -1,4 +1,4 @@
-/* The phase shaders' light loop is sized at load (src/sim/lights.c, docs/gpus.md): the scene's
+/* The phase shaders' light loop is sized at load (src/scene/plan.c, docs/gpus.md): the scene's
  * lights plus one effect's flashes; more lights set later make the programs again. */
 #include "gl_fixture.h"
 #include "module.h" /* fx->scene->light_slots */

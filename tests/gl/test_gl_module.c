@@ -376,4 +376,62 @@ CHECK_TEST(light_per_particle_close_to_per_pixel)
     fixture_close(&f);
 }
 
+/* ---- sbfx_set_trigger_listener: told of every instance started, by whom, when ---- */
+typedef struct told {
+    int count;
+    char effect[8][32];
+    double time[8];
+    sbfx_trigger_origin origin[8];
+    float x[8];
+} told;
+
+static void tell(const char *effect, const float position[3], double time, sbfx_trigger_origin origin, void *user)
+{
+    told *t = user;
+    if (t->count == 8) return;
+    snprintf(t->effect[t->count], sizeof(t->effect[0]), "%s", effect);
+    t->time[t->count] = time, t->origin[t->count] = origin, t->x[t->count] = position[0];
+    t->count++;
+}
+
+CHECK_TEST(trigger_listener_is_told_of_every_start)
+{
+    gl_fixture f;
+    fixture_open(&f, 16, 16);
+    /* room for one explosion at a time: a second one while the first lives is refused */
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.max_particles = 200, .start_time = 100.0});
+    told t = {0};
+    sbfx_set_trigger_listener(fx, tell, &t);
+    const float here[3] = {1, 0, 0}, there[3] = {2, 0, 0};
+    CHECK(sbfx_trigger(fx, "explosion", here) == SBFX_OK);
+    CHECK(t.count == 1 && t.origin[0] == SBFX_TRIGGER_CALL && t.time[0] == 100.0 && t.x[0] == 1.0f,
+          "sbfx_trigger: told %d, origin %d at %g", t.count, t.origin[0], t.time[0]);
+    CHECK(sbfx_update(fx, 0.1) == SBFX_OK); /* the timeline's explosion at 0: the pool is full */
+    CHECK(t.count == 1, "a refused timeline trigger was told (%d)", t.count);
+    sbfx_destroy(fx);
+
+    t = (told){0};
+    fx = fixture_module(&f, (sbfx_desc){.start_time = 100.0});
+    sbfx_set_trigger_listener(fx, tell, &t);
+    CHECK(sbfx_schedule(fx, "explosion", 0.5, there) == SBFX_OK);
+    CHECK(sbfx_update(fx, 0.25) == SBFX_OK && sbfx_update(fx, 0.25) == SBFX_OK && sbfx_update(fx, 0.1) == SBFX_OK);
+    double step = 1.0 / 120.0;
+    CHECK(t.count == 2, "told %d times", t.count);
+    CHECK(t.origin[0] == SBFX_TRIGGER_TIMELINE && t.time[0] == 100.0 && strcmp(t.effect[0], "explosion") == 0,
+          "the timeline: origin %d at %g (%s)", t.origin[0], t.time[0], t.effect[0]);
+    CHECK(t.origin[1] == SBFX_TRIGGER_SCHEDULE && t.time[1] >= 100.5 - 1e-9 && t.time[1] < 100.5 + step && t.x[1] == 2.0f,
+          "sbfx_schedule: origin %d at %.6f", t.origin[1], t.time[1]);
+    /* a reload keeps the listener; its timeline starts again from now */
+    double now = sbfx_time(fx);
+    CHECK(sbfx_set_scene(fx, NULL) == SBFX_OK);
+    CHECK(sbfx_update(fx, 0.02) == SBFX_OK);
+    CHECK(t.count == 3 && t.origin[2] == SBFX_TRIGGER_TIMELINE && t.time[2] == now,
+          "after a reload: told %d, origin %d at %g (now %g)", t.count, t.origin[2], t.time[2], now);
+    sbfx_set_trigger_listener(fx, NULL, NULL);
+    CHECK(sbfx_trigger(fx, "explosion", here) == SBFX_OK);
+    CHECK(t.count == 3, "told after the listener was cleared");
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
 int main(int argc, char **argv) { return check_main_args(argc, argv); }

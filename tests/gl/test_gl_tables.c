@@ -29,7 +29,7 @@ static sbfx_scene *parse(const char *text)
 }
 
 /* A module over the built-in explosion whose fire reaches [lo, hi] and whose smoke has g (the
- * range rule of src/gl/tables.c: the emitters' lo .. (t0 + t1) * 1.25 with cooling off). */
+ * range rule of src/scene/scene_tables.c: the emitters' lo .. (t0 + t1) * 1.25 with cooling off). */
 static sbfx *module_for(gl_fixture *f, double lo, double hi, double g)
 {
     sbfx *fx = fixture_module(f, (sbfx_desc){.ignore_timeline = true, .max_particles = 16});

@@ -402,6 +402,70 @@ test_video_frames() {
     note "$(grep -m1 'feeds the detail volume' "$L/video.err"); frames $frames, distinct $distinct ($((SECONDS - t0)) s)"
 }
 
+# The GStreamer camera kiosk (examples/gstreamer/camera-kms.sh, docs/hosts/gstreamer.md): vivid's
+# frames through v4l2src, the element sbfx with the video as its detail (detail-from-input), the
+# frames to vkms through kmssink, which sets a 640x480 mode (vkms's planes do not scale). The
+# scene is the explosion every second (64, a timeline's most): under TCG the element's start
+# (its shaders) holds the first frame some 20 s, which the camera's running time counts. While it plays the CRTC scans
+# kmssink's framebuffer out (another than the console's, at 640x480); at the end the element's
+# summary (GST_DEBUG=sbfx:4) says it rendered explosions and pushed the camera's slices.
+gst_scene() {
+    # the particle target at 1/8 of the frame: under TCG a 1/4 target costs a second a frame
+    sed -e '/^triggers = {/,$d' -e 's/^\( *target_scale *= *\)4;/\18;/' scenes/explosion.cfg >"$T/gst-again.cfg"
+    {
+        echo 'triggers = { timeline = ('
+        local t
+        for ((t = 1; t < 64; t++)); do
+            printf '  { effect = "explosion"; time = %d.0; position = [0.0, 0.0, 0.0]; },\n' "$t"
+        done
+        echo '  { effect = "explosion"; time = 64.0; position = [0.0, 0.0, 0.0]; } ); };'
+    } >>"$T/gst-again.cfg"
+}
+
+test_gst_camera() {
+    local t0=$SECONDS
+    if ! command -v gst-launch-1.0 >/dev/null; then
+        skip gst-camera "gst-launch-1.0 is not installed (tools/deps.sh vm)"
+        return
+    fi
+    if [ ! -f "$B/gstreamer/libgstsbfx.so" ]; then
+        fail gst-camera "$B/gstreamer/libgstsbfx.so was not built (make gstreamer)"
+        return
+    fi
+    gst_scene
+    local console
+    console=$("$DRM_STATE" "$CARD" 2>&1 | grep -m1 ' mode ' | awk '{print $4}')
+    step "camera-kms.sh: vivid -> sbfx -> kmssink"
+    env GST_PLUGIN_PATH="$B/gstreamer" LD_LIBRARY_PATH="$B" GST_REGISTRY="$T/gst-registry.bin" GST_DEBUG=sbfx:4 \
+        GST_DEBUG_NO_COLOR=1 SCENE="$T/gst-again.cfg" KMSSINK="driver-name=vkms force-modesetting=true" \
+        CAMERA="v4l2src device=/dev/video0 num-buffers=30 ! video/x-raw,width=640,height=480" \
+        timeout -k 5 200 examples/gstreamer/camera-kms.sh >"$L/gst-camera.out" 2>"$L/gst-camera.err" &
+    local pid=$! crtc="" i
+    # until the CRTC shows kmssink's framebuffer, or the run ends
+    for ((i = 0; i < 1200; i++)); do
+        [ -z "$crtc" ] && kill -0 "$pid" 2>/dev/null || break
+        crtc=$("$DRM_STATE" "$CARD" 2>&1 | awk -v c="$console" '$4 != 0 && $4 != c && $6 == "640x480"' | head -n 1)
+        pause 0.1
+    done
+    wait "$pid"
+    local rc=$? summary rendered slices
+    summary=$(grep -o 'stopped after.*' "$L/gst-camera.err" | tail -n 1)
+    rendered=$(printf '%s' "$summary" | sed -n 's/.* \([0-9]*\) rendered.*/\1/p')
+    slices=$(printf '%s' "$summary" | sed -n 's/.* \([0-9]*\) detail slices.*/\1/p')
+    if [ "$rc" -ne 0 ]; then
+        fail gst-camera "exit $rc: $(grep -m1 -e ERROR -e CRITICAL "$L/gst-camera.out" "$L/gst-camera.err" | cut -c 1-200)"
+    elif [ -z "$crtc" ]; then
+        fail gst-camera "the CRTC never showed a 640x480 framebuffer other than the console's ($console) while kmssink played"
+    elif grep -q CRITICAL "$L/gst-camera.err"; then
+        fail gst-camera "$(grep -m1 CRITICAL "$L/gst-camera.err" | cut -c 1-200)"
+    elif [ "${rendered:-0}" -lt 10 ] || [ "${slices:-0}" -lt 25 ]; then
+        fail gst-camera "the element: '$summary'"
+    else
+        ok gst-camera
+    fi
+    note "gst-camera: $crtc (console fb $console); $summary ($((SECONDS - t0)) s)"
+}
+
 # stats_lines NAME: how many once-a-second stats lines the kiosk NAME printed so far.
 stats_lines() { grep -c 'fps, frame' "$L/$1.out"; }
 
@@ -951,6 +1015,7 @@ group drm-errors 60 test_drm_errors
 group drm-kiosk 90 test_kiosk_and_busy
 group video-frames 60 test_video_frames
 group video-outages 150 test_video_outages
+group gst-camera 240 test_gst_camera
 run_test gpio-sim 30 setup_gpio_sim
 if [ -s "$T/gpio.env" ]; then
     . "$T/gpio.env"

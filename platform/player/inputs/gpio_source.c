@@ -69,10 +69,19 @@ static int gpio_pollfds(const struct trigger_source *s, struct pollfd *fds, int 
     return gpio_triggers_pollfds(&g->lines, fds, max);
 }
 
-static void gpio_service(struct trigger_source *s, sbfx *fx, int64_t now_ns)
+/* A passing edge, into the queue (the lines' fire hook): false when the queue refuses it. */
+static bool queue_edge(const char *effect, const float position[3], int64_t at_ns, void *user)
 {
+    return trigger_queue_push(user, TRIGGER_GPIO, effect, position, at_ns);
+}
+
+static void gpio_service(struct trigger_source *s, struct trigger_queue *q, const sbfx *fx, int64_t now_ns)
+{
+    (void)fx; /* the lines' effects were checked at open */
     struct gpio_source *g = (struct gpio_source *)s;
-    gpio_triggers_service(&g->lines, fx, now_ns, g->log, g->log_user);
+    g->lines.fire = queue_edge;
+    g->lines.fire_user = q;
+    gpio_triggers_service(&g->lines, NULL, now_ns, g->log, g->log_user);
 }
 
 static void gpio_close(struct trigger_source *s)
@@ -83,7 +92,7 @@ static void gpio_close(struct trigger_source *s)
 }
 
 static const struct trigger_source_ops gpio_ops = {
-    .pollfds = gpio_pollfds, .service = gpio_service, .close = gpio_close,
+    .pollfds = gpio_pollfds, .service = gpio_service, .reload = NULL, .close = gpio_close,
 };
 
 int gpio_source_open(struct gpio_source *g, struct trigger_sources *all, const sbfx *fx, int64_t now_ns,

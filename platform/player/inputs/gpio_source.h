@@ -1,6 +1,6 @@
 /* GPIO lines as a trigger source (inputs.h): the lines the scene, the board profile and --gpio
  * name (a later one replaces an earlier one's spec for the same chip and line: --gpio over the
- * board, the board over the scene), each debounced and rate limited, firing its effect on its
+ * board, the board over the scene), each debounced and rate limited, queueing its effect on its
  * edges (platform/gpio/gpio_triggers.h does the lines; this is the player's side of them). */
 #ifndef SBFX_PLAYER_GPIO_SOURCE_H
 #define SBFX_PLAYER_GPIO_SOURCE_H

@@ -2,7 +2,10 @@
  * names the flag and what it accepts; nothing here exits or prints. */
 #include "player/options/options.h"
 
-#include "player/options/board.h" /* enum modeset_kind, mode_spec_parse */
+#include "gpio/effect_at.h" /* EFFECT[@X,Y,Z] */
+#include "net/net_address.h" /* --dis, --mqtt */
+#include "drm/drm_mode_spec.h"
+#include "player/options/board.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -366,6 +369,47 @@ static int set_gpio(struct player_options *opt, const char *value, char *err, si
     return rc;
 }
 
+/* --dis [ADDR:]PORT, --mqtt HOST[:PORT]: the syntax now, the network at setup (inputs/dis_source.c, inputs/mqtt_source.c) */
+static int set_dis(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    struct udp_endpoint e;
+    char why[256];
+    if (udp_endpoint_parse(value, &e, why, sizeof(why)) == 0) return set_path("--dis", &opt->dis, value, err, n);
+    snprintf(err, n, "--dis: %s", why);
+    return -EINVAL;
+}
+
+static int set_dis_exercise(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    long long v = 0;
+    if (!parse_integer(value, 1, 255, &v)) {
+        snprintf(err, n, "--dis-exercise: expected an exercise ID 1..255, got '%s'", value);
+        return -EINVAL;
+    }
+    opt->dis_exercise = (int)v;
+    return 0;
+}
+
+static int set_mqtt(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    char host[256], why[256];
+    int port = 0;
+    if (mqtt_endpoint_parse(value, host, sizeof(host), &port, why, sizeof(why)) == 0)
+        return set_path("--mqtt", &opt->mqtt, value, err, n);
+    snprintf(err, n, "--mqtt: %s", why);
+    return -EINVAL;
+}
+
+static int set_mqtt_topic(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    if (!*value || strlen(value) > 255) {
+        snprintf(err, n, "--mqtt-topic: expected a topic of 1..255 bytes (e.g. sbfx/trigger), got '%s'", value);
+        return -EINVAL;
+    }
+    opt->mqtt_topic = value;
+    return 0;
+}
+
 static int set_contact_sheet(struct player_options *opt, const char *value, char *err, size_t n)
 {
     opt->contact_sheet = true;
@@ -415,6 +459,10 @@ static const struct flag flags[] = {
     {"--board", "FILE", set_board},
     {"--video", "DEV (e.g. /dev/video0)", set_video},
     {"--gpio", "CHIP:LINE=EFFECT[@X,Y,Z]", set_gpio},
+    {"--dis", "[ADDR:]PORT (e.g. 3000 or 239.1.2.3:3000)", set_dis},
+    {"--dis-exercise", "N (1..255)", set_dis_exercise},
+    {"--mqtt", "HOST[:PORT] (e.g. broker.local:1883)", set_mqtt},
+    {"--mqtt-topic", "TOPIC (e.g. sbfx/trigger)", set_mqtt_topic},
     {"--size", "WxH (e.g. 960x540)", set_size},
     {"--frames", "N (1..1000000)", set_frames},
     {"--fps", "F (0 < F <= 1000)", set_fps},
@@ -551,29 +599,6 @@ static int parse_flags(struct player_options *opt, int argc, char **argv, char *
 
 /* ---- --trigger EFFECT@SECONDS[:X,Y,Z] --------------------------------------------------- */
 
-static bool valid_effect_name(const char *name, size_t len)
-{
-    if (len == 0 || len >= PLAYER_EFFECT_NAME_MAX) return false;
-    for (size_t i = 0; i < len; i++) {
-        unsigned char c = (unsigned char)name[i];
-        if (!isalnum(c) && c != '_' && c != '-' && c != '.') return false;
-    }
-    return true;
-}
-
-static bool parse_position(const char *s, float position[3])
-{
-    for (int k = 0; k < 3; k++) {
-        double v = 0;
-        const char *rest = NULL;
-        if (!parse_number(s, k < 2 ? "," : NULL, &v, &rest)) return false;
-        if ((k < 2) != (*rest == ',')) return false;
-        position[k] = (float)v;
-        s = rest + (k < 2);
-    }
-    return true;
-}
-
 static int trigger_error(const char *text, const char *why, char *err, size_t n)
 {
     snprintf(err, n, "--trigger: expected EFFECT@SECONDS[:X,Y,Z] (e.g. explosion@0.5 or "
@@ -586,7 +611,7 @@ int player_parse_trigger(const char *text, struct player_trigger *out, char *err
     const char *at = strchr(text, '@');
     if (!at) return trigger_error(text, "no '@'", err, n);
     size_t name_len = (size_t)(at - text);
-    if (!valid_effect_name(text, name_len))
+    if (!effect_name_valid(text, name_len))
         return trigger_error(text, "the effect name must be 1..63 of A-Z a-z 0-9 _ - .", err, n);
     struct player_trigger t = {.position = {0, 0, 0}};
     memcpy(t.effect, text, name_len);
@@ -594,7 +619,7 @@ int player_parse_trigger(const char *text, struct player_trigger *out, char *err
     const char *rest = NULL;
     if (!parse_number(at + 1, ":", &t.seconds, &rest) || t.seconds < 0.0 || t.seconds > 1e6)
         return trigger_error(text, "SECONDS must be a number in 0..1e6", err, n);
-    if (*rest == ':' && !parse_position(rest + 1, t.position))
+    if (*rest == ':' && !effect_position_parse(rest + 1, t.position))
         return trigger_error(text, "the position must be three finite numbers X,Y,Z", err, n);
     *out = t;
     return 0;
@@ -631,13 +656,8 @@ int player_parse_gpio(const char *text, struct player_gpio *out, char *err, size
     if (line_len >= sizeof(line) || !parse_integer(line, 0, 65535, &v))
         return gpio_error(text, "LINE must be a whole number in 0..65535", err, n);
     g.line = (int)v;
-    const char *at = strchr(eq + 1, '@');
-    size_t name_len = at ? (size_t)(at - eq - 1) : strlen(eq + 1);
-    if (!valid_effect_name(eq + 1, name_len))
-        return gpio_error(text, "the effect name must be 1..63 of A-Z a-z 0-9 _ - .", err, n);
-    memcpy(g.effect, eq + 1, name_len);
-    if (at && !parse_position(at + 1, g.position))
-        return gpio_error(text, "the position must be three finite numbers X,Y,Z", err, n);
+    const char *why = effect_at_parse(eq + 1, strlen(eq + 1), g.effect, g.position);
+    if (why) return gpio_error(text, why, err, n);
     *out = g;
     return 0;
 }

@@ -109,32 +109,6 @@ static int get_vector(struct reader *r, const config_setting_t *g, const char *k
     return 0;
 }
 
-/* A run of decimal digits at *p as a number in 1..max, advancing *p; -1 if there is none. */
-static long read_number(const char **p, long max)
-{
-    if (**p < '0' || **p > '9') return -1;
-    char *end = NULL;
-    long v = strtol(*p, &end, 10);
-    *p = end;
-    return v >= 1 && v <= max ? v : -1;
-}
-
-int mode_spec_parse(const char *text, int *width, int *height, int *refresh)
-{
-    const char *p = text;
-    if (!p) return -EINVAL;
-    long w = read_number(&p, 16384);
-    if (w < 0 || *p++ != 'x') return -EINVAL;
-    long h = read_number(&p, 16384), hz = 0;
-    if (h > 0 && *p == '@') {
-        p++;
-        hz = read_number(&p, 1000);
-    }
-    if (h < 0 || hz < 0 || *p != '\0') return -EINVAL;
-    *width = (int)w, *height = (int)h, *refresh = (int)hz;
-    return 0;
-}
-
 static int read_display(struct reader *r, const config_setting_t *g)
 {
     static const char *const keys[] = {"device", "connector", "mode", "modeset", "backend", NULL};
@@ -226,9 +200,45 @@ static int read_render(struct reader *r, const config_setting_t *g)
     return rc;
 }
 
+static int read_mqtt(struct reader *r, const config_setting_t *g)
+{
+    static const char *const keys[] = {"host", "port", "topic", "status_topic", "username", "password_file",
+                                       "ca_file", "min_interval_ms", NULL};
+    struct mqtt_settings *m = &r->b->mqtt;
+    int rc = check_keys(r, g, "mqtt", keys);
+    if (!rc) rc = get_string(r, g, "host", m->host, sizeof(m->host));
+    if (!rc && (!m->host[0] || strpbrk(m->host, " \t/")))
+        rc = fail_at(r, g, "mqtt needs 'host', the broker's name or address (no port: that is 'port')");
+    if (!rc) rc = get_int(r, g, "port", 1, 65535, &m->port);
+    if (!rc) rc = get_string(r, g, "topic", m->topic, sizeof(m->topic));
+    if (!rc) rc = get_string(r, g, "status_topic", m->status_topic, sizeof(m->status_topic));
+    if (!rc) rc = get_string(r, g, "username", m->username, sizeof(m->username));
+    if (!rc) rc = get_string(r, g, "password_file", m->password_file, sizeof(m->password_file));
+    if (!rc && m->password_file[0] && !m->username[0])
+        rc = fail_at(r, config_setting_get_member(g, "password_file"), "'password_file' needs 'username'");
+    if (!rc) rc = get_string(r, g, "ca_file", m->ca_file, sizeof(m->ca_file));
+    if (!rc) rc = get_int(r, g, "min_interval_ms", 0, 3600000, &r->b->mqtt_min_interval_ms);
+    return rc;
+}
+
+static int read_dis(struct reader *r, const config_setting_t *g)
+{
+    static const char *const keys[] = {"listen", "interface", NULL};
+    struct board_profile *b = r->b;
+    struct udp_endpoint e;
+    char why[256];
+    int rc = check_keys(r, g, "dis", keys);
+    if (!rc) rc = get_string(r, g, "listen", b->dis_listen, sizeof(b->dis_listen));
+    if (!rc && b->dis_listen[0] && udp_endpoint_parse(b->dis_listen, &e, why, sizeof(why)) != 0)
+        rc = fail_at(r, config_setting_get_member(g, "listen"), "'listen': %s", why);
+    if (!rc) rc = get_string(r, g, "interface", b->dis_interface, sizeof(b->dis_interface));
+    return rc;
+}
+
 static int read_root(struct reader *r, const config_setting_t *root)
 {
-    static const char *const keys[] = {"board", "description", "display", "video", "gpio", "render", NULL};
+    static const char *const keys[] = {"board", "description", "display", "video", "gpio", "render", "mqtt", "dis",
+                                       NULL};
     int rc = check_keys(r, root, "the profile", keys);
     if (!rc) rc = get_string(r, root, "board", r->b->name, sizeof(r->b->name));
     if (!rc) rc = get_string(r, root, "description", r->b->description, sizeof(r->b->description));
@@ -237,6 +247,8 @@ static int read_root(struct reader *r, const config_setting_t *root)
     if (!rc && (s = config_setting_get_member(root, "video"))) rc = read_video(r, s);
     if (!rc && (s = config_setting_get_member(root, "gpio"))) rc = read_gpio(r, s);
     if (!rc && (s = config_setting_get_member(root, "render"))) rc = read_render(r, s);
+    if (!rc && (s = config_setting_get_member(root, "mqtt"))) rc = read_mqtt(r, s);
+    if (!rc && (s = config_setting_get_member(root, "dis"))) rc = read_dis(r, s);
     return rc;
 }
 
@@ -245,6 +257,7 @@ void board_profile_defaults(struct board_profile *b)
     memset(b, 0, sizeof(*b));
     b->gpio_debounce_ms = GPIO_DEFAULT_DEBOUNCE_MS;
     b->gpio_min_interval_ms = GPIO_DEFAULT_MIN_INTERVAL_MS;
+    b->mqtt_min_interval_ms = GPIO_DEFAULT_MIN_INTERVAL_MS;
 }
 
 int board_load(const char *path, struct board_profile *b, char *err, size_t n)

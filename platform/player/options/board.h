@@ -12,6 +12,11 @@
  *               lines = ( { chip = "gpiochip0"; line = 17; edge = "rising";
  *                           effect = "explosion"; position = [0.0, 0.0, 0.0]; } ); };
  *   render  = { target_scale = 4; max_particles = 1024; };
+ *   mqtt    = { host = "broker.local"; port = 1883; topic = "sbfx/trigger";     # triggers from a
+ *               status_topic = "sbfx/status"; username = "kiosk";             # broker (docs/
+ *               password_file = "/etc/sbfx/mqtt-password";                     # triggers.md)
+ *               ca_file = "/etc/sbfx/broker-ca.pem"; min_interval_ms = 250; };
+ *   dis     = { listen = "239.1.2.3:3000"; interface = "eth1"; };              # DIS detonations
  *
  * Every key is optional; "" means "not set". An unknown key, a value of the wrong type or out of
  * range is an error naming the file, the line and the key. */
@@ -20,9 +25,10 @@
 
 #include <stddef.h>
 
+#include "drm/drm_mode_spec.h" /* enum modeset_kind, mode_spec_parse: the display keys */
 #include "gpio/gpio_triggers.h"
-
-enum modeset_kind { MODESET_AUTO, MODESET_ATOMIC, MODESET_LEGACY };
+#include "net/mqtt_client.h"
+#include "net/net_address.h"
 
 struct board_profile {
     char name[64];
@@ -40,13 +46,15 @@ struct board_profile {
     int gpio_count;
     int target_scale;                /* 0: not set */
     int max_particles;               /* 0: not set */
+    struct mqtt_settings mqtt;       /* host "": no broker; port 0, topics "": the defaults */
+    int mqtt_min_interval_ms;        /* MQTT's rate limit per effect (GPIO's default when not set) */
+    char dis_listen[64];             /* "[ADDR:]PORT" (--dis's syntax), "": not set */
+    char dis_interface[16];          /* the multicast group's interface, "": the kernel's choice */
 };
 
 void board_profile_defaults(struct board_profile *b);
 /* 0, or -ENOENT / -EINVAL with "FILE:LINE: what" in err. */
 int board_load(const char *path, struct board_profile *b, char *err, size_t n);
 
-/* "WxH" or "WxH@HZ" (a mode name); refresh 0 when not given. 0 or -EINVAL. */
-int mode_spec_parse(const char *text, int *width, int *height, int *refresh);
 
 #endif

@@ -78,6 +78,11 @@ struct player_options {
     const char *video;        /* --video: V4L2 node */
     struct player_gpio gpio[PLAYER_MAX_GPIO];
     int gpio_count;
+    /* network triggers (docs/triggers.md) */
+    const char *dis;          /* --dis [ADDR:]PORT */
+    int dis_exercise;         /* --dis-exercise; 0: not given */
+    const char *mqtt;         /* --mqtt HOST[:PORT] */
+    const char *mqtt_topic;   /* --mqtt-topic */
 };
 
 void player_options_defaults(struct player_options *opt);

@@ -4,8 +4,9 @@
 #include <errno.h>
 #include <stddef.h>
 
-enum stats_group { GROUP_EVERY_RUN, GROUP_KIOSK, GROUP_PRESENTATION, GROUP_GPIO, GROUP_VIDEO, GROUP_COUNT };
-enum stats_kind { KIND_INT, KIND_G, KIND_MS3, KIND_STRING };
+enum stats_group { GROUP_EVERY_RUN, GROUP_KIOSK, GROUP_PRESENTATION, GROUP_GPIO, GROUP_VIDEO, GROUP_DIS, GROUP_MQTT,
+                   GROUP_COUNT };
+enum stats_kind { KIND_INT, KIND_G, KIND_MS3, KIND_STRING, KIND_TRIGGER_LOG };
 
 struct stats_key {
     const char *name;
@@ -41,7 +42,8 @@ static const struct stats_key stats_keys[] = {
     KEY(flips, KIND_INT, GROUP_KIOSK, "page flips (wayland: frame callbacks)"),
     KEY(missed_vblanks, KIND_INT, GROUP_KIOSK, "vblanks a flip missed (wayland: refreshes)"),
     KEY(triggers_fired, KIND_INT, GROUP_KIOSK, "effects started"),
-    KEY(triggers_refused, KIND_INT, GROUP_KIOSK, "triggers refused (particle pool full)"),
+    KEY(triggers_refused, KIND_INT, GROUP_KIOSK, "triggers refused (particle pool or frame's queue full, rate limit)"),
+    KEY(trigger_log, KIND_TRIGGER_LOG, GROUP_KIOSK, "the last 16 started, oldest first: {source, effect, at, time}"),
     KEY(display_unplugs, KIND_INT, GROUP_KIOSK, "times the display went away"),
     KEY(display_replugs, KIND_INT, GROUP_KIOSK, "times it came back"),
     KEY(display_paused_frames, KIND_INT, GROUP_KIOSK, "frames rendered but not shown meanwhile"),
@@ -64,14 +66,23 @@ static const struct stats_key stats_keys[] = {
     KEY(video_losses, KIND_INT, GROUP_VIDEO, "outages: the camera went away, failed or fell silent"),
     KEY(video_reopens, KIND_INT, GROUP_VIDEO, "outages that ended with frames again"),
     KEY(video_takeovers, KIND_INT, GROUP_VIDEO, "procedural volumes pushed back meanwhile"),
+    KEY(dis_pdus, KIND_INT, GROUP_DIS, "DIS PDUs read (= detonations + ignored + malformed)"),
+    KEY(dis_detonations, KIND_INT, GROUP_DIS, "Detonation PDUs that set off an effect"),
+    KEY(dis_ignored, KIND_INT, GROUP_DIS, "other PDU types, exercises, repeats, out of range, unmapped"),
+    KEY(dis_malformed, KIND_INT, GROUP_DIS, "truncated, oversized, wrong version or length: dropped"),
+    KEY(mqtt_messages, KIND_INT, GROUP_MQTT, "messages on the trigger topic"),
+    KEY(mqtt_malformed, KIND_INT, GROUP_MQTT, "payloads not EFFECT[@X,Y,Z] of an effect there is"),
+    KEY(mqtt_reconnects, KIND_INT, GROUP_MQTT, "connections made again after the broker went away"),
 };
 
 static const char *const group_titles[GROUP_COUNT] = {
     [GROUP_EVERY_RUN] = "every run (sbfx_stats() after the last frame, and GPU resets)",
-    [GROUP_KIOSK] = "with a DRM or Wayland display, GPIO lines or a camera",
+    [GROUP_KIOSK] = "with a DRM or Wayland display, GPIO lines, a camera, --dis or --mqtt",
     [GROUP_PRESENTATION] = "with a Wayland compositor's presentation-time feedback",
     [GROUP_GPIO] = "with GPIO lines",
     [GROUP_VIDEO] = "with a camera",
+    [GROUP_DIS] = "with --dis (or a board's dis.listen)",
+    [GROUP_MQTT] = "with --mqtt (or a board's mqtt.host)",
 };
 
 static bool group_written(const struct player_stats_record *r, enum stats_group group)
@@ -81,8 +92,28 @@ static bool group_written(const struct player_stats_record *r, enum stats_group 
     case GROUP_PRESENTATION: return r->presentation_on;
     case GROUP_GPIO: return r->kiosk_on && r->gpio_on;
     case GROUP_VIDEO: return r->kiosk_on && r->video_on;
+    case GROUP_DIS: return r->dis_on;
+    case GROUP_MQTT: return r->mqtt_on;
     default: return true;
     }
+}
+
+/* [{"source": "dis", "effect": "explosion", "at": [x, y, z], "time": s}, ...] (names of the
+ * module's effects: letters, digits, _ - . only; escaped all the same) */
+static void write_trigger_log(const struct player_stats_record *r, FILE *f)
+{
+    fputc('[', f);
+    for (int i = 0; i < r->trigger_log_count; i++) {
+        const struct stats_trigger *e = &r->trigger_log[i];
+        fprintf(f, "%s{\"source\": \"%s\", \"effect\": \"", i ? ", " : "", e->source);
+        for (const char *c = e->effect; *c; c++) {
+            if (*c == '"' || *c == '\\') fputc('\\', f);
+            if ((unsigned char)*c >= 0x20) fputc(*c, f);
+        }
+        fprintf(f, "\", \"at\": [%.7g, %.7g, %.7g], \"time\": %.6f}", (double)e->at[0], (double)e->at[1],
+                (double)e->at[2], e->time);
+    }
+    fputc(']', f);
 }
 
 static void write_value(const struct player_stats_record *r, const struct stats_key *k, FILE *f)
@@ -94,6 +125,7 @@ static void write_value(const struct player_stats_record *r, const struct stats_
     case KIND_MS3: fprintf(f, "%.3f", *(const double *)(const void *)field); break;
     /* the level's name comes from sbfx_quality_name: letters, digits and '/' only */
     case KIND_STRING: fprintf(f, "\"%s\"", field); break;
+    case KIND_TRIGGER_LOG: write_trigger_log(r, f); break;
     }
 }
 

@@ -2,11 +2,12 @@
  * of --help (and of the man page, sbfx-play.1, which tests/cli.sh checks against --help) come
  * from the same rows, so they cannot drift apart.
  *
- *   player_stats_collect  the numbers of a finished run, from the player, into one record
+ *   player_stats_record   the numbers of a finished run, one field per key (the player fills it)
  *   player_stats_write    the record as one JSON object: every run's keys, then those of the
- *                         parts in use (a DRM or Wayland display, GPIO lines or a camera: the
- *                         kiosk's counters; presentation-time feedback: presented_frames,
- *                         latency_ms_*...; GPIO lines: gpio_*; a camera: video_*)
+ *                         parts in use (a DRM or Wayland display, GPIO lines, a camera, --dis
+ *                         or --mqtt: the kiosk's counters and trigger_log; presentation-time
+ *                         feedback: presented_frames, latency_ms_*...; GPIO lines: gpio_*; a
+ *                         camera: video_*; --dis: dis_*; --mqtt: mqtt_*)
  *   player_stats_usage    the key list for --help, grouped as the JSON is */
 #ifndef SBFX_PLAYER_STATS_H
 #define SBFX_PLAYER_STATS_H
@@ -14,7 +15,14 @@
 #include <stdbool.h>
 #include <stdio.h>
 
-struct player;
+/* One entry of trigger_log: an effect started (the player's trigger log, inputs/trigger_queue.h). */
+#define STATS_TRIGGER_LOG_MAX 16
+struct stats_trigger {
+    const char *source;       /* "gpio", "dis", "mqtt", "timeline" or "cli" (a static string) */
+    char effect[64];
+    float at[3];
+    double time;              /* the module's clock at the effect's first step */
+};
 
 /* A run's numbers, one field per key (integers as long long: counters of 64 bits print the
  * same; the player's own counters never reach 2^63). */
@@ -32,10 +40,14 @@ struct player_stats_record {
     long long gpio_edges, gpio_fired, gpio_filtered, gpio_refused, gpio_overflows;
     long long gpio_losses, gpio_returns, gpio_retries, gpio_absent, gpio_appeared;
     long long video_frames, video_distinct, video_losses, video_reopens, video_takeovers;
+    long long dis_pdus, dis_detonations, dis_ignored, dis_malformed;
+    long long mqtt_messages, mqtt_malformed, mqtt_reconnects;
+    struct stats_trigger trigger_log[STATS_TRIGGER_LOG_MAX]; /* oldest first */
+    int trigger_log_count;
     bool kiosk_on, gpio_on, video_on, presentation_on; /* which groups of keys the run writes */
+    bool dis_on, mqtt_on;
 };
 
-void player_stats_collect(const struct player *p, struct player_stats_record *r);
 /* 0, or -EIO when writing failed (errno says why). */
 int player_stats_write(const struct player_stats_record *r, FILE *f);
 void player_stats_usage(FILE *f);
