@@ -59,7 +59,9 @@ static void set_frame_uniforms(sbfx *fx, const sbfx_program *p, const frame_para
     glUniform4fv(p->projection, 1, fp->projection);
     glUniform2f(p->target_size, (float)gl->low_width, (float)gl->low_height);
     glUniform2f(p->pixel, 2.0f / gl->low_width, 2.0f / gl->low_height);
-    glUniform1i(p->octagon, !fx->render->tiles.full_screen); /* the frame as before tiles: rectangles */
+    /* rectangles for the frame as before tiles, and for the bench's floor, whose every fragment
+     * writes: its picture is its rectangle */
+    glUniform1i(p->octagon, !fx->render->tiles.full_screen && fx->scene->desc.opacity != SBFX_OPACITY_FLOOR);
     glUniform1i(p->depth, UNIT_DEPTH);
     glUniform2f(p->full_size, (float)gl->out_width, (float)gl->out_height);
 }

@@ -51,13 +51,14 @@ typedef struct particle_region {
 /* The frame's four axes: x and y (pixels = p0 or p5 times the slope, times half the target),
  * their sum and difference. A pixel at q (its centre, in low-res pixels) reads the texels whose
  * centres lie within 1 of q on each axis (composite.frag: base and base + 1): the box grows by 1,
- * the diagonal slabs by 2; with the bench's floor, whose every fragment of particle.vert's
- * octagon writes, by the octagon's margins (a pixel, two along the diagonals) more. */
+ * the diagonal slabs by 2. The bench's floor writes every fragment of the rectangle particle.vert
+ * draws for it (its picture as before the octagons: particles.c): the box grows by that
+ * rectangle's pixel more, and no slab bounds it. */
 static void region_axes(const frame_params *fp, int lw, int lh, bool floor_mode, region_axis axes[4])
 {
     const float *p = fp->projection;
     double ax = p[0] * 0.5 * lw, ay = p[1] * 0.5 * lh, sx = (1.0 - p[2]) * 0.5 * lw, sy = (1.0 - p[3]) * 0.5 * lh;
-    double box = floor_mode ? 2.0 : 1.0, slab = 2.0 * box, diagonal = sqrt(ax * ax + ay * ay);
+    double box = floor_mode ? 2.0 : 1.0, slab = floor_mode ? WHOLE_TARGET : 2.0, diagonal = sqrt(ax * ax + ay * ay);
     axes[0] = (region_axis){{ax > 0.0 ? 1.0 : -1.0, 0.0}, fabs(ax), sx, box};
     axes[1] = (region_axis){{0.0, ay > 0.0 ? 1.0 : -1.0}, fabs(ay), sy, box};
     axes[2] = (region_axis){{ax / diagonal, ay / diagonal}, diagonal, sx + sy, slab};

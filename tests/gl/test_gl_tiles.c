@@ -276,7 +276,7 @@ CHECK_TEST(a_particle_at_a_tile_edge)
     gl_fixture f;
     fixture_open(&f, W, H);
     fixture_projection(&f, 1.0f, 0.1f, 100.0f);
-    int sizes[] = {8, 16, SBFX_TILE_SIZE};
+    int sizes[] = {8, SBFX_TILE_SIZE}; /* the smallest (an edge by every footprint) and the default */
     for (size_t k = 0; k < ARRAY_SIZE(sizes); k++)
         for (int d = 1; d <= 4; d *= 4) {
             sbfx_desc desc = {.max_particles = 16, .target_divisor = d};
@@ -394,6 +394,28 @@ CHECK_TEST(every_divisor_and_upsampling)
             snprintf(what, sizeof(what), "divisor %d, %s", divisors[d], u ? "bilinear" : "nearest-depth");
             CHECK(run_case(&f, desc, 8, scattered, 3, what) == 3);
         }
+    fixture_close(&f);
+}
+
+/* The bench's floor writes every fragment it draws: it keeps its rectangles (the bench's floor
+ * row as before tiles), which no diagonal of the tiles' footprint may cut. */
+static void large_puffs(const gl_fixture *f, int i, sbfx_view_particle *out, int *n)
+{
+    out[0] = particle_at(f, 40.0 + 3.3 * i, 50.0 - 2.1 * i, 5.0, 0.5 + 0.1 * i, SBFX_SMOKE);
+    out[1] = particle_at(f, 120.0 - 2.7 * i, 30.0 + 1.9 * i, 7.0, 0.9, SBFX_FIRE);
+    *n = 2;
+}
+
+CHECK_TEST(the_benchs_floor_keeps_its_rectangles)
+{
+    gl_fixture f;
+    fixture_open(&f, W, H);
+    fixture_projection(&f, 1.0f, 0.1f, 100.0f);
+    for (int d = 1; d <= 4; d *= 4) {
+        sbfx_desc desc = {.max_particles = 16, .opacity = SBFX_OPACITY_FLOOR, .target_divisor = d};
+        CHECK(run_case(&f, desc, 8, large_puffs, 4, "the bench's floor") == 4);
+        CHECK(run_case(&f, desc, 8, scattered, 3, "the bench's floor") == 3);
+    }
     fixture_close(&f);
 }
 
