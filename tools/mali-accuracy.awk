@@ -7,25 +7,27 @@
 # Per configuration and GPU, the cycles per fragment (the mean over a pass's programs, weighted by
 # the fragments each shades) of three parts: the particle pass; the composite; the depth passes
 # (the depth downsample and the low-res corners). The depth downsample's block is a loop, which
-# Mesa's estimate counts once: its cycles are taken divisor^2 times (docs/gpus.md). Then each part
+# Mesa's estimate counts once: its divisor^2 fetches bound it (texture cycles x divisor^2, where
+# that is more than the estimate; as tools/boards-table.sh, docs/gpus.md). Then each part
 # per frame in ms on a G610 MP4 at 1 GHz (cores, mhz) and a G52 MP2 at 800 MHz (g52_cores,
 # g52_mhz): fragments x cycles / (cores x clock). An estimate of shader throughput only: no
 # bandwidth, blending, tiling or vertex work.
 BEGIN { if (g52_cores == "") g52_cores = 2; if (g52_mhz == "") g52_mhz = 800 }
 FNR == 1 { file++; if (file == 3) header(); next }
-file == 1 && $6 == "fragment" { cycles[$1 SUBSEP $4 SUBSEP $5] = $8; gpus[$1] = 1; next }
+file == 1 && $6 == "fragment" { cycles[$1 SUBSEP $4 SUBSEP $5] = $8; texture[$1 SUBSEP $4 SUBSEP $5] = $10; gpus[$1] = 1; next }
 file == 2 {
     key = $1 FS $2 FS $3 FS $4 FS $5 FS $6 FS $7 FS $8
     part = part_of($9)
     if (part == "") next
     frags[part, key] += $11
-    loop = $9 == "depth_downsample.frag" ? 1 / ($2 * $2) : 1
+    fetches = $9 == "depth_downsample.frag" ? 1 / ($2 * $2) : 0 # divisor^2 (scale = 1 / divisor)
     n = split("g52 g57 g610", list, " ")
     for (i = 1; i <= n; i++) {
         g = list[i]
         c = cycles[g SUBSEP $9 SUBSEP $10]
         if (c == "") { missing[key, g] = 1; continue }
-        work[part, key, g] += $11 * c * loop
+        if (texture[g SUBSEP $9 SUBSEP $10] * fetches > c) c = texture[g SUBSEP $9 SUBSEP $10] * fetches
+        work[part, key, g] += $11 * c
     }
     next
 }
