@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "bench_fragments.h"
+#include "bench_gl.h"
 #include "bench_programs.h"
 #include "egl/egl_headless.h"
 #include "host/test_scene.h"
@@ -91,21 +92,15 @@ static void scene_at_size(const options *opt, const char *name, int w, int h, FI
     bool has_camera = !opt->orbit && sbfx_scene_camera_get(scene, &camera);
     struct test_scene host;
     if (test_scene_create(&host, w, h, err, sizeof(err)) != 0) die("test scene", err);
-    GLuint out_texture, out_fbo;
-    glGenTextures(1, &out_texture);
-    glBindTexture(GL_TEXTURE_2D, out_texture);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
-    glGenFramebuffers(1, &out_fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, out_fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, out_texture, 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    bench_target out;
+    if (bench_target_create(&out, w, h) != 0) die("output framebuffer", "incomplete");
     sbfx *fx = NULL;
     if (sbfx_create(&(sbfx_desc){.scene = scene, .log = log_line}, &fx) != SBFX_OK) die(path, "sbfx_create failed");
     double last_trigger = 0.0;
     for (int i = 0; i < scene->timeline_count; i++)
         if (scene->timeline[i].time > last_trigger) last_trigger = scene->timeline[i].time;
     sbfx_frame frame = {.scene_color_texture = host.color_texture, .scene_depth_texture = host.depth_texture,
-                        .out_framebuffer = out_fbo, .width = w, .height = h};
+                        .out_framebuffer = out.fbo, .width = w, .height = h};
     int frames = 0;
     for (double next = opt->step; sbfx_elapsed(fx) < LIFE_MAX; next += opt->step) {
         while (sbfx_elapsed(fx) < next - 1e-9) sbfx_update(fx, SIM_STEP);
@@ -131,8 +126,7 @@ static void scene_at_size(const options *opt, const char *name, int w, int h, FI
     fflush(stdout);
     sbfx_destroy(fx);
     sbfx_scene_free(scene);
-    glDeleteFramebuffers(1, &out_fbo);
-    glDeleteTextures(1, &out_texture);
+    bench_target_destroy(&out);
     test_scene_destroy(&host);
 }
 
