@@ -58,7 +58,7 @@ CC ?= cc
 PKG_CONFIG ?= pkg-config
 # The library's version: the minor grows when a function is added to src/sbfx.h, the major
 # (the soname's number) when a signature or a public struct's layout changes.
-VERSION := 1.3.0
+VERSION := 1.4.0
 SOVERSION := $(firstword $(subst ., ,$(VERSION)))
 # tools/deps.sh's package set for this build (a board's .mk names its own)
 DEPS := build
@@ -481,10 +481,11 @@ fuzz: $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_dis $(BUILD)/tests/net/dis_sen
 
 # ---- bench (issue #4: what accuracy costs) ------------------------------------------------
 # tests/bench/*.c link into one program. --wrap lets the bench time the module's particle pass
-# on its own (tests/bench/bench_gl.h says how); nothing else is wrapped.
+# on its own and count every pass's fragments (tests/bench/bench_gl.h, bench_fragments.h say
+# how); nothing else is wrapped.
 BENCH_SRC := $(wildcard tests/bench/*.c)
 BENCH_OBJ := $(BENCH_SRC:tests/bench/%.c=$(BUILD)/obj/bench/%.o)
-BENCH_WRAP := -Wl,--wrap=glBindFramebuffer -Wl,--wrap=glDrawArraysInstanced
+BENCH_WRAP := -Wl,--wrap=glBindFramebuffer -Wl,--wrap=glDrawArraysInstanced -Wl,--wrap=glDrawArrays
 
 $(BUILD)/obj/bench/%.o: tests/bench/%.c | deps
 	@mkdir -p $(@D)
@@ -553,6 +554,17 @@ $(BUILD)/tests/gl/test_gl_fire_look: tests/gl/test_gl_fire_look.c $(FIRE_LOOK_OB
 	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests -Itests/look $(LDSAN) -o $@ $< $(GL_TEST_WRAP) $(FIRE_LOOK_OBJ) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
 bench: $(BUILD)/bench/bench_look_fire
+
+# ---- the boards' frame (issue 33): every example scene over its life, fragments per program ----
+# A program of its own (tests/bench/boards/) with the accuracy bench's fragment counting; writes
+# $(BUILD)/bench/boards.csv when run, which tools/boards-table.sh prices (tests/bench/run.sh).
+BOARDS_BENCH_OBJ := $(addprefix $(BUILD)/obj/bench/,bench_gl.o bench_fragments.o bench_programs.o)
+$(BUILD)/bench/bench_boards: tests/bench/boards/bench_boards.c $(BOARDS_BENCH_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Itests/bench $(LDSAN) $(BENCH_WRAP) -o $@ $< $(BOARDS_BENCH_OBJ) \
+		$(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+
+bench: $(BUILD)/bench/bench_boards
 
 # ---- scenes and post-effects bench (issues #3, #6) ------------------------------------------
 $(BUILD)/bench/bench_scenes: tests/bench/scenes/bench_scenes.c $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a

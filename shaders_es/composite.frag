@@ -16,6 +16,9 @@
 //   TONE_MAP_NONE | TONE_MAP_HUE_PRESERVING | TONE_MAP_PER_CHANNEL | TONE_MAP_FILMIC   the
 //                 particles' light on the display (sbfx_tone_map in sbfx.h; ref/reference_frame.c
 //                 mirrors it; docs/look-fire.md)
+//   SCENE_ONLY    (with OWN_SCENE) the pixels outside the particles' tiles (src/render/tiles.c):
+//                 what main() writes where no particle reaches (transmittance 1, no light, no
+//                 shimmer offset), the scene read the same way
 precision highp float;
 precision highp sampler2D;
 #ifndef FILTER_BITS   // SBFX_FILTER_BITS (shaders_es/filtered.frag): else the texture unit filters
@@ -197,6 +200,24 @@ mediump vec4 upsample(vec2 uv, vec2 t, mediump vec4 w)
     return sum;
 }
 
+#ifdef OWN_SCENE
+// The scene behind this pixel, displaced by the shimmer's offset (UV units).
+vec3 scene_behind(vec2 offset)
+{
+    vec2 scene_uv = gl_FragCoord.xy / u_full_size;
+#ifdef HAS_SHIMMER
+    scene_uv = clamp(scene_uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);
+#endif
+    return filtered_2d(u_scene_color, scene_uv).rgb;
+}
+#endif
+
+#ifdef SCENE_ONLY
+void main()
+{
+    o_color = vec4(scene_behind(vec2(0.0)), 1.0);
+}
+#else
 void main()
 {
     vec2 low = gl_FragCoord.xy / u_divisor - 0.5;
@@ -210,15 +231,14 @@ void main()
     vec4 result = upsample(uv, t, bilinear_weights(f));
 #endif
 #ifdef OWN_SCENE
-    vec2 scene_uv = gl_FragCoord.xy / u_full_size;
+    vec2 offset = vec2(0.0);
 #ifdef HAS_SHIMMER
     // bilinear, like the particles (nearest low-res offsets would tear the image into blocks), by
     // the sampler: the offsets are RGBA16F (filterable) and read through a LINEAR sampler
-    vec2 offset = filtered_2d(u_distortion, uv + f * t).rg;
+    offset = filtered_2d(u_distortion, uv + f * t).rg;
     if (!(abs(offset.x) < 1.0 && abs(offset.y) < 1.0)) offset = vec2(0.0);   // NaN, Inf, absurd
-    scene_uv = clamp(scene_uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);
 #endif
-    vec3 scene = filtered_2d(u_scene_color, scene_uv).rgb;
+    vec3 scene = scene_behind(offset);
     result = tone_map(result, scene);
 #ifdef TRANSMITTANCE_ALPHA
     o_color = vec4(scene * result.a + result.rgb, result.a);
@@ -230,3 +250,4 @@ void main()
     o_color = tone_map(result, dst);
 #endif
 }
+#endif

@@ -3,6 +3,10 @@
 // surface of its block as near / distance: 0 means no surface (the host's clear value), and the
 // encoding needs no far plane and keeps float's relative precision at every distance (a depth
 // attachment is renderable in core ES 3.0, a float colour target is not).
+// near / distance is a monotone function of window depth, in float too (every step of
+// inverse_distance is), so the block's closest surface is its largest (or, where a smaller
+// window depth is closer, smallest) window depth, converted once: the same value as the largest
+// of the converted ones, for one comparison per texel instead of a conversion.
 precision highp float;
 precision highp sampler2D;
 
@@ -11,6 +15,7 @@ uniform int u_divisor;
 uniform ivec2 u_full_size;
 uniform vec4 u_depth_model;        // distance = w / (x (d - y) + z); d = y: no surface (src/render/projection.c)
 uniform float u_near;
+uniform float u_closer;            // 1: a larger window depth is closer (x / w > 0), else -1
 
 // near / distance of one window depth; linear in d, so nothing cancels.
 float inverse_distance(float d)
@@ -22,12 +27,12 @@ float inverse_distance(float d)
 void main()
 {
     ivec2 base = ivec2(gl_FragCoord.xy) * u_divisor;
-    float closest = 0.0;
+    float closest = -1e30;   // the closest window depth, times u_closer (negating is exact)
     for (int j = 0; j < u_divisor; j++) {
         for (int i = 0; i < u_divisor; i++) {
             ivec2 q = min(base + ivec2(i, j), u_full_size - 1);
-            closest = max(closest, inverse_distance(texelFetch(u_scene_depth, q, 0).r));
+            closest = max(closest, u_closer * texelFetch(u_scene_depth, q, 0).r);
         }
     }
-    gl_FragDepth = closest;
+    gl_FragDepth = inverse_distance(u_closer * closest);
 }

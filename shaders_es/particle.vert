@@ -1,8 +1,11 @@
 #version 300 es
-// Spherical billboard: each instance is a screen-aligned quad emitted directly as the
-// screen-space bounding rectangle of its sphere at clip z = 0, w = 1. The near plane can never
-// clip it (the seed places the quad at the sphere's far point for the same reason), and the
-// fragment shader rebuilds the view ray from gl_FragCoord, so nothing needs interpolating.
+// Spherical billboard: each instance is a screen-aligned octagon emitted directly at clip z = 0,
+// w = 1: the screen-space bounding rectangle of its sphere with the corners cut along the
+// diagonals, where the sphere's outline leaves about a sixth of the rectangle empty (no ray
+// there meets the sphere: those fragments would add nothing). Eight vertices, a strip. The near
+// plane can never clip it (the seed places the quad at the sphere's far point for the same
+// reason), and the fragment shader rebuilds the view ray from gl_FragCoord, so nothing needs
+// interpolating.
 precision highp float;
 
 layout(location = 0) in vec4 a_center_radius; // view-space centre, radius
@@ -30,6 +33,7 @@ uniform vec2 u_full_size;
 uniform vec4 u_projection;  // projection[0], projection[5], projection[8], projection[9]
 uniform float u_near;
 uniform vec2 u_pixel;       // size of one target pixel in NDC units
+uniform bool u_octagon;     // cut the rectangle's corners (false: the rectangle, as before issue 33)
 
 flat out vec4 v_center_radius;
 flat out vec4 v_detail;
@@ -67,6 +71,46 @@ vec2 slope_range(float cx, float zc, float r)
 bool finite4(vec4 v)
 {
     return !any(isnan(v)) && !any(isinf(v));
+}
+
+// The sphere's range of u = x + y and v = x - y in the target's pixels (x = (ndc + 1) / u_pixel),
+// as ndc: each the slope range along the view-space direction the diagonal is, times its length,
+// widened by a pixel of x and one of y (the rectangle's pixel each way).
+vec4 diagonal_cuts(vec3 c, float zc, float r)
+{
+    vec2 a = u_projection.xy / u_pixel;     // pixels per unit of slope, x and y
+    float len = length(a);
+    vec2 du = a / len, dv = vec2(du.x, -du.y);
+    vec2 su = slope_range(dot(du, c.xy), zc, r) * len;
+    vec2 sv = slope_range(dot(dv, c.xy), zc, r) * len;
+    // in pixels the shift is (1 - p8) / u_pixel.x, (1 - p9) / u_pixel.y
+    vec2 shift = (1.0 - u_projection.zw) / u_pixel;
+    return vec4(su.x + shift.x + shift.y - 2.0, sv.x + shift.x - shift.y - 2.0,
+                su.y + shift.x + shift.y + 2.0, sv.y + shift.x - shift.y + 2.0);
+}
+
+// Vertex i of the strip over the rectangle (ndc) with its corners cut by u >= cut.x, v >= cut.y,
+// u <= cut.z, v <= cut.w (pixels): the octagon's vertices, two on each edge, each kept on its
+// edge and in order along it, so that the strip (0 1 7 2 6 3 5 4) covers a convex polygon
+// once, never less than the rectangle within the cuts.
+vec2 octagon_vertex(vec4 rect, vec4 cut, int i)
+{
+    vec4 px = (rect + 1.0) / u_pixel.xyxy;  // x0, y0, x1, y1 in pixels
+    float b0 = clamp(cut.x - px.y, px.x, px.z), b1 = max(clamp(cut.w + px.y, px.x, px.z), b0); // bottom: x
+    float r0 = clamp(px.z - cut.w, px.y, px.w), r1 = max(clamp(cut.z - px.z, px.y, px.w), r0); // right: y
+    float t0 = clamp(cut.z - px.w, px.x, px.z), t1 = min(clamp(cut.y + px.w, px.x, px.z), t0); // top: x
+    float l0 = clamp(px.x - cut.y, px.y, px.w), l1 = min(clamp(cut.x - px.x, px.y, px.w), l0); // left: y
+    vec2 v;
+    // strip order 0 1 7 2 6 3 5 4 of the polygon b0 b1 r0 r1 t0 t1 l0 l1
+    if (i == 0) v = vec2(b0, px.y);
+    else if (i == 1) v = vec2(b1, px.y);
+    else if (i == 2) v = vec2(px.x, l1);
+    else if (i == 3) v = vec2(px.z, r0);
+    else if (i == 4) v = vec2(px.x, l0);
+    else if (i == 5) v = vec2(px.z, r1);
+    else if (i == 6) v = vec2(t1, px.w);
+    else v = vec2(t0, px.w);
+    return v * u_pixel - 1.0;
 }
 
 void main()
@@ -122,8 +166,6 @@ void main()
     }
 #endif
 #endif
-    vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1));
-
     // Invalid particles (the CPU side skips them already) and spheres wholly behind the near
     // plane collapse to a point outside the view volume: no fragment.
     if (!finite4(a_center_radius) || !finite4(a_detail) || !(r > 0.0) || zc + r <= u_near) {
@@ -131,12 +173,15 @@ void main()
         return;
     }
     vec4 rect = vec4(-1.0, -1.0, 1.0, 1.0);
+    vec4 cut = vec4(-1e30, -1e30, 1e30, 1e30);   // no cut: a sphere at the near plane fills the screen
     if (zc - r > u_near) {
         vec2 sx = slope_range(c.x, zc, r);
         vec2 sy = slope_range(c.y, zc, r);
         rect = vec4(sx.x, sy.x, sx.y, sy.y) * u_projection.xyxy - u_projection.zwzw;
+        rect = vec4(min(rect.xy, rect.zw), max(rect.xy, rect.zw)); // a mirrored projection's too
         rect += vec4(-u_pixel, u_pixel);
         rect = clamp(rect, -1.0, 1.0);
+        if (u_octagon) cut = diagonal_cuts(c, zc, r);
     }
-    gl_Position = vec4(mix(rect.xy, rect.zw, corner), 0.0, 1.0);
+    gl_Position = vec4(octagon_vertex(rect, cut, gl_VertexID), 0.0, 1.0);
 }

@@ -53,6 +53,7 @@ static sbfx_result load_gl(sbfx *fx)
     if (r == SBFX_OK) r = sbfx_post_programs_create(fx);
     if (r == SBFX_OK) sbfx_budget_gl_init(fx);
     if (r == SBFX_OK) r = sbfx_shadow_create(fx);
+    if (r == SBFX_OK) r = sbfx_tiles_create(fx);
     sbfx_gl_state_restore(&saved);
     return r;
 }
@@ -62,6 +63,7 @@ static void destroy_gl(sbfx *fx)
 {
     sbfx_budget_gl_destroy(fx);
     sbfx_shadow_destroy(fx);
+    sbfx_tiles_destroy(fx);
     sbfx_targets_destroy(fx);
     sbfx_post_destroy(fx);
     sbfx_programs_destroy(fx);

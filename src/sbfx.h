@@ -266,6 +266,11 @@ typedef struct sbfx_counters {
     int programs_compiled;    /* GL programs compiled and linked */
     int targets_created;      /* framebuffers created (particle, depth and post targets) */
     int scene_reloads;        /* scenes taken over by sbfx_set_scene */
+    /* since 1.4.0 (at the end: the members before keep their offsets) */
+    int composite_tiles;      /* screen tiles the last sbfx_render composited: those its particles
+                                 can change (0: it drew no particle); docs/gpus.md "Tiles" */
+    int composite_pixels;     /* output pixels those tiles cover: the composite's and the depth
+                                 downsample's share of the screen */
 } sbfx_counters;
 
 typedef struct sbfx sbfx;

@@ -8,7 +8,7 @@ set -u
 PLAYER=${1:-build/sbfx-play}
 SUITE=cli
 RUN_TIMEOUT=${CLI_RUN_TIMEOUT:-120}
-STATS_KEYS="programs textures framebuffers gpu_bytes passes draw_calls particles_simulated heap_allocs_after_load
+STATS_KEYS="programs textures framebuffers gpu_bytes passes draw_calls composite_tiles composite_pixels particles_simulated heap_allocs_after_load
     budget_ms gpu_ms frames_over_budget quality_changes"
 failures=0
 
@@ -188,13 +188,15 @@ test_idle_run() {
         return
     fi
     check_stats idle-stats "$tmp/idle.json"
-    local passes simulated
+    local passes simulated tiles
     passes=$(json_number "$tmp/idle.json" passes)
     simulated=$(json_number "$tmp/idle.json" particles_simulated)
-    if [ "$passes" = 0 ] && [ "$simulated" = 0 ]; then
+    tiles=$(json_number "$tmp/idle.json" composite_tiles)
+    if [ "$passes" = 0 ] && [ "$simulated" = 0 ] && [ "$tiles" = 0 ]; then
         ok idle-no-passes
     else
-        fail idle-no-passes "--no-timeline: passes=$passes particles_simulated=$simulated, expected 0 and 0"
+        fail idle-no-passes "--no-timeline: passes=$passes particles_simulated=$simulated composite_tiles=$tiles," \
+            "expected 0, 0 and 0"
     fi
 }
 
@@ -215,6 +217,15 @@ test_scene_run() {
         ok scene-run
     else
         fail scene-run "smoke scene: programs=$programs passes=$passes, expected 4 and 3 (5 and 4 with RGBA32F)"
+    fi
+    # the composite covered the column's tiles: some of the 160 x 90 frame, not all of it (issue 33)
+    local tiles pixels
+    tiles=$(json_number "$tmp/smoke.json" composite_tiles)
+    pixels=$(json_number "$tmp/smoke.json" composite_pixels)
+    if [ "${tiles:-0}" -gt 0 ] && [ "${pixels:-0}" -gt 0 ] && [ "${pixels:-0}" -lt $((160 * 90)) ]; then
+        ok scene-run-tiles
+    else
+        fail scene-run-tiles "smoke scene: composite_tiles=$tiles composite_pixels=$pixels, expected some of 14400"
     fi
 }
 

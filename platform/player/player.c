@@ -232,6 +232,7 @@ static void collect_stats(const struct player *p, struct player_stats_record *r)
     *r = (struct player_stats_record){
         .programs = c->programs, .textures = c->textures, .framebuffers = c->framebuffers,
         .gpu_bytes = (long long)c->gpu_bytes, .passes = c->passes, .draw_calls = c->draw_calls,
+        .composite_tiles = c->composite_tiles, .composite_pixels = c->composite_pixels,
         .particles_simulated = p->frame_simulated,
         .heap_allocs_after_load = (long long)c->heap_allocs_after_load,
         .budget_ms = c->budget_ms, .gpu_ms = c->gpu_ms,

@@ -56,6 +56,8 @@ typedef struct sbfx_gl {
     sbfx_pass_uniforms depth_u, corners_u, composite_u;
     GLuint fullscreen_vao, particle_vao, instance_buffer;
     GLuint depth_program, corners_program, composite_program;
+    GLuint scene_only_program;   /* the scene outside the particles' tiles (owned scenes: composite.frag SCENE_ONLY) */
+    sbfx_pass_uniforms scene_only_u;
     sbfx_program particle[SBFX_MEDIUM_COUNT];
     GLuint blackbody_texture, phase_texture, detail_texture;
     GLuint smoke_texture[SBFX_MEDIUM_COUNT]; /* 2D arrays, lit media only (tables/tables.h layout) */

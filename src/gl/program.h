@@ -14,20 +14,21 @@
 typedef struct sbfx_program {
     GLuint id;
     /* uniform locations used every frame */
-    GLint near, projection, target_size, pixel, tau, soft_scale, full_size, heat_strength;
+    GLint near, projection, target_size, pixel, octagon, tau, soft_scale, full_size, heat_strength;
     GLint depth, detail, detail_window, detail_strength, time;
     GLint phase_lut, phase_row, phase_warp, phase_shift, g, albedo_color, light_count, light_vector, light_color;
     GLint ambient, blackbody, blackbody_map, temperature, emission_scale, cmf_rgb, cmf_band, probe;
     GLint smoke, smoke_size, smoke_variants, wrap, translucency, dampening, steps; /* LIGHTING_LIT */
 } sbfx_program;
 
-/* Uniform locations of the full-screen passes, looked up once at load. */
+/* Uniform locations of the passes drawn over the screen's tiles, looked up once at load. */
 typedef struct sbfx_pass_uniforms {
-    GLint scene_depth, divisor, full_size, depth_model, near;         /* depth downsample */
+    GLint scene_depth, divisor, full_size, depth_model, near, closer; /* depth downsample */
     GLint particles, low_depth, low_size, depth_threshold;            /* composite */
     GLint scene_color, scene_known, distortion;                       /* composite: scene colour */
     GLint tone_curve;                                                 /* composite, tone map */
     GLint low_corners, particles_far, near_over_far;                  /* composite, nearest depth */
+    GLint tile_size, tile_grid, tile_target;                          /* tiles.vert (render/tiles.h) */
 } sbfx_pass_uniforms;
 
 typedef struct sbfx_variant_key {

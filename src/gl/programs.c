@@ -49,6 +49,7 @@ void sbfx_program_locate(sbfx_program *p)
     p->projection = glGetUniformLocation(id, "u_projection");
     p->target_size = glGetUniformLocation(id, "u_target_size");
     p->pixel = glGetUniformLocation(id, "u_pixel");
+    p->octagon = glGetUniformLocation(id, "u_octagon");
     p->tau = glGetUniformLocation(id, "u_tau");
     p->full_size = glGetUniformLocation(id, "u_full_size");
     p->heat_strength = glGetUniformLocation(id, "u_heat_strength");
@@ -124,6 +125,7 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->full_size = glGetUniformLocation(id, "u_full_size");
     u->depth_model = glGetUniformLocation(id, "u_depth_model");
     u->near = glGetUniformLocation(id, "u_near");
+    u->closer = glGetUniformLocation(id, "u_closer");
     u->particles = glGetUniformLocation(id, "u_particles");
     u->low_depth = glGetUniformLocation(id, "u_low_depth");
     u->low_size = glGetUniformLocation(id, "u_low_size");
@@ -135,6 +137,9 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->low_corners = glGetUniformLocation(id, "u_low_corners");
     u->particles_far = glGetUniformLocation(id, "u_particles_far");
     u->near_over_far = glGetUniformLocation(id, "u_near_over_far");
+    u->tile_size = glGetUniformLocation(id, "u_tile_size");
+    u->tile_grid = glGetUniformLocation(id, "u_tile_grid");
+    u->tile_target = glGetUniformLocation(id, "u_tile_target");
 }
 
 /* Where RGBA32F renders, nearest-depth upsampling reads its four depths in one fetch from the
@@ -142,7 +147,7 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
 static sbfx_result build_corners_program(sbfx *fx)
 {
     if (fx->gl->corners_program || !sbfx_float32_renderable()) return SBFX_OK;
-    fx->gl->corners_program = sbfx_program_build(fx, "fullscreen.vert", "low_corners.frag", NULL);
+    fx->gl->corners_program = sbfx_program_build(fx, "tiles.vert", "low_corners.frag", NULL);
     if (!fx->gl->corners_program) return SBFX_ERR_SHADER;
     locate_pass_uniforms(fx->gl->corners_program, &fx->gl->corners_u);
     return SBFX_OK;
@@ -155,12 +160,28 @@ static const char *const tone_map_defines[SBFX_TONE_MAP_COUNT] = {
     [SBFX_TONE_MAP_FILMIC] = "#define TONE_MAP_FILMIC\n",
 };
 
+/* Where sbfx owns the scene, the pixels outside the particles' tiles get the scene as the
+ * composite would read it there (composite.frag SCENE_ONLY; render/tiles.h): one program for
+ * every level. */
+static sbfx_result build_scene_only_program(sbfx *fx)
+{
+    if (fx->gl->scene_only_program || !fx->scene->plan.owns_scene) return SBFX_OK;
+    char defines[96];
+    snprintf(defines, sizeof(defines), "#define OWN_SCENE\n#define SCENE_ONLY\n%s",
+             fx->scene->plan.distortion && sbfx_half_float_renderable() ? "#define HAS_SHIMMER\n" : "");
+    fx->gl->scene_only_program = sbfx_program_build(fx, "tiles.vert", "composite.frag", defines);
+    if (!fx->gl->scene_only_program) return SBFX_ERR_SHADER;
+    locate_pass_uniforms(fx->gl->scene_only_program, &fx->gl->scene_only_u);
+    return SBFX_OK;
+}
+
 sbfx_result sbfx_composite_build(sbfx *fx, sbfx_upsample upsample)
 {
     if (fx->gl->composites[upsample]) return SBFX_OK;
     char defines[192];
     bool nearest_depth = upsample == SBFX_UPSAMPLE_NEAREST_DEPTH;
     sbfx_result r = nearest_depth ? build_corners_program(fx) : SBFX_OK;
+    if (r == SBFX_OK) r = build_scene_only_program(fx);
     if (r != SBFX_OK) return r;
     snprintf(defines, sizeof(defines), "%s%s%s%s%s%s",
              nearest_depth ? "#define UPSAMPLE_NEAREST_DEPTH\n" : "#define UPSAMPLE_BILINEAR\n",
@@ -169,7 +190,7 @@ sbfx_result sbfx_composite_build(sbfx *fx, sbfx_upsample upsample)
              fx->scene->plan.owns_scene && fx->scene->post.dof ? "#define TRANSMITTANCE_ALPHA\n" : "",
              fx->scene->plan.distortion && sbfx_half_float_renderable() ? "#define HAS_SHIMMER\n" : "",
              tone_map_defines[fx->scene->desc.tone_map]);
-    GLuint id = sbfx_program_build(fx, "fullscreen.vert", "composite.frag", defines);
+    GLuint id = sbfx_program_build(fx, "tiles.vert", "composite.frag", defines);
     if (!id) return SBFX_ERR_SHADER;
     fx->gl->composites[upsample] = id;
     locate_pass_uniforms(id, &fx->gl->composite_us[upsample]);
@@ -178,7 +199,7 @@ sbfx_result sbfx_composite_build(sbfx *fx, sbfx_upsample upsample)
 
 static sbfx_result build_depth_program(sbfx *fx)
 {
-    fx->gl->depth_program = sbfx_program_build(fx, "fullscreen.vert", "depth_downsample.frag", NULL);
+    fx->gl->depth_program = sbfx_program_build(fx, "tiles.vert", "depth_downsample.frag", NULL);
     if (!fx->gl->depth_program) return SBFX_ERR_SHADER;
     locate_pass_uniforms(fx->gl->depth_program, &fx->gl->depth_u);
     return SBFX_OK;
@@ -241,7 +262,7 @@ void sbfx_programs_destroy(sbfx *fx)
         for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
             sbfx_program_delete(fx, gl->variants[v].particle[m].id);
     for (int u = 0; u < SBFX_UPSAMPLE_COUNT; u++) sbfx_program_delete(fx, gl->composites[u]);
-    GLuint programs[] = {gl->depth_program, gl->corners_program};
+    GLuint programs[] = {gl->depth_program, gl->corners_program, gl->scene_only_program};
     for (size_t i = 0; i < ARRAY_SIZE(programs); i++) sbfx_program_delete(fx, programs[i]);
     if (gl->instance_buffer) glDeleteBuffers(1, &gl->instance_buffer);
     GLuint vaos[] = {gl->fullscreen_vao, gl->particle_vao};

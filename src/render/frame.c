@@ -55,10 +55,12 @@ static sbfx_result draw_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
         if (fx->scene->desc.lod_particles > 0) count = lod_reduce(&fx->sim->lod, fx->sim->view, count, fx->scene->desc.lod_particles);
         sbfx_sort_back_to_front(fx, count);
         fp.particles_far = particles_far(fx, count, fp.near);
-        sbfx_pass_depth(fx, frame, &fp);
-        if (sbfx_corners_used(fx)) sbfx_pass_corners(fx);
+        sbfx_tiles_plan(fx, frame, &fp, count); /* where the particles can change the picture */
+        bool tiles = sbfx_tiles_any(fx);
+        if (tiles) sbfx_pass_depth(fx, frame, &fp);
+        if (tiles && sbfx_corners_used(fx)) sbfx_pass_corners(fx);
         sbfx_pass_particles(fx, frame, &fp, count);
-        sbfx_pass_composite(fx, frame, &fp);
+        if (tiles || fx->scene->plan.owns_scene) sbfx_pass_composite(fx, frame, &fp);
     }
     if (fx->scene->plan.owns_scene) {
         fx->render->post.particles_drawn = count > 0;
@@ -113,6 +115,8 @@ void sbfx_frame_counters_reset(sbfx *fx)
     fx->counters.draw_calls = 0;
     fx->counters.gl_state_queries = 0;
     fx->counters.fire_lit_particles = 0;
+    fx->counters.composite_tiles = 0;
+    fx->counters.composite_pixels = 0;
 }
 
 bool sbfx_frame_check(sbfx *fx, const sbfx_frame *f, sbfx_depth_model *depth)

@@ -59,6 +59,9 @@ static void set_frame_uniforms(sbfx *fx, const sbfx_program *p, const frame_para
     glUniform4fv(p->projection, 1, fp->projection);
     glUniform2f(p->target_size, (float)gl->low_width, (float)gl->low_height);
     glUniform2f(p->pixel, 2.0f / gl->low_width, 2.0f / gl->low_height);
+    /* rectangles for the frame as before tiles, and for the bench's floor, whose every fragment
+     * writes: its picture is its rectangle */
+    glUniform1i(p->octagon, !fx->render->tiles.full_screen && fx->scene->desc.opacity != SBFX_OPACITY_FLOOR);
     glUniform1i(p->depth, UNIT_DEPTH);
     glUniform2f(p->full_size, (float)gl->out_width, (float)gl->out_height);
 }
@@ -144,7 +147,7 @@ static void draw_run(sbfx *fx, int first, int count)
         glVertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, stride, base + fx->scene->instance_fire * sizeof(float));
         glVertexAttribPointer(5, 4, GL_FLOAT, GL_FALSE, stride, base + (fx->scene->instance_fire + 4) * sizeof(float));
     }
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 8, count); /* an octagon a particle (particle.vert) */
     fx->counters.draw_calls++;
 }
 

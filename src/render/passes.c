@@ -1,6 +1,7 @@
 /* Passes 1 and 3 of a frame with live particles (frame.c): the opaque depth downsampled to the
  * particle target's resolution (and, for nearest-depth upsampling on RGBA32F devices, its
- * corners gathered), and the composite of the particle target over the host's framebuffer. */
+ * corners gathered), and the composite of the particle target over the host's framebuffer. Each
+ * draws only the screen tiles the frame's particles can change (tiles.h, tiles.c). */
 #include <math.h>
 #include <string.h>
 #include "render/render.h"
@@ -26,12 +27,12 @@ void sbfx_pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
     glUniform2i(u->full_size, f->width, f->height);
     glUniform4fv(u->depth_model, 1, fp->depth_model);
     glUniform1f(u->near, fp->near);
-    glBindVertexArray(gl->fullscreen_vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    /* near / distance grows with window depth where scale / p14 > 0 (reversed-Z) */
+    glUniform1f(u->closer, (fp->depth_model[0] > 0.0f) == (fp->depth_model[3] > 0.0f) ? 1.0f : -1.0f);
+    sbfx_tiles_draw(fx, u, true, gl->low_width, gl->low_height, fx->scene->desc.target_divisor);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     fx->counters.passes++;
-    fx->counters.draw_calls++;
 }
 
 /* Pass 1b (nearest-depth upsampling, RGBA32F devices): the four low-res depths around each
@@ -52,10 +53,9 @@ void sbfx_pass_corners(sbfx *fx)
     sbfx_bind_texture(0, GL_TEXTURE_2D, gl->low_depth.depth, 0);
     glUniform1i(gl->corners_u.low_depth, 0);
     glUniform2i(gl->corners_u.low_size, gl->low_width, gl->low_height);
-    glBindVertexArray(gl->fullscreen_vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    sbfx_tiles_draw(fx, &gl->corners_u, true, gl->low_corners.width, gl->low_corners.height,
+                    fx->scene->desc.target_divisor);
     fx->counters.passes++;
-    fx->counters.draw_calls++;
 }
 
 /* The tone map leaves room for the host's picture (composite.frag) when it may read the scene
@@ -76,7 +76,20 @@ static bool scene_color_readable(sbfx *fx, const sbfx_frame *f)
     return (GLuint)name != f->scene_color_texture;
 }
 
-/* Pass 3: dst = dst * T + C over the host's framebuffer (its alpha is kept). */
+/* Where sbfx owns the scene, the composite's image outside the tiles is the scene as the
+ * composite reads it there (composite.frag SCENE_ONLY). */
+static void pass_scene_outside_tiles(sbfx *fx, const sbfx_frame *f)
+{
+    const sbfx_gl *gl = fx->gl;
+    glUseProgram(gl->scene_only_program);
+    sbfx_bind_texture(3, GL_TEXTURE_2D, f->scene_color_texture, gl->color_sampler);
+    glUniform1i(gl->scene_only_u.scene_color, 3);
+    glUniform2f(gl->scene_only_u.full_size, (float)f->width, (float)f->height);
+    sbfx_tiles_draw(fx, &gl->scene_only_u, false, f->width, f->height, 1);
+}
+
+/* Pass 3: dst = dst * T + C over the host's framebuffer (its alpha is kept) on the tiles; where
+ * sbfx owns the scene, scene * T + C into its image, and the scene elsewhere. */
 void sbfx_pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
 {
     sbfx_gl *gl = fx->gl;
@@ -85,10 +98,16 @@ void sbfx_pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, owns ? sbfx_post_composite_target(fx, f) : f->out_framebuffer);
     glViewport(0, 0, f->width, f->height);
     if (owns) {
-        glDisable(GL_BLEND); /* writes the whole image: scene * T + C */
+        glDisable(GL_BLEND); /* writes the whole image: scene * T + C, the scene outside the tiles */
+        pass_scene_outside_tiles(fx, f);
     } else {
         glEnable(GL_BLEND);
         glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
+    }
+    fx->counters.passes++;
+    if (!sbfx_tiles_any(fx)) {
+        glDisable(GL_BLEND);
+        return;
     }
     glUseProgram(prog);
     bool scene_known = owns || scene_color_readable(fx, f);
@@ -117,10 +136,7 @@ void sbfx_pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
     glUniform1f(u->near_over_far, fp->near / fp->particles_far);
     glUniform3f(u->tone_curve, (float)fx->scene->tone_curve.knee, (float)fx->scene->tone_curve.steepness,
                 (float)fx->scene->tone_curve.inverse_log_white);
-    glBindVertexArray(gl->fullscreen_vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    sbfx_tiles_draw(fx, u, true, f->width, f->height, 1);
     glDisable(GL_BLEND);
-    fx->counters.passes++;
-    fx->counters.draw_calls++;
 }
 

@@ -8,6 +8,8 @@
  *     (passes.c), the particles back to front (particles.c), the post chain (post.h, post.c);
  *   - the frame's lights in view space (lights.c) and the entry points that replace them;
  *   - the host's transmittance shadow map (shadow.c, sbfx_render_shadow_map);
+ *   - the screen tiles the particles can change (tiles.h, tiles.c): where the composite and the
+ *     depth downsample run;
  *   - read-backs for tests and the probe (diagnostics.c): the particle target, the tables as
  *     the shader computes them.
  * Its state: sbfx_render_state (fx->render). A new pass is a function here that draw_frame
@@ -18,6 +20,7 @@
 #include "gl/gl.h"
 #include "render/post.h"
 #include "render/projection.h"
+#include "render/tiles.h"
 
 #define UNIT_DEPTH 0   /* the particle passes' texture units (SBFX_UNIT_PHASE, _BLACKBODY: gl.h) */
 #define UNIT_DETAIL 1
@@ -45,6 +48,7 @@ typedef struct sbfx_render_state {
     sbfx_post_gl post;
     sbfx_shadow shadow;
     sbfx_probe probe;
+    sbfx_tiles tiles;
     bool warned_polygon_mode;
 } sbfx_render_state;
 
@@ -64,7 +68,8 @@ typedef struct frame_lights {
 } frame_lights;
 
 /* frame.c */
-/* A frame's own counters (passes, draw calls, state queries, fire-lit particles) start at 0. */
+/* A frame's own counters (passes, draw calls, state queries, fire-lit particles, the
+ * composite's tiles and pixels) start at 0. */
 void sbfx_frame_counters_reset(sbfx *fx);
 /* The frame's size, textures and projection usable (its depth model into *depth); else fails. */
 bool sbfx_frame_check(sbfx *fx, const sbfx_frame *f, sbfx_depth_model *depth);
@@ -78,6 +83,20 @@ sbfx_result sbfx_render_view_particles(sbfx *fx, const sbfx_frame *frame,
  * without live particles, nothing in between (the bench's cost of the host contract). Returns
  * the glGet / glIs calls it made. */
 int sbfx_host_state_roundtrip(sbfx *fx, bool particles);
+
+/* tiles.c: the screen tiles the frame's particles can change (tiles.h) */
+sbfx_result sbfx_tiles_create(sbfx *fx);
+void sbfx_tiles_destroy(sbfx *fx);
+/* Marks the tiles the first `count` particles of fx->sim->view can change, merges them into
+ * rectangles (and, where sbfx owns the scene, the rest into the scene copy's) and uploads them;
+ * sets the frame's composite_tiles and composite_pixels. */
+void sbfx_tiles_plan(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count);
+/* The frame has tiles to composite. */
+bool sbfx_tiles_any(const sbfx *fx);
+/* Draws the composite's rectangles (inside) or the scene copy's (!inside) with the current
+ * program (u: its tiles.vert uniforms) into a target of width x height that holds the output
+ * at 1 / divisor per axis (the low-res corners: one texel more). */
+void sbfx_tiles_draw(sbfx *fx, const sbfx_pass_uniforms *u, bool inside, int width, int height, int divisor);
 
 /* passes.c and particles.c: the passes of a frame with live particles */
 void sbfx_pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp);

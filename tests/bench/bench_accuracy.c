@@ -43,6 +43,7 @@
 #include "bench_fragments.h"
 #include "bench_gl.h"
 #include "bench_metrics.h"
+#include "bench_programs.h"
 #include "bench_reference.h"
 #include "egl/egl_headless.h"
 #include "internal.h"
@@ -97,13 +98,13 @@ typedef struct config {
     bool gpu; /* precision `gpu`: SBFX_MEDIUMP=native SBFX_FILTER_BITS=8 (issue 25), else `float` */
 } config;
 
-#define MAX_VARIANTS 8
-/* Fragments per frame a configuration's particle variants shade (bench_fragments.h). */
+#define MAX_VARIANTS 12
+/* Fragments per frame each of a configuration's programs shades (bench_fragments.h): its
+ * particle variants, the depth downsample, the low-res corners, the composite. */
 typedef struct variant_fragments {
     int count;
-    char name[MAX_VARIANTS][256];
+    char name[MAX_VARIANTS][256]; /* "VERT FRAG | DEFINES" (SBFX_SHADER_LOG) */
     double fragments[MAX_VARIANTS];
-    char composite[256]; /* the composite variant's defines */
     bool failed;
 } variant_fragments;
 
@@ -186,38 +187,6 @@ static options parse_options(int argc, char **argv)
 
 /* ---- simulation ---------------------------------------------------------------------- */
 
-/* Program id -> the variant's name, from the module's SBFX_SHADER_LOG lines (set by main): the
- * last MAX_PROGRAM_NAMES programs built (a module's are among them). */
-#define MAX_PROGRAM_NAMES 64
-static struct {
-    char pending[256];
-    GLuint id[MAX_PROGRAM_NAMES];
-    char name[MAX_PROGRAM_NAMES][256];
-    int next;
-    char composite[256]; /* the last composite built */
-} programs;
-
-static const char *program_name(GLuint id)
-{
-    for (int i = 0; i < MAX_PROGRAM_NAMES; i++)
-        if (programs.id[i] == id && id != 0) return programs.name[i];
-    return "";
-}
-
-static void note_program(const char *message)
-{
-    const char *begin = strstr(message, "shader build begin: ");
-    unsigned id = 0;
-    if (begin) snprintf(programs.pending, sizeof(programs.pending), "%s", begin + strlen("shader build begin: "));
-    if (begin && strstr(begin, " composite.frag | "))
-        snprintf(programs.composite, sizeof(programs.composite), "%s", strstr(begin, " | ") + 3);
-    else if (sscanf(message, "shader build end: program %u", &id) == 1 && id > 0) {
-        int slot = programs.next++ % MAX_PROGRAM_NAMES;
-        programs.id[slot] = id;
-        memcpy(programs.name[slot], programs.pending, sizeof(programs.pending));
-    }
-}
-
 static bool print_shader_builds; /* --shaders: tools/shader-stats.sh reads them */
 
 static void log_warning(sbfx_log_level level, const char *message, void *user)
@@ -225,7 +194,7 @@ static void log_warning(sbfx_log_level level, const char *message, void *user)
     (void)user;
     if (level != SBFX_LOG_INFO) fprintf(stderr, "bench: sbfx: %s\n", message);
     else if (strncmp(message, "shader build ", 13) == 0) {
-        note_program(message);
+        bench_programs_note(message);
         if (print_shader_builds) fprintf(stderr, "bench: sbfx: info: %s\n", message);
     }
 }
@@ -513,9 +482,8 @@ static void count_fragments(render_call *rc, variant_fragments *vf)
     render_once(rc);
     bench_fragments_end();
     vf->failed = vf->failed || t.failed;
-    memcpy(vf->composite, programs.composite, sizeof(vf->composite));
     for (int d = 0; d < t.draws; d++) {
-        const char *name = program_name(t.program[d]);
+        const char *name = bench_program_name(t.program[d]);
         int k = 0;
         while (k < vf->count && strcmp(vf->name[k], name) != 0) k++;
         if (k == vf->count) {
@@ -753,8 +721,9 @@ static void write_csv(const bench *b)
     fclose(f);
 }
 
-/* fragments.csv: the configuration's key (accuracy.csv's columns), each particle variant's
- * fragments per frame, and the composite's (one per output pixel: a full-screen triangle). */
+/* fragments.csv: the configuration's key (accuracy.csv's columns) and each of its programs'
+ * fragments per frame, counted: the particle variants, the depth downsample and the low-res
+ * corners, the composite (over the particles' tiles: render/tiles.h). */
 static void write_fragments(const bench *b)
 {
     FILE *f = open_out(b, "fragments.csv");
@@ -768,10 +737,11 @@ static void write_fragments(const bench *b)
                  c->detail == SBFX_DETAIL_R32F ? "R32F" : "R16F", c->density_matched ? "matched" : "scene", c->lod);
         if (r->frags.failed || c->gpu) continue; /* the gpu twin runs the same default programs */
         for (int k = 0; k < r->frags.count; k++) {
+            char shader[64] = "?";
             const char *bar = strstr(r->frags.name[k], " | ");
-            fprintf(f, "%s,particle.frag,%s,%.0f\n", key, bar ? bar + 3 : "-", r->frags.fragments[k]);
+            sscanf(r->frags.name[k], "%*s %63s", shader);
+            fprintf(f, "%s,%s,%s,%.0f\n", key, shader, bar && bar[3] ? bar + 3 : "-", r->frags.fragments[k]);
         }
-        fprintf(f, "%s,composite.frag,%s,%d\n", key, r->frags.composite, b->opt.width * b->opt.height);
     }
     fclose(f);
 }

@@ -1,22 +1,44 @@
-/* Fragment counts of the particle pass: see bench_fragments.h. */
+/* Fragment counts of the module's programs: see bench_fragments.h. */
 #include "bench_fragments.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h" /* sbfx_shader_source: the module's own particle.vert */
+#define SOURCES 64 /* counting programs, one per vertex shader source: every example scene's in one run */
+
+typedef struct counting_program {
+    uint64_t hash; /* of the vertex shader's source */
+    GLuint program;
+} counting_program;
+
+/* A tally slot's target: the draws of one program at one viewport size, added up. */
+typedef struct slot_target {
+    GLuint fbo, renderbuffer;
+    int width, height;
+    bool dirty;     /* holds counts not read back */
+    GLuint counter; /* the counting program of the slot's program */
+} slot_target;
 
 static struct {
     bench_fragment_tally *tally;
-    GLuint program, fbo, renderbuffer;
-    GLint projection, near, pixel;
-    int width, height;
+    counting_program programs[SOURCES];
+    int program_count;
+    slot_target slots[BENCH_FRAGMENT_DRAWS];
     float *pixels;
+    size_t pixel_capacity;
 } fc;
 
 static const char count_fs[] = "#version 300 es\nprecision mediump float;\nout vec4 o_count;\n"
                                "void main() { o_count = vec4(1.0); }\n";
+
+static uint64_t fnv1a(const char *s)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (; *s; s++) h = (h ^ (uint8_t)*s) * 1099511628211ull;
+    return h;
+}
 
 static GLuint compile(GLenum stage, const char *text)
 {
@@ -35,11 +57,9 @@ static GLuint compile(GLenum stage, const char *text)
     return s;
 }
 
-static bool ensure_program(void)
+static GLuint link(const char *vs_text)
 {
-    if (fc.program) return true;
-    const char *vs_text = sbfx_shader_source("particle.vert");
-    GLuint vs = vs_text ? compile(GL_VERTEX_SHADER, vs_text) : 0, fs = compile(GL_FRAGMENT_SHADER, count_fs);
+    GLuint vs = compile(GL_VERTEX_SHADER, vs_text), fs = compile(GL_FRAGMENT_SHADER, count_fs);
     GLuint p = vs && fs ? glCreateProgram() : 0;
     if (p) {
         glAttachShader(p, vs);
@@ -56,43 +76,139 @@ static bool ensure_program(void)
     }
     if (vs) glDeleteShader(vs);
     if (fs) glDeleteShader(fs);
-    if (!p) return false;
-    fc.program = p;
-    fc.projection = glGetUniformLocation(p, "u_projection");
-    fc.near = glGetUniformLocation(p, "u_near");
-    fc.pixel = glGetUniformLocation(p, "u_pixel");
-    return true;
+    return p;
 }
 
-static bool ensure_target(int w, int h)
+/* The source of the vertex shader attached to `program` (malloc'd), or NULL. */
+static char *vertex_source(GLuint program)
 {
-    if (fc.fbo && fc.width == w && fc.height == h) return true;
-    if (!fc.fbo) glGenFramebuffers(1, &fc.fbo), glGenRenderbuffers(1, &fc.renderbuffer);
-    free(fc.pixels);
-    fc.pixels = malloc((size_t)w * h * 4 * sizeof(float));
-    if (!fc.pixels) return false;
-    fc.width = w, fc.height = h;
-    glBindRenderbuffer(GL_RENDERBUFFER, fc.renderbuffer);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA16F, w, h);
-    glBindFramebuffer(GL_FRAMEBUFFER, fc.fbo);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, fc.renderbuffer);
-    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-        fprintf(stderr, "bench: fragment count target %dx%d RGBA16F: status 0x%04x\n", w, h, status);
-    return status == GL_FRAMEBUFFER_COMPLETE;
+    GLuint shaders[4];
+    GLsizei n = 0;
+    glGetAttachedShaders(program, 4, &n, shaders);
+    for (GLsizei i = 0; i < n; i++) {
+        GLint type = 0, length = 0;
+        glGetShaderiv(shaders[i], GL_SHADER_TYPE, &type);
+        if (type != GL_VERTEX_SHADER) continue;
+        glGetShaderiv(shaders[i], GL_SHADER_SOURCE_LENGTH, &length);
+        char *text = length > 0 ? malloc((size_t)length) : NULL;
+        if (text) glGetShaderSource(shaders[i], length, NULL, text);
+        return text;
+    }
+    return NULL;
+}
+
+/* The counting program for `program`'s vertex shader, made once per source. */
+static GLuint counting_program_for(GLuint program)
+{
+    char *source = vertex_source(program);
+    if (!source) {
+        fprintf(stderr, "bench: fragment count: program %u has no vertex shader source\n", program);
+        return 0;
+    }
+    uint64_t h = fnv1a(source);
+    GLuint found = 0;
+    for (int i = 0; i < fc.program_count && !found; i++)
+        if (fc.programs[i].hash == h) found = fc.programs[i].program;
+    if (!found && fc.program_count == SOURCES)
+        fprintf(stderr, "bench: fragment count: more than %d vertex shader sources (SOURCES)\n", SOURCES);
+    else if (!found && (found = link(source)))
+        fc.programs[fc.program_count++] = (counting_program){h, found};
+    free(source);
+    return found;
+}
+
+/* One uniform (location from in `from`, to in the current program) copied, by its type. */
+static void copy_uniform(GLuint from, GLint src, GLint dst, GLenum type)
+{
+    GLfloat f[16];
+    GLint i[4];
+    switch (type) {
+    case GL_FLOAT: glGetUniformfv(from, src, f), glUniform1fv(dst, 1, f); break;
+    case GL_FLOAT_VEC2: glGetUniformfv(from, src, f), glUniform2fv(dst, 1, f); break;
+    case GL_FLOAT_VEC3: glGetUniformfv(from, src, f), glUniform3fv(dst, 1, f); break;
+    case GL_FLOAT_VEC4: glGetUniformfv(from, src, f), glUniform4fv(dst, 1, f); break;
+    case GL_FLOAT_MAT4: glGetUniformfv(from, src, f), glUniformMatrix4fv(dst, 1, GL_FALSE, f); break;
+    case GL_INT: case GL_BOOL: glGetUniformiv(from, src, i), glUniform1iv(dst, 1, i); break;
+    case GL_INT_VEC2: glGetUniformiv(from, src, i), glUniform2iv(dst, 1, i); break;
+    default: fprintf(stderr, "bench: fragment count: vertex uniform type 0x%04x not copied\n", type);
+    }
+}
+
+/* The vertex stage's uniforms (the counting program's, all of them) from the module's program. */
+static void copy_uniforms(GLuint from, GLuint to)
+{
+    GLint n = 0;
+    glGetProgramiv(to, GL_ACTIVE_UNIFORMS, &n);
+    for (GLint u = 0; u < n; u++) {
+        char name[128], element[160];
+        GLint size = 0;
+        GLenum type = 0;
+        glGetActiveUniform(to, (GLuint)u, sizeof(name), NULL, &size, &type, name);
+        char *bracket = strstr(name, "[0]");
+        if (bracket) *bracket = '\0';
+        for (GLint e = 0; e < size; e++) {
+            if (size > 1) snprintf(element, sizeof(element), "%s[%d]", name, e);
+            else snprintf(element, sizeof(element), "%s", name);
+            GLint src = glGetUniformLocation(from, element), dst = glGetUniformLocation(to, element);
+            if (src >= 0 && dst >= 0) copy_uniform(from, src, dst, type);
+        }
+    }
+}
+
+static double read_count(slot_target *s)
+{
+    size_t n = (size_t)s->width * s->height * 4;
+    if (n > fc.pixel_capacity) {
+        free(fc.pixels);
+        fc.pixels = malloc(n * sizeof(float));
+        fc.pixel_capacity = fc.pixels ? n : 0;
+        if (!fc.pixels) return 0.0;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, s->fbo);
+    glReadPixels(0, 0, s->width, s->height, GL_RGBA, GL_FLOAT, fc.pixels);
+    double sum = 0.0;
+    for (size_t i = 0; i < n; i += 4) sum += fc.pixels[i];
+    s->dirty = false;
+    return sum;
+}
+
+/* Slot k's target at w x h (what it held read back into the tally first), cleared. */
+static bool slot_ready(int k, int w, int h)
+{
+    slot_target *s = &fc.slots[k];
+    if (s->dirty && (s->width != w || s->height != h)) fc.tally->fragments[k] += read_count(s);
+    if (!s->fbo) glGenFramebuffers(1, &s->fbo), glGenRenderbuffers(1, &s->renderbuffer);
+    if (s->width != w || s->height != h) {
+        glBindRenderbuffer(GL_RENDERBUFFER, s->renderbuffer);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA16F, w, h);
+        glBindFramebuffer(GL_FRAMEBUFFER, s->fbo);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, s->renderbuffer);
+        GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE) {
+            fprintf(stderr, "bench: fragment count target %dx%d RGBA16F: status 0x%04x\n", w, h, status);
+            s->width = s->height = 0;
+            return false;
+        }
+        s->width = w, s->height = h;
+    }
+    if (!s->dirty) {
+        glBindFramebuffer(GL_FRAMEBUFFER, s->fbo);
+        glClearColor(0, 0, 0, 0);
+        glClear(GL_COLOR_BUFFER_BIT);
+    }
+    return true;
 }
 
 void bench_fragments_begin(bench_fragment_tally *tally)
 {
     memset(tally, 0, sizeof(*tally));
+    for (int k = 0; k < BENCH_FRAGMENT_DRAWS; k++) fc.slots[k].dirty = false;
     fc.tally = tally;
 }
 
-void bench_fragments_end(void) { fc.tally = NULL; }
-
 /* What the counting draw changes, put back afterwards. */
 typedef struct saved_state {
-    GLint program, fbo, viewport[4], src_rgb, dst_rgb, src_a, dst_a, eq_rgb, eq_a, renderbuffer;
+    GLint program, fbo, read_fbo, viewport[4], src_rgb, dst_rgb, src_a, dst_a, eq_rgb, eq_a, renderbuffer;
     GLboolean blend, mask[4];
     GLfloat clear[4];
 } saved_state;
@@ -101,6 +217,7 @@ static void save(saved_state *s)
 {
     glGetIntegerv(GL_CURRENT_PROGRAM, &s->program);
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->fbo);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s->read_fbo);
     glGetIntegerv(GL_RENDERBUFFER_BINDING, &s->renderbuffer);
     glGetIntegerv(GL_VIEWPORT, s->viewport);
     glGetIntegerv(GL_BLEND_SRC_RGB, &s->src_rgb), glGetIntegerv(GL_BLEND_DST_RGB, &s->dst_rgb);
@@ -113,35 +230,30 @@ static void save(saved_state *s)
 
 static void restore(const saved_state *s)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)s->fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)s->read_fbo);
     glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)s->renderbuffer);
     glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
     glUseProgram((GLuint)s->program);
     glBlendFuncSeparate((GLenum)s->src_rgb, (GLenum)s->dst_rgb, (GLenum)s->src_a, (GLenum)s->dst_a);
     glBlendEquationSeparate((GLenum)s->eq_rgb, (GLenum)s->eq_a);
-    if (!s->blend) glDisable(GL_BLEND);
+    if (s->blend) glEnable(GL_BLEND);
+    else glDisable(GL_BLEND);
     glColorMask(s->mask[0], s->mask[1], s->mask[2], s->mask[3]);
     glClearColor(s->clear[0], s->clear[1], s->clear[2], s->clear[3]);
 }
 
-/* The particle program's vertex uniforms, copied to the counting program. */
-static void copy_uniforms(GLuint from)
+/* The tally's slot of the current program (a new one the first time), or -1 when full. */
+static int slot_of(bench_fragment_tally *t, GLuint program)
 {
-    float v[4] = {0};
-    glGetUniformfv(from, glGetUniformLocation(from, "u_projection"), v);
-    glUniform4fv(fc.projection, 1, v);
-    glGetUniformfv(from, glGetUniformLocation(from, "u_near"), v);
-    glUniform1f(fc.near, v[0]);
-    glGetUniformfv(from, glGetUniformLocation(from, "u_pixel"), v);
-    glUniform2fv(fc.pixel, 1, v);
-}
-
-static double count_pixels(int w, int h)
-{
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, fc.pixels);
-    double sum = 0.0;
-    for (size_t i = 0; i < (size_t)w * h; i++) sum += fc.pixels[4 * i];
-    return sum;
+    int k = 0;
+    while (k < t->draws && t->program[k] != program) k++;
+    if (k < t->draws) return k;
+    if (k == BENCH_FRAGMENT_DRAWS) return -1;
+    fc.slots[k].counter = counting_program_for(program);
+    if (!fc.slots[k].counter) return -1;
+    t->program[t->draws++] = program;
+    return k;
 }
 
 void bench_fragments_draw(GLenum mode, GLint first, GLsizei count, GLsizei instances)
@@ -151,36 +263,46 @@ void bench_fragments_draw(GLenum mode, GLint first, GLsizei count, GLsizei insta
     saved_state s;
     save(&s);
     int w = s.viewport[2], h = s.viewport[3];
-    int k = 0;
-    while (k < t->draws && t->program[k] != (GLuint)s.program) k++;
-    if (k == BENCH_FRAGMENT_DRAWS || !ensure_program() || !ensure_target(w, h)) {
+    int k = slot_of(t, (GLuint)s.program);
+    if (k < 0 || !slot_ready(k, w, h)) {
         fprintf(stderr, "bench: fragment count: no counting program or target (%d programs, %dx%d)\n", t->draws, w, h);
         t->failed = true;
         restore(&s);
         return;
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, fc.fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fc.slots[k].fbo);
     glViewport(0, 0, w, h);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glClearColor(0, 0, 0, 0);
-    glClear(GL_COLOR_BUFFER_BIT);
-    glUseProgram(fc.program);
-    copy_uniforms((GLuint)s.program);
+    glUseProgram(fc.slots[k].counter);
+    copy_uniforms((GLuint)s.program, fc.slots[k].counter);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     glBlendEquation(GL_FUNC_ADD);
     fc.tally = NULL; /* the draw below goes through the wrapper too */
-    glDrawArraysInstanced(mode, first, count, instances);
+    if (instances > 0) glDrawArraysInstanced(mode, first, count, instances);
+    else glDrawArrays(mode, first, count);
     fc.tally = t;
-    if (k == t->draws) t->program[t->draws++] = (GLuint)s.program;
-    t->fragments[k] += count_pixels(w, h);
+    fc.slots[k].dirty = true;
     restore(&s);
+}
+
+void bench_fragments_end(void)
+{
+    bench_fragment_tally *t = fc.tally;
+    if (!t) return;
+    GLint fbo = 0;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &fbo);
+    for (int k = 0; k < t->draws; k++)
+        if (fc.slots[k].dirty) t->fragments[k] += read_count(&fc.slots[k]);
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
+    fc.tally = NULL;
 }
 
 void bench_fragments_destroy(void)
 {
-    if (fc.program) glDeleteProgram(fc.program);
-    if (fc.fbo) glDeleteFramebuffers(1, &fc.fbo), glDeleteRenderbuffers(1, &fc.renderbuffer);
+    for (int i = 0; i < fc.program_count; i++) glDeleteProgram(fc.programs[i].program);
+    for (int k = 0; k < BENCH_FRAGMENT_DRAWS; k++)
+        if (fc.slots[k].fbo) glDeleteFramebuffers(1, &fc.slots[k].fbo), glDeleteRenderbuffers(1, &fc.slots[k].renderbuffer);
     free(fc.pixels);
     memset(&fc, 0, sizeof(fc));
 }

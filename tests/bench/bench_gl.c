@@ -100,13 +100,16 @@ bench_sample bench_time_call(bench_timer *t, void (*fn)(void *), void *user)
 
 void __real_glBindFramebuffer(GLenum target, GLuint framebuffer);
 void __real_glDrawArraysInstanced(GLenum mode, GLint first, GLsizei count, GLsizei instances);
+void __real_glDrawArrays(GLenum mode, GLint first, GLsizei count);
 void __wrap_glBindFramebuffer(GLenum target, GLuint framebuffer);
 void __wrap_glDrawArraysInstanced(GLenum mode, GLint first, GLsizei count, GLsizei instances);
+void __wrap_glDrawArrays(GLenum mode, GLint first, GLsizei count);
 
 #define MAX_SEGMENTS 16
 
 /* While armed, every draw-framebuffer bind closes the running segment and opens the next; each
- * segment gets its own timer query. The particle pass is the segment with instanced draws. */
+ * segment gets its own timer query. The particle pass is the segment with instanced draws of
+ * particles (the passes over the screen's tiles draw instanced rectangles). */
 static struct {
     bench_timer *timer;
     GLuint queries[MAX_SEGMENTS];
@@ -146,11 +149,25 @@ void __wrap_glBindFramebuffer(GLenum target, GLuint framebuffer)
     if (pass.armed && draw) segment_begin();
 }
 
+/* The current program draws particles (particle.vert's instance attribute). */
+static bool drawing_particles(void)
+{
+    GLint program = 0;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+    return program && glGetAttribLocation((GLuint)program, "a_center_radius") >= 0;
+}
+
 void __wrap_glDrawArraysInstanced(GLenum mode, GLint first, GLsizei count, GLsizei instances)
 {
-    if (pass.active) pass.instanced[pass.segments - 1]++;
+    if (pass.active && drawing_particles()) pass.instanced[pass.segments - 1]++;
     __real_glDrawArraysInstanced(mode, first, count, instances);
     bench_fragments_draw(mode, first, count, instances);
+}
+
+void __wrap_glDrawArrays(GLenum mode, GLint first, GLsizei count)
+{
+    __real_glDrawArrays(mode, first, count);
+    bench_fragments_draw(mode, first, count, 0);
 }
 
 static void delete_segment_queries(void)

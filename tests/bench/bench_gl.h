@@ -5,12 +5,14 @@
  * two can be compared.
  *
  * The particle pass alone: the module's passes are private, so the bench is linked with
- * `-Wl,--wrap=glBindFramebuffer -Wl,--wrap=glDrawArraysInstanced` (Makefile, bench section).
- * While a particle-pass measurement is armed, every bind of a draw framebuffer ends one timed
- * segment and starts the next (glFinish at each boundary, a timer query per segment); the
- * particle pass is the one segment that issues instanced draws (the depth, composite and post
- * passes draw full-screen triangles). If not exactly one segment does, the measurement says so
- * (returns false) instead of timing something else. */
+ * `-Wl,--wrap=glBindFramebuffer -Wl,--wrap=glDrawArraysInstanced -Wl,--wrap=glDrawArrays`
+ * (Makefile, bench section; the draws are also where bench_fragments.h counts fragments). While
+ * a particle-pass measurement is armed, every bind of a draw framebuffer ends one timed segment
+ * and starts the next (glFinish at each boundary, a timer query per segment); the particle pass
+ * is the one segment that issues instanced draws of particles (a program with particle.vert's
+ * a_center_radius: the depth and composite passes draw instanced tile rectangles, the post passes
+ * full-screen triangles). If not exactly one segment does, the measurement says so (returns
+ * false) instead of timing something else. */
 #ifndef SBFX_BENCH_GL_H
 #define SBFX_BENCH_GL_H
 

@@ -137,6 +137,25 @@ if [ -x "$BUILD/bench/bench_budget" ]; then
     cat "$OUT/budget.txt" >>"$OUT/summary.txt"
 fi
 
+# issue 33: the boards' frame — every example scene over its life at 1280x720 and 1920x1080 (its
+# own camera; the explosion also from the accuracy bench's orbit), fragments per program with the
+# particles' tiles and as before them, priced on a G52 MP2 and a G610 MP4 (docs/gpus.md)
+if [ -x "$BUILD/bench/bench_boards" ]; then
+    "$BUILD/bench/bench_boards" --out "$OUT"
+    cp "$OUT/boards.csv" "$OUT/boards-scenes.csv"
+    "$BUILD/bench/bench_boards" --out "$OUT" --scenes explosion --camera orbit
+    mv "$OUT/boards.csv" "$OUT/boards-orbit.csv"
+    mv "$OUT/boards-scenes.csv" "$OUT/boards.csv"
+    if [ -r "$OUT/mali.csv" ]; then
+        { tools/boards-table.sh "$OUT/boards.csv" "$OUT/mali.csv"
+          echo; echo "The explosion from the accuracy bench's orbit camera:"; echo
+          tools/boards-table.sh "$OUT/boards-orbit.csv" "$OUT/mali.csv"; } >"$OUT/boards.md"
+        echo "boards    : $OUT/boards.md (the boards' frame, docs/gpus.md)" >>"$OUT/summary.txt"
+    else
+        echo "boards    : $OUT/boards.csv counted; no Mali prices without the drm-shims (make mesa-shim)" >>"$OUT/summary.txt"
+    fi
+fi
+
 echo "time      : make bench took $(($(date +%s) - start)) s" >>"$OUT/summary.txt"
 echo
 cat "$OUT/summary.txt"

@@ -2,6 +2,7 @@
  * deterministic whatever the frame times; a full pool refuses triggers cleanly. */
 #include "gl_fixture.h"
 #include "module.h"
+#include "render/tiles.h"
 
 #define BLACKBODY_BYTES (SBFX_BLACKBODY_SIZE * 16)
 #define PHASE_BYTES (SBFX_PHASE_SIZE * SBFX_MEDIUM_COUNT * 4)
@@ -41,7 +42,8 @@ CHECK_TEST(plan_holds_only_what_each_scene_uses)
         int instance_bytes = (strcmp(want->scene, "post") == 0 ? 48 : 32) /* + previous centre */
                              + (want->fire_light ? 32 : 0);                 /* + the fire's light */
         size_t bytes = (want->blackbody ? BLACKBODY_BYTES : 0) + (want->phase ? PHASE_BYTES : 0) +
-                       DETAIL_BYTES + (size_t)want->max_particles * instance_bytes;
+                       DETAIL_BYTES + (size_t)want->max_particles * instance_bytes +
+                       sizeof(((sbfx_tiles *)0)->rects); /* the tiles' rectangles (render/tiles.h) */
         /* the shadow map (made at load: RGBA16F, or RGBA8 where half floats do not render) and its
          * instance buffer of 5 floats per particle */
         if (want->shadow_map)
@@ -49,9 +51,10 @@ CHECK_TEST(plan_holds_only_what_each_scene_uses)
                      (size_t)want->max_particles * 20;
         printf("# %-10s programs %d textures %d framebuffers %d gpu_bytes %zu\n", want->scene, c.programs,
                c.textures, c.framebuffers, c.gpu_bytes);
-        /* + depth, composite and (where RGBA32F renders) the low-res corners */
+        /* + depth, composite and (where RGBA32F renders) the low-res corners; with post effects the
+         * composite's scene outside the tiles (composite.frag SCENE_ONLY) */
         CHECK(c.programs == want->particle_programs + 2 + sbfx_float32_renderable() + want->post_programs +
-                                (want->shadow_map > 0), "%s: %d programs", want->scene,
+                                (want->post_programs > 0) + (want->shadow_map > 0), "%s: %d programs", want->scene,
               c.programs);
         CHECK(c.textures == textures, "%s: %d textures, want %d", want->scene, c.textures, textures);
         CHECK(c.framebuffers == (want->shadow_map > 0), "%s: targets exist before the first frame", want->scene);

@@ -27,6 +27,8 @@ static const struct stats_key stats_keys[] = {
     KEY(gpu_bytes, KIND_INT, GROUP_EVERY_RUN, "bytes of GPU memory sbfx holds"),
     KEY(passes, KIND_INT, GROUP_EVERY_RUN, "render passes of the last frame"),
     KEY(draw_calls, KIND_INT, GROUP_EVERY_RUN, "draw calls of the last frame"),
+    KEY(composite_tiles, KIND_INT, GROUP_EVERY_RUN, "screen tiles the last frame composited"),
+    KEY(composite_pixels, KIND_INT, GROUP_EVERY_RUN, "pixels those tiles cover"),
     KEY(particles_simulated, KIND_INT, GROUP_EVERY_RUN, "particles the last frame's updates advanced"),
     KEY(heap_allocs_after_load, KIND_INT, GROUP_EVERY_RUN, "heap allocations after sbfx_create (0)"),
     KEY(budget_ms, KIND_G, GROUP_EVERY_RUN, "the frame budget (0: none)"),

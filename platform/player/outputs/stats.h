@@ -27,7 +27,7 @@ struct stats_trigger {
 /* A run's numbers, one field per key (integers as long long: counters of 64 bits print the
  * same; the player's own counters never reach 2^63). */
 struct player_stats_record {
-    long long programs, textures, framebuffers, gpu_bytes, passes, draw_calls;
+    long long programs, textures, framebuffers, gpu_bytes, passes, draw_calls, composite_tiles, composite_pixels;
     long long particles_simulated, heap_allocs_after_load;
     double budget_ms, gpu_ms;
     long long frames_over_budget, quality_changes;
