@@ -143,7 +143,13 @@ test_waylandsink() {
         fail waylandsink "cage did not start: $(tail -n 3 "$tmp/cage.log" | tr '\n' ' ')"
         return
     fi
-    user_command env WAYLAND_DISPLAY=wayland-0 GST_PLUGIN_PATH="$BUILD/gstreamer" LD_LIBRARY_PATH="$BUILD" \
+    # nobody's own copy of the plugin and the library: the build may lie where nobody cannot go
+    # (a clone in root's home, mode 700, as on a fresh machine)
+    mkdir -p "$tmp/home/plugin"
+    cp "$BUILD/gstreamer/libgstsbfx.so" "$tmp/home/plugin/"
+    cp -L "$BUILD/libsbfx.so.1" "$tmp/home/plugin/"
+    chmod -R a+rX "$tmp/home/plugin"
+    user_command env WAYLAND_DISPLAY=wayland-0 GST_PLUGIN_PATH="$tmp/home/plugin" LD_LIBRARY_PATH="$tmp/home/plugin" \
         GST_REGISTRY="$tmp/home/registry.bin" CAMERA="$CAMERA" SCENE="$tmp/again.cfg" \
         timeout $((WAIT * 2)) examples/gstreamer/camera-wayland.sh
     "${ucmd[@]}" >"$tmp/wl.log" 2>&1 &
