@@ -17,7 +17,8 @@
 #                     (and 6 bits for NVIDIA's cases; tests/precision.sh; make test runs it)
 #   make bench        timings into build/bench/
 #   make figures      the seed's figures rendered into docs/figures/ (docs/figures.md)
-#   make ladder       src/budget/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder)
+#   make ladder       src/budget/ladder_default.h from build/bench/accuracy.csv (the frame budget's ladder;
+#                     LADDER_RUNS="a.csv b.csv": from several runs, each time the least of theirs)
 #   make install      PREFIX=/usr/local DESTDIR= (LIBDIR, INCLUDEDIR, BINDIR, MANDIR, DATADIR); also
 #                     scenes, boards, the kiosk's unit and udev rule (dist/), and libgstsbfx.so into
 #                     GStreamer's plugin folder under PREFIX (GST_PLUGINDIR)
@@ -499,9 +500,12 @@ bench: $(BUILD)/bench/bench_accuracy
 
 # ---- the default quality ladder (issue 11): src/budget/ladder_default.h from the accuracy bench's CSV ----
 # make bench writes $(BUILD)/bench/ladder_default.h (the ladder its run proposes); make ladder
-# regenerates the committed src/budget/ladder_default.h from $(BUILD)/bench/accuracy.csv (tools/ladder.sh).
+# regenerates the committed src/budget/ladder_default.h from $(BUILD)/bench/accuracy.csv (tools/ladder.sh),
+# or from several runs' CSVs: make ladder LADDER_RUNS="run1.csv run2.csv run3.csv" (each time the least
+# of the runs'), keeping the CSV it was made from in docs/ladder-accuracy.csv.
+LADDER_RUNS ?= $(BUILD)/bench/accuracy.csv
 ladder:
-	tools/ladder.sh $(BUILD)/bench/accuracy.csv src/budget/ladder_default.h
+	LADDER_CSV=docs/ladder-accuracy.csv tools/ladder.sh $(LADDER_RUNS) src/budget/ladder_default.h
 
 # ---- frame budget bench (issue 11): the barrage at several budgets and at every fixed level ----
 # A program of its own (tests/bench/budget/), with the accuracy bench's read-backs, metrics and
