@@ -79,6 +79,10 @@ static inline void check_fail(const char *file, int line, const char *fmt, ...)
         exit(77);                                                                            \
     } while (0)
 
+/* Called once in the parent before it forks the first test, where a suite sets it (the GL
+ * fixture loads the EGL driver there: tests/gl/gl_fixture.h); NULL for the others. */
+static void (*check_before_forks)(void);
+
 static inline const char *check_suite_name(const char *argv0)
 {
     const char *slash = argv0 ? strrchr(argv0, '/') : NULL;
@@ -98,6 +102,7 @@ static inline int check_main_args(int argc, char **argv)
     const char *only = argc > 1 ? argv[1] : NULL;
     int nofork = getenv("CHECK_NOFORK") != NULL;
     int failures = 0;
+    if (!nofork && check_before_forks) check_before_forks();
     for (int i = 0; i < check_test_count; i++) {
         const struct check_entry *t = &check_tests[i];
         if (only && strcmp(only, t->name) != 0) continue;

@@ -47,7 +47,8 @@
 #              patterns: tests/run.sh test_gl_module 'asan:*'
 # Environment: BUILD (default build), ASAN_BUILD (default build/asan), TEST_JOBS, TEST_TIMEOUT
 # (seconds per suite, default 300), TEST_ASAN_TIMEOUT (the same for the ASan suites, default
-# twice TEST_TIMEOUT). The limits catch hangs; they time nothing.
+# twice TEST_TIMEOUT). The limits catch hangs; they time nothing. ASAN_OPTIONS, GLIBC_TUNABLES and
+# SBFX_TEST_LOAD_DRIVER, where given, replace what the runner sets for speed (below).
 set -u
 cd "$(dirname "$0")/.." || exit 1
 
@@ -178,6 +179,22 @@ run_cli() {
 }
 
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+# ASan's quarantine (freed memory kept poisoned, to catch a use after free) at 16 MB rather than
+# 256, and allocation stacks of 8 frames rather than 30: the ASan tier in two thirds of the time
+# (docs/testing.md "Where the time goes": page faults and unwinding in Mesa's allocations). What
+# is checked is the same; a report's allocation stack is shorter (ASAN_OPTIONS= tests/run.sh
+# NAME reruns a suite with ASan's defaults). ASAN_OPTIONS given by the caller wins.
+export ASAN_OPTIONS=${ASAN_OPTIONS-quarantine_size_mb=16:malloc_context_size=8}
+# glibc's malloc on transparent huge pages where the kernel offers them (madvise): a page fault
+# costs some 12 us on the development VM (tools' measurement in docs/testing.md), and a GL case
+# touches tens of megabytes of heap in Mesa and sbfx; a quarter of a plain GL suite's time. Not
+# for the soak, whose leak check watches the resident memory grow (in 2 MB steps it would not
+# see what it must). GLIBC_TUNABLES given by the caller wins.
+caller_tunables=${GLIBC_TUNABLES-}
+export GLIBC_TUNABLES=${GLIBC_TUNABLES-glibc.malloc.hugetlb=1}
+# The GL suites' parent process loads Mesa's driver once before it forks the tests
+# (tests/gl/gl_fixture.h); not in --gl-only, which runs on whichever driver a machine has.
+[ "$mode" = gl ] || export SBFX_TEST_LOAD_DRIVER=${SBFX_TEST_LOAD_DRIVER:-1}
 # Mesa's drivers keep allocations until exit that LeakSanitizer would report as ours.
 NO_LEAKS=ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0
 
@@ -252,7 +269,7 @@ list_all() {
     WEIGHT=10
     run_suite "" install tests/install.sh "$BUILD"
     run_suite "" docs tests/docs.sh
-    run_suite "" soak tests/soak.sh "$BUILD"
+    run_suite "" soak env GLIBC_TUNABLES="$caller_tunables" tests/soak.sh "$BUILD"
     # the accuracy suites at the precision GPUs compute at (issue 25, tests/precision.sh, make
     # test-precision), each part a suite of its own
     WEIGHT=20

@@ -314,6 +314,16 @@ enum egl_headless_api egl_headless_test_api(void)
     return EGL_HEADLESS_GLES3;
 }
 
+int egl_headless_load_driver(char *err, size_t n)
+{
+    struct egl_headless egl = {.display = EGL_NO_DISPLAY};
+    int r = open_display(&egl, err, n);
+    if (r != 0) return r;
+    eglTerminate(egl.display);
+    eglReleaseThread();
+    return 0;
+}
+
 void egl_headless_close(struct egl_headless *egl)
 {
     if (!egl || egl->display == EGL_NO_DISPLAY) return;

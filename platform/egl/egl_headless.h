@@ -47,6 +47,12 @@ int egl_headless_open_robust(struct egl_headless *out, char *err, size_t n);
 /* A new context in place of the current one (after a GPU reset: the old one is lost with
  * everything in it), made current. */
 int egl_headless_recreate_context(struct egl_headless *egl, char *err, size_t n);
+/* Initializes the display and terminates it again: the driver's libraries are loaded and stay
+ * (Mesa keeps its driver and LLVM mapped), no context is made and no driver thread is left. For
+ * a process that forks children which each open a context (the test harness, tests/check.h):
+ * they inherit the loaded, relocated libraries instead of loading them each. 0, or -ENODEV with
+ * the reason in err. */
+int egl_headless_load_driver(char *err, size_t n);
 /* Releases the context and the display; safe on a zeroed or already-closed struct. */
 void egl_headless_close(struct egl_headless *egl);
 

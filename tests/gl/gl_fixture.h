@@ -32,6 +32,22 @@ static inline void fixture_log(sbfx_log_level level, const char *message, void *
     if (getenv("SBFX_TEST_VERBOSE")) fprintf(stdout, "# sbfx: %s\n", message);
 }
 
+/* With SBFX_TEST_LOAD_DRIVER=1 (tests/run.sh sets it for Mesa, not for --gl-only's other
+ * drivers), the harness's parent loads the EGL driver once before it forks the tests
+ * (egl_headless_load_driver: Mesa then keeps its driver and LLVM loaded and leaves no thread):
+ * every test's context starts without loading and relocating them again, an eighth of a GL
+ * suite's time on llvmpipe. A driver that fails here is left to the tests, which say why. */
+static void fixture_load_driver(void)
+{
+    const char *load = getenv("SBFX_TEST_LOAD_DRIVER");
+    char err[512];
+    if (load && strcmp(load, "1") == 0) (void)egl_headless_load_driver(err, sizeof(err));
+}
+__attribute__((constructor)) static void fixture_register_load_driver(void)
+{
+    check_before_forks = fixture_load_driver;
+}
+
 /* Opens the context; skips the test (with the reason) when no EGL/GLES3 is available. */
 static inline void fixture_open(gl_fixture *f, int width, int height)
 {
