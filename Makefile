@@ -328,7 +328,7 @@ $(BUILD)/obj/tests/gl/support/%.o: tests/gl/support/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ $<
 
-$(BUILD)/tests/gl/%: tests/gl/%.c $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h $(GL_TEST_SUPPORT)
+$(BUILD)/tests/gl/%: tests/gl/%.c $(PLATFORM_COMMON_OBJ) $(REF_LIBS) tests/check.h tests/gl/gl_fixture.h $(GL_TEST_SUPPORT)
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Iref -Itests $(LDSAN) -o $@ $< $(GL_TEST_WRAP) $(PLATFORM_COMMON_OBJ) $(REF_LIBS) $(PLATFORM_LIBS)
 
