@@ -7,6 +7,8 @@
 #   - a broken edit: logged with the file, the line and the reason (in an included file: that
 #     file); no reload, the player runs on (the next good edit reloads), the sheet of the old
 #     scene stays; made while frames are rendered, the take finishes on the old scene;
+#   - the same bytes written again and a touch reload nothing (a settled change is compared by
+#     the files' content with what was last read);
 #   - SIGHUP reloads; SIGTERM ends the run with status 0;
 #   - --loop SECONDS replays the timeline every SECONDS (counted in the log);
 #   - --watch without --scene is refused.
@@ -159,6 +161,17 @@ if echo "$err" | grep -qF "$media:$fog_line: unknown key 'fog' in media"; then o
 else fail broken-include "logged '$err' (want $media:$fog_line)"; fi
 fix_media() { printf '%s\n' "$media_good" >"$media"; }
 edit fixed-include fix_media
+
+# events without an edit: the same bytes written again in place and a touch (a backup tool, a
+# build, an editor's late close under load) change nothing, so nothing is reloaded
+before_r=$(reloads)
+cp "$scene" "$tmp/same.cfg"
+cat "$tmp/same.cfg" >"$scene"
+touch "$scene" "$media"
+sleep 0.75 # five times the settling time
+if [ "$(reloads)" -ne "$before_r" ]; then fail unchanged "$(($(reloads) - before_r)) reloads of the same bytes"
+elif ! kill -0 "$pid" 2>/dev/null; then fail unchanged "the player exited"
+else ok "unchanged (the same bytes rewritten and touched: no reload)"; fi
 
 # SIGHUP: `systemctl reload` on a kiosk
 hup() { kill -HUP "$pid"; }

@@ -106,7 +106,13 @@ int player_watch_service(struct player *p)
 {
     bool hup = player_hup_taken();
     bool changed = scene_watch_due(&p->watch, player_now_ns());
-    if ((hup || changed) && p->opt->scene_path) return reload_scene(p) ? PLAYER_RELOADED : 0;
+    if ((hup || changed) && p->opt->scene_path) {
+        /* read before the load: an edit during it is a change still to come */
+        uint64_t content = scene_watch_content(&p->watch);
+        if (!hup && content == p->watch.read_content) return 0; /* events, no edit: nothing to do */
+        p->watch.read_content = content;
+        return reload_scene(p) ? PLAYER_RELOADED : 0;
+    }
     if (hup) { /* the built-in explosion: nothing to read */
         fprintf(stderr, "sbfx-play: SIGHUP: no --scene file to reload: the timeline starts again\n");
         return replay(p);

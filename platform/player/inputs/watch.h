@@ -21,6 +21,8 @@ struct scene_watch {
     int wd[SCENE_WATCH_FILES];               /* the folder's watch */
     char name[SCENE_WATCH_FILES][NAME_MAX + 1]; /* the file's name in it */
     int64_t first_ns, last_ns;               /* the pending change's first and last event (0: none) */
+    char path[SCENE_WATCH_FILES][PATH_MAX];  /* the files themselves, for their content */
+    uint64_t read_content;                   /* their content when last read (0: not yet) */
 };
 
 #define SCENE_WATCH_SETTLE_NS INT64_C(150000000) /* quiet after the last event: one reload per save */
@@ -32,6 +34,10 @@ int scene_watch_files(struct scene_watch *w, const char *path, const sbfx_scene 
 void scene_watch_close(struct scene_watch *w);
 /* Reads the events that wait (never blocks); true when a change has settled (then cleared). */
 bool scene_watch_due(struct scene_watch *w, int64_t now_ns);
+/* A hash of the watched files' bytes now (a missing or unreadable file counts as such): a settled
+ * change whose content equals the last one read changed nothing (a late close or a touch under
+ * load, long after the write) and needs no reload. */
+uint64_t scene_watch_content(const struct scene_watch *w);
 /* Milliseconds until a pending change settles; -1 when none is pending. */
 int scene_watch_timeout_ms(const struct scene_watch *w, int64_t now_ns);
 
