@@ -17,12 +17,19 @@
 
 /* ---- the watch ------------------------------------------------------------------------ */
 
-/* "dir/name" -> watch "dir" (or "." for a bare name), remember "name". */
+/* The file's name in its folder: what an event names. */
+static const char *file_name(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    return slash ? slash + 1 : path;
+}
+
+/* "dir/name" -> watch "dir" (or "." for a bare name), remember the path. */
 static int add_file(struct scene_watch *w, const char *path, char *err, size_t n)
 {
     char dir[PATH_MAX];
     const char *slash = strrchr(path, '/');
-    const char *name = slash ? slash + 1 : path;
+    const char *name = file_name(path);
     if (!*name || strlen(name) > NAME_MAX || strlen(path) >= sizeof(dir)) {
         snprintf(err, n, "--watch: %s: not a file name that can be watched", path);
         return -EINVAL;
@@ -37,7 +44,6 @@ static int add_file(struct scene_watch *w, const char *path, char *err, size_t n
         return rc;
     }
     w->wd[w->count] = wd;
-    snprintf(w->name[w->count], sizeof(w->name[0]), "%s", name);
     snprintf(w->path[w->count], sizeof(w->path[0]), "%s", path);
     w->count++;
     return 0;
@@ -74,7 +80,8 @@ void scene_watch_close(struct scene_watch *w)
 
 /* ---- the files' content ----------------------------------------------------------------- */
 
-/* FNV-1a, 64 bits: enough to tell an edit from no edit. */
+/* FNV-1a, 64 bits: enough to tell an edit from no edit (the library's own, base/hash.h, is not
+ * in its public header, the one the player builds on). */
 static uint64_t fnv1a(uint64_t h, const void *data, size_t size)
 {
     const unsigned char *b = data;
@@ -105,7 +112,7 @@ static bool watched(const struct scene_watch *w, const struct inotify_event *e)
 {
     if (e->mask & IN_Q_OVERFLOW) return true; /* events were lost: one of them may have been ours */
     for (int i = 0; i < w->count; i++)
-        if (w->wd[i] == e->wd && e->len && strcmp(w->name[i], e->name) == 0) return true;
+        if (w->wd[i] == e->wd && e->len && strcmp(file_name(w->path[i]), e->name) == 0) return true;
     return false;
 }
 

@@ -19,9 +19,8 @@ struct scene_watch {
     int fd;                                  /* -1: not watching */
     int count;
     int wd[SCENE_WATCH_FILES];               /* the folder's watch */
-    char name[SCENE_WATCH_FILES][NAME_MAX + 1]; /* the file's name in it */
+    char path[SCENE_WATCH_FILES][PATH_MAX];  /* the file (its name: what the folder's events name) */
     int64_t first_ns, last_ns;               /* the pending change's first and last event (0: none) */
-    char path[SCENE_WATCH_FILES][PATH_MAX];  /* the files themselves, for their content */
     uint64_t read_content;                   /* their content when last read (0: not yet) */
 };
 
