@@ -43,9 +43,12 @@ static void fixture_load_driver(void)
     char err[512];
     if (load && strcmp(load, "1") == 0) (void)egl_headless_load_driver(err, sizeof(err));
 }
+/* The GL suites run their tests in batches (tests/check.h): a test's context and module then
+ * reuse the memory the tests before it in the batch had, where a fork per test touched it fresh. */
 __attribute__((constructor)) static void fixture_register_load_driver(void)
 {
     check_before_forks = fixture_load_driver;
+    check_batch = 1;
 }
 
 /* Opens the context; skips the test (with the reason) when no EGL/GLES3 is available. */
@@ -216,6 +219,7 @@ static inline bool fixture_has_extension(const char *name)
  * variable: after opening, fixture_require_hidden() finds out. */
 static inline void fixture_hide_extensions(const char *names)
 {
+    check_own_process(); /* Mesa reads the variable once, at a process's first context */
     char value[512] = "";
     size_t used = 0;
     char copy[512];
