@@ -354,11 +354,19 @@ JOBS_FLAG = $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(NPROC))
 TEST_ASAN ?= full
 ASAN_TEST_TARGETS := $(if $(filter cpu,$(TEST_ASAN)),lib test-unit test-platform,all test-unit test-gl test-platform)
 
+# What make test runs from the normal build (tests/run.sh runs each suite once: the unit, platform
+# and GL suites and the CLI tests from the ASan+UBSan build): the GL tests of the precision suites
+# (tests/precision.sh --suites), the network suites' sender and allocation counter, the hosts and
+# GStreamer. TEST_ASAN=cpu: every GL test (the GL suites run from the normal build then).
+PRECISION_GL_TESTS = $(addprefix $(BUILD)/tests/gl/,$(shell tests/precision.sh --suites))
+NORMAL_TEST_TARGETS = $(if $(filter cpu,$(TEST_ASAN)),test-gl,$(PRECISION_GL_TESTS)) \
+	$(BUILD)/tests/net/dis_send $(BUILD)/tests/vm/alloc_count.so test-hosts test-gstreamer
+
 # the normal and the ASan+UBSan build side by side, sharing the job server
 .PHONY: test-build test-build-normal test-build-asan check
 test-build: test-build-normal test-build-asan
 test-build-normal:
-	@$(MAKE) --no-print-directory all test-unit test-gl test-platform test-hosts test-gstreamer
+	@$(MAKE) --no-print-directory all $(NORMAL_TEST_TARGETS)
 test-build-asan:
 	@$(MAKE) --no-print-directory BUILD=build/asan SANITIZE=1 $(ASAN_TEST_TARGETS)
 

@@ -3,7 +3,7 @@
 # diagnostics"): mediump compiled as written (SBFX_MEDIUMP=native) and every filtered fetch
 # filtered in the shader with 8-bit weights (SBFX_FILTER_BITS=8, NVIDIA's documented precision),
 # then the cases NVIDIA failed again at 6 bits. Also checks that sbfx-play's log names both
-# variables. Usage: tests/precision.sh [BUILD [PART]]; prints the suites' "ok - x" lines (make
+# variables. Usage: tests/precision.sh [BUILD [PART]] | --parts | --suites; prints the suites' "ok - x" lines (make
 # test-precision runs every part; tests/run.sh runs each part as a suite of its own, in parallel,
 # prefixed "precision:"). The parts: each GL suite, probe, 6-bit, player (`--parts` lists them).
 # Exits 1 if a test failed.
@@ -12,6 +12,12 @@ SUITES="test_gl_hard_cases test_gl_opacity test_gl_tables test_gl_lit test_gl_lo
 PARTS="$SUITES probe 6-bit player"
 if [ "${1:-}" = --parts ]; then
     echo "$PARTS"
+    exit 0
+fi
+# the GL suites it runs (the Makefile builds them for make test: tests/run.sh runs the others once,
+# from the ASan+UBSan build)
+if [ "${1:-}" = --suites ]; then
+    echo "$SUITES"
     exit 0
 fi
 BUILD=${1:-build}

@@ -4,17 +4,15 @@
 #
 # A suite is one entry in the list below (run_suite PREFIX NAME COMMAND...): a test program or
 # script that prints "ok - x", "not ok - x[: reason]" or "skip - x[: reason]" lines
-# (tests/check.h). The list holds, in this order:
-#   1. every test binary in $BUILD/tests/unit/, $BUILD/tests/gl/, $BUILD/tests/platform/ and
-#      $BUILD/tests/hosts/ (the SDL2 host, docs/hosts/), the GL state and host-error tests again
-#      on desktop OpenGL (core and compatibility), the SDL2 and desktop OpenGL example programs,
-#      the Qt Quick item's test and example under Xvfb (tests/hosts/qt_quick.sh), the GStreamer
-#      element's tests in $BUILD/tests/gstreamer/ (its GL state test also on OpenGL ES), its
-#      command line, installed copy and MP4 recording (tests/gstreamer/gst.sh) and its display
-#      sinks under Xvfb and cage (tests/gstreamer/sinks.sh)
+# (tests/check.h). Each runs once (list_all says from which build). The list holds, in this order:
+#   1. the test binaries in $BUILD/tests/hosts/ (the SDL2 host, docs/hosts/), the SDL2 and desktop
+#      OpenGL example programs, the Qt Quick item's test and example under Xvfb
+#      (tests/hosts/qt_quick.sh), the GStreamer element's tests in $BUILD/tests/gstreamer/ (its GL
+#      state test also on OpenGL ES), its command line, installed copy and MP4 recording
+#      (tests/gstreamer/gst.sh) and its display sinks under Xvfb and cage (tests/gstreamer/sinks.sh)
 #   2. the shaders through glslangValidator and their "#version 300 es" line (tests/shaders.sh),
 #      the rooms' one-way dependencies (tests/layers.sh)
-#   3. the sbfx-play command-line tests (tests/cli.sh), the probe's (tests/probe.sh), what
+#   3. the probe's tests (tests/probe.sh), what
 #      libsbfx.so exports (tests/exports.sh), that it reads no data file and renders fire with
 #      colord-data hidden (tests/no_data_files.sh), the CIE table generator (tests/gen_cmf.sh), the
 #      kiosk's unit, udev rule and their exposure (tests/kiosk_unit.sh), make install and the host
@@ -23,8 +21,11 @@
 #      links and examples (tests/docs.sh), sbfx-play under cage and weston (tests/wayland.sh), the
 #      authoring loop (tests/reload.sh), the accuracy suites at GPU precision, a suite per part
 #      (tests/precision.sh, "precision:"), a bounded libFuzzer run (tests/fuzz.sh)
-#   4. the same binaries (and the CLI tests) from build/asan/, suite names prefixed "asan:";
-#      leak detection stays on for unit tests and is off where Mesa is loaded
+#   4. from build/asan/, suite names prefixed "asan:", the ASan+UBSan build's: every test binary in
+#      tests/unit/, tests/platform/ and tests/gl/, the GL state and host-error tests again on
+#      desktop OpenGL (core and compatibility), and the sbfx-play command-line tests (tests/cli.sh);
+#      leak detection stays on for unit tests and is off where Mesa is loaded. With --asan=cpu the
+#      GL suites and the CLI tests run from $BUILD instead, unprefixed.
 # The GL suites of each build share one folder of generated detail volumes for the run
 # (SBFX_TEST_CACHE, tests/gl/support/detail_cache.c).
 #
@@ -229,15 +230,17 @@ list_check() {
     run_suite "" layers tests/layers.sh "$BUILD"
 }
 
+# Each suite runs once. The unit and platform suites, and the GL suites and CLI tests, run from the
+# ASan+UBSan build, the same sources and assertions with more checked; the normal build (what
+# ships) runs everything else: the precision suites' GL tests, the hosts, GStreamer, the player
+# under compositors, reloading, the network, install, docs, the soak. With --asan=cpu the GL
+# suites and CLI tests run from the normal build instead (the ASan tier leaves them out).
 list_all() {
-    WEIGHT=2
-    check_built "" unit "$BUILD"
-    run_dir "" "$BUILD/tests/unit"
     WEIGHT=5
-    gl_suites "" "$BUILD"
+    if [ "$asan" = cpu ]; then
+        gl_suites "" "$BUILD"
+    fi
     WEIGHT=2
-    check_built "" platform "$BUILD"
-    run_dir "" "$BUILD/tests/platform"
     check_built "" hosts "$BUILD"
     run_dir "" "$BUILD/tests/hosts"
     WEIGHT=10
@@ -250,7 +253,7 @@ list_all() {
     gstreamer_suites
     run_suite "" shaders tests/shaders.sh "$BUILD"
     run_suite "" layers tests/layers.sh "$BUILD"
-    run_cli "" "$BUILD/sbfx-play"
+    [ "$asan" = cpu ] && run_cli "" "$BUILD/sbfx-play"
     run_suite "" probe tests/probe.sh "$BUILD/sbfx-probe"
     run_suite "" exports tests/exports.sh "$BUILD"
     run_suite "" no-data-files tests/no_data_files.sh "$BUILD"
