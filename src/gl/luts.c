@@ -134,7 +134,7 @@ static sbfx_result make_detail(sbfx *fx, int size, int frames, size_t n)
     if (values && texels) {
         sbfx_detail_generate(size, frames, fx->scene->desc.seed, values);
         sbfx_fire_detail_levels(values, size, frames, fx->sim->fire_detail); /* what fire's light averages over */
-        for (size_t i = 0; i < n; i++) texels[i] = (_Float16)values[i];
+        sbfx_floats_to_halves(values, texels, n);
         for (int s = 0; fx->sim->fire_slice_histograms && s < frames; s++)
             sbfx_fire_slice_histogram((const uint16_t *)&texels[(size_t)s * size * size], size,
                                       &fx->sim->fire_slice_histograms[(size_t)s * SBFX_FIRE_DETAIL_BINS]);
