@@ -129,14 +129,14 @@ static sbfx_result upload_detail(sbfx *fx)
 static sbfx_result make_detail(sbfx *fx, int size, int frames, size_t n)
 {
     float *values = sbfx_calloc(fx, n, sizeof(float));
-    _Float16 *texels = sbfx_calloc(fx, n, sizeof(_Float16));
+    uint16_t *texels = sbfx_calloc(fx, n, sizeof(uint16_t)); /* half floats' bits */
     sbfx_result r = SBFX_ERR_OUT_OF_MEMORY;
     if (values && texels) {
         sbfx_detail_generate(size, frames, fx->scene->desc.seed, values);
         sbfx_fire_detail_levels(values, size, frames, fx->sim->fire_detail); /* what fire's light averages over */
         sbfx_floats_to_halves(values, texels, n);
         for (int s = 0; fx->sim->fire_slice_histograms && s < frames; s++)
-            sbfx_fire_slice_histogram((const uint16_t *)&texels[(size_t)s * size * size], size,
+            sbfx_fire_slice_histogram(&texels[(size_t)s * size * size], size,
                                       &fx->sim->fire_slice_histograms[(size_t)s * SBFX_FIRE_DETAIL_BINS]);
         if (fx->scene->desc.detail_format == SBFX_DETAIL_R32F) {
             /* R32F is not filterable in core ES 3.0: sampled NEAREST, which is its cost. */

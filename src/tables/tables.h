@@ -137,10 +137,11 @@ void sbfx_detail_generate_smooth(int size, int frames, uint32_t seed, float *out
  * is gain 1/2, 5 octaves). */
 void sbfx_detail_generate_fbm(int size, int frames, uint32_t seed, double gain, int octaves, float *out);
 
-/* The detail volume's half floats (_Float16 rounds to nearest even): with the x86 F16C
- * instruction where the CPU has it (libgcc converts one value at a time in software otherwise,
- * a tenth of a load's CPU); the same values either way. ARM converts in hardware as written. */
-void sbfx_floats_to_halves(const float *in, _Float16 *out, size_t n);
+/* The detail volume's half floats, their bits (_Float16 rounds to nearest even): with the x86
+ * F16C instruction where the CPU has it (libgcc converts one value at a time in software
+ * otherwise, a tenth of a load's CPU); the same values either way. ARM converts in hardware as
+ * written. (uint16_t: a compiler that has no _Float16 for x86, clang 14, reads this header too.) */
+void sbfx_floats_to_halves(const float *in, uint16_t *out, size_t n);
 
 /* ---- procedural smoke textures of lit media (the lit-smoke seed's appendix) ------------ */
 
