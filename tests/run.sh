@@ -116,9 +116,11 @@ run_suite() {
     local prefix=$1 name=$2
     shift 2
     selected "$prefix$name" || return 0
+    local command
+    printf -v command '%q ' "$@"
     prefixes+=("$prefix")
     names+=("$name")
-    commands+=("$(printf '%q ' "$@")")
+    commands+=("$command")
     limits+=("$TIMEOUT")
     weights+=("$WEIGHT")
 }
@@ -130,7 +132,7 @@ run_dir() {
     [ -d "$dir" ] || return 0
     for bin in "$dir"/*; do
         [ -f "$bin" ] && [ -x "$bin" ] || continue
-        run_suite "$prefix" "$(basename "$bin")" env "$@" "$bin"
+        run_suite "$prefix" "${bin##*/}" env "$@" "$bin"
     done
 }
 
@@ -139,9 +141,10 @@ check_built() {
     local prefix=$1 kind=$2 build=$3 src bin
     for src in tests/"$kind"/*.c; do
         [ -f "$src" ] || continue
-        bin="$build/tests/$kind/$(basename "$src" .c)"
-        selected "$prefix$(basename "$bin")" || continue
-        [ -x "$bin" ] || emit "not ok - $prefix$(basename "$bin"): $bin was not built (make test-$kind)"
+        src=${src##*/}
+        bin="$build/tests/$kind/${src%.c}"
+        selected "$prefix${bin##*/}" || continue
+        [ -x "$bin" ] || emit "not ok - $prefix${bin##*/}: $bin was not built (make test-$kind)"
     done
 }
 
@@ -149,9 +152,10 @@ check_built() {
 # a folder per build, made here, removed at the end of the run.
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+# (detail_cache NAME sets $cache_env; no subshell: on the development VM a fork costs milliseconds)
 detail_cache() {
     mkdir -p "$tmp/cache/$1"
-    echo "SBFX_TEST_CACHE=$tmp/cache/$1"
+    cache_env="SBFX_TEST_CACHE=$tmp/cache/$1"
 }
 
 # the GL suites of BUILD, also on desktop OpenGL 4.5, core and compatibility profile (issue 18)
@@ -159,7 +163,8 @@ gl_suites() {
     local prefix=$1 build=$2 t
     shift 2
     local tag=${prefix%:}
-    set -- "$@" "$(detail_cache "${tag:-normal}")"
+    detail_cache "${tag:-normal}"
+    set -- "$@" "$cache_env"
     check_built "$prefix" gl "$build"
     run_dir "$prefix" "$build/tests/gl" "$@"
     for t in test_gl_state test_gl_host_errors; do
@@ -221,7 +226,8 @@ list_check() {
     run_dir "" "$BUILD/tests/unit"
     WEIGHT=10
     if [ -x "$BUILD/tests/gl/test_gl_smoke" ]; then
-        run_suite "" test_gl_smoke env "$(detail_cache normal)" "$BUILD/tests/gl/test_gl_smoke"
+        detail_cache normal
+        run_suite "" test_gl_smoke env "$cache_env" "$BUILD/tests/gl/test_gl_smoke"
     else
         emit "not ok - test_gl_smoke: $BUILD/tests/gl/test_gl_smoke was not built (make check)"
     fi
@@ -277,12 +283,14 @@ list_all() {
     # test-precision), each part a suite of its own
     WEIGHT=20
     local part
+    detail_cache normal
     for part in $(tests/precision.sh --parts); do
-        run_suite "precision:" "$part" env "$(detail_cache normal)" tests/precision.sh "$BUILD" "$part"
+        run_suite "precision:" "$part" env "$cache_env" tests/precision.sh "$BUILD" "$part"
     done
     # the scene parser under libFuzzer for FUZZ_SECONDS, the example scenes as corpus; the DIS
-    # parser for FUZZ_DIS_SECONDS: 30 and 10 s here, of make test's CPU (make fuzz: 60 and 15)
-    local fuzz_s=${FUZZ_SECONDS:-30} fuzz_dis_s=${FUZZ_DIS_SECONDS:-10}
+    # parser for FUZZ_DIS_SECONDS: 15 and 5 s here, of make test's CPU (make fuzz: 60 and 15,
+    # which CI runs too)
+    local fuzz_s=${FUZZ_SECONDS:-15} fuzz_dis_s=${FUZZ_DIS_SECONDS:-5}
     WEIGHT=$((fuzz_s + fuzz_dis_s + 30))
     run_suite "" fuzz env FUZZ_SECONDS="$fuzz_s" FUZZ_DIS_SECONDS="$fuzz_dis_s" tests/fuzz.sh "$BUILD"
 
@@ -298,7 +306,8 @@ list_all() {
             WEIGHT=8
             gl_suites "asan:" "$ASAN_BUILD" "$NO_LEAKS"
             WEIGHT=15 # its player runs take the detail volume from the run's cache (Makefile: PLAYER_TEST_WRAP)
-            run_cli "asan:" "$ASAN_BUILD/sbfx-play" "$NO_LEAKS" "$(detail_cache asan)"
+            detail_cache asan
+            run_cli "asan:" "$ASAN_BUILD/sbfx-play" "$NO_LEAKS" "$cache_env"
         else
             echo "# --asan=cpu: the ASan+UBSan tier runs the unit and platform suites only"
         fi
@@ -332,8 +341,8 @@ stop_all() {
 trap 'stop_all; rm -rf "$tmp"' EXIT
 trap 'exit 130' INT TERM
 
-# Seconds as "12.3" from microseconds.
-seconds() { printf '%d.%d' $(($1 / 1000000)) $(($1 % 1000000 / 100000)); }
+# Seconds as "12.3" from microseconds, into the variable named first (no subshell).
+seconds() { printf -v "$1" '%d.%d' $(($2 / 1000000)) $(($2 % 1000000 / 100000)); }
 # bash's `times` value (1m2.345s) in microseconds
 times_us() {
     [[ $1 =~ ^([0-9]+)m([0-9]+)\.([0-9]+)s$ ]] || { echo 0; return; }
@@ -372,7 +381,10 @@ print_suite() {
         esac
     done <"$tmp/$i.log"
     read -r rc wall cpu <"$tmp/$i.end"
-    printf '# %s%s: %s s wall, %s s CPU\n' "$prefix" "$name" "$(seconds "$wall")" "$(seconds "$cpu")"
+    local wall_s cpu_s
+    seconds wall_s "$wall"
+    seconds cpu_s "$cpu"
+    printf '# %s%s: %s s wall, %s s CPU\n' "$prefix" "$name" "$wall_s" "$cpu_s"
     printf '%s %s %s%s\n' "$wall" "$cpu" "$prefix" "$name" >>"$tmp/times"
     if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then
         emit "not ok - $prefix$name: timed out after $limit s"
@@ -426,13 +438,18 @@ if [ "$count" -gt 0 ]; then
     while read -r _ cpu _; do cpu_sum=$((cpu_sum + cpu)); done <"$tmp/times"
     echo "# the 10 slowest suites (wall, CPU):"
     sort -k1,1nr "$tmp/times" | head -n 10 | while read -r wall cpu full; do
-        printf '#   %7s s %7s s  %s\n' "$(seconds "$wall")" "$(seconds "$cpu")" "$full"
+        seconds wall "$wall"
+        seconds cpu "$cpu"
+        printf '#   %7s s %7s s  %s\n' "$wall" "$cpu" "$full"
     done
-    printf '# %d suites in %s s wall, %d at a time (%s s CPU)\n' "$count" "$(seconds "$total_wall")" "$JOBS" \
-        "$(seconds "$cpu_sum")"
+    seconds total_wall "$total_wall"
+    seconds cpu_sum "$cpu_sum"
+    printf '# %d suites in %s s wall, %d at a time (%s s CPU)\n' "$count" "$total_wall" "$JOBS" "$cpu_sum"
     # this run's times replace the last run's, suite by suite
+    declare -A ran=()
+    while read -r _ _ full; do ran[$full]=1; done <"$tmp/times"
     for full in "${!known[@]}"; do
-        awk -v n="$full" '$3 == n { f = 1 } END { exit !f }' "$tmp/times" || printf '%s 0 %s\n' "${known[$full]}" "$full" >>"$tmp/times"
+        [ -n "${ran[$full]:-}" ] || printf '%s 0 %s\n' "${known[$full]}" "$full" >>"$tmp/times"
     done
     mkdir -p "$BUILD" && cp "$tmp/times" "$TIMES" 2>/dev/null
 fi
