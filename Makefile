@@ -3,8 +3,9 @@
 #   make help         this list of targets
 #   make demo         render the built-in explosion headless into build/demo/
 #   make gallery      one contact sheet per example scene into docs/gallery/ (docs/scene-format.md)
-#   make test         unit + GL (surfaceless Mesa) tests, shader validation, docs, then ASan+UBSan,
-#                     every core (tests/run.sh; docs/testing.md: one suite, one case)
+#   make test         every suite once: unit, GL (surfaceless Mesa) and CLI tests under ASan+UBSan,
+#                     precision, hosts, shaders, docs... from the normal build; every core
+#                     (tests/run.sh; docs/testing.md: one suite, one case)
 #   make check        the edit-compile loop's tier: unit tests, a GL smoke test per pass, shaders,
 #                     the rooms' one-way dependencies (tests/layers.sh, src/rooms.txt)
 #   make test-hosts   the SDL2, desktop OpenGL and Qt Quick hosts and their tests (docs/hosts/;
