@@ -353,9 +353,9 @@ JOBS_FLAG = $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(NPROC))
 # TEST_ASAN=cpu: the ASan+UBSan tier runs the unit and platform suites only, not the suites that
 # render on Mesa: a lighter run for a slow machine (docs/testing.md says what it leaves out).
 TEST_ASAN ?= full
-# (its player and GL tests, not its probe and soak, which nothing runs)
-ASAN_TEST_TARGETS := $(if $(filter cpu,$(TEST_ASAN)),lib test-unit test-platform,lib build/asan/sbfx-play test-unit \
-	$(patsubst $(BUILD)/%,build/asan/%,$(GL_TESTS)) test-platform)
+# (its player, which test_sd_notify runs, and GL tests; not its probe and soak, which nothing runs)
+ASAN_TEST_TARGETS := lib build/asan/sbfx-play test-unit test-platform \
+	$(if $(filter cpu,$(TEST_ASAN)),,$(patsubst $(BUILD)/%,build/asan/%,$(GL_TESTS)))
 
 # What make test runs from the normal build (tests/run.sh runs each suite once: the unit, platform
 # and GL suites and the CLI tests from the ASan+UBSan build): the GL tests of the precision suites
