@@ -175,25 +175,23 @@ static inline int check_selected(const char *only, int i)
 }
 
 /* A batch child: the selected tests from `first` on, until one does not return or asks to end the
- * batch; reports those that return itself. */
+ * batch; reports those that return itself, then tells the parent where to go on. */
 static inline void check_batch_child(const char *suite, const char *only, int first)
 {
     char **environment = check_environment_copy();
-    for (int i = first; i < check_test_count; i++) {
-        if (!check_selected(only, i)) continue;
-        check_shared_state->current = i;
-        check_tests_in_process++;
-        int rc = check_run_one(&check_tests[i]);
-        fflush(stdout);
-        check_shared_state->failures += check_report(suite, check_tests[i].name, rc);
-        check_environment_restore(environment);
-        if (check_end_batch) {
-            check_shared_state->current = i + 1;
-            check_shared_state->between = 1;
-            _exit(0);
+    int i = first;
+    while (i < check_test_count && !check_end_batch) {
+        if (check_selected(only, i)) {
+            check_shared_state->current = i;
+            check_tests_in_process++;
+            int rc = check_run_one(&check_tests[i]);
+            fflush(stdout);
+            check_shared_state->failures += check_report(suite, check_tests[i].name, rc);
+            check_environment_restore(environment);
         }
+        i++;
     }
-    check_shared_state->current = check_test_count;
+    check_shared_state->current = i;
     check_shared_state->between = 1;
     _exit(0);
 }
@@ -209,6 +207,10 @@ static inline int check_run_batches(const char *suite, const char *only)
         shared->current = next, shared->between = 0, shared->again = 0, shared->failures = 0;
         fflush(stdout);
         pid_t pid = fork();
+        if (pid < 0) {
+            failures++;
+            break;
+        }
         if (pid == 0) {
             check_shared_state = shared;
             check_batch_child(suite, only, next);
@@ -216,7 +218,6 @@ static inline int check_run_batches(const char *suite, const char *only)
         int status = check_wait(pid);
         failures += shared->failures;
         int at = shared->current;
-        if (pid < 0) return failures + 1;
         if (at >= check_test_count) break;
         if (shared->again || (shared->between && status == 0)) {
             next = at; /* that test first in a new batch, or the one after a test that ended it */
