@@ -353,7 +353,59 @@ typedef struct tapped {
     int fired;
 } tapped;
 
-/* Three frames, a click on the sky and one at (x, y), six frames more: what the last shows. */
+/* The element's input held before a buffer (a blocking probe on its sink pad): a tap queued
+ * while it waits starts in that buffer, whatever the pipeline's threads did before. */
+typedef struct held {
+    GMutex lock;
+    GCond arrived;
+    GstClockTime pts; /* of the buffer held (GST_CLOCK_TIME_NONE until one is) */
+} held;
+
+static GstPadProbeReturn hold_buffer(GstPad *pad, GstPadProbeInfo *info, gpointer user)
+{
+    held *h = user;
+    g_mutex_lock(&h->lock);
+    if (!GST_CLOCK_TIME_IS_VALID(h->pts)) h->pts = GST_BUFFER_PTS(GST_PAD_PROBE_INFO_BUFFER(info));
+    g_cond_signal(&h->arrived);
+    g_mutex_unlock(&h->lock);
+    return GST_PAD_PROBE_OK; /* stays blocked until the probe is removed */
+}
+
+/* Clicks on the sky, then at (x, y), while the element's input is held; returns the PTS of the
+ * buffer the taps start in (GST_CLOCK_TIME_NONE: none came). The frames the element made before
+ * it are pulled into `out` meanwhile: a full appsink would keep the next buffer from coming. */
+static GstClockTime click_held(GstElement *p, run *out, double x, double y)
+{
+    held h = {.pts = GST_CLOCK_TIME_NONE};
+    g_mutex_init(&h.lock);
+    g_cond_init(&h.arrived);
+    GstElement *fx = by_name(p, "fx");
+    GstPad *pad = gst_element_get_static_pad(fx, "sink");
+    gulong id = gst_pad_add_probe(pad, GST_PAD_PROBE_TYPE_BUFFER | GST_PAD_PROBE_TYPE_BLOCK, hold_buffer, &h, NULL);
+    for (int tries = 0; tries < 20; tries++) {
+        g_mutex_lock(&h.lock);
+        if (!GST_CLOCK_TIME_IS_VALID(h.pts))
+            g_cond_wait_until(&h.arrived, &h.lock, g_get_monotonic_time() + G_USEC_PER_SEC / 10);
+        bool arrived = GST_CLOCK_TIME_IS_VALID(h.pts);
+        g_mutex_unlock(&h.lock);
+        if (arrived || !pull(p, out)) break;
+    }
+    click(p, W / 2, 2.0); /* the sky: no ground under it */
+    click(p, x, y);
+    gst_pad_remove_probe(pad, id);
+    gst_object_unref(pad);
+    gst_object_unref(fx);
+    g_mutex_lock(&h.lock);
+    GstClockTime pts = h.pts;
+    g_mutex_unlock(&h.lock);
+    g_cond_clear(&h.arrived);
+    g_mutex_clear(&h.lock);
+    return pts;
+}
+
+/* Three frames, a click on the sky and one at (x, y), then the frame five frames (1/6 s) after
+ * the one the taps start in: what it shows. The same age for every tap, however far ahead of the
+ * test the pipeline ran (appsink holds up to 4 buffers). */
 static tapped tap_at(const run *in, double x, double y)
 {
     char d[512];
@@ -362,17 +414,22 @@ static tapped tap_at(const run *in, double x, double y)
     memset(&out, 0, sizeof(out));
     gst_element_set_state(p, GST_STATE_PLAYING);
     for (int i = 0; i < 3; i++) pull(p, &out);
-    click(p, W / 2, 2.0); /* the sky: no ground under it */
-    click(p, x, y);
-    for (int i = 0; i < 6; i++) pull(p, &out);
+    GstClockTime start = click_held(p, &out, x, y);
+    bool started = GST_CLOCK_TIME_IS_VALID(start);
+    GstClockTime at = started ? start + 5 * GST_SECOND / 30 - GST_MSECOND : 0; /* (PTS are rounded to ns) */
+    while (started && out.count < 60 && (out.count == 0 || out.pts[out.count - 1] < at) && pull(p, &out)) {
+    }
     keep_stats(p, &out);
     gst_element_set_state(p, GST_STATE_NULL);
     gst_object_unref(p);
     tapped t = {.taps = stat_u64(&out, "taps"), .missed = stat_u64(&out, "taps-missed"),
                 .fired = stat_int(&out, "triggers-fired")};
-    if (out.count == 9) t.changed = changed_centroid(in->frames[0], out.frames[8], &t.cx, &t.cy);
-    printf("# tap at (%.0f, %.0f): %d pixels changed 6 frames on, around (%.1f, %.1f)\n", x, y, t.changed, t.cx,
-           t.cy);
+    GstClockTime last = out.count ? out.pts[out.count - 1] : 0;
+    bool reached = started && last >= at && last < at + GST_SECOND / 30;
+    if (reached) t.changed = changed_centroid(in->frames[0], out.frames[out.count - 1], &t.cx, &t.cy);
+    printf("# tap at (%.0f, %.0f): started in the frame at %.3f s; 5 frames on, %d pixels changed around "
+           "(%.1f, %.1f)%s\n", x, y, started ? (double)start / GST_SECOND : -1.0, t.changed, t.cx, t.cy,
+           reached ? "" : " (that frame never came)");
     run_free(&out);
     return t;
 }
