@@ -53,11 +53,17 @@ static int load_scene(const char *path, sbfx_scene **scene, char *err, size_t n)
     return 0;
 }
 
+int player_parse_scene(struct player *p, char *err, size_t n)
+{
+    return load_scene(p->opt->scene_path, &p->scene_first, err, n);
+}
+
 int player_create_fx(struct player *p, char *err, size_t n)
 {
     const struct player_options *opt = p->opt;
-    sbfx_scene *scene = NULL;
-    int rc = load_scene(opt->scene_path, &scene, err, n);
+    sbfx_scene *scene = p->scene_first;
+    p->scene_first = NULL;
+    int rc = scene ? 0 : load_scene(opt->scene_path, &scene, err, n);
     if (rc == 0 && !p->recovering) rc = gpio_source_add_scene(&p->gpio, scene, &p->board, err, n);
     sbfx_scene_camera_get(scene, &p->camera); /* the default orbit without a camera group */
     sbfx_scene_host_get(scene, &p->host);     /* the test scene's fixed daylight without `sky` */

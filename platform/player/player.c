@@ -163,6 +163,7 @@ static int open_inputs(struct player *p, char *err, size_t n)
 static int setup(struct player *p, char *err, size_t n)
 {
     int rc = load_board(p, err, n);
+    if (rc == 0) rc = player_parse_scene(p, err, n);
     if (rc) return rc;
     rc = create_display(p, err, n);
     if (rc) return rc;
@@ -181,6 +182,8 @@ static void teardown(struct player *p)
     detail_close(&p->detail);
     scene_watch_close(&p->watch);
     player_keep_scene(p, NULL);
+    sbfx_scene_free(p->scene_first);
+    p->scene_first = NULL;
     if (p->fx) sbfx_destroy(p->fx);
     if (p->scene_made) test_scene_destroy(&p->scene);
     if (p->display) p->display->ops->destroy(p->display);

@@ -92,6 +92,7 @@ struct player {
     /* the authoring loop (authoring.c) */
     struct scene_watch watch;
     sbfx_scene *scene_kept;   /* --loop: the scene it replays */
+    sbfx_scene *scene_first;  /* --scene parsed before the display opens; the first module takes it */
     double timeline_start;    /* sim_time when the timeline last started (--loop) */
     int64_t take_first;       /* headless: the first frame of this take (a reload starts one) */
 };
@@ -101,6 +102,9 @@ int64_t player_now_ns(void);
 void player_log(const char *message, void *user); /* "sbfx-play: message" on stderr */
 
 /* module.c */
+/* Parses the --scene file before anything else is opened (a typo is reported before a display
+ * is set up or a mode set); the first player_create_fx takes it. */
+int player_parse_scene(struct player *p, char *err, size_t n);
 /* Makes sbfx (again, while p->recovering: the scene's GPIO lines are kept, its timeline is not
  * replayed, --trigger entries still ahead are scheduled relative to now). */
 int player_create_fx(struct player *p, char *err, size_t n);
