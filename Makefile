@@ -99,7 +99,11 @@ SRC_LIBS = $(SRC_PKG_LIBS) -lm
 PLATFORM_CFLAGS = $(BASE_CFLAGS) $(PLATFORM_PKG_CFLAGS) -Isrc -Iplatform $(CFLAGS)
 PLATFORM_LIBS = $(PLATFORM_PKG_LIBS) $(SRC_LIBS)
 comma := ,
-LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined)
+# The ASan+UBSan tree (tests only, never installed) links with gold where the toolchain has it
+# (Debian 12's binutils; 13 has no gold and keeps ld.bfd): about 90 links of the sanitized
+# library, each 0.2 s rather than 0.3 s on the development VM.
+LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined \
+	$(shell env $(CC) -fuse-ld=gold -Wl,--version 2>/dev/null | grep -q '^GNU gold' && echo -fuse-ld=gold))
 
 # The runtime library: src/ and the embedded shaders. Only what src/sbfx.h declares (SBFX_API)
 # is exported from the .so; the rest is hidden, and what no public function reaches is dropped.
