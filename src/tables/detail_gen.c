@@ -29,18 +29,37 @@
 #define SMOOTH_OCTAVES 5 /* the smooth fBm: the first generator's octaves */
 #define OUTPUT_GAIN 0.45 /* tanh gain on the standardised sum: output std ≈ 0.19 */
 
+/* The 12 cube-edge gradient directions of improved Perlin noise, gradient h % 12 of a lattice
+ * point: its dot product with the offset d = (dx, dy, dt) from the point is
+ * sign[0] * d[axis[0]] + sign[1] * d[axis[1]] (h 0: dx + dy, 1: -dx + dy, ... 11: -dy - dt).
+ * Multiplying by +-1 is exact, so this is bit for bit the sum written out per case, without the
+ * 12-way branch the CPU could not predict. */
+typedef struct gradient {
+    double sign[2];
+    int axis[2];
+} gradient;
+
+static const gradient gradients[12] = {
+    {{1, 1}, {0, 1}}, {{-1, 1}, {0, 1}}, {{1, -1}, {0, 1}}, {{-1, -1}, {0, 1}},
+    {{1, 1}, {0, 2}}, {{-1, 1}, {0, 2}}, {{1, -1}, {0, 2}}, {{-1, -1}, {0, 2}},
+    {{1, 1}, {1, 2}}, {{-1, 1}, {1, 2}}, {{1, -1}, {1, 2}}, {{-1, -1}, {1, 2}},
+};
+
 typedef struct octave {
     int cells[3];      /* lattice period per axis (x, y, t) */
     double offset[3];  /* random lattice shift, so lattice points do not sit on texels */
     uint32_t salt;     /* decorrelates the octaves' gradients */
     bool nested_hash;  /* the first generator's hash (the smooth fBm keeps its textures) */
     double amplitude;
-    /* The last cell this octave was evaluated in and its corners' hashes: consecutive texels
+    /* The last cell this octave was evaluated in and its corners' gradients: consecutive texels
      * mostly fall in the same cell (2 or more texels per cell), so most evaluations skip the
-     * wrapping and the 8 hashes (same values: the output is bit for bit the same). */
+     * wrapping, the 8 hashes and their gradients' lookup (same values: the output is bit for
+     * bit the same). */
+    double step[3];    /* cells / size (frames): lattice units per texel, where that is exact */
+    bool exact_step;   /* size and frames are powers of two: x * step is x * cells / size */
     bool cached;
     int cell[3];
-    uint32_t corner_hash[2][2][2];
+    const gradient *corner[2][2][2]; /* the gradients of its corners (their hashes % 12) */
 } octave;
 
 /* "lowbias32" integer mixer (C. Wellons): good avalanche, cheap, portable. */
@@ -69,21 +88,6 @@ static uint32_t lattice_hash(const octave *o, uint32_t wx, uint32_t wy, uint32_t
     return mix32(o->salt + wx * 0x9E3779B1u + wy * 0x85EBCA77u + wt * 0xC2B2AE3Du);
 }
 
-/* The 12 cube-edge gradient directions of improved Perlin noise, gradient h % 12 of a lattice
- * point: its dot product with the offset d = (dx, dy, dt) from the point is
- * sign[0] * d[axis[0]] + sign[1] * d[axis[1]] (h 0: dx + dy, 1: -dx + dy, ... 11: -dy - dt).
- * Multiplying by +-1 is exact, so this is bit for bit the sum written out per case, without the
- * 12-way branch the CPU could not predict. */
-typedef struct gradient {
-    double sign[2];
-    int axis[2];
-} gradient;
-
-static const gradient gradients[12] = {
-    {{1, 1}, {0, 1}}, {{-1, 1}, {0, 1}}, {{1, -1}, {0, 1}}, {{-1, -1}, {0, 1}},
-    {{1, 1}, {0, 2}}, {{-1, 1}, {0, 2}}, {{1, -1}, {0, 2}}, {{-1, -1}, {0, 2}},
-    {{1, 1}, {1, 2}}, {{-1, 1}, {1, 2}}, {{1, -1}, {1, 2}}, {{-1, -1}, {1, 2}},
-};
 
 /* Quintic fade: C2-continuous across cells, so the fBm has no visible lattice creases. */
 static double fade(double t)
@@ -96,7 +100,8 @@ static double lerp(double a, double b, double t)
     return a + (b - a) * t;
 }
 
-/* The hashes of the 8 corners of cell i (its wrapped lattice indices), kept in the octave. */
+/* The gradients of the 8 corners of cell i (from their wrapped lattice indices' hashes), kept in
+ * the octave. */
 static void cell_hashes(octave *o, const int i[3])
 {
     if (o->cached && o->cell[0] == i[0] && o->cell[1] == i[1] && o->cell[2] == i[2]) return;
@@ -108,8 +113,17 @@ static void cell_hashes(octave *o, const int i[3])
     }
     for (int dz = 0; dz < 2; dz++)
         for (int dy = 0; dy < 2; dy++)
-            for (int dx = 0; dx < 2; dx++) o->corner_hash[dz][dy][dx] = lattice_hash(o, w[0][dx], w[1][dy], w[2][dz]);
+            for (int dx = 0; dx < 2; dx++)
+                o->corner[dz][dy][dx] = &gradients[lattice_hash(o, w[0][dx], w[1][dy], w[2][dz]) % 12];
     o->cached = true;
+}
+
+/* floor(x) for the lattice's coordinates (|x| well below 2^53): a conversion and a compare,
+ * where x86-64's baseline has no rounding instruction and floor() is a call. */
+static double lattice_floor(double x)
+{
+    double t = (double)(long long)x;
+    return t > x ? t - 1.0 : t;
 }
 
 /* Periodic gradient noise at lattice coordinates p (roughly in [-1, 1]). */
@@ -118,7 +132,7 @@ static double gradient_noise(octave *o, const double p[3])
     int i[3];
     double f[3], s[3];
     for (int k = 0; k < 3; k++) {
-        double fl = floor(p[k]);
+        double fl = lattice_floor(p[k]);
         i[k] = (int)fl;
         f[k] = p[k] - fl;
         s[k] = fade(f[k]);
@@ -129,12 +143,17 @@ static double gradient_noise(octave *o, const double p[3])
         for (int dy = 0; dy < 2; dy++)
             for (int dx = 0; dx < 2; dx++) {
                 const double d[3] = {f[0] - dx, f[1] - dy, f[2] - dz};
-                const gradient *g = &gradients[o->corner_hash[dz][dy][dx] % 12];
+                const gradient *g = o->corner[dz][dy][dx];
                 c[dz][dy][dx] = g->sign[0] * d[g->axis[0]] + g->sign[1] * d[g->axis[1]];
             }
     double y0 = lerp(lerp(c[0][0][0], c[0][0][1], s[0]), lerp(c[0][1][0], c[0][1][1], s[0]), s[1]);
     double y1 = lerp(lerp(c[1][0][0], c[1][0][1], s[0]), lerp(c[1][1][0], c[1][1][1], s[0]), s[1]);
     return lerp(y0, y1, s[2]);
+}
+
+static bool power_of_two(int v)
+{
+    return v > 0 && (v & (v - 1)) == 0;
 }
 
 static int min_int(int a, int b)
@@ -163,19 +182,28 @@ static int plan_octaves(int size, int frames, uint32_t seed, double gain, octave
         o[n].nested_hash = false;
         o[n].amplitude = amplitude;
         o[n].cached = false;
+        o[n].exact_step = power_of_two(size) && power_of_two(frames);
+        for (int a = 0; a < 3; a++) o[n].step[a] = (double)o[n].cells[a] / (a < 2 ? size : frames);
         amplitude *= gain;
         n++;
     }
     return n;
 }
 
+/* x * cells / size: with a power of two for size, x * (cells / size), the same number (a power of
+ * two's reciprocal is exact) without a division. */
+static double lattice_coordinate(const octave *o, int axis, double x, int size)
+{
+    return o->exact_step ? x * o->step[axis] : x * o->cells[axis] / size;
+}
+
 static double fbm(octave *o, int n, double x, double y, double t, int size, int frames)
 {
     double sum = 0.0;
     for (int k = 0; k < n; k++) {
-        double p[3] = {x * o[k].cells[0] / size + o[k].offset[0],
-                       y * o[k].cells[1] / size + o[k].offset[1],
-                       t * o[k].cells[2] / frames + o[k].offset[2]};
+        double p[3] = {lattice_coordinate(&o[k], 0, x, size) + o[k].offset[0],
+                       lattice_coordinate(&o[k], 1, y, size) + o[k].offset[1],
+                       lattice_coordinate(&o[k], 2, t, frames) + o[k].offset[2]};
         sum += o[k].amplitude * gradient_noise(&o[k], p);
     }
     return sum;
