@@ -29,9 +29,8 @@
 # The GL suites of each build share one folder of generated detail volumes for the run
 # (SBFX_TEST_CACHE, tests/gl/support/detail_cache.c).
 #
-# Suites run in parallel, TEST_JOBS at a time (default: every core, and one more, the shortest
-# left, while a core sits idle: "Idle cores filled" below), the longest first (their times from
-# the last run, in $BUILD/test-times.txt). Each suite's output is kept and printed
+# Suites run in parallel, TEST_JOBS at a time (default: every core), the longest first (their
+# times from the last run, in $BUILD/test-times.txt). Each suite's output is kept and printed
 # whole, in the list's order, as soon as it and every suite before it are done, followed by
 # "# NAME: W s wall, C s CPU". A suite that crashes, runs past its limit, fails without saying
 # so or prints no result counts as a failure with that reason and its name. The end lists the
@@ -59,8 +58,6 @@ ASAN_BUILD=${ASAN_BUILD:-build/asan}
 TIMEOUT=${TEST_TIMEOUT:-300}
 ASAN_TIMEOUT=${TEST_ASAN_TIMEOUT:-$((2 * TIMEOUT))}
 JOBS=${TEST_JOBS:-$(nproc 2>/dev/null || echo 2)}
-jobs_default=1 # (0: TEST_JOBS or -j given)
-[ -n "${TEST_JOBS:-}" ] && jobs_default=0
 TIMES=$BUILD/test-times.txt
 
 mode=all
@@ -73,8 +70,8 @@ while [ $# -gt 0 ]; do
         --check) mode=check ;;
         --asan=full | --asan=cpu) asan=${1#--asan=} ;;
         --list) list_only=1 ;;
-        -j) JOBS=$2; jobs_default=0; shift ;;
-        -j*) JOBS=${1#-j}; jobs_default=0 ;;
+        -j) JOBS=$2; shift ;;
+        -j*) JOBS=${1#-j} ;;
         -h | --help) sed -n '2,/^set -u/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0 ;;
         -*) echo "tests/run.sh: unknown option $1 (--help)" >&2; exit 2 ;;
         *) patterns+=("$1") ;;
@@ -341,7 +338,7 @@ stop_all() {
     local f
     for f in "$tmp"/*.pid; do [ -f "$f" ] && kill -TERM "$(cat "$f")" 2>/dev/null; done
 }
-trap 'stop_all; stop_ticker; rm -rf "$tmp"' EXIT
+trap 'stop_all; rm -rf "$tmp"' EXIT
 trap 'exit 130' INT TERM
 
 # Seconds as "12.3" from microseconds, into the variable named first (no subshell).
@@ -411,57 +408,18 @@ while read -r _ i; do order+=("$i"); done < <(
         printf '%s %d\n' "${known[${prefixes[i]}${names[i]}]:-$((weights[i] * 1000000))}" "$i"
     done | sort -k1,1nr -k2,2n)
 
-# Idle cores filled: a suite that waits (for a compositor's frame, a broker, a settling time)
-# leaves its core idle. Every IDLE_TICK seconds the runner reads /proc/stat; when more than 0.6 of
-# a core sat idle since its last look and JOBS suites are running, it starts one more, the
-# shortest left (from the end of the order: the long suites keep their places, and the extra one
-# is soon done). At most JOBS + 1 run at once. Only where JOBS is the default (every core):
-# TEST_JOBS or -j runs exactly that many; TEST_IDLE_FILL=0 turns it off.
-IDLE_FILL=${TEST_IDLE_FILL:-$jobs_default}
-IDLE_TICK=0.3
-CORES=$(nproc 2>/dev/null || echo 1)
-idle_jiffies=0 total_jiffies=0
-# idle_cores VAR: hundredths of a core idle since the last call (no subshell: a builtin read)
-idle_cores() {
-    local _cpu user nice system idle iowait irq softirq steal _rest
-    read -r _cpu user nice system idle iowait irq softirq steal _rest </proc/stat || { printf -v "$1" 0; return; }
-    local i=$((idle + iowait)) t=$((user + nice + system + idle + iowait + irq + softirq + steal))
-    local dt=$((t - total_jiffies))
-    [ "$dt" -gt 0 ] && printf -v "$1" %d $(((i - idle_jiffies) * CORES * 100 / dt)) || printf -v "$1" 0
-    idle_jiffies=$i total_jiffies=$t
-}
-[ -r /proc/stat ] || IDLE_FILL=0
-ticker=""
-stop_ticker() { [ -n "${ticker:-}" ] && kill "$ticker" 2>/dev/null; }
-
 declare -A running=()
 done_=()
-next=0 last=$((count - 1)) extra=0 shown=0 t0=${EPOCHREALTIME/./}
-[ "$IDLE_FILL" = 1 ] && idle_cores idle_pct
+next=0 shown=0 t0=${EPOCHREALTIME/./}
 while [ "$shown" -lt "$count" ]; do
-    while [ "$next" -le "$last" ] && [ ${#running[@]} -lt "$JOBS" ]; do
+    while [ "$next" -lt "$count" ] && [ ${#running[@]} -lt "$JOBS" ]; do
         start_suite "${order[next]}"
         running[$!]=${order[next]}
         next=$((next + 1))
     done
-    if [ "$IDLE_FILL" = 1 ] && [ -z "$ticker" ] && [ "$next" -le "$last" ]; then
-        sleep "$IDLE_TICK" &
-        ticker=$!
-    fi
     finished=""
-    wait -n -p finished "${!running[@]}" ${ticker:+"$ticker"}
+    wait -n -p finished "${!running[@]}"
     [ -n "${finished:-}" ] || continue
-    if [ "$finished" = "$ticker" ]; then
-        ticker=""
-        idle_cores idle_pct
-        if [ "$idle_pct" -gt 60 ] && [ ${#running[@]} -eq "$JOBS" ] && [ "$next" -le "$last" ]; then
-            start_suite "${order[last]}"
-            running[$!]=${order[last]}
-            last=$((last - 1))
-            extra=$((extra + 1))
-        fi
-        continue
-    fi
     done_[${running[$finished]}]=1
     unset "running[$finished]"
     finished_count=$((${finished_count:-0} + 1))
@@ -486,9 +444,7 @@ if [ "$count" -gt 0 ]; then
     done
     seconds total_wall "$total_wall"
     seconds cpu_sum "$cpu_sum"
-    printf '# %d suites in %s s wall, %d at a time (%s s CPU)' "$count" "$total_wall" "$JOBS" "$cpu_sum"
-    [ "$IDLE_FILL" = 1 ] && printf '; %d more started while a core was idle' "$extra"
-    printf '\n'
+    printf '# %d suites in %s s wall, %d at a time (%s s CPU)\n' "$count" "$total_wall" "$JOBS" "$cpu_sum"
     # this run's times replace the last run's, suite by suite
     declare -A ran=()
     while read -r _ _ full; do ran[$full]=1; done <"$tmp/times"
