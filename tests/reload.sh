@@ -163,10 +163,13 @@ fix_media() { printf '%s\n' "$media_good" >"$media"; }
 edit fixed-include fix_media
 
 # events without an edit: the same bytes written again in place and a touch (a backup tool, a
-# build, an editor's late close under load) change nothing, so nothing is reloaded
+# build, an editor's late close under load) change nothing, so nothing is reloaded. Written over
+# the file without truncating it (dd conv=notrunc): a `>` empties it first, and a loaded machine
+# can hold the writer long enough between the two for the player to read the empty file (an
+# error, then the same scene back: a reload that a later check would count as its own).
 before_r=$(reloads)
 cp "$scene" "$tmp/same.cfg"
-cat "$tmp/same.cfg" >"$scene"
+dd if="$tmp/same.cfg" of="$scene" conv=notrunc status=none
 touch "$scene" "$media"
 sleep 0.75 # five times the settling time
 if [ "$(reloads)" -ne "$before_r" ]; then fail unchanged "$(($(reloads) - before_r)) reloads of the same bytes"
