@@ -88,7 +88,6 @@ static uint32_t lattice_hash(const octave *o, uint32_t wx, uint32_t wy, uint32_t
     return mix32(o->salt + wx * 0x9E3779B1u + wy * 0x85EBCA77u + wt * 0xC2B2AE3Du);
 }
 
-
 /* Quintic fade: C2-continuous across cells, so the fBm has no visible lattice creases. */
 static double fade(double t)
 {
@@ -102,7 +101,7 @@ static double lerp(double a, double b, double t)
 
 /* The gradients of the 8 corners of cell i (from their wrapped lattice indices' hashes), kept in
  * the octave. */
-static void cell_hashes(octave *o, const int i[3])
+static void cell_gradients(octave *o, const int i[3])
 {
     if (o->cached && o->cell[0] == i[0] && o->cell[1] == i[1] && o->cell[2] == i[2]) return;
     uint32_t w[3][2]; /* wrapped lattice indices of the cell's two corners per axis */
@@ -137,7 +136,7 @@ static double gradient_noise(octave *o, const double p[3])
         f[k] = p[k] - fl;
         s[k] = fade(f[k]);
     }
-    cell_hashes(o, i);
+    cell_gradients(o, i);
     double c[2][2][2];
     for (int dz = 0; dz < 2; dz++)
         for (int dy = 0; dy < 2; dy++)
