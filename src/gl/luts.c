@@ -96,13 +96,16 @@ static bool wants_slice_statistics(const sbfx *fx)
 }
 
 /* A volume taken over from the live module on a reload holds what it was made with: so do its
- * statistics. Without the donor's per-slice ones where they are wanted, it is made again. */
+ * statistics. Without the donor's quantiles (it had no fire) or per-slice ones where they are
+ * wanted, it is made again. */
 static bool borrow_detail(sbfx *fx, uint64_t key, size_t bytes)
 {
     const sbfx *donor = fx->gl->donor;
-    if (fx->sim->fire_slice_histograms && !(donor && donor->sim->fire_slice_histograms)) return false;
+    if (!donor || (fx->scene->uses_medium[SBFX_FIRE] && !donor->sim->fire_detail_made)) return false;
+    if (fx->sim->fire_slice_histograms && !donor->sim->fire_slice_histograms) return false;
     if (!borrow_texture(fx, key, &fx->gl->detail_texture, bytes)) return false;
     memcpy(fx->sim->fire_detail, donor->sim->fire_detail, sizeof(fx->sim->fire_detail));
+    fx->sim->fire_detail_made = donor->sim->fire_detail_made;
     if (fx->sim->fire_slice_histograms)
         memcpy(fx->sim->fire_slice_histograms, donor->sim->fire_slice_histograms,
                (size_t)fx->scene->desc.detail_frames * SBFX_FIRE_DETAIL_BINS * sizeof(uint16_t));
@@ -133,7 +136,10 @@ static sbfx_result make_detail(sbfx *fx, int size, int frames, size_t n)
     sbfx_result r = SBFX_ERR_OUT_OF_MEMORY;
     if (values && texels) {
         sbfx_detail_generate(size, frames, fx->scene->desc.seed, values);
-        sbfx_fire_detail_levels(values, size, frames, fx->sim->fire_detail); /* what fire's light averages over */
+        if (fx->scene->uses_medium[SBFX_FIRE]) { /* what fire's light averages over: fire's alone */
+            sbfx_fire_detail_levels(values, size, frames, fx->sim->fire_detail);
+            fx->sim->fire_detail_made = true;
+        }
         sbfx_floats_to_halves(values, texels, n);
         for (int s = 0; fx->sim->fire_slice_histograms && s < frames; s++)
             sbfx_fire_slice_histogram(&texels[(size_t)s * size * size], size,

@@ -65,7 +65,8 @@ typedef struct sbfx_sim {
     /* fire as light (fire_lights.c): work memory made at load when the scene has fire */
     sbfx_fire_particle *fire_particles;
     sbfx_fire_work *fire_work;
-    double fire_detail[SBFX_FIRE_DETAIL_LEVELS]; /* the detail volume's quantiles (fire_light.h) */
+    double fire_detail[SBFX_FIRE_DETAIL_LEVELS]; /* the detail volume's quantiles (fire_light.h), */
+    bool fire_detail_made;       /* made with the volume only where the scene has fire (gl/luts.c) */
     uint16_t *fire_slice_histograms; /* detail_frames x SBFX_FIRE_DETAIL_BINS: each slice's values, so
                                         the quantiles follow pushed slices; only where the scene's
                                         detail is live or a clip and fire emits (gl/luts.c) */

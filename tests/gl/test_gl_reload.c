@@ -388,6 +388,33 @@ CHECK_TEST(reload_keeps_the_fire_light_detail_statistics)
     fixture_close(&f);
 }
 
+/* A scene without fire does not make the fire's statistics of its volume (65536 samples of it);
+ * a reload that adds fire makes the volume again rather than take one without them, and its
+ * quantiles are a fresh fire module's, bit for bit. */
+CHECK_TEST(fire_statistics_only_with_fire)
+{
+    gl_fixture f;
+    fixture_open_far(&f, 96, 64);
+    edit e = base;
+    e.fire = true;
+    sbfx *fresh = module_of(&f, e);
+    double want[SBFX_FIRE_DETAIL_LEVELS];
+    memcpy(want, fresh->sim->fire_detail, sizeof want);
+    CHECK(fresh->sim->fire_detail_made && want[0] > 0.0, "a fire module: made %d, quantiles %g ..",
+          fresh->sim->fire_detail_made, want[0]);
+    sbfx_destroy(fresh);
+    sbfx *fx = module_of(&f, base);
+    CHECK(fx->gl->detail_texture != 0, "the smoke's detail volume was not made");
+    CHECK(!fx->sim->fire_detail_made && fx->sim->fire_detail[SBFX_FIRE_DETAIL_LEVELS - 1] == 0.0,
+          "a scene without fire made the fire's statistics");
+    CHECK(reload(fx, e) == SBFX_OK, "%s", sbfx_last_error(fx));
+    CHECK(fx->sim->fire_detail_made, "the reload with fire took a volume without the fire's statistics");
+    CHECK(memcmp(want, fx->sim->fire_detail, sizeof want) == 0, "the quantiles differ from a fresh module's: %g .. %g",
+          fx->sim->fire_detail[0], fx->sim->fire_detail[SBFX_FIRE_DETAIL_LEVELS - 1]);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
 /* The procedural detail volume is taken over while it holds what it was made with; once a host
  * pushed a slice into it, a reload makes a procedural one again (the host pushes again). */
 CHECK_TEST(pushed_detail_is_not_taken_over)
