@@ -16,6 +16,9 @@
 //   TONE_MAP_NONE | TONE_MAP_HUE_PRESERVING | TONE_MAP_PER_CHANNEL | TONE_MAP_FILMIC   the
 //                 particles' light on the display (sbfx_tone_map in sbfx.h; ref/reference_frame.c
 //                 mirrors it; docs/look-fire.md)
+//   REFINED       (with UPSAMPLE_NEAREST_DEPTH: mixed resolution, src/render/refine.c) where
+//                 the full-resolution refinement holds a pixel (its alpha >= 0) it replaces the
+//                 upsampled coarse target
 //   SCENE_ONLY    (with OWN_SCENE) the pixels outside the particles' tiles (src/render/tiles.c):
 //                 what main() writes where no particle reaches (transmittance 1, no light, no
 //                 shimmer offset), the scene read the same way
@@ -43,6 +46,9 @@ uniform vec2 u_full_size;
 #endif
 #ifdef LOW_CORNERS
 uniform sampler2D u_low_corners;  // low-res + 1: the four low-res depths around a texel (low_corners.frag)
+#endif
+#ifdef REFINED
+uniform mediump sampler2D u_refined; // full res: the refined particles; alpha -1 where not refined
 #endif
 #ifdef HAS_SHIMMER
 uniform sampler2D u_distortion;   // low-res RGBA16F, LINEAR: offset of the scene lookup in UV units (rg)
@@ -225,7 +231,12 @@ void main()
     vec2 f = low - base;
     vec2 t = 1.0 / vec2(u_low_size);
     vec2 uv = (base + 0.5) * t;   // the base texel's centre
-#ifdef UPSAMPLE_NEAREST_DEPTH
+#if defined(REFINED)
+    mediump vec4 fine = texelFetch(u_refined, ivec2(gl_FragCoord.xy), 0);
+    vec4 result;
+    if (fine.a >= 0.0) result = sanitize(fine);   // refined: the coarse texels are not read
+    else result = upsample(uv, t, nearest_depth_weights(base, uv, t, f));
+#elif defined(UPSAMPLE_NEAREST_DEPTH)
     vec4 result = upsample(uv, t, nearest_depth_weights(base, uv, t, f));
 #else
     vec4 result = upsample(uv, t, bilinear_weights(f));

@@ -70,6 +70,10 @@ typedef enum sbfx_upsample {
     SBFX_UPSAMPLE_DEFAULT = 0, /* = NEAREST_DEPTH */
     SBFX_UPSAMPLE_BILINEAR,
     SBFX_UPSAMPLE_NEAREST_DEPTH,
+    SBFX_UPSAMPLE_MIXED,       /* nearest-depth, and the particles shaded again at full
+                                  resolution where the coarse target fails: opaque depth edges
+                                  inside a coarse texel, strong gradients of the coarse image
+                                  (docs/quality-and-budgets.md, "Mixed resolution") */
     SBFX_UPSAMPLE_COUNT
 } sbfx_upsample;
 
@@ -431,7 +435,8 @@ typedef struct sbfx_quality {
 SBFX_API sbfx_result sbfx_set_quality(sbfx *fx, const sbfx_quality *q);
 SBFX_API sbfx_result sbfx_get_quality(const sbfx *fx, sbfx_quality *out);
 /* Level names: <opacity>/<divisor>/<upsample>[/<flag>...] with opacity planar | soft |
- * spherical | exact, divisor 1 | 2 | 4 | 8, upsample nd (nearest-depth) | bl (bilinear), flags
+ * spherical | exact, divisor 1 | 2 | 4 | 8, upsample nd (nearest-depth) | bl (bilinear) | mx
+ * (mixed resolution: nearest-depth, refined at full resolution where the coarse target fails), flags
  * rgba8 | rgba16f | rgba32f (target format), lpp (light per particle), abb (analytic black
  * body), aph (analytic phase), lodN (at most N particles). "exact/4/nd", "spherical/8/bl/lod256".
  * Parse fills *out (defaults resolved) or names the bad token in err. */

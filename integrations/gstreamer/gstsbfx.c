@@ -52,6 +52,7 @@ static GType upsample_type(void)
         {SBFX_UPSAMPLE_DEFAULT, "The scene's (nearest-depth without one)", "default"},
         {SBFX_UPSAMPLE_BILINEAR, "Bilinear", "bilinear"},
         {SBFX_UPSAMPLE_NEAREST_DEPTH, "Nearest depth: no halos at opaque edges", "nearest-depth"},
+        {SBFX_UPSAMPLE_MIXED, "Mixed resolution: nearest depth, refined at full resolution at edges", "mixed"},
         {0, NULL, NULL},
     };
     static GType type;

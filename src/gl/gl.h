@@ -48,6 +48,7 @@ typedef struct sbfx_gl_context {
     int filter_bits;              /* SBFX_FILTER_BITS=N: filtered fetches by hand, N-bit weights; 0: off */
     sbfx_host_errors host_errors; /* GL errors the host left pending (gl_util.c) */
     bool warned_format;           /* a particle target format's fallback was logged (targets.c) */
+    bool warned_refine;           /* mixed resolution's fallback to nearest depth was logged (targets.c) */
 } sbfx_gl_context;
 
 /* The gl room's state (fx->gl). */
@@ -56,6 +57,8 @@ typedef struct sbfx_gl {
     sbfx_pass_uniforms depth_u, corners_u, composite_u;
     GLuint fullscreen_vao, particle_vao, instance_buffer;
     GLuint depth_program, corners_program, composite_program;
+    GLuint refine_mark_program;  /* mixed resolution: marks the pixels the coarse target fails (refine_mark.frag) */
+    sbfx_pass_uniforms refine_mark_u;
     GLuint scene_only_program;   /* the scene outside the particles' tiles (owned scenes: composite.frag SCENE_ONLY) */
     sbfx_pass_uniforms scene_only_u;
     sbfx_program particle[SBFX_MEDIUM_COUNT];
@@ -66,6 +69,7 @@ typedef struct sbfx_gl {
     float *detail_scratch;       /* one R32F slice, only with SBFX_DETAIL_R32F */
     /* targets, (re)made when the output size changes */
     sbfx_rt particles, low_depth, low_corners;
+    sbfx_rt refine, refine_depth;  /* mixed resolution's (render/refine.c); none at other levels */
     int out_width, out_height, low_width, low_height;
     GLenum target_type;
     /* quality caches (the fields above hold the current level's copies) */

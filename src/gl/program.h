@@ -29,6 +29,7 @@ typedef struct sbfx_pass_uniforms {
     GLint tone_curve;                                                 /* composite, tone map */
     GLint low_corners, particles_far, near_over_far;                  /* composite, nearest depth */
     GLint tile_size, tile_grid, tile_target;                          /* tiles.vert (render/tiles.h) */
+    GLint refined, contrast;                                          /* mixed resolution (render/refine.c) */
 } sbfx_pass_uniforms;
 
 typedef struct sbfx_variant_key {

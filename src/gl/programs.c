@@ -140,6 +140,8 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->tile_size = glGetUniformLocation(id, "u_tile_size");
     u->tile_grid = glGetUniformLocation(id, "u_tile_grid");
     u->tile_target = glGetUniformLocation(id, "u_tile_target");
+    u->refined = glGetUniformLocation(id, "u_refined");
+    u->contrast = glGetUniformLocation(id, "u_contrast");
 }
 
 /* Where RGBA32F renders, nearest-depth upsampling reads its four depths in one fetch from the
@@ -150,6 +152,18 @@ static sbfx_result build_corners_program(sbfx *fx)
     fx->gl->corners_program = sbfx_program_build(fx, "tiles.vert", "low_corners.frag", NULL);
     if (!fx->gl->corners_program) return SBFX_ERR_SHADER;
     locate_pass_uniforms(fx->gl->corners_program, &fx->gl->corners_u);
+    return SBFX_OK;
+}
+
+/* Mixed resolution (render/refine.c): the pass that marks the pixels to refine, made with the
+ * first mixed composite. */
+static sbfx_result build_refine_mark_program(sbfx *fx)
+{
+    if (fx->gl->refine_mark_program) return SBFX_OK;
+    fx->gl->refine_mark_program = sbfx_program_build(fx, "tiles.vert", "refine_mark.frag",
+                                                     fx->gl->corners_program ? "#define LOW_CORNERS\n" : NULL);
+    if (!fx->gl->refine_mark_program) return SBFX_ERR_SHADER;
+    locate_pass_uniforms(fx->gl->refine_mark_program, &fx->gl->refine_mark_u);
     return SBFX_OK;
 }
 
@@ -178,13 +192,16 @@ static sbfx_result build_scene_only_program(sbfx *fx)
 sbfx_result sbfx_composite_build(sbfx *fx, sbfx_upsample upsample)
 {
     if (fx->gl->composites[upsample]) return SBFX_OK;
-    char defines[192];
-    bool nearest_depth = upsample == SBFX_UPSAMPLE_NEAREST_DEPTH;
+    char defines[256];
+    bool mixed = upsample == SBFX_UPSAMPLE_MIXED && sbfx_half_float_renderable();
+    bool nearest_depth = upsample == SBFX_UPSAMPLE_NEAREST_DEPTH || upsample == SBFX_UPSAMPLE_MIXED;
     sbfx_result r = nearest_depth ? build_corners_program(fx) : SBFX_OK;
     if (r == SBFX_OK) r = build_scene_only_program(fx);
+    if (r == SBFX_OK && mixed) r = build_refine_mark_program(fx);
     if (r != SBFX_OK) return r;
-    snprintf(defines, sizeof(defines), "%s%s%s%s%s%s",
+    snprintf(defines, sizeof(defines), "%s%s%s%s%s%s%s",
              nearest_depth ? "#define UPSAMPLE_NEAREST_DEPTH\n" : "#define UPSAMPLE_BILINEAR\n",
+             mixed ? "#define REFINED\n" : "",
              nearest_depth && fx->gl->corners_program ? "#define LOW_CORNERS\n" : "",
              fx->scene->plan.owns_scene ? "#define OWN_SCENE\n" : "",
              fx->scene->plan.owns_scene && fx->scene->post.dof ? "#define TRANSMITTANCE_ALPHA\n" : "",
@@ -262,7 +279,7 @@ void sbfx_programs_destroy(sbfx *fx)
         for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
             sbfx_program_delete(fx, gl->variants[v].particle[m].id);
     for (int u = 0; u < SBFX_UPSAMPLE_COUNT; u++) sbfx_program_delete(fx, gl->composites[u]);
-    GLuint programs[] = {gl->depth_program, gl->corners_program, gl->scene_only_program};
+    GLuint programs[] = {gl->depth_program, gl->corners_program, gl->scene_only_program, gl->refine_mark_program};
     for (size_t i = 0; i < ARRAY_SIZE(programs); i++) sbfx_program_delete(fx, programs[i]);
     if (gl->instance_buffer) glDeleteBuffers(1, &gl->instance_buffer);
     GLuint vaos[] = {gl->fullscreen_vao, gl->particle_vao};

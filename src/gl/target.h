@@ -27,6 +27,9 @@ typedef struct sbfx_rt {
 #define SBFX_TARGET_SETS (4 * SBFX_FORMAT_COUNT)
 typedef struct sbfx_target_set {
     sbfx_rt particles, low_depth, low_corners; /* low_corners: RGBA32F devices only (render/passes.c) */
+    /* mixed resolution (SBFX_UPSAMPLE_MIXED, render/refine.c), at the output size: the refined
+     * particles (RGBA16F; its depth marks the pixels refined) and the opaque depth as near / distance */
+    sbfx_rt refine, refine_depth;
     int low_width, low_height;
     GLenum target_type;
     sbfx_target_format format;  /* what was made (a fallback may replace the one asked for) */

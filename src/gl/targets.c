@@ -84,8 +84,34 @@ static sbfx_result create_low_depth(sbfx *fx, sbfx_target_set *set)
     return sbfx_gl_check(fx, "creating the low-resolution depth target") ? SBFX_OK : SBFX_ERR_GL;
 }
 
+/* Mixed resolution (render/refine.c): the refined particles at the output size, RGBA16F (its
+ * clear value -1 in alpha marks the pixels not refined, which RGBA8 cannot hold) with a depth
+ * attachment that masks the refinement to the marked pixels, and the opaque depth at the output size. Where half floats do not
+ * render the level is nearest-depth upsampling (logged once). */
+static sbfx_result create_refine(sbfx *fx, sbfx_target_set *set)
+{
+    if (set->refine.framebuffer) return SBFX_OK;
+    if (!sbfx_half_float_renderable()) {
+        if (!fx->gl->context.warned_refine) {
+            fx->gl->context.warned_refine = true;
+            sbfx_log(fx, SBFX_LOG_WARN, "mixed resolution needs a colour-renderable RGBA16F target "
+                     "(GL_EXT_color_buffer_half_float or GL_EXT_color_buffer_float): upsampling by nearest depth only");
+        }
+        return SBFX_OK;
+    }
+    int w = fx->gl->out_width, h = fx->gl->out_height;
+    const sbfx_rt_format *colors[SBFX_RT_MAX] = {&sbfx_rt_rgba16f, NULL, NULL};
+    if (!sbfx_rt_create(fx, &set->refine, w, h, colors, &sbfx_rt_depth32f, GL_NEAREST))
+        return sbfx_fail(fx, SBFX_ERR_GL, "the %dx%d RGBA16F + DEPTH_COMPONENT32F target of mixed resolution is incomplete", w, h);
+    if (!sbfx_rt_create(fx, &set->refine_depth, w, h, NULL, &sbfx_rt_depth32f, GL_NEAREST))
+        return sbfx_fail(fx, SBFX_ERR_GL, "the %dx%d DEPTH_COMPONENT32F target of mixed resolution is incomplete", w, h);
+    return sbfx_gl_check(fx, "creating the targets of mixed resolution") ? SBFX_OK : SBFX_ERR_GL;
+}
+
 static void destroy_set(sbfx *fx, sbfx_target_set *set)
 {
+    sbfx_rt_destroy(fx, &set->refine);
+    sbfx_rt_destroy(fx, &set->refine_depth);
     sbfx_rt_destroy(fx, &set->particles);
     sbfx_rt_destroy(fx, &set->low_depth);
     sbfx_rt_destroy(fx, &set->low_corners);
@@ -102,12 +128,15 @@ int sbfx_target_index(int divisor, sbfx_target_format format)
 static sbfx_result ensure_set(sbfx *fx, const sbfx_quality *q)
 {
     sbfx_target_set *set = &fx->gl->targets[sbfx_target_index(q->target_divisor, q->target_format)];
-    if (set->particles.framebuffer) return SBFX_OK;
-    int div = q->target_divisor;
-    set->low_width = (fx->gl->out_width + div - 1) / div;
-    set->low_height = (fx->gl->out_height + div - 1) / div;
-    sbfx_result r = create_particle_target(fx, set, q->target_format);
-    if (r == SBFX_OK) r = create_low_depth(fx, set);
+    sbfx_result r = SBFX_OK;
+    if (!set->particles.framebuffer) {
+        int div = q->target_divisor;
+        set->low_width = (fx->gl->out_width + div - 1) / div;
+        set->low_height = (fx->gl->out_height + div - 1) / div;
+        r = create_particle_target(fx, set, q->target_format);
+        if (r == SBFX_OK) r = create_low_depth(fx, set);
+    }
+    if (r == SBFX_OK && q->upsample == SBFX_UPSAMPLE_MIXED) r = create_refine(fx, set);
     if (r != SBFX_OK) destroy_set(fx, set);
     return r;
 }
@@ -131,6 +160,9 @@ sbfx_result sbfx_targets_ensure(sbfx *fx, int width, int height)
     gl->particles = set->particles;
     gl->low_depth = set->low_depth;
     gl->low_corners = set->low_corners;
+    bool mixed = fx->scene->current.upsample == SBFX_UPSAMPLE_MIXED;
+    gl->refine = mixed ? set->refine : (sbfx_rt){0};
+    gl->refine_depth = mixed ? set->refine_depth : (sbfx_rt){0};
     gl->low_width = set->low_width;
     gl->low_height = set->low_height;
     gl->target_type = set->target_type;
@@ -141,6 +173,6 @@ sbfx_result sbfx_targets_ensure(sbfx *fx, int width, int height)
 void sbfx_targets_destroy(sbfx *fx)
 {
     for (int i = 0; i < SBFX_TARGET_SETS; i++) destroy_set(fx, &fx->gl->targets[i]);
-    fx->gl->particles = fx->gl->low_depth = fx->gl->low_corners = (sbfx_rt){0};
+    fx->gl->particles = fx->gl->low_depth = fx->gl->low_corners = fx->gl->refine = fx->gl->refine_depth = (sbfx_rt){0};
     fx->gl->out_width = fx->gl->out_height = 0;
 }

@@ -38,6 +38,8 @@ static sbfx_gl_units pass_units(const sbfx *fx, bool scene_color)
     /* unit 3: the black body for the particles, the scene colour for the composite */
     if (gl->blackbody_texture || fx->scene->plan.owns_scene || scene_color) u.tex_2d |= 1u << SBFX_UNIT_BLACKBODY;
     if (fx->scene->plan.distortion) u.tex_2d |= 1u << 4; /* the shimmer offsets, when the target holds them */
+    /* mixed resolution's refined particles (the targets may be made inside this frame) */
+    if (gl->refine_mark_program && fx->scene->desc.upsample == SBFX_UPSAMPLE_MIXED) u.tex_2d |= 1u << SBFX_UNIT_REFINED;
     if (gl->detail_texture) u.tex_3d |= 1u << UNIT_DETAIL;
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
         if (gl->smoke_texture[m]) u.tex_array |= 1u << UNIT_SMOKE;
@@ -60,6 +62,7 @@ static sbfx_result draw_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
         if (tiles) sbfx_pass_depth(fx, frame, &fp);
         if (tiles && sbfx_corners_used(fx)) sbfx_pass_corners(fx);
         sbfx_pass_particles(fx, frame, &fp, count);
+        if (tiles) sbfx_pass_refine(fx, frame, &fp, count);
         if (tiles || fx->scene->plan.owns_scene) sbfx_pass_composite(fx, frame, &fp);
     }
     if (fx->scene->plan.owns_scene) {

@@ -52,13 +52,13 @@ static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m, 
     if (fx->gl->smoke_texture[m]) set_lit_uniforms(fx, p, m);
 }
 
-static void set_frame_uniforms(sbfx *fx, const sbfx_program *p, const frame_params *fp)
+static void set_frame_uniforms(sbfx *fx, const sbfx_program *p, const frame_params *fp, int width, int height)
 {
     const sbfx_gl *gl = fx->gl;
     glUniform1f(p->near, fp->near);
     glUniform4fv(p->projection, 1, fp->projection);
-    glUniform2f(p->target_size, (float)gl->low_width, (float)gl->low_height);
-    glUniform2f(p->pixel, 2.0f / gl->low_width, 2.0f / gl->low_height);
+    glUniform2f(p->target_size, (float)width, (float)height);
+    glUniform2f(p->pixel, 2.0f / width, 2.0f / height);
     /* rectangles for the frame as before tiles, and for the bench's floor, whose every fragment
      * writes: its picture is its rectangle */
     glUniform1i(p->octagon, !fx->render->tiles.full_screen && fx->scene->desc.opacity != SBFX_OPACITY_FLOOR);
@@ -151,8 +151,36 @@ static void draw_run(sbfx *fx, int first, int count)
     fx->counters.draw_calls++;
 }
 
-/* Pass 2: back to front; consecutive particles of one medium share a draw call. ES 3.0 has no
- * base instance, so each run re-points the instance attributes at its first particle. */
+/* The particles' draws into the bound target (width x height, its opaque depth on UNIT_DEPTH):
+ * back to front; consecutive particles of one medium share a draw call. ES 3.0 has no base
+ * instance, so each run re-points the instance attributes at its first particle. */
+void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height)
+{
+    sbfx_gl *gl = fx->gl;
+    frame_lights lights;
+    sbfx_gather_lights(fx, f->view, &lights);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    /* rgb = src + dst (1 - a); transmittance a = dst (1 - a) */
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+    if (gl->detail_texture) sbfx_bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture, 0);
+    glBindVertexArray(gl->particle_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, gl->instance_buffer); /* draw_run points the attributes into it */
+    for (int first = 0; first < count;) {
+        sbfx_medium m = fx->sim->view[fx->sim->order[first]].medium;
+        int end = first + 1;
+        while (end < count && fx->sim->view[fx->sim->order[end]].medium == m) end++;
+        const sbfx_program *p = &gl->particle[m];
+        glUseProgram(p->id);
+        set_frame_uniforms(fx, p, fp, width, height);
+        set_medium_uniforms(fx, p, m, &lights);
+        draw_run(fx, first, end - first);
+        first = end;
+    }
+    fx->counters.passes++;
+}
+
+/* Pass 2: the particles into the low-resolution target, their instances written first. */
 void sbfx_pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count)
 {
     sbfx_gl *gl = fx->gl;
@@ -164,27 +192,10 @@ void sbfx_pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, 
     const GLfloat clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     for (GLint i = 0; i < SBFX_RT_MAX; i++)
         if (gl->particles.texture[i]) glClearBufferfv(GL_COLOR, i, clear);
-    glEnable(GL_BLEND);
-    glBlendEquation(GL_FUNC_ADD);
-    /* rgb = src + dst (1 - a); transmittance a = dst (1 - a) */
-    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
     sbfx_bind_texture(UNIT_DEPTH, GL_TEXTURE_2D, gl->low_depth.depth, 0);
-    if (gl->detail_texture) sbfx_bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture, 0);
     fx->counters.fire_lit_particles = 0;
     fx->sim->frame_fire_count = 0;
     if (fx->scene->plan.fire_light) sbfx_fire_lights_of_frame(fx, count);
     upload_instances(fx, &lights, count);
-    glBindVertexArray(gl->particle_vao);
-    for (int first = 0; first < count;) {
-        sbfx_medium m = fx->sim->view[fx->sim->order[first]].medium;
-        int end = first + 1;
-        while (end < count && fx->sim->view[fx->sim->order[end]].medium == m) end++;
-        const sbfx_program *p = &gl->particle[m];
-        glUseProgram(p->id);
-        set_frame_uniforms(fx, p, fp);
-        set_medium_uniforms(fx, p, m, &lights);
-        draw_run(fx, first, end - first);
-        first = end;
-    }
-    fx->counters.passes++;
+    sbfx_draw_particles(fx, f, fp, count, gl->low_width, gl->low_height);
 }

@@ -9,13 +9,14 @@
 /* Heat shimmer in the composite: heat particles and a float target to hold their offsets. */
 static bool shimmer(const sbfx *fx) { return fx->scene->plan.distortion && fx->gl->particles.texture[1]; }
 
-/* Pass 1: the closest opaque distance of each low-res texel, as near / distance (0: none). */
-void sbfx_pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
+/* The closest opaque distance of each texel of `target` (the output at 1 / divisor per axis), as
+ * near / distance (0: none), on the tiles. */
+void sbfx_pass_depth_into(sbfx *fx, const sbfx_frame *f, const frame_params *fp, const sbfx_rt *target, int divisor)
 {
     sbfx_gl *gl = fx->gl;
     GLuint prog = gl->depth_program;
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl->low_depth.framebuffer);
-    glViewport(0, 0, gl->low_width, gl->low_height);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target->framebuffer);
+    glViewport(0, 0, target->width, target->height);
     glEnable(GL_DEPTH_TEST); /* depth writes need the test on; ALWAYS keeps every fragment */
     glDepthFunc(GL_ALWAYS);
     glDepthMask(GL_TRUE);
@@ -23,16 +24,22 @@ void sbfx_pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
     sbfx_bind_texture(0, GL_TEXTURE_2D, f->scene_depth_texture, gl->depth_sampler);
     const sbfx_pass_uniforms *u = &gl->depth_u;
     glUniform1i(u->scene_depth, 0);
-    glUniform1i(u->divisor, fx->scene->desc.target_divisor);
+    glUniform1i(u->divisor, divisor);
     glUniform2i(u->full_size, f->width, f->height);
     glUniform4fv(u->depth_model, 1, fp->depth_model);
     glUniform1f(u->near, fp->near);
     /* near / distance grows with window depth where scale / p14 > 0 (reversed-Z) */
     glUniform1f(u->closer, (fp->depth_model[0] > 0.0f) == (fp->depth_model[3] > 0.0f) ? 1.0f : -1.0f);
-    sbfx_tiles_draw(fx, u, true, gl->low_width, gl->low_height, fx->scene->desc.target_divisor);
+    sbfx_tiles_draw(fx, u, true, target->width, target->height, divisor);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     fx->counters.passes++;
+}
+
+/* Pass 1: the particle target's resolution. */
+void sbfx_pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
+{
+    sbfx_pass_depth_into(fx, f, fp, &fx->gl->low_depth, fx->scene->desc.target_divisor);
 }
 
 /* Pass 1b (nearest-depth upsampling, RGBA32F devices): the four low-res depths around each
@@ -40,7 +47,8 @@ void sbfx_pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
  * fetch instead of four. */
 bool sbfx_corners_used(const sbfx *fx)
 {
-    return fx->gl->low_corners.framebuffer && fx->scene->desc.upsample == SBFX_UPSAMPLE_NEAREST_DEPTH;
+    return fx->gl->low_corners.framebuffer &&
+           (fx->scene->desc.upsample == SBFX_UPSAMPLE_NEAREST_DEPTH || fx->scene->desc.upsample == SBFX_UPSAMPLE_MIXED);
 }
 
 void sbfx_pass_corners(sbfx *fx)
@@ -136,6 +144,10 @@ void sbfx_pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
     glUniform1f(u->near_over_far, fp->near / fp->particles_far);
     glUniform3f(u->tone_curve, (float)fx->scene->tone_curve.knee, (float)fx->scene->tone_curve.steepness,
                 (float)fx->scene->tone_curve.inverse_log_white);
+    if (sbfx_refine_used(fx)) {
+        sbfx_bind_texture(SBFX_UNIT_REFINED, GL_TEXTURE_2D, gl->refine.texture[0], 0);
+        glUniform1i(u->refined, SBFX_UNIT_REFINED);
+    }
     sbfx_tiles_draw(fx, u, true, f->width, f->height, 1);
     glDisable(GL_BLEND);
 }

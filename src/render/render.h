@@ -25,6 +25,7 @@
 #define UNIT_DEPTH 0   /* the particle passes' texture units (SBFX_UNIT_PHASE, _BLACKBODY: gl.h) */
 #define UNIT_DETAIL 1
 #define UNIT_SMOKE 4   /* a lit medium's smoke texture array */
+#define SBFX_UNIT_REFINED 5 /* the composite's refined particles (mixed resolution, refine.c) */
 
 /* The host's transmittance shadow map (shadow.c): made at load only when asked for. */
 typedef struct sbfx_shadow {
@@ -100,9 +101,18 @@ void sbfx_tiles_draw(sbfx *fx, const sbfx_pass_uniforms *u, bool inside, int wid
 
 /* passes.c and particles.c: the passes of a frame with live particles */
 void sbfx_pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp);
+/* The depth downsample into `target`, the output at 1 / divisor per axis, on the tiles. */
+void sbfx_pass_depth_into(sbfx *fx, const sbfx_frame *f, const frame_params *fp, const sbfx_rt *target, int divisor);
 bool sbfx_corners_used(const sbfx *fx);
 void sbfx_pass_corners(sbfx *fx);
 void sbfx_pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count);
+/* The particles' draws (instances already uploaded) into the bound width x height target, its
+ * opaque depth bound on UNIT_DEPTH (particles.c; the refinement draws them again). */
+void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height);
+/* refine.c: mixed resolution, the particles again at full resolution where the coarse target
+ * fails (after sbfx_pass_particles, before the composite) */
+bool sbfx_refine_used(const sbfx *fx);
+void sbfx_pass_refine(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count);
 void sbfx_pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp);
 
 /* lights.c */

@@ -13,7 +13,7 @@ static const char *const opacity_tokens[SBFX_OPACITY_COUNT] = {
     [SBFX_OPACITY_EXACT] = "exact",   [SBFX_OPACITY_FLOOR] = "floor", /* named, not parsed: bench only */
 };
 static const char *const upsample_tokens[SBFX_UPSAMPLE_COUNT] = {
-    [SBFX_UPSAMPLE_BILINEAR] = "bl", [SBFX_UPSAMPLE_NEAREST_DEPTH] = "nd"};
+    [SBFX_UPSAMPLE_BILINEAR] = "bl", [SBFX_UPSAMPLE_NEAREST_DEPTH] = "nd", [SBFX_UPSAMPLE_MIXED] = "mx"};
 static const char *const format_tokens[SBFX_FORMAT_COUNT] = {
     [SBFX_FORMAT_RGBA8] = "rgba8", [SBFX_FORMAT_RGBA16F] = "rgba16f", [SBFX_FORMAT_RGBA32F] = "rgba32f"};
 
@@ -99,7 +99,7 @@ static int parse_token(int i, const char *t, sbfx_quality *q, char *err, size_t 
     }
     if (i == 2) {
         q->upsample = (sbfx_upsample)token_index(upsample_tokens, SBFX_UPSAMPLE_COUNT, t);
-        if (!q->upsample) snprintf(err, size, "unknown upsample '%s' (nd, bl)", t);
+        if (!q->upsample) snprintf(err, size, "unknown upsample '%s' (nd, bl, mx)", t);
         return q->upsample ? 0 : -1;
     }
     return parse_flag(t, q, err, size);

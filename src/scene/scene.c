@@ -267,7 +267,7 @@ static int parse_render(parser *p, const config_setting_t *g)
     static const char *const evaluations[] = {"table", "analytic", NULL};
     static const char *const detail_formats[] = {"r16f", "r32f", NULL};
     static const char *const formats[] = {"auto", "rgba8", "rgba16f", "rgba32f", NULL};
-    static const char *const upsamples[] = {"bilinear", "nearest-depth", NULL};
+    static const char *const upsamples[] = {"bilinear", "nearest-depth", "mixed", NULL};
     static const char *const opacities[] = {"planar", "soft", "spherical", "exact", NULL};
     sbfx_desc *d = &p->scene->render;
     int format = 0, upsample = 0, opacity = 0, seed = 0, rate_choice = 0, blackbody = 0, phase = 0;

@@ -227,6 +227,7 @@ static int set_upsample(struct player_options *opt, const char *value, char *err
 {
     static const struct choice choices[] = {
         {"bilinear", SBFX_UPSAMPLE_BILINEAR}, {"nearest-depth", SBFX_UPSAMPLE_NEAREST_DEPTH},
+        {"mixed", SBFX_UPSAMPLE_MIXED},
     };
     int v = 0;
     int rc = parse_choice("--upsample", value, choices, ARRAY_SIZE(choices), &v, err, n);
@@ -475,7 +476,7 @@ static const struct flag flags[] = {
     {"--scale", "1|2|4|8", set_scale},
     {"--opacity", "planar|soft|spherical|exact", set_opacity},
     {"--format", "auto|rgba8|rgba16f|rgba32f", set_format},
-    {"--upsample", "bilinear|nearest-depth", set_upsample},
+    {"--upsample", "bilinear|nearest-depth|mixed", set_upsample},
     {"--tone-map", "none|hue-preserving|per-channel|filmic", set_tone_map},
     {"--exposure", "X (0.01..100)", set_exposure},
     {"--budget-ms", "MS (0 < MS <= 10000)", set_budget},
