@@ -8,7 +8,7 @@
 # prefixed "precision:"). The parts: each GL suite, probe, 6-bit, player (`--parts` lists them).
 # Exits 1 if a test failed.
 set -u
-SUITES="test_gl_hard_cases test_gl_opacity test_gl_tables test_gl_lit test_gl_look test_gl_upsample"
+SUITES="test_gl_hard_cases test_gl_opacity test_gl_tables test_gl_lit test_gl_look test_gl_upsample test_gl_mixed"
 PARTS="$SUITES probe 6-bit player"
 if [ "${1:-}" = --parts ]; then
     echo "$PARTS"

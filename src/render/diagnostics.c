@@ -31,6 +31,25 @@ sbfx_result sbfx_read_particle_target(sbfx *fx, float *rgba, size_t capacity, in
     return sbfx_gl_check(fx, "reading back the particle target") ? SBFX_OK : SBFX_ERR_GL;
 }
 
+sbfx_result sbfx_read_refine_target(sbfx *fx, float *rgba, size_t capacity, int *w, int *h)
+{
+    sbfx_gl *gl = fx->gl;
+    if (!sbfx_refine_used(fx))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "no refine target: the level is not mixed resolution, or nothing rendered yet");
+    size_t n = (size_t)gl->refine.width * gl->refine.height;
+    if (!rgba || capacity < n * 4)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "read buffer holds %zu floats, %zu needed", capacity, n * 4);
+    *w = gl->refine.width;
+    *h = gl->refine.height;
+    sbfx_gl_state saved;
+    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PACK, NULL);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl->refine.framebuffer);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, *w, *h, GL_RGBA, GL_FLOAT, rgba);
+    sbfx_gl_state_restore(&saved);
+    return sbfx_gl_check(fx, "reading back the refine target") ? SBFX_OK : SBFX_ERR_GL;
+}
+
 static sbfx_result ensure_probe_target(sbfx *fx)
 {
     sbfx_probe *probe = &fx->render->probe;

@@ -21,7 +21,7 @@
 /* The edge of the coarse image that is refined: a change of transmittance or of display light
  * (v / (1 + v)) between the four texels a pixel reads. Chosen with the accuracy bench
  * (docs/accuracy-and-benchmarks.md, "Mixed resolution"). */
-#define REFINE_CONTRAST 0.1f
+#define REFINE_CONTRAST 0.2f
 
 bool sbfx_refine_used(const sbfx *fx)
 {

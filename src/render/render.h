@@ -141,6 +141,9 @@ sbfx_result sbfx_read_shadow_map(sbfx *fx, float *values, size_t capacity);
 /* Reads back the particle target of the last render as float RGBA (premultiplied radiance,
  * transmittance in alpha). w*h floats*4 must fit in capacity (floats). */
 sbfx_result sbfx_read_particle_target(sbfx *fx, float *rgba, size_t capacity, int *w, int *h);
+/* Mixed resolution: reads back the refine target of the last render (output size, float RGBA:
+ * premultiplied light and transmittance where refined, alpha -1 elsewhere). */
+sbfx_result sbfx_read_refine_target(sbfx *fx, float *rgba, size_t capacity, int *w, int *h);
 /* The black body at kelvin and a medium's phase function at cos_theta (its g is the one the
  * tables were made for) as the particle shader computes them: particle.frag's own functions
  * (table or analytic, whatever that medium's program uses) in a 1x1 pass. */

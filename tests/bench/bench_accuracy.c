@@ -55,7 +55,7 @@
 #include "host/test_scene.h"
 
 #define FRAME_COUNT 3
-#define MAX_CONFIGS 256 /* every configuration twice: float and gpu precision */
+#define MAX_CONFIGS 320 /* every configuration twice: float and gpu precision */
 #define EDGE_RELATIVE 0.01 /* second difference of 1/z above 1 % of 1/z: a silhouette */
 #define EDGE_DILATE 3      /* pixels around it */
 
@@ -105,6 +105,7 @@ typedef struct variant_fragments {
     int count;
     char name[MAX_VARIANTS][256]; /* "VERT FRAG | DEFINES" (SBFX_SHADER_LOG) */
     double fragments[MAX_VARIANTS];
+    double refined;        /* mixed resolution: the particle fragments the refinement shades */
     bool failed;
 } variant_fragments;
 
@@ -482,6 +483,7 @@ static void count_fragments(render_call *rc, variant_fragments *vf)
     render_once(rc);
     bench_fragments_end();
     vf->failed = vf->failed || t.failed;
+    vf->refined += t.masked_fragments / FRAME_COUNT;
     for (int d = 0; d < t.draws; d++) {
         const char *name = bench_program_name(t.program[d]);
         int k = 0;
@@ -585,6 +587,11 @@ static int grid_configs(const options *o, config *out)
                                          (modes[m] == SBFX_OPACITY_PLANAR && scales[s] == 1));
                 n++;
             }
+        /* mixed resolution (refined at full resolution where the coarse target fails): every
+         * mode below full resolution; --quick the exact model at 1/4 */
+        for (size_t m = 0; m < 4 && scales[s] > 1; m++)
+            if (!o->quick || (modes[m] == SBFX_OPACITY_EXACT && scales[s] == 4))
+                out[n++] = make_config(modes[m], scales[s], SBFX_FORMAT_RGBA16F, SBFX_UPSAMPLE_MIXED);
     }
     return n;
 }
@@ -648,7 +655,7 @@ static const char *scale_fraction(int divisor)
 
 static const char *upsample_name(sbfx_upsample u)
 {
-    return u == SBFX_UPSAMPLE_BILINEAR ? "bilinear" : "nearest-depth";
+    return u == SBFX_UPSAMPLE_BILINEAR ? "bilinear" : u == SBFX_UPSAMPLE_MIXED ? "mixed" : "nearest-depth";
 }
 
 static const char *lut_name(const config *c)
@@ -675,7 +682,7 @@ static void short_label(const result *r, char *out, size_t n)
     char lod[16] = "";
     if (c->lod) snprintf(lod, sizeof(lod), " lod%d", c->lod);
     snprintf(out, n, "%.3s/%d %s%s%s%s%s%s%s", mode_names[c->opacity], c->divisor,
-             c->upsample == SBFX_UPSAMPLE_BILINEAR ? "bl" : "nd", fmt, lut,
+             c->upsample == SBFX_UPSAMPLE_BILINEAR ? "bl" : c->upsample == SBFX_UPSAMPLE_MIXED ? "mx" : "nd", fmt, lut,
              c->detail == SBFX_DETAIL_R32F ? " d32" : "", c->light_per_particle ? " lpp" : "",
              c->density_matched ? " tau/2" : "", lod);
 }
@@ -742,6 +749,26 @@ static void write_fragments(const bench *b)
             sscanf(r->frags.name[k], "%*s %63s", shader);
             fprintf(f, "%s,%s,%s,%.0f\n", key, shader, bar && bar[3] ? bar + 3 : "-", r->frags.fragments[k]);
         }
+    }
+    fclose(f);
+}
+
+/* refined.csv: per mixed-resolution configuration, the particle fragments its refinement
+ * shades per frame (at full resolution, where the mark passed; bench_fragments.h), and all the
+ * particle fragments (coarse and refined) for comparison. */
+static void write_refined(const bench *b)
+{
+    FILE *f = open_out(b, "refined.csv");
+    fprintf(f, "mode,scale,format,upsample,lod,particle_fragments,refined_fragments\n");
+    for (int i = 0; i < b->result_count; i++) {
+        const result *r = &b->results[i];
+        const config *c = &r->c;
+        if (r->frags.failed || c->gpu || c->upsample != SBFX_UPSAMPLE_MIXED) continue;
+        double particles = 0.0;
+        for (int k = 0; k < r->frags.count; k++)
+            if (strstr(r->frags.name[k], "particle.frag")) particles += r->frags.fragments[k];
+        fprintf(f, "%s,%s,%s,%s,%d,%.0f,%.0f\n", mode_names[c->opacity], scale_fraction(c->divisor),
+                format_name(r->used_format), upsample_name(c->upsample), c->lod, particles, r->frags.refined);
     }
     fclose(f);
 }
@@ -1127,6 +1154,7 @@ int main(int argc, char **argv)
         return 0;
     }
     write_fragments(b);
+    write_refined(b);
     mark_pareto(b);
     write_csv(b);
     write_plot_data(b);

@@ -243,6 +243,24 @@ static void restore(const saved_state *s)
     glClearColor(s->clear[0], s->clear[1], s->clear[2], s->clear[3]);
 }
 
+/* A draw whose depth test masks it (mixed resolution's refinement: render/refine.c, the depth
+ * test on and no depth writes) shades only where the test passes: its counting draw is tested
+ * against the same depth texture. Returns that texture, or 0 (then every fragment counts: a
+ * pass that writes depth tests ALWAYS). The depth function and mask stay as the draw had them. */
+static GLuint depth_mask_of_draw(void)
+{
+    GLboolean writes = GL_TRUE;
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &writes);
+    GLint func = GL_ALWAYS, fbo = 0, type = GL_NONE, name = 0;
+    glGetIntegerv(GL_DEPTH_FUNC, &func);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+    if (!glIsEnabled(GL_DEPTH_TEST) || writes || func == GL_ALWAYS || fbo == 0) return 0;
+    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    if (type != GL_TEXTURE) return 0;
+    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+    return (GLuint)name;
+}
+
 /* The tally's slot of the current program (a new one the first time), or -1 when full. */
 static int slot_of(bench_fragment_tally *t, GLuint program)
 {
@@ -263,6 +281,7 @@ void bench_fragments_draw(GLenum mode, GLint first, GLsizei count, GLsizei insta
     saved_state s;
     save(&s);
     int w = s.viewport[2], h = s.viewport[3];
+    GLuint mask = depth_mask_of_draw(); /* of the module's framebuffer, before a slot is bound */
     int k = slot_of(t, (GLuint)s.program);
     if (k < 0 || !slot_ready(k, w, h)) {
         fprintf(stderr, "bench: fragment count: no counting program or target (%d programs, %dx%d)\n", t->draws, w, h);
@@ -271,6 +290,7 @@ void bench_fragments_draw(GLenum mode, GLint first, GLsizei count, GLsizei insta
         return;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, fc.slots[k].fbo);
+    if (mask) glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, mask, 0);
     glViewport(0, 0, w, h);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glUseProgram(fc.slots[k].counter);
@@ -283,6 +303,14 @@ void bench_fragments_draw(GLenum mode, GLint first, GLsizei count, GLsizei insta
     else glDrawArrays(mode, first, count);
     fc.tally = t;
     fc.slots[k].dirty = true;
+    if (mask) {
+        /* what passed the mask is the refinement's: counted apart as well (read back now) */
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+        double before = t->fragments[k];
+        t->fragments[k] += read_count(&fc.slots[k]);
+        t->masked_fragments += t->fragments[k] - before;
+        slot_ready(k, w, h);
+    }
     restore(&s);
 }
 

@@ -7,7 +7,10 @@
  * a fragment shader that writes 1, additively (GL_ONE, GL_ONE), into an RGBA16F target of the
  * draw's viewport size kept for that program; the sums of the targets' read-backs are the
  * fragments each program's draws made (exact: a half float counts integers to 2048 per pixel).
- * sbfx's shaders discard nothing, so this is what they shade: the particle pass's quads with
+ * A draw masked by its target's depth test (mixed resolution's refinement) is counted against
+ * the same depth texture: what passes is what a GPU with early depth tests shades.
+ * sbfx's shaders discard nothing (but refine_mark.frag, counted whole: it runs everywhere), so
+ * this is what they shade: the particle pass's quads with
  * their overlap, the passes over the screen's tiles (render/tiles.h) and the full-screen ones —
  * counted, not assumed equal to the screen. Targets are read back when a program draws at
  * another size and when counting ends. */
@@ -23,6 +26,8 @@ typedef struct bench_fragment_tally {
     int draws; /* programs seen */
     GLuint program[BENCH_FRAGMENT_DRAWS];
     double fragments[BENCH_FRAGMENT_DRAWS];
+    double masked_fragments; /* of those, the draws masked by a depth test (mixed resolution's
+                                refinement, render/refine.c): the refined fragments */
     bool failed; /* a count could not be made (message on stderr) */
 } bench_fragment_tally;
 

@@ -17,7 +17,7 @@
 static const char *const levels[] = {
     "exact/4/nd",   "planar/1/bl",        "soft/2/nd",         "spherical/8/bl/rgba8", "exact/4/nd/lpp",
     "exact/2/bl/abb/aph", "exact/4/nd/rgba32f", "spherical/4/nd/lpp/abb", "exact/8/nd/aph", "planar/4/nd/rgba16f",
-    "exact/4/nd/lod40",   "spherical/8/bl/lpp/lod12",
+    "exact/4/nd/lod40",   "spherical/8/bl/lpp/lod12", "exact/4/mx", "spherical/8/mx/lpp",
 };
 #define LEVELS ((int)ARRAY_SIZE(levels))
 

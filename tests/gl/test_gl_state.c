@@ -308,6 +308,9 @@ static const state_case cases[] = {
      * the level of detail's memory inside sbfx_set_quality; targets inside sbfx_render */
     {"built-in explosion switched to spherical/2/bl/lpp/abb/lod64", NULL, NULL, "explosion",
      "spherical/2/bl/lpp/abb/lod64", 0.0f},
+    /* mixed resolution: the refine target (made inside sbfx_render), its depth test as the mask,
+     * the refined particles on a sixth unit */
+    {"built-in explosion switched to exact/4/mx", NULL, NULL, "explosion", "exact/4/mx", 0.0f},
     /* the budget walks down at once: timer queries around the passes, levels switched in render */
     {"built-in explosion under a budget nothing meets (0.001 ms)", NULL, NULL, "explosion", NULL, 0.001f},
 };
@@ -498,6 +501,13 @@ CHECK_TEST(frame_budget_leaves_state)
 {
     /* timer queries are not host state: the same save and restore as without a budget */
     int expected[3] = {33, 33, 0};
+    run_case(&cases[6], expected);
+}
+
+CHECK_TEST(mixed_resolution_leaves_state)
+{
+    /* as the built-in explosion, and unit 5's 2D texture and sampler (the refined particles) */
+    int expected[3] = {35, 35, 0};
     run_case(&cases[5], expected);
 }
 
