@@ -7,34 +7,57 @@
 # Per frame and board: sum over programs of fragments x cycles per fragment / (cores x clock);
 # the depth downsample's block is a loop Mesa counts once: its divisor^2 fetches bound it (the
 # block unrolled at divisor 4 is texture-bound at exactly that on both GPUs: docs/gpus.md).
-# Boards: a Mali-G52 MP2 at 800 MHz (RK3566) and a Mali-G610 MP4 at 1 GHz (RK3588). Per scene and
+# Boards: a Mali-G52 MP2 at 800 MHz (RK3566) and a Mali-G610 MP4 at 1 GHz (RK3588); where MALI_CSV
+# has the v3d shims' rows (tools/shader-stats.sh -g "... rpi4 rpi5"), a Raspberry Pi 4 (V3D 4.2,
+# 8 QPUs at 500 MHz) and a Pi 5 (V3D 7.1, 16 QPUs at 960 MHz): a V3D row's cycles are one QPU's per
+# fragment, (instructions + stalls) / 4 (docs/gpus.md, "V3D"), so the divisor is QPUs x clock. Per scene and
 # output size: the mean and the worst frame over the scene's life, before (the composite and the
 # depth passes over the whole screen, whole particle rectangles) and after, and what the after
 # leaves of a 60 Hz frame (16.67 ms) to the host: shader throughput only, no bandwidth, blending,
 # tiling or vertex work. Then, per scene and size, the composite's and the depth passes'
-# fragments against the pixels of the tiles' union (their ratio over the life).
+# fragments against the pixels of the tiles' union (their ratio over the life). Then each scene's
+# worst frame on the G52 (after) pass by pass: the depth passes (downsample, low-res corners), the
+# particles per medium (fire, heat, the scattering media), mixed resolution's refinement (its mark
+# and the particles it shades again: boards.csv's refined column), the composite, the post chain.
 set -eu
 [ $# -eq 2 ] || { echo "usage: $0 BOARDS_CSV MALI_CSV" >&2; exit 2; }
 [ -r "$1" ] || { echo "boards-table: $1 is missing (make bench)" >&2; exit 1; }
 [ -r "$2" ] || { echo "boards-table: $2 is missing (tools/shader-stats.sh)" >&2; exit 1; }
 awk -F, '
 function key_of(g, scene, shader, variant) { return g SUBSEP scene SUBSEP shader SUBSEP variant }
+# the pass a program belongs to (the per-pass table)
+function pass_of(shader, variant) {
+    if (shader == "depth_downsample.frag" || shader == "low_corners.frag") return "depth"
+    if (shader == "particle.frag") return variant ~ /MEDIUM_EMITS/ ? "fire" : variant ~ /MEDIUM_HEAT/ ? "heat" : "scatter"
+    if (shader == "refine_mark.frag") return "refine"
+    if (shader == "composite.frag") return "composite"
+    return "post"
+}
 function left(ms) { return ms >= 16.667 ? "none" : sprintf("%.0f %%", 100 * (16.667 - ms) / 16.667) }
 FNR == 1 { file++; next }
-file == 1 && $6 == "fragment" { cycles[key_of($1, $3, $4, $5)] = $8; texture[key_of($1, $3, $4, $5)] = $10; next }
+file == 1 && $6 == "fragment" { cycles[key_of($1, $3, $4, $5)] = $8; texture[key_of($1, $3, $4, $5)] = $10; has[$1] = 1; next }
 file == 2 {
     scene = $1; size = $2 "x" $3; frame = scene SUBSEP size SUBSEP $5; mode = ($6 == "full") ? "before" : "after"
     if ($6 != "full" && $6 != "tiles") next
     if (!((scene, size) in seen)) { seen[scene, size] = 1; order[++n] = scene SUBSEP size }
     frames[frame] = 1
-    split("g52 g610", gpus, " ")
-    for (i = 1; i <= 2; i++) {
+    split("g52 g610 rpi4 rpi5", gpus, " ")
+    for (i = 1; i <= 4; i++) {
+        if (i > 2 && !has[gpus[i]]) continue
         k = key_of(gpus[i], scene, $7, $8)
         c = cycles[k]
         if (c == "") { if (!warned[k]++) printf "boards-table: no %s cycles for %s %s %s\n", gpus[i], scene, $7, $8 > "/dev/stderr"; missing = 1; continue }
-        # the downsample'"'"'s block: its divisor^2 fetches bound it (Mesa counts the loop once)
+        # the downsample'"'"'s block: its divisor^2 fetches bound it (Mesa counts the loop once); V3D
+        # counts the loop once too: its body divisor^2 times
         if ($7 == "depth_downsample.frag" && texture[k] * $4 * $4 > c) c = texture[k] * $4 * $4
+        if ($7 == "depth_downsample.frag" && i > 2) c *= $4 * $4
         work[gpus[i], frame, mode] += $9 * c
+        if (i == 1 && mode == "after") {
+            refined = NF >= 14 ? $14 + 0 : 0
+            p = pass_of($7, $8)
+            part[frame, p] += ($9 - refined) * c
+            part[frame, "refine"] += refined * c
+        }
     }
     if (mode == "after") {
         pixels[frame] = $11
@@ -71,6 +94,45 @@ END {
             line = line sprintf(" %s / %s |", left(mean["after"]), left(worst_of["after"]))
         }
         print line
+    }
+    if (has["rpi4"] || has["rpi5"]) {
+        clock["rpi4"] = 8 * 500e3; clock["rpi5"] = 16 * 960e3 # QPUs x kHz
+        print ""
+        print "| scene | output | Raspberry Pi 4 (V3D 4.2): mean / worst (ms) | left to the host (mean / worst) | Raspberry Pi 5 (V3D 7.1): mean / worst (ms) | left (mean / worst) |"
+        print "| --- | --- | ---: | ---: | ---: | ---: |"
+        for (k = 1; k <= n; k++) {
+            split(order[k], sk, SUBSEP)
+            line = sprintf("| %s | %s |", sk[1], sk[2])
+            for (i = 3; i <= 4; i++) {
+                g = i == 3 ? "rpi4" : "rpi5"
+                if (!has[g]) { line = line " – | – |"; continue }
+                sum = 0; worst = 0; count = 0
+                for (f in frames) {
+                    split(f, fk, SUBSEP)
+                    if (fk[1] != sk[1] || fk[2] != sk[2]) continue
+                    ms = work[g, f, "after"] / clock[g]; sum += ms; count++; if (ms > worst) worst = ms
+                }
+                line = line sprintf(" %.2f / %.2f | %s / %s |", sum / count, worst, left(sum / count), left(worst))
+            }
+            print line
+        }
+    }
+    print ""
+    print "| scene | output | worst frame on the G52 MP2 (t) | depth passes | fire | heat | smoke, dust | refinement | composite | post | total (ms) |"
+    print "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+    split("depth fire heat scatter refine composite post", passes, " ")
+    for (k = 1; k <= n; k++) {
+        split(order[k], sk, SUBSEP)
+        worst = -1; wf = ""
+        for (f in frames) {
+            split(f, fk, SUBSEP)
+            if (fk[1] != sk[1] || fk[2] != sk[2]) continue
+            if (work["g52", f, "after"] > worst) { worst = work["g52", f, "after"]; wf = f }
+        }
+        split(wf, fk, SUBSEP)
+        line = sprintf("| %s | %s | %.1f s |", sk[1], sk[2], fk[3])
+        for (p = 1; p <= 7; p++) line = line sprintf(" %.2f |", part[wf, passes[p]] / clock["g52"])
+        print line sprintf(" %.2f |", worst / clock["g52"])
     }
     print ""
     print "| scene | output | composite + depth passes fragments / pixels of the tiles (over the life) | tiles covered (mean share of the screen) |"

@@ -13,7 +13,7 @@
 # least of its runs' medians (a shared machine's noise only ever adds time; one run's medians moved
 # by a third between quiet runs), its errors must agree. LADDER_CSV=PATH keeps the CSV the ladder
 # was made from (docs/ladder-accuracy.csv).
-# Level names: <opacity>/<divisor>/<nd|bl>[/rgba8|/rgba32f][/lpp][/lodN].
+# Level names: <opacity>/<divisor>/<nd|bl|mx>[/rgba8|/rgba32f][/lpp][/lodN].
 set -euo pipefail
 usage="usage: tools/ladder.sh ACCURACY_CSV [MORE_CSV...] OUT_HEADER"
 [ $# -ge 2 ] || { echo "$usage" >&2; exit 2; }
@@ -70,7 +70,7 @@ src=$(basename "${runs[0]}")
 awk -F, -v saving="$SAVING" -v src="$src" '
 function divisor(scale) { return scale == 1 ? 1 : scale == 0.5 ? 2 : scale == 0.25 ? 4 : 8 }
 function name(i,   s) {
-    s = mode[i] "/" divisor(scale[i]) "/" (ups[i] == "bilinear" ? "bl" : "nd")
+    s = mode[i] "/" divisor(scale[i]) "/" (ups[i] == "bilinear" ? "bl" : ups[i] == "mixed" ? "mx" : "nd")
     if (fmt[i] == "RGBA8") s = s "/rgba8"
     if (fmt[i] == "RGBA32F") s = s "/rgba32f"
     if (lut[i] == "light-per-particle") s = s "/lpp"

@@ -3,6 +3,11 @@
 #   SHADER-DB: MESA_SHADER_FRAGMENT shader: 671 inst, ..., 20.4 cycles, 5.0 arith, ... 35 regs
 #   sbfx: info: shader build end: program N linked
 # Bifrost names its units arith, texture, vary, ldst; Valhall fma, cvt, sfu, v, t, ls.
+# V3D (the v3d shim, V3D_DEBUG=shaderdb) prints "SHADER-DB-NAME - STAGE shader: N inst, T threads,
+# L loops, U uniforms, M max-temps, S:F spills:fills, X sfu-stalls, Y inst-and-stalls, Z nops":
+# its row's cycles are a QPU's cycles per fragment, (inst + stalls) / 4 (a QPU issues one
+# instruction a cycle for 4 of a thread's 16 lanes; docs/gpus.md, "V3D"), its arith the same,
+# registers the max-temps, threads as printed (1, 2 or 4).
 /shader build begin: / {
     s = $0
     sub(/.*shader build begin: /, "", s)
@@ -14,6 +19,26 @@
     next
 }
 /shader build end: / { inside = 0; next }
+inside && /SHADER-DB-[^ ]* - / {
+    s = $0
+    sub(/.*SHADER-DB-[^ ]* - /, "", s)
+    stage = s
+    sub(/ shader:.*/, "", stage)
+    stage = tolower(stage)
+    stage = stage ~ /frag|fs/ ? "fragment" : stage ~ /vert|vs/ ? "vertex" : stage
+    sub(/^[^:]*shader: /, "", s)
+    delete v
+    n = split(s, parts, /, /)
+    for (i = 1; i <= n; i++) {
+        split(parts[i], kv, " ")
+        v[kv[2]] = kv[1]
+    }
+    split(v["spills:fills"], sf, ":")
+    c = v["inst-and-stalls"] / 4
+    printf "%s,%s,%s,%s,%s,%s,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%d,%d,%d\n", gpu, id, scene, shader,
+        variant, stage, v["inst"], c, c, 0, 0, 0, v["max-temps"], v["threads"], sf[1], sf[2]
+    next
+}
 inside && /SHADER-DB: / {
     s = $0
     sub(/.*SHADER-DB: /, "", s)

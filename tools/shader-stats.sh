@@ -1,9 +1,9 @@
 #!/bin/sh
-# What Mesa's Mali compiler makes of every shader variant the example scenes compile: runs the
+# What Mesa's Mali (and V3D: the rpi4 and rpi5 shims) compiler makes of every shader variant the example scenes compile: runs the
 # real sbfx-play under the panfrost drm-shim (tools/mesa-shim.sh) once per scene and GPU with
 # BIFROST_MESA_DEBUG=shaderdb and SBFX_SHADER_LOG=1, and names each SHADER-DB line after the
 # variant sbfx was building when the driver printed it (the log brackets every program build).
-# Usage: tools/shader-stats.sh [-b BUILD] [-g "g52 g57 g610"] [-s "scenes/a.cfg ..."] [-q QUALITY]
+# Usage: tools/shader-stats.sh [-b BUILD] [-g "g52 g57 g610 rpi4 rpi5"] [-s "scenes/a.cfg ..."] [-q QUALITY]
 #                              [-B] OUT.csv
 #   QUALITY: extra sbfx-play flags (e.g. "--opacity spherical"), default none (the scene's own)
 #   -B: instead of the scenes, every configuration of the accuracy bench (bench_accuracy
@@ -44,8 +44,8 @@ mkdir -p "$logs"
 
 echo "gpu,gpu_id,scene,shader,variant,stage,instructions,cycles,arith_cycles,texture_cycles,varying_cycles,ldst_cycles,registers,threads,spills,fills" >"$out.tmp"
 for gpu in $gpus; do
-    id=$(tools/mesa-shim.sh env "$gpu" | sed -n 's/^PAN_GPU_ID=//p')
-    [ -n "$id" ] || { echo "shader-stats: $gpu is not a panfrost shim" >&2; exit 2; }
+    id=$(tools/mesa-shim.sh env "$gpu" | sed -n 's/^PAN_GPU_ID=//p;s/^V3D_SHIM_VERSION=/v3d/p')
+    [ -n "$id" ] || { echo "shader-stats: $gpu is not a panfrost or v3d shim" >&2; exit 2; }
     for scene in $scenes; do
         name=$(basename "$scene" .cfg)
         log=$logs/$gpu-$name.log
@@ -56,7 +56,7 @@ for gpu in $gpus; do
             set -- "$play" --scene "$scene" --frames 3 --size 320x180 $quality --out "$logs/frames"
         fi
         # shellcheck disable=SC2046 # the shim's KEY=VALUE lines
-        if ! env $(tools/mesa-shim.sh env "$gpu") SBFX_SHADER_LOG=1 BIFROST_MESA_DEBUG=shaderdb \
+        if ! env $(tools/mesa-shim.sh env "$gpu") SBFX_SHADER_LOG=1 BIFROST_MESA_DEBUG=shaderdb V3D_DEBUG=shaderdb \
             mesa_glthread=false "$@" >"$log" 2>&1; then
             echo "shader-stats: sbfx-play failed on $gpu with $scene (see $log)" >&2
             exit 1

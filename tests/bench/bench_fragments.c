@@ -308,6 +308,7 @@ void bench_fragments_draw(GLenum mode, GLint first, GLsizei count, GLsizei insta
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
         double before = t->fragments[k];
         t->fragments[k] += read_count(&fc.slots[k]);
+        t->masked[k] += t->fragments[k] - before;
         t->masked_fragments += t->fragments[k] - before;
         slot_ready(k, w, h);
     }

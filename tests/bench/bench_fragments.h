@@ -26,8 +26,9 @@ typedef struct bench_fragment_tally {
     int draws; /* programs seen */
     GLuint program[BENCH_FRAGMENT_DRAWS];
     double fragments[BENCH_FRAGMENT_DRAWS];
-    double masked_fragments; /* of those, the draws masked by a depth test (mixed resolution's
-                                refinement, render/refine.c): the refined fragments */
+    double masked[BENCH_FRAGMENT_DRAWS]; /* of those, the draws masked by a depth test (mixed
+                                            resolution's refinement, render/refine.c) */
+    double masked_fragments; /* their sum: the refined fragments */
     bool failed; /* a count could not be made (message on stderr) */
 } bench_fragment_tally;
 

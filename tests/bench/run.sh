@@ -34,7 +34,7 @@ MALI_CORES=${MALI_CORES:-4}
 MALI_MHZ=${MALI_MHZ:-1000}
 rm -f "$OUT/accuracy-mali.csv" "$OUT/mali-points.dat" "$OUT/mali.csv" "$OUT/mali.md"
 if tools/mesa-shim.sh version >/dev/null 2>&1; then
-    tools/shader-stats.sh -b "$BUILD" "$OUT/mali.csv"
+    tools/shader-stats.sh -b "$BUILD" -g "g52 g57 g610 rpi4 rpi5" "$OUT/mali.csv"
     tools/mali-table.sh "$OUT/mali.csv" g52 g610 >"$OUT/mali.md"
     tools/shader-stats.sh -b "$BUILD" -B "$OUT/mali-bench.csv"
     awk -F, -v cores="$MALI_CORES" -v mhz="$MALI_MHZ" -f tools/mali-accuracy.awk "$OUT/mali-bench.csv" \

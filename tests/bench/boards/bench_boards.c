@@ -6,10 +6,12 @@
  * every program sbfx draws with are counted on the GPU (bench_fragments.h) and named after the
  * variant it built (bench_programs.h). The composite's counted fragments are checked against
  * sbfx_counters.composite_pixels. Writes OUT/boards.csv, one row per program of a rendered frame:
- *   scene,width,height,divisor,t,mode,shader,variant,fragments,composite_tiles,composite_pixels,rects,particles
+ *   scene,width,height,divisor,t,mode,shader,variant,fragments,composite_tiles,composite_pixels,rects,particles,refined
+ * (refined: of the fragments, those of mixed resolution's refinement, render/refine.c)
  * which tools/boards-table.sh prices with Mesa's Mali estimates (mali.csv, tools/shader-stats.sh).
  *   bench_boards [--out DIR] [--sizes WxH[,WxH...]] [--step SECONDS] [--scenes a,b] [--camera scene|orbit]
- *                [--tile-sizes N[,N...]]
+ *                [--tile-sizes N[,N...]] [--quality LEVEL]
+ * --quality LEVEL renders every scene at that level (e.g. exact/4/mx) instead of its own.
  * --camera orbit: the accuracy bench's camera (test_scene_orbit_camera, 8.5 m from the blast)
  * instead of each scene's own.
  * --tile-sizes renders the tiled frame once per tile size (mode "tilesN"; the default size only:
@@ -38,6 +40,7 @@ typedef struct options {
     int tile_sizes[MAX_TILE_SIZES], tile_size_count;
     double step;
     bool orbit;   /* --camera orbit: the accuracy bench's orbit camera, not the scene's */
+    const char *quality; /* --quality LEVEL: every scene at that level (sbfx_set_quality), not its own */
     char scenes[MAX_SCENES][64];
     int scene_count;
 } options;
@@ -74,9 +77,9 @@ static void render_counted(sbfx *fx, const sbfx_frame *frame, const char *mode, 
         if (composite && tally.fragments[k] != (double)c.composite_pixels)
             fprintf(stderr, "bench_boards: %s at %.2f s (%s): the composite shaded %.0f fragments, "
                     "composite_pixels says %d\n", scene, t, mode, tally.fragments[k], c.composite_pixels);
-        fprintf(csv, "%s,%d,%d,%d,%.3f,%s,%s,%s,%.0f,%d,%d,%d,%d\n", scene, frame->width, frame->height,
+        fprintf(csv, "%s,%d,%d,%d,%.3f,%s,%s,%s,%.0f,%d,%d,%d,%d,%.0f\n", scene, frame->width, frame->height,
                 fx->scene->desc.target_divisor, t, mode, shader, variant, tally.fragments[k], c.composite_tiles,
-                c.composite_pixels, tiles->inside + tiles->outside, c.particles_alive);
+                c.composite_pixels, tiles->inside + tiles->outside, c.particles_alive, tally.masked[k]);
     }
 }
 
@@ -96,6 +99,11 @@ static void scene_at_size(const options *opt, const char *name, int w, int h, FI
     if (bench_target_create(&out, w, h) != 0) die("output framebuffer", "incomplete");
     sbfx *fx = NULL;
     if (sbfx_create(&(sbfx_desc){.scene = scene, .log = log_line}, &fx) != SBFX_OK) die(path, "sbfx_create failed");
+    if (opt->quality) {
+        sbfx_quality q;
+        if (sbfx_quality_parse(opt->quality, &q, err, sizeof(err)) != SBFX_OK) die("--quality", err);
+        if (sbfx_set_quality(fx, &q) != SBFX_OK) die("--quality", sbfx_last_error(fx));
+    }
     double last_trigger = 0.0;
     for (int i = 0; i < scene->timeline_count; i++)
         if (scene->timeline[i].time > last_trigger) last_trigger = scene->timeline[i].time;
@@ -159,6 +167,7 @@ static options parse(int argc, char **argv)
         i++;
         if (!strcmp(a, "--out")) o.out = v;
         else if (!strcmp(a, "--step") && (o.step = atof(v)) > 0) continue;
+        else if (!strcmp(a, "--quality") && v) o.quality = v;
         else if (!strcmp(a, "--camera") && (!strcmp(v, "scene") || !strcmp(v, "orbit"))) o.orbit = !strcmp(v, "orbit");
         else if (!strcmp(a, "--sizes")) parse_list(v, a, &o.sizes[0][0], MAX_SIZES, &o.size_count, true);
         else if (!strcmp(a, "--tile-sizes")) parse_list(v, a, o.tile_sizes, MAX_TILE_SIZES, &o.tile_size_count, false);
@@ -170,7 +179,7 @@ static options parse(int argc, char **argv)
                 p += n + (p[n] == ',');
             }
         } else die(a, "unknown option or value (--out DIR, --sizes WxH,..., --step S, --scenes a,b, "
-                      "--camera scene|orbit, --tile-sizes N,...)");
+                      "--camera scene|orbit, --tile-sizes N,..., --quality LEVEL)");
     }
     return o;
 }
@@ -186,7 +195,7 @@ int main(int argc, char **argv)
     FILE *csv = fopen(path, "w");
     if (!csv) die(path, "cannot write");
     fprintf(csv, "scene,width,height,divisor,t,mode,shader,variant,fragments,composite_tiles,composite_pixels,rects,"
-                 "particles\n");
+                 "particles,refined\n");
     for (int s = 0; s < opt.scene_count; s++)
         for (int k = 0; k < opt.size_count; k++) scene_at_size(&opt, opt.scenes[s], opt.sizes[k][0], opt.sizes[k][1], csv);
     fclose(csv);
