@@ -6,6 +6,14 @@
 #include <string.h>
 #include "render/render.h"
 
+/* Mixed resolution's refined particles in the composite (refine.c made them; the test is
+ * sbfx_refine_used's, here so that the passes do not call back into refine.c, which calls them). */
+static bool refined(const sbfx *fx)
+{
+    return fx->gl->refine.framebuffer != 0 && fx->gl->refine_mark_program != 0 &&
+           fx->scene->desc.upsample == SBFX_UPSAMPLE_MIXED;
+}
+
 /* Heat shimmer in the composite: heat particles and a float target to hold their offsets. */
 static bool shimmer(const sbfx *fx) { return fx->scene->plan.distortion && fx->gl->particles.texture[1]; }
 
@@ -144,7 +152,7 @@ void sbfx_pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
     glUniform1f(u->near_over_far, fp->near / fp->particles_far);
     glUniform3f(u->tone_curve, (float)fx->scene->tone_curve.knee, (float)fx->scene->tone_curve.steepness,
                 (float)fx->scene->tone_curve.inverse_log_white);
-    if (sbfx_refine_used(fx)) {
+    if (refined(fx)) {
         sbfx_bind_texture(SBFX_UNIT_REFINED, GL_TEXTURE_2D, gl->refine.texture[0], 0);
         glUniform1i(u->refined, SBFX_UNIT_REFINED);
     }
