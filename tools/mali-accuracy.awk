@@ -12,6 +12,12 @@
 # per frame in ms on a G610 MP4 at 1 GHz (cores, mhz) and a G52 MP2 at 800 MHz (g52_cores,
 # g52_mhz): fragments x cycles / (cores x clock). An estimate of shader throughput only: no
 # bandwidth, blending, tiling or vertex work.
+# Mixed resolution (upsample "mixed"): its mark (refine_mark.frag) is a fourth part, "refine"; the
+# particles it shades again are in the particle part (fragments.csv counts them with the coarse
+# ones), its full-resolution depth in the depth part. Last, where mali-bench.csv has the v3d
+# shims' rows: the whole frame (the four parts) in ms on a Raspberry Pi 4 (V3D 4.2, 8 QPUs at
+# 500 MHz) and 5 (V3D 7.1, 16 QPUs at 960 MHz), a V3D row's cycles being one QPU's per fragment
+# (tools/shader-stats.awk; docs/gpus.md, "V3D"); the downsample's loop counted divisor^2 times.
 BEGIN { if (g52_cores == "") g52_cores = 2; if (g52_mhz == "") g52_mhz = 800 }
 FNR == 1 { file++; if (file == 3) header(); next }
 file == 1 && $6 == "fragment" { cycles[$1 SUBSEP $4 SUBSEP $5] = $8; texture[$1 SUBSEP $4 SUBSEP $5] = $10; gpus[$1] = 1; next }
@@ -21,12 +27,13 @@ file == 2 {
     if (part == "") next
     frags[part, key] += $11
     fetches = $9 == "depth_downsample.frag" ? 1 / ($2 * $2) : 0 # divisor^2 (scale = 1 / divisor)
-    n = split("g52 g57 g610", list, " ")
+    n = split("g52 g57 g610 rpi4 rpi5", list, " ")
     for (i = 1; i <= n; i++) {
         g = list[i]
         c = cycles[g SUBSEP $9 SUBSEP $10]
         if (c == "") { missing[key, g] = 1; continue }
         if (texture[g SUBSEP $9 SUBSEP $10] * fetches > c) c = texture[g SUBSEP $9 SUBSEP $10] * fetches
+        if (g ~ /^rpi/ && fetches > 0) c *= fetches
         work[part, key, g] += $11 * c
     }
     next
@@ -45,17 +52,27 @@ file == 3 {
     if (!usable(key, "g610")) printf ",,"
     else printf ",%.3f,%.3f", ms("particle", key, "g610", cores, mhz), ms("composite", key, "g610", cores, mhz)
     printf ",%.0f", frags["depth", key]
-    if (!usable(key, "g52") || !usable(key, "g610")) { printf ",,,,,,\n"; next }
+    if (!usable(key, "g52") || !usable(key, "g610")) { printf ",,,,,,,,,,,\n"; next }
     printf ",%.3f,%.3f,%.3f", per_fragment("depth", key, "g52"), per_fragment("depth", key, "g610"),
         ms("depth", key, "g610", cores, mhz)
-    printf ",%.3f,%.3f,%.3f\n", ms("particle", key, "g52", g52_cores, g52_mhz),
+    printf ",%.3f,%.3f,%.3f", ms("particle", key, "g52", g52_cores, g52_mhz),
         ms("composite", key, "g52", g52_cores, g52_mhz), ms("depth", key, "g52", g52_cores, g52_mhz)
+    printf ",%.0f,%.3f,%.3f", frags["refine", key], ms("refine", key, "g52", g52_cores, g52_mhz),
+        ms("refine", key, "g610", cores, mhz)
+    printf ",%s,%s\n", frame_ms(key, "rpi4", 8, 500), frame_ms(key, "rpi5", 16, 960)
 }
 function part_of(shader) {
     if (shader == "particle.frag") return "particle"
     if (shader == "composite.frag") return "composite"
     if (shader == "depth_downsample.frag" || shader == "low_corners.frag") return "depth"
+    if (shader == "refine_mark.frag") return "refine"
     return ""
+}
+# the whole frame's four parts on a V3D board (QPUs x MHz), or empty without its rows
+function frame_ms(key, g, qpus, clock) {
+    if (!usable(key, g)) return ""
+    return sprintf("%.3f", ms("particle", key, g, qpus, clock) + ms("composite", key, g, qpus, clock) +
+                   ms("depth", key, g, qpus, clock) + ms("refine", key, g, qpus, clock))
 }
 function usable(key, g) { return !((key, g) in missing) && (g in gpus) }
 function per_fragment(part, key, g) { return frags[part, key] > 0 ? work[part, key, g] / frags[part, key] : 0 }
@@ -65,5 +82,5 @@ function header() {
           "g52_particle_cycles,g52_composite_cycles,g57_particle_cycles,g57_composite_cycles," \
           "g610_particle_cycles,g610_composite_cycles,g610_particle_ms,g610_composite_ms," \
           "depth_fragments,g52_depth_cycles,g610_depth_cycles,g610_depth_ms," \
-          "g52_particle_ms,g52_composite_ms,g52_depth_ms"
+          "g52_particle_ms,g52_composite_ms,g52_depth_ms,refine_fragments,g52_refine_ms,g610_refine_ms,rpi4_ms,rpi5_ms"
 }

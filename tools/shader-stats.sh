@@ -56,7 +56,7 @@ for gpu in $gpus; do
             set -- "$play" --scene "$scene" --frames 3 --size 320x180 $quality --out "$logs/frames"
         fi
         # shellcheck disable=SC2046 # the shim's KEY=VALUE lines
-        if ! env $(tools/mesa-shim.sh env "$gpu") SBFX_SHADER_LOG=1 BIFROST_MESA_DEBUG=shaderdb V3D_DEBUG=shaderdb \
+        if ! env $(tools/mesa-shim.sh env "$gpu") SBFX_SHADER_LOG=1 BIFROST_MESA_DEBUG=shaderdb V3D_DEBUG=shaderdb,precompile \
             mesa_glthread=false "$@" >"$log" 2>&1; then
             echo "shader-stats: sbfx-play failed on $gpu with $scene (see $log)" >&2
             exit 1

@@ -36,7 +36,7 @@ rm -f "$OUT/accuracy-mali.csv" "$OUT/mali-points.dat" "$OUT/mali.csv" "$OUT/mali
 if tools/mesa-shim.sh version >/dev/null 2>&1; then
     tools/shader-stats.sh -b "$BUILD" -g "g52 g57 g610 rpi4 rpi5" "$OUT/mali.csv"
     tools/mali-table.sh "$OUT/mali.csv" g52 g610 >"$OUT/mali.md"
-    tools/shader-stats.sh -b "$BUILD" -B "$OUT/mali-bench.csv"
+    tools/shader-stats.sh -b "$BUILD" -g "g52 g57 g610 rpi4 rpi5" -B "$OUT/mali-bench.csv"
     awk -F, -v cores="$MALI_CORES" -v mhz="$MALI_MHZ" -f tools/mali-accuracy.awk "$OUT/mali-bench.csv" \
         "$OUT/fragments.csv" "$OUT/accuracy.csv" >"$OUT/accuracy-mali.csv"
     # ms on a G610 (particle + composite), mean error, label (the main grid's points only)
