@@ -775,7 +775,7 @@ static void write_refined(const bench *b)
 
 /* points.dat: every configuration but the floor; pareto.dat: the front, by time. Columns:
  * ms, mean abs error, label, group (0 = main grid, 1 = variant), opacity mode (1 planar ..
- * 4 exact), divisor, upsampling (0 nearest-depth, 1 bilinear). */
+ * 4 exact), divisor, upsampling (0 nearest-depth, 1 bilinear, 2 mixed). */
 static void write_plot_data(const bench *b)
 {
     FILE *points = open_out(b, "points.dat"), *front = open_out(b, "pareto.dat");
@@ -786,7 +786,8 @@ static void write_plot_data(const bench *b)
         char label[64];
         short_label(r, label, sizeof(label));
         fprintf(points, "%.4f %.5f \"%s\" %d %d %d %d\n", r->ms, bench_error_mean(&r->err), label,
-                is_grid_point(r) ? 0 : 1, (int)r->c.opacity, r->c.divisor, r->c.upsample == SBFX_UPSAMPLE_BILINEAR);
+                is_grid_point(r) ? 0 : 1, (int)r->c.opacity, r->c.divisor,
+                r->c.upsample == SBFX_UPSAMPLE_BILINEAR ? 1 : r->c.upsample == SBFX_UPSAMPLE_MIXED ? 2 : 0);
         if (r->pareto) order[n++] = i;
     }
     for (int i = 1; i < n; i++) /* insertion sort by time */
