@@ -11,7 +11,12 @@
  * which tools/boards-table.sh prices with Mesa's Mali estimates (mali.csv, tools/shader-stats.sh).
  *   bench_boards [--out DIR] [--sizes WxH[,WxH...]] [--step SECONDS] [--scenes a,b] [--camera scene|orbit]
  *                [--tile-sizes N[,N...]] [--quality LEVEL]
- * --quality LEVEL renders every scene at that level (e.g. exact/4/mx) instead of its own.
+ * --quality LEVEL renders every scene at that level (e.g. exact/4/mx) instead of its own;
+ * --quality mixed, at its own level with mixed resolution's upsampling.
+ * --error also renders each frame at its level and at full resolution in RGBA32F (the level's
+ * other choices kept) over the test scene and writes OUT/errors.csv:
+ *   scene,width,height,t,quality,pixels,mean_abs_err
+ * (mean |difference| in 8-bit levels over the pixels either image changes).
  * --camera orbit: the accuracy bench's camera (test_scene_orbit_camera, 8.5 m from the blast)
  * instead of each scene's own.
  * --tile-sizes renders the tiled frame once per tile size (mode "tilesN"; the default size only:
@@ -40,6 +45,7 @@ typedef struct options {
     int tile_sizes[MAX_TILE_SIZES], tile_size_count;
     double step;
     bool orbit;   /* --camera orbit: the accuracy bench's orbit camera, not the scene's */
+    bool error;          /* --error: OUT/errors.csv, each frame against its own full resolution */
     const char *quality; /* --quality LEVEL: every scene at that level (sbfx_set_quality), not its own */
     char scenes[MAX_SCENES][64];
     int scene_count;
@@ -83,9 +89,54 @@ static void render_counted(sbfx *fx, const sbfx_frame *frame, const char *mode, 
     }
 }
 
+/* --error: the frame at the module's level against the same frame at full resolution in RGBA32F
+ * (the level's other choices kept), over the test scene: mean |difference| in 8-bit levels over
+ * the pixels either changes (the bare scene's differ), a row of OUT/errors.csv. */
+typedef struct error_pass {
+    uint8_t *bare, *level, *full;
+    FILE *csv;
+} error_pass;
+
+static void render_into(sbfx *fx, const sbfx_frame *frame, const bench_target *out, GLuint scene_fbo, uint8_t *rgba)
+{
+    bench_target_fill_from(out, scene_fbo);
+    if (rgba && sbfx_render(fx, frame) != SBFX_OK) die("sbfx_render", sbfx_last_error(fx));
+    bench_read_rgba8(out->fbo, out->width, out->height, rgba);
+}
+
+static void frame_error(sbfx *fx, const sbfx_frame *frame, const bench_target *out, GLuint scene_fbo,
+                        error_pass *e, const char *scene, double t)
+{
+    sbfx_quality level, full;
+    sbfx_get_quality(fx, &level);
+    full = level;
+    full.target_divisor = 1;
+    full.target_format = SBFX_FORMAT_RGBA32F;
+    full.upsample = SBFX_UPSAMPLE_NEAREST_DEPTH;
+    full.lod_particles = 0;
+    bench_target_fill_from(out, scene_fbo);
+    bench_read_rgba8(out->fbo, out->width, out->height, e->bare);
+    render_into(fx, frame, out, scene_fbo, e->level);
+    if (sbfx_set_quality(fx, &full) != SBFX_OK) die("full resolution", sbfx_last_error(fx));
+    render_into(fx, frame, out, scene_fbo, e->full);
+    if (sbfx_set_quality(fx, &level) != SBFX_OK) die("back to the level", sbfx_last_error(fx));
+    double sum = 0.0;
+    long covered = 0;
+    for (long i = 0; i < (long)out->width * out->height; i++) {
+        const uint8_t *a = &e->level[4 * i], *b = &e->full[4 * i], *s = &e->bare[4 * i];
+        if (a[0] == s[0] && a[1] == s[1] && a[2] == s[2] && b[0] == s[0] && b[1] == s[1] && b[2] == s[2]) continue;
+        sum += (abs(a[0] - b[0]) + abs(a[1] - b[1]) + abs(a[2] - b[2])) / 3.0;
+        covered++;
+    }
+    char name[64];
+    sbfx_quality_name(&level, name, sizeof(name));
+    fprintf(e->csv, "%s,%d,%d,%.3f,%s,%ld,%.4f\n", scene, out->width, out->height, t, name, covered,
+            covered ? sum / covered : 0.0);
+}
+
 /* The scene over its life at one size: a frame every opt->step seconds until its last particle
  * died (the timeline's last trigger past), both ways. */
-static void scene_at_size(const options *opt, const char *name, int w, int h, FILE *csv)
+static void scene_at_size(const options *opt, const char *name, int w, int h, FILE *csv, FILE *errors)
 {
     char path[256], err[512];
     snprintf(path, sizeof(path), "scenes/%s.cfg", name);
@@ -101,7 +152,11 @@ static void scene_at_size(const options *opt, const char *name, int w, int h, FI
     if (sbfx_create(&(sbfx_desc){.scene = scene, .log = log_line}, &fx) != SBFX_OK) die(path, "sbfx_create failed");
     if (opt->quality) {
         sbfx_quality q;
-        if (sbfx_quality_parse(opt->quality, &q, err, sizeof(err)) != SBFX_OK) die("--quality", err);
+        if (!strcmp(opt->quality, "mixed")) { /* the scene's own level, refined */
+            sbfx_get_quality(fx, &q);
+            q.upsample = SBFX_UPSAMPLE_MIXED;
+        } else if (sbfx_quality_parse(opt->quality, &q, err, sizeof(err)) != SBFX_OK)
+            die("--quality", err);
         if (sbfx_set_quality(fx, &q) != SBFX_OK) die("--quality", sbfx_last_error(fx));
     }
     double last_trigger = 0.0;
@@ -127,6 +182,12 @@ static void scene_at_size(const options *opt, const char *name, int w, int h, FI
             if (opt->tile_sizes[k] > 0) snprintf(mode, sizeof(mode), "tiles%d", opt->tile_sizes[k]);
             fx->render->tiles.size_wanted = opt->tile_sizes[k];
             render_counted(fx, &frame, mode, csv, name, t);
+        }
+        if (errors) {
+            error_pass e = {malloc((size_t)w * h * 4), malloc((size_t)w * h * 4), malloc((size_t)w * h * 4), errors};
+            if (!e.bare || !e.level || !e.full) die("--error", "out of memory");
+            frame_error(fx, &frame, &out, host.framebuffer, &e, name, t);
+            free(e.bare), free(e.level), free(e.full);
         }
         frames++;
     }
@@ -163,6 +224,10 @@ static options parse(int argc, char **argv)
     for (size_t i = 0; i < sizeof(all) / sizeof(all[0]); i++) snprintf(o.scenes[o.scene_count++], 64, "%s", all[i]);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--error")) { /* the one option without a value */
+            o.error = true;
+            continue;
+        }
         if (!v) die(a, "needs a value");
         i++;
         if (!strcmp(a, "--out")) o.out = v;
@@ -179,7 +244,7 @@ static options parse(int argc, char **argv)
                 p += n + (p[n] == ',');
             }
         } else die(a, "unknown option or value (--out DIR, --sizes WxH,..., --step S, --scenes a,b, "
-                      "--camera scene|orbit, --tile-sizes N,..., --quality LEVEL)");
+                      "--camera scene|orbit, --tile-sizes N,..., --quality LEVEL, --error)");
     }
     return o;
 }
@@ -196,9 +261,17 @@ int main(int argc, char **argv)
     if (!csv) die(path, "cannot write");
     fprintf(csv, "scene,width,height,divisor,t,mode,shader,variant,fragments,composite_tiles,composite_pixels,rects,"
                  "particles,refined\n");
+    FILE *errors = NULL;
+    if (opt.error) {
+        snprintf(path, sizeof(path), "%s/errors.csv", opt.out);
+        if (!(errors = fopen(path, "w"))) die(path, "cannot write");
+        fprintf(errors, "scene,width,height,t,quality,pixels,mean_abs_err\n");
+    }
     for (int s = 0; s < opt.scene_count; s++)
-        for (int k = 0; k < opt.size_count; k++) scene_at_size(&opt, opt.scenes[s], opt.sizes[k][0], opt.sizes[k][1], csv);
+        for (int k = 0; k < opt.size_count; k++)
+            scene_at_size(&opt, opt.scenes[s], opt.sizes[k][0], opt.sizes[k][1], csv, errors);
     fclose(csv);
+    if (errors) fclose(errors);
     bench_fragments_destroy();
     egl_headless_close(&egl);
     printf("bench_boards: %s\n", path);
