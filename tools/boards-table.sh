@@ -3,7 +3,7 @@
 # fragments every program of sbfx shades, frame by frame over each example scene's life, with the
 # particles' tiles and as before them: tests/bench/boards/bench_boards.c) priced with Mesa's static
 # Mali estimates of the same programs (mali.csv: tools/shader-stats.sh over the example scenes).
-#   tools/boards-table.sh BOARDS_CSV MALI_CSV > table.md
+#   tools/boards-table.sh BOARDS_CSV MALI_CSV [ERRORS_CSV] > table.md
 # Per frame and board: sum over programs of fragments x cycles per fragment / (cores x clock);
 # the depth downsample's block is a loop Mesa counts once: its divisor^2 fetches bound it (the
 # block unrolled at divisor 4 is texture-bound at exactly that on both GPUs: docs/gpus.md).
@@ -19,8 +19,11 @@
 # worst frame on the G52 (after) pass by pass: the depth passes (downsample, low-res corners), the
 # particles per medium (fire, heat, the scattering media), mixed resolution's refinement (its mark
 # and the particles it shades again: boards.csv's refined column), the composite, the post chain.
+# With ERRORS_CSV (bench_boards --error), a last table: each scene's error against its own
+# full-resolution RGBA32F render (mean |difference| in 8-bit levels over the pixels either image
+# changes), the mean over its life and the worst frame.
 set -eu
-[ $# -eq 2 ] || { echo "usage: $0 BOARDS_CSV MALI_CSV" >&2; exit 2; }
+[ $# -eq 2 ] || [ $# -eq 3 ] || { echo "usage: $0 BOARDS_CSV MALI_CSV [ERRORS_CSV]" >&2; exit 2; }
 [ -r "$1" ] || { echo "boards-table: $1 is missing (make bench)" >&2; exit 1; }
 [ -r "$2" ] || { echo "boards-table: $2 is missing (tools/shader-stats.sh)" >&2; exit 1; }
 awk -F, '
@@ -148,3 +151,17 @@ END {
         printf "| %s | %s | %s | %.0f %% |\n", sk[1], sk[2], (p > 0 ? sprintf("%.3f", d / p) : "–"), 100 * share / count
     }
 }' "$2" "$1"
+if [ $# -eq 3 ]; then
+    [ -r "$3" ] || { echo "boards-table: $3 is missing (bench_boards --error)" >&2; exit 1; }
+    awk -F, 'NR > 1 {
+        k = $1 " | " $2 "x" $3 " | `" $5 "`"
+        if (!(k in n)) order[++m] = k
+        n[k]++; sum[k] += $7; if ($7 > worst[k]) worst[k] = $7
+    }
+    END {
+        print ""
+        print "| scene | output | level | error against its own full resolution, RGBA32F: mean over the life / worst frame (8-bit levels) |"
+        print "| --- | --- | --- | ---: |"
+        for (i = 1; i <= m; i++) printf "| %s | %.2f / %.2f |\n", order[i], sum[order[i]] / n[order[i]], worst[order[i]]
+    }' "$3"
+fi
