@@ -211,4 +211,39 @@ CHECK_TEST(the_fire_silhouette_against_the_sky_is_refined)
     fixture_close(&f);
 }
 
+/* A rung of the governor's ladder like any other: a budget nothing meets starts on the mixed
+ * level (the top) and walks down, off it, to the ladder's last rung. */
+CHECK_TEST(the_governor_walks_down_from_a_mixed_rung)
+{
+    gl_fixture f;
+    fixture_open(&f, W, H);
+    if (!fixture_has_extension("GL_EXT_color_buffer_half_float") && !fixture_has_extension("GL_EXT_color_buffer_float"))
+        CHECK_SKIP("mixed resolution needs a colour-renderable RGBA16F target");
+    fixture_projection(&f, 1.0f, 0.1f, 1000.0f);
+    depth_layout layout = {INFINITY, BAR_DISTANCE};
+    fixture_depth(&f, layout_distance, &layout);
+    static const char *const ladder[] = {"exact/4/mx", "exact/4/nd", "exact/8/bl"};
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.target_divisor = 4, .upsample = SBFX_UPSAMPLE_MIXED,
+                                              .ignore_timeline = true, .frame_budget_ms = 0.001f,
+                                              .ladder = ladder, .ladder_count = 3});
+    CHECK(sbfx_trigger(fx, "explosion", (const float[3]){0.0f, 0.0f, (float)-CLOUD_DISTANCE}) == SBFX_OK, "%s",
+          sbfx_last_error(fx));
+    sbfx_counters c;
+    sbfx_stats(fx, &c);
+    CHECK(strcmp(c.quality, "exact/4/mx") == 0, "the top: %s", c.quality);
+    for (int i = 0; i < 40; i++) {
+        CHECK(sbfx_update(fx, 1.0 / 30.0) == SBFX_OK);
+        clear_output(&f);
+        CHECK(sbfx_render(fx, &f.frame) == SBFX_OK, "%s", sbfx_last_error(fx));
+        sbfx_report_frame_time(fx, 5.0); /* where the module has no timer of its own */
+        glFinish();
+    }
+    sbfx_stats(fx, &c);
+    printf("# budget 0.001 ms from exact/4/mx: level %s after 40 frames, %d changes\n", c.quality, c.quality_changes);
+    CHECK(strcmp(c.quality, "exact/8/bl") == 0 && c.quality_changes >= 1, "level %s, %d changes", c.quality,
+          c.quality_changes);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
 int main(int argc, char **argv) { return check_main_args(argc, argv); }
