@@ -7,6 +7,7 @@
 // inverse_distance is), so the block's closest surface is its largest (or, where a smaller
 // window depth is closer, smallest) window depth, converted once: the same value as the largest
 // of the converted ones, for one comparison per texel instead of a conversion.
+//   SINGLE_TEXEL  divisor 1: the texel is the pixel (no block, no loop)
 precision highp float;
 precision highp sampler2D;
 
@@ -26,6 +27,11 @@ float inverse_distance(float d)
 
 void main()
 {
+#ifdef SINGLE_TEXEL
+    // the output's own resolution (mixed resolution's refinement, src/render/refine.c): one texel
+    gl_FragDepth = inverse_distance(texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r);
+    return;
+#endif
     ivec2 base = ivec2(gl_FragCoord.xy) * u_divisor;
     float closest = -1e30;   // the closest window depth, times u_closer (negating is exact)
     for (int j = 0; j < u_divisor; j++) {

@@ -52,8 +52,9 @@ file == 2 {
         if (c == "") { if (!warned[k]++) printf "boards-table: no %s cycles for %s %s %s\n", gpus[i], scene, $7, $8 > "/dev/stderr"; missing = 1; continue }
         # the downsample'"'"'s block: its divisor^2 fetches bound it (Mesa counts the loop once); V3D
         # counts the loop once too: its body divisor^2 times
-        if ($7 == "depth_downsample.frag" && texture[k] * $4 * $4 > c) c = texture[k] * $4 * $4
-        if ($7 == "depth_downsample.frag" && i > 2) c *= $4 * $4
+        block = $7 == "depth_downsample.frag" && $8 !~ /SINGLE_TEXEL/ # not mixed resolution'"'"'s full-res depth
+        if (block && texture[k] * $4 * $4 > c) c = texture[k] * $4 * $4
+        if (block && i > 2) c *= $4 * $4
         work[gpus[i], frame, mode] += $9 * c
         if (i == 1 && mode == "after") {
             refined = NF >= 14 ? $14 + 0 : 0

@@ -26,7 +26,8 @@ file == 2 {
     part = part_of($9)
     if (part == "") next
     frags[part, key] += $11
-    fetches = $9 == "depth_downsample.frag" ? 1 / ($2 * $2) : 0 # divisor^2 (scale = 1 / divisor)
+    # divisor^2 (scale = 1 / divisor); mixed resolution's full-resolution depth (SINGLE_TEXEL) has no block
+    fetches = $9 == "depth_downsample.frag" && $10 !~ /SINGLE_TEXEL/ ? 1 / ($2 * $2) : 0
     n = split("g52 g57 g610 rpi4 rpi5", list, " ")
     for (i = 1; i <= n; i++) {
         g = list[i]
@@ -71,8 +72,9 @@ function part_of(shader) {
 # the whole frame's four parts on a V3D board (QPUs x MHz), or empty without its rows
 function frame_ms(key, g, qpus, clock) {
     if (!usable(key, g)) return ""
-    return sprintf("%.3f", ms("particle", key, g, qpus, clock) + ms("composite", key, g, qpus, clock) +
-                   ms("depth", key, g, qpus, clock) + ms("refine", key, g, qpus, clock))
+    t = ms("particle", key, g, qpus, clock) + ms("composite", key, g, qpus, clock)
+    t += ms("depth", key, g, qpus, clock) + ms("refine", key, g, qpus, clock)
+    return sprintf("%.3f", t)
 }
 function usable(key, g) { return !((key, g) in missing) && (g in gpus) }
 function per_fragment(part, key, g) { return frags[part, key] > 0 ? work[part, key, g] / frags[part, key] : 0 }

@@ -59,6 +59,8 @@ typedef struct sbfx_gl {
     GLuint depth_program, corners_program, composite_program;
     GLuint refine_mark_program;  /* mixed resolution: marks the pixels the coarse target fails (refine_mark.frag) */
     sbfx_pass_uniforms refine_mark_u;
+    GLuint refine_depth_program; /* mixed resolution: the depth at full resolution (depth_downsample.frag SINGLE_TEXEL) */
+    sbfx_pass_uniforms refine_depth_u;
     GLuint scene_only_program;   /* the scene outside the particles' tiles (owned scenes: composite.frag SCENE_ONLY) */
     sbfx_pass_uniforms scene_only_u;
     sbfx_program particle[SBFX_MEDIUM_COUNT];

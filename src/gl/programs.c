@@ -159,11 +159,15 @@ static sbfx_result build_corners_program(sbfx *fx)
  * first mixed composite. */
 static sbfx_result build_refine_mark_program(sbfx *fx)
 {
-    if (fx->gl->refine_mark_program) return SBFX_OK;
-    fx->gl->refine_mark_program = sbfx_program_build(fx, "tiles.vert", "refine_mark.frag",
-                                                     fx->gl->corners_program ? "#define LOW_CORNERS\n" : NULL);
-    if (!fx->gl->refine_mark_program) return SBFX_ERR_SHADER;
-    locate_pass_uniforms(fx->gl->refine_mark_program, &fx->gl->refine_mark_u);
+    sbfx_gl *gl = fx->gl;
+    if (gl->refine_mark_program) return SBFX_OK;
+    gl->refine_depth_program = sbfx_program_build(fx, "tiles.vert", "depth_downsample.frag", "#define SINGLE_TEXEL\n");
+    if (!gl->refine_depth_program) return SBFX_ERR_SHADER;
+    locate_pass_uniforms(gl->refine_depth_program, &gl->refine_depth_u);
+    gl->refine_mark_program = sbfx_program_build(fx, "tiles.vert", "refine_mark.frag",
+                                                 gl->corners_program ? "#define LOW_CORNERS\n" : NULL);
+    if (!gl->refine_mark_program) return SBFX_ERR_SHADER;
+    locate_pass_uniforms(gl->refine_mark_program, &gl->refine_mark_u);
     return SBFX_OK;
 }
 
@@ -279,7 +283,8 @@ void sbfx_programs_destroy(sbfx *fx)
         for (int m = 0; m < SBFX_MEDIUM_COUNT; m++)
             sbfx_program_delete(fx, gl->variants[v].particle[m].id);
     for (int u = 0; u < SBFX_UPSAMPLE_COUNT; u++) sbfx_program_delete(fx, gl->composites[u]);
-    GLuint programs[] = {gl->depth_program, gl->corners_program, gl->scene_only_program, gl->refine_mark_program};
+    GLuint programs[] = {gl->depth_program, gl->corners_program, gl->scene_only_program, gl->refine_mark_program,
+                         gl->refine_depth_program};
     for (size_t i = 0; i < ARRAY_SIZE(programs); i++) sbfx_program_delete(fx, programs[i]);
     if (gl->instance_buffer) glDeleteBuffers(1, &gl->instance_buffer);
     GLuint vaos[] = {gl->fullscreen_vao, gl->particle_vao};

@@ -22,7 +22,9 @@ static bool shimmer(const sbfx *fx) { return fx->scene->plan.distortion && fx->g
 void sbfx_pass_depth_into(sbfx *fx, const sbfx_frame *f, const frame_params *fp, const sbfx_rt *target, int divisor)
 {
     sbfx_gl *gl = fx->gl;
-    GLuint prog = gl->depth_program;
+    /* divisor 1 (mixed resolution's full-resolution depth): the one-texel variant */
+    bool single = divisor == 1 && gl->refine_depth_program && target == &gl->refine_depth;
+    GLuint prog = single ? gl->refine_depth_program : gl->depth_program;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target->framebuffer);
     glViewport(0, 0, target->width, target->height);
     glEnable(GL_DEPTH_TEST); /* depth writes need the test on; ALWAYS keeps every fragment */
@@ -30,7 +32,7 @@ void sbfx_pass_depth_into(sbfx *fx, const sbfx_frame *f, const frame_params *fp,
     glDepthMask(GL_TRUE);
     glUseProgram(prog);
     sbfx_bind_texture(0, GL_TEXTURE_2D, f->scene_depth_texture, gl->depth_sampler);
-    const sbfx_pass_uniforms *u = &gl->depth_u;
+    const sbfx_pass_uniforms *u = single ? &gl->refine_depth_u : &gl->depth_u;
     glUniform1i(u->scene_depth, 0);
     glUniform1i(u->divisor, divisor);
     glUniform2i(u->full_size, f->width, f->height);
