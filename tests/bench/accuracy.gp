@@ -25,6 +25,9 @@ set output dir."/accuracy.png"
 set datafile separator whitespace
 set offsets graph 0.03, graph 0.12, 0, 0
 
+# a front's labels alternate above and below their points (neighbours along the front do not
+# print over each other); the offsets are factors, the axes logarithmic
+above(row) = int(row) % 2 == 1
 # mode -> point type and colour; filled = nearest-depth, open = bilinear, asterisk = mixed
 pt_of(m, u) = u == 2 ? 3 : (m == 1 ? 9 : m == 2 ? 13 : m == 3 ? 7 : 5) - u
 lc_of(m) = (m == 1 ? 0x2ca02c : m == 2 ? 0x9467bd : m == 3 ? 0x1f77b4 : 0xff7f0e)
@@ -48,7 +51,8 @@ plot dir."/points.dat" using 1:($4 == 1 ? $2 : 1/0) with points pt 1 ps 1.2 lc r
      for [m=1:4] keyentry with points pt pt_of(m, 0) ps 1.4 lc rgb lc_of(m) \
          title (m == 1 ? "planar" : m == 2 ? "soft" : m == 3 ? "spherical" : "exact")." (filled: nearest-depth, open: bilinear, asterisk: mixed)", \
      dir."/pareto.dat" using 1:2 with linespoints lw 2 pt 4 ps 2.0 lc rgb "#d62728" title "Pareto front", \
-     dir."/pareto.dat" using 1:2:3 with labels offset char 0.8,-0.8 left font ",8" tc rgb "#d62728" notitle
+     dir."/pareto.dat" using ($1 * 1.12):(above($0) ? $2 * 1.22 : $2 / 1.22):3 with labels left font ",8" \
+         tc rgb "#d62728" notitle
 
 set title "planar / soft / spherical, every scale and upsampling (labels: mode/divisor upsampling)"
 unset logscale y
@@ -61,6 +65,9 @@ plot for [m=1:3] dir."/points.dat" using 1:($4 == 0 && $5 == m ? $2 : 1/0):(pt_o
      dir."/pareto.dat" using 1:($2 >= cluster_lo && $2 <= cluster_hi ? $2 : 1/0):3 with labels \
          offset char 0.8,-0.8 left font ",8" tc rgb "#d62728" notitle
 
+# the n-th point of the G52's front (mali-points.dat is sorted by time): counts as it is read
+front_n = 0
+front_row(on) = on == 1 ? (front_n = front_n + 1) : front_n
 if (mali) {
     set title "Mali-G52 MP2 at 800 MHz, 1920x1080 (Mesa's static estimate): sbfx's whole frame"
     set xlabel "estimated ms per frame on a G52 MP2 (fragments counted at 960x540 x 4, x cycles per fragment)"
@@ -70,6 +77,7 @@ if (mali) {
     set key below box font ",9"
     plot dir."/mali-points.dat" using 1:2 with points pt 7 ps 1.2 lc rgb "#1f77b4" title "configuration", \
          dir."/mali-points.dat" using 1:($4 == 1 ? $2 : 1/0) with linespoints lw 2 pt 4 ps 2.0 lc rgb "#d62728" title "Pareto front (G52)", \
-         dir."/mali-points.dat" using 1:($4 == 1 ? $2 : 1/0):3 with labels offset char 0.8,-0.8 left font ",8" tc rgb "#d62728" notitle
+         dir."/mali-points.dat" using ($1 * 1.06):($4 == 1 ? (above(front_row($4)) ? $2 * 1.15 : $2 / 1.15) : 1/0):3 \
+             with labels left font ",8" tc rgb "#d62728" notitle
 }
 unset multiplot
