@@ -160,11 +160,22 @@ if [ -x "$BUILD/bench/bench_boards" ]; then
     cp "$OUT/boards.csv" "$OUT/boards-scenes.csv"
     "$BUILD/bench/bench_boards" --out "$OUT" --scenes explosion --camera orbit
     mv "$OUT/boards.csv" "$OUT/boards-orbit.csv"
+    # issue 43: each scene's error against its own full-resolution RGBA32F render (errors.csv), and
+    # the scenes with mixed resolution (boards-mixed.csv, errors-mixed.csv), at 1280x720
+    mkdir -p "$OUT/boards-mixed"
+    "$BUILD/bench/bench_boards" --out "$OUT/boards-mixed" --sizes 1280x720 --step 0.5 --error
+    mv "$OUT/boards-mixed/errors.csv" "$OUT/errors.csv"
+    "$BUILD/bench/bench_boards" --out "$OUT/boards-mixed" --sizes 1280x720 --step 0.5 --quality mixed --error
+    mv "$OUT/boards-mixed/boards.csv" "$OUT/boards-mixed.csv"
+    mv "$OUT/boards-mixed/errors.csv" "$OUT/errors-mixed.csv"
     mv "$OUT/boards-scenes.csv" "$OUT/boards.csv"
     if [ -r "$OUT/mali.csv" ]; then
-        { tools/boards-table.sh "$OUT/boards.csv" "$OUT/mali.csv"
+        tools/shader-stats.sh -b "$BUILD" -g "g52 g610 rpi4 rpi5" -q "--upsample mixed" "$OUT/mali-mixed.csv"
+        { tools/boards-table.sh "$OUT/boards.csv" "$OUT/mali.csv" "$OUT/errors.csv"
           echo; echo "The explosion from the accuracy bench's orbit camera:"; echo
-          tools/boards-table.sh "$OUT/boards-orbit.csv" "$OUT/mali.csv"; } >"$OUT/boards.md"
+          tools/boards-table.sh "$OUT/boards-orbit.csv" "$OUT/mali.csv"
+          echo; echo "Every scene at its own level with mixed resolution (upsample = \"mixed\"), 1280x720:"; echo
+          tools/boards-table.sh "$OUT/boards-mixed.csv" "$OUT/mali-mixed.csv" "$OUT/errors-mixed.csv"; } >"$OUT/boards.md"
         echo "boards    : $OUT/boards.md (the boards' frame, docs/gpus.md)" >>"$OUT/summary.txt"
     else
         echo "boards    : $OUT/boards.csv counted; no Mali prices without the drm-shims (make mesa-shim)" >>"$OUT/summary.txt"
