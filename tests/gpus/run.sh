@@ -5,7 +5,8 @@
 # drivers compile and link every shader sbfx builds; nothing is drawn (the shims execute no
 # command stream), so this checks compilation, not pictures.
 # Each scene runs at its own quality and at a second level that compiles the other variants
-# (spherical opacity, bilinear upsampling, per-channel tone map, RGBA8 target). A run passes when
+# (spherical opacity, bilinear upsampling, per-channel tone map, RGBA8 target), and three scenes
+# with mixed resolution (issue 43: its own programs). A run passes when
 # every program links, or when sbfx refuses at create with a message naming what the GPU lacks
 # (no GLES 3.0, a missing format); a shader compile or link error is a failure. The etnaviv
 # driver of Mesa 25 offers no OpenGL ES 3.0 context on a GC7000L: there the check is that the
@@ -72,6 +73,11 @@ for gpu in $gpus; do
     for scene in scenes/*.cfg; do
         run_one "$gpu" "$scene" default
         run_one "$gpu" "$scene" other --opacity spherical --upsample bilinear --tone-map per-channel --format rgba8
+    done
+    # mixed resolution's programs (the mark, the one-texel depth, the refined composite): a scene
+    # over the host's picture, one with post effects (its own scene), one at a 1/2 target
+    for scene in scenes/explosion.cfg scenes/post.cfg scenes/campfire.cfg; do
+        run_one "$gpu" "$scene" mixed --upsample mixed
     done
 done
 echo "$pass passed, $fail failed"
