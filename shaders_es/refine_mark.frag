@@ -8,9 +8,10 @@
 //   - the coarse image changes sharply across them: transmittance, or the light as the display
 //     roughly sees it (v / (1 + v)), differs by more than u_contrast between the four texels
 //     (the silhouettes of dense, bright fire; soft smoke stays coarse).
-// A marked pixel writes depth 0 (the refinement's depth test passes there only) and the
-// refinement's start (no light, transmittance 1); the others are discarded (the target's clear,
-// alpha -1, tells the composite to upsample there).
+// A marked pixel writes depth 1 (the refinement's GL_LESS passes there only: the particles'
+// window depth is 0.5 or 0, refine.c) and the refinement's start (no light, transmittance 1);
+// the others are discarded (the target's clear, depth 0 and alpha -1, tells the composite to
+// upsample there).
 precision highp float;
 precision highp sampler2D;
 
@@ -74,6 +75,6 @@ void main()
     if (!(hi.x > 0.0 || lo.y < 1.0)) discard;
     mediump vec2 change = hi - lo;
     if (!(max(change.x, change.y) > u_contrast) && !depth_edge(base, uv, t)) discard;
-    gl_FragDepth = 0.0;
+    gl_FragDepth = 1.0;
     o_color = vec4(0.0, 0.0, 0.0, 1.0);
 }

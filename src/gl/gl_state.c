@@ -6,8 +6,8 @@
  *
  * Every glGet* and glIs* call made here is counted (sbfx_counters.gl_state_queries for a render):
  * some drivers serialise on them (Mesa's glthread syncs its worker thread), so the set is kept
- * to what sbfx really changes — no clear values, depth range, polygon offset or dither, which
- * no pass of sbfx touches — and only the texture units the frame binds are queried. */
+ * to what sbfx really changes — no clear values, polygon offset or dither, which no pass of
+ * sbfx touches, and the depth range on ES only for mixed resolution's refinement — and only the texture units the frame binds are queried. */
 #define _GNU_SOURCE /* RTLD_DEFAULT */
 #include <dlfcn.h>
 #include "gl/gl.h"
@@ -107,13 +107,20 @@ static polygon_mode_fn polygon_mode_function(void)
     return fn;
 }
 
-static void save_desktop(sbfx_gl_state *s)
+/* Desktop OpenGL clamps gl_FragDepth to the depth range on float depth buffers (ES to [0, 1]):
+ * the depth pass writes the host's depth through it. The mixed-resolution refinement's mask
+ * compares the particles' window depth, which the depth range places (on ES as well). */
+static bool depth_range_saved(unsigned parts) { return parts & (SBFX_GL_SAVE_DESKTOP | SBFX_GL_SAVE_DEPTH_RANGE); }
+
+static void save_depth_range(sbfx_gl_state *s)
 {
-    /* desktop OpenGL clamps gl_FragDepth to the depth range on float depth buffers (ES to
-     * [0, 1]): the depth pass writes the host's depth through it */
     s->queries++;
     glGetFloatv(GL_DEPTH_RANGE, s->depth_range);
     glDepthRangef(0.0f, 1.0f);
+}
+
+static void save_desktop(sbfx_gl_state *s)
+{
     get_int(s, GL_POLYGON_MODE_CODE, s->polygon_mode);
     s->logic_op = is_enabled(s, GL_COLOR_LOGIC_OP_CODE);
     s->depth_clamp = is_enabled(s, GL_DEPTH_CLAMP_CODE);
@@ -134,7 +141,6 @@ static void save_desktop(sbfx_gl_state *s)
 
 static void restore_desktop(const sbfx_gl_state *s)
 {
-    glDepthRangef(s->depth_range[0], s->depth_range[1]);
     set_enabled(GL_COLOR_LOGIC_OP_CODE, s->logic_op);
     set_enabled(GL_DEPTH_CLAMP_CODE, s->depth_clamp);
     set_enabled(GL_POLYGON_SMOOTH_CODE, s->polygon_smooth);
@@ -233,6 +239,7 @@ void sbfx_gl_state_save(sbfx_gl_state *s, unsigned parts, const sbfx_gl_units *u
         save_pass(s);
         begin_pass();
         if (parts & SBFX_GL_SAVE_DESKTOP) save_desktop(s);
+        if (depth_range_saved(parts)) save_depth_range(s);
     }
     if (parts & SBFX_GL_SAVE_UNPACK) {
         save_pixel_store(s, unpack_names, GL_PIXEL_UNPACK_BUFFER_BINDING, s->unpack, &s->unpack_buffer);
@@ -256,6 +263,7 @@ int sbfx_gl_state_restore(sbfx_gl_state *s)
     if (s->parts & SBFX_GL_SAVE_UNPACK) set_pixel_store(unpack_names, GL_PIXEL_UNPACK_BUFFER, s->unpack, s->unpack_buffer);
     if (s->parts & SBFX_GL_SAVE_PASS) restore_pass(s);
     if ((s->parts & SBFX_GL_SAVE_PASS) && (s->parts & SBFX_GL_SAVE_DESKTOP)) restore_desktop(s);
+    if ((s->parts & SBFX_GL_SAVE_PASS) && depth_range_saved(s->parts)) glDepthRangef(s->depth_range[0], s->depth_range[1]);
     if (s->parts & (SBFX_GL_SAVE_PASS | SBFX_GL_SAVE_OBJECTS)) restore_objects(s);
     return s->queries;
 }

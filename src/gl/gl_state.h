@@ -24,6 +24,9 @@ enum {
      * compatibility profile's alpha test */
     SBFX_GL_SAVE_DESKTOP = 1 << 4,
     SBFX_GL_SAVE_COMPAT = 1 << 5,
+    /* with SBFX_GL_SAVE_PASS on ES too: the depth range, set to [0, 1] — the mixed-resolution
+     * refinement's depth mask compares the particles' window depth (render/refine.c) */
+    SBFX_GL_SAVE_DEPTH_RANGE = 1 << 6,
 };
 /* Bit u: sbfx binds that target on texture unit u (the active texture and each such unit's
  * sampler binding are saved with them). Textures are created on unit 0. */

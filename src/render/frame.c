@@ -86,11 +86,19 @@ static sbfx_gl_units frame_units(const sbfx *fx, int count, bool scene_color)
     return units;
 }
 
+/* What the frame's block saves: the pass state, desktop OpenGL's own, and where mixed
+ * resolution's refinement may run, the depth range (its mask compares window depths). */
+static unsigned frame_parts(const sbfx *fx, int count)
+{
+    bool mixed = count > 0 && fx->gl->refine_mark_program && fx->scene->desc.upsample == SBFX_UPSAMPLE_MIXED;
+    return SBFX_GL_SAVE_PASS | fx->gl->context.parts | (mixed ? SBFX_GL_SAVE_DEPTH_RANGE : 0u);
+}
+
 sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_depth_model *depth, int count)
 {
     sbfx_gl_units units = frame_units(fx, count, frame->scene_color_texture != 0);
     sbfx_gl_state saved;
-    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | fx->gl->context.parts, &units);
+    sbfx_gl_state_save(&saved, frame_parts(fx, count), &units);
     if (saved.polygon_mode_unfixed && !fx->render->warned_polygon_mode) {
         fx->render->warned_polygon_mode = true;
         sbfx_log(fx, SBFX_LOG_WARN, "the host's polygon mode is not GL_FILL and glPolygonMode is not in the "
@@ -107,7 +115,7 @@ int sbfx_host_state_roundtrip(sbfx *fx, bool particles)
     if (!particles && !fx->scene->plan.owns_scene) return 0; /* such a frame runs no pass */
     sbfx_gl_units units = frame_units(fx, particles ? 1 : 0, true);
     sbfx_gl_state saved;
-    sbfx_gl_state_save(&saved, SBFX_GL_SAVE_PASS | fx->gl->context.parts, &units);
+    sbfx_gl_state_save(&saved, frame_parts(fx, particles ? 1 : 0), &units);
     return sbfx_gl_state_restore(&saved);
 }
 

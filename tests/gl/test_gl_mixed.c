@@ -5,6 +5,7 @@
  * upsampling where the coarse target fails and no worse anywhere else; it refines a minority of
  * the pixels the particles cover, with finite values, three passes more and no allocation. */
 #include "gl_fixture.h"
+#include "host/host_depth.h"
 
 #define W 192
 #define H 112
@@ -208,6 +209,63 @@ CHECK_TEST(the_fire_silhouette_against_the_sky_is_refined)
     CHECK(emx.elsewhere <= end.elsewhere + 0.05, "inside: mixed %.2f, nearest-depth %.2f levels", emx.elsewhere,
           end.elsewhere);
     check_counters(&nd, &mx);
+    fixture_close(&f);
+}
+
+#define GL_LOWER_LEFT_EXT 0x8CA1
+#define GL_NEGATIVE_ONE_TO_ONE_EXT 0x935E
+#define GL_ZERO_TO_ONE_EXT 0x935F
+
+/* The refinement's mask is a depth test against the particles' window depth, which the host's
+ * clip control and depth range place: a reversed-Z host (GL_ZERO_TO_ONE, range [0, 1]) put it
+ * on the old mark's 0 and nothing was refined. Under each host set-up the frame must be the
+ * default one's, byte for byte, with the same pixels marked (the frame itself unchanged: the
+ * clip control is GL state here, not frame.clip_depth_mode). */
+CHECK_TEST(the_refinement_ignores_the_hosts_clip_control_and_depth_range)
+{
+    gl_fixture f;
+    fixture_open(&f, W, H);
+    if (!fixture_has_extension("GL_EXT_color_buffer_half_float") && !fixture_has_extension("GL_EXT_color_buffer_float"))
+        CHECK_SKIP("mixed resolution needs a colour-renderable RGBA16F target");
+    void (*clip_control)(GLenum, GLenum) = host_depth_clip_control();
+    fixture_projection(&f, 1.0f, 0.1f, 1000.0f);
+    depth_layout layout = {INFINITY, BAR_DISTANCE};
+    fixture_depth(&f, layout_distance, &layout);
+    static frame_result base, other;
+    render(&f, 0.6, 4, SBFX_UPSAMPLE_MIXED, SBFX_FORMAT_DEFAULT, &base);
+    CHECK(base.refined > 0, "nothing refined under GL's defaults");
+    static const struct {
+        const char *name;
+        bool zero_to_one;
+        float near, far;
+    } hosts[] = {
+        {"reversed-Z: ZERO_TO_ONE, depth range [0, 1]", true, 0.0f, 1.0f},
+        {"ZERO_TO_ONE, depth range [1, 0]", true, 1.0f, 0.0f},
+        {"NEGATIVE_ONE_TO_ONE, depth range [0, 0]", false, 0.0f, 0.0f},
+        {"NEGATIVE_ONE_TO_ONE, depth range [1, 1]", false, 1.0f, 1.0f},
+    };
+    int checked = 0;
+    for (size_t i = 0; i < ARRAY_SIZE(hosts); i++) {
+        if (hosts[i].zero_to_one && !clip_control) continue;
+        if (hosts[i].zero_to_one) clip_control(GL_LOWER_LEFT_EXT, GL_ZERO_TO_ONE_EXT);
+        glDepthRangef(hosts[i].near, hosts[i].far);
+        render(&f, 0.6, 4, SBFX_UPSAMPLE_MIXED, SBFX_FORMAT_DEFAULT, &other);
+        GLfloat range[2];
+        glGetFloatv(GL_DEPTH_RANGE, range);
+        CHECK(range[0] == hosts[i].near && range[1] == hosts[i].far, "%s: the depth range came back as [%g, %g]",
+              hosts[i].name, range[0], range[1]);
+        glDepthRangef(0.0f, 1.0f);
+        if (hosts[i].zero_to_one) clip_control(GL_LOWER_LEFT_EXT, GL_NEGATIVE_ONE_TO_ONE_EXT);
+        int differ = 0;
+        for (size_t b = 0; b < sizeof(base.rgba); b++) differ += base.rgba[b] != other.rgba[b];
+        printf("# %s: %d pixels marked (GL's defaults: %d), %d bytes differ\n", hosts[i].name, other.refined,
+               base.refined, differ);
+        CHECK(other.refined == base.refined && differ == 0, "%s: %d pixels marked (defaults %d), %d bytes differ",
+              hosts[i].name, other.refined, base.refined, differ);
+        checked++;
+    }
+    if (!clip_control) printf("# clip control not offered: the ZERO_TO_ONE hosts not checked\n");
+    CHECK(checked >= 2);
     fixture_close(&f);
 }
 
