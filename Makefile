@@ -60,7 +60,7 @@ CC ?= cc
 PKG_CONFIG ?= pkg-config
 # The library's version: the minor grows when a function is added to src/sbfx.h, the major
 # (the soname's number) when a signature or a public struct's layout changes.
-VERSION := 1.4.0
+VERSION := 1.5.0
 SOVERSION := $(firstword $(subst ., ,$(VERSION)))
 # tools/deps.sh's package set for this build (a board's .mk names its own)
 DEPS := build
