@@ -238,7 +238,9 @@ $(BUILD)/obj/platform/display/display_wayland.o $(BUILD)/obj/platform/wayland/wa
 	PLATFORM_CFLAGS += $(WAYLAND_PKG_CFLAGS) -I$(WAYLAND_GEN)
 
 # Network triggers (platform/net/, docs/triggers.md): DIS over UDP (libc), MQTT through libmosquitto
-NET_SRC := dis_pdu dis_effects dis_events dis_receiver dis_config geodesy net_address udp_socket mqtt_client
+# platform/net/ is in rooms (platform/net/rooms.txt): what the protocols share, then one folder each
+NET_SRC := $(addprefix common/,geodesy net_address udp_socket) \
+	$(addprefix dis/,dis_pdu dis_effects dis_events dis_receiver dis_config) $(addprefix mqtt/,mqtt_client)
 # sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera, GPIO and network inputs (platform/)
 PLAYER_SRC := $(addprefix player/,player module loop host reset authoring clock) \
 	$(addprefix player/options/,args usage board) $(addprefix player/outputs/,stats notify) \
@@ -266,10 +268,10 @@ $(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
 	$(CC) $(LDSAN) $(PLAYER_TEST_WRAP) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS) $(WAYLAND_PKG_LIBS) $(MQTT_PKG_LIBS)
-# libmosquitto runs the MQTT client on a thread of its own (net/mqtt_client.h); the player only
+# libmosquitto runs the MQTT client on a thread of its own (net/mqtt/mqtt_client.h); the player only
 MQTT_PKG_CFLAGS = $(call pkg_config,MQTT_PKG_CFLAGS,--cflags libmosquitto)
 MQTT_PKG_LIBS = $(call pkg_config,MQTT_PKG_LIBS,--libs libmosquitto) -pthread
-$(BUILD)/obj/platform/net/mqtt_client.o: PLATFORM_CFLAGS += $(MQTT_PKG_CFLAGS) -pthread
+$(BUILD)/obj/platform/net/mqtt/mqtt_client.o: PLATFORM_CFLAGS += $(MQTT_PKG_CFLAGS) -pthread
 # READY=1 and the watchdog's pings for systemd (player/outputs/notify.c): libsystemd, the player only
 NOTIFY_PKG_CFLAGS = $(call pkg_config,NOTIFY_PKG_CFLAGS,--cflags libsystemd)
 NOTIFY_PKG_LIBS = $(call pkg_config,NOTIFY_PKG_LIBS,--libs libsystemd)
@@ -388,7 +390,7 @@ test:
 check:
 	@tools/deps.sh test
 	@$(MAKE) --no-print-directory $(JOBS_FLAG) test-unit $(BUILD)/tests/gl/test_gl_smoke \
-		$(filter $(BUILD)/obj/platform/player/%,$(PLAYER_OBJ))
+		$(filter $(BUILD)/obj/platform/player/% $(BUILD)/obj/platform/net/%,$(PLAYER_OBJ))
 	@tests/run.sh --check
 
 # The build's lines are left out (QUIET_LINES=0: tools/quiet-shell.sh); warnings still show.
@@ -469,9 +471,9 @@ $(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) include/sbfx.h src
 		$(shell $(PKG_CONFIG) --cflags glesv2 libconfig) -o $@ tests/fuzz/fuzz_scene.c $(FUZZ_SRC) \
 		$(shell $(PKG_CONFIG) --libs libconfig)
 
-FUZZ_DIS_SRC := $(addprefix platform/net/,dis_pdu.c dis_receiver.c dis_events.c dis_effects.c geodesy.c udp_socket.c \
-	net_address.c)
-$(BUILD)/fuzz/fuzz_dis: tests/fuzz/fuzz_dis.c $(FUZZ_DIS_SRC) $(wildcard platform/net/*.h)
+FUZZ_DIS_SRC := $(addprefix platform/net/,dis/dis_pdu.c dis/dis_receiver.c dis/dis_events.c dis/dis_effects.c \
+	common/geodesy.c common/udp_socket.c common/net_address.c)
+$(BUILD)/fuzz/fuzz_dis: tests/fuzz/fuzz_dis.c $(FUZZ_DIS_SRC) $(wildcard platform/net/*/*.h)
 	@mkdir -p $(@D)
 	clang -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined \
 		-Iplatform -o $@ tests/fuzz/fuzz_dis.c $(FUZZ_DIS_SRC) -lm
@@ -610,7 +612,7 @@ bench: $(BUILD)/bench/bench_shadow
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,
 # the --gpio/--mode syntax), run by tests/run.sh like the unit tests.
 PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,video/luma.o gpio/trigger_filter.o player/options/board.o drm/drm_mode_spec.o \
-	player/options/args.o display/display_link.o gpio/effect_at.o net/net_address.o) $(BUILD)/obj/tools/soak/soak_check.o
+	player/options/args.o display/display_link.o gpio/effect_at.o net/common/net_address.o) $(BUILD)/obj/tools/soak/soak_check.o
 PLATFORM_TESTS := $(patsubst tests/platform/%.c,$(BUILD)/tests/platform/%,$(wildcard tests/platform/*.c))
 $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h
 	@mkdir -p $(@D)
@@ -624,7 +626,7 @@ $(BUILD)/tests/platform/test_gpio_recovery: tests/platform/test_gpio_recovery.c 
 		$(BUILD)/obj/platform/gpio/trigger_filter.o $(BUILD)/obj/platform/gpio/effect_names.o $(PLATFORM_LIBS)
 # DIS without a network and the one trigger queue (test_dis), the network's flags, board keys and
 # scene keys (test_net_config): platform/net/ but its MQTT client, which the player's runs test
-NET_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,$(patsubst %,net/%.o,$(filter-out mqtt_client net_address,$(NET_SRC))) \
+NET_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,$(patsubst %,net/%.o,$(filter-out mqtt/mqtt_client common/net_address,$(NET_SRC))) \
 	player/inputs/trigger_queue.o)
 $(BUILD)/tests/platform/test_dis $(BUILD)/tests/platform/test_net_config: $(BUILD)/tests/platform/%: \
 		tests/platform/%.c $(NET_TEST_OBJ) $(PLATFORM_TEST_OBJ) $(BUILD)/libsbfx.a tests/check.h

@@ -3,6 +3,7 @@
 #   layers/src                 src/'s rooms (src/rooms.txt): no include of, or call into, a room
 #                              listed after a file's own; no circle of files; every file in a room
 #   layers/player              platform/player/'s rooms (platform/player/rooms.txt), the same
+#   layers/net                 platform/net/'s rooms (platform/net/rooms.txt), the same
 #   layers/planted-include     a copy of src/ whose base/alloc.c includes render/render.h: the check
 #                              fails, naming that include
 #   layers/planted-call        a copy whose base/ has an object that calls sbfx_create (the top): the
@@ -69,6 +70,7 @@ compile_planted() {
 
 tree src src "$BUILD/obj/src"
 [ -f platform/player/rooms.txt ] && tree player platform/player "$BUILD/obj/platform/player" platform
+[ -f platform/net/rooms.txt ] && tree net platform/net "$BUILD/obj/platform/net" platform
 
 if [ -d "$BUILD/obj/src" ]; then
     fresh_copy

@@ -8,7 +8,7 @@ set_of="${1:-test}"
 # gcc only recommends libc6-dev, which --no-install-recommends leaves out: named here
 host_tools="make gcc libc6-dev pkg-config"
 build_pkgs="$host_tools libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev liblcms2-dev libconfig-dev libdrm-dev libgbm-dev libgpiod-dev colord-data libsystemd-dev libavformat-dev libavcodec-dev libswscale-dev libavutil-dev"
-# MQTT triggers (platform/net/mqtt_client.c, docs/triggers.md): libmosquitto, the player only
+# MQTT triggers (platform/net/mqtt/mqtt_client.c, docs/triggers.md): libmosquitto, the player only
 build_pkgs="$build_pkgs libmosquitto-dev"
 # the Wayland display (display_wayland.c): libwayland-client, wayland-egl, and the protocols'
 # XML turned into C by wayland-scanner (libwayland-bin) at build time

@@ -7,8 +7,8 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "net/dis_pdu.h"
-#include "net/dis_receiver.h"
+#include "net/dis/dis_pdu.h"
+#include "net/dis/dis_receiver.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

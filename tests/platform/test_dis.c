@@ -6,11 +6,11 @@
 
 #include "check.h"
 #include "gpio/effect_at.h"
-#include "net/dis_effects.h"
-#include "net/dis_events.h"
-#include "net/dis_pdu.h"
-#include "net/dis_receiver.h"
-#include "net/geodesy.h"
+#include "net/common/geodesy.h"
+#include "net/dis/dis_effects.h"
+#include "net/dis/dis_events.h"
+#include "net/dis/dis_pdu.h"
+#include "net/dis/dis_receiver.h"
 #include "player/inputs/trigger_queue.h"
 
 /* ---- a Detonation PDU, big-endian by offset (IEEE 1278.1; dis_pdu.h's table) ---- */

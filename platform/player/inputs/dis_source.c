@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "gpio/effect_names.h"
-#include "net/dis_config.h"
+#include "net/dis/dis_config.h"
 
 static int check_effect(const struct dis_source *d, const sbfx *fx, const char *effect, const char *where, char *err,
                         size_t n)

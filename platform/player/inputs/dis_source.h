@@ -1,14 +1,14 @@
 /* DIS detonations as a trigger source (inputs.h; docs/triggers.md): --dis [ADDR:]PORT (or the
- * board's dis.listen) opens a UDP socket for Detonation PDUs (platform/net/dis_receiver.h does
+ * board's dis.listen) opens a UDP socket for Detonation PDUs (platform/net/dis/dis_receiver.h does
  * the protocol; this is the player's side of it), placed and mapped to effects by the scene
- * file's dis group (net/dis_config.h), with --dis-exercise over the scene's dis.exercise. The
+ * file's dis group (net/dis/dis_config.h), with --dis-exercise over the scene's dis.exercise. The
  * socket is one of the loop's descriptors, read without blocking; each detonation that passes
  * goes to the trigger queue. A reloaded scene's dis group takes over (a bad one is logged and
  * the old one goes on); the socket and the counts stay. */
 #ifndef SBFX_PLAYER_DIS_SOURCE_H
 #define SBFX_PLAYER_DIS_SOURCE_H
 
-#include "net/dis_receiver.h"
+#include "net/dis/dis_receiver.h"
 #include "player/inputs/inputs.h"
 #include "player/options/board.h"
 #include "player/options/options.h"

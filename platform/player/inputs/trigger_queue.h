@@ -17,7 +17,7 @@
  * Limits per kind: GPIO lines are debounced and rate limited per line before they get here
  * (gpio/gpio_triggers.h); MQTT is rate limited here per effect (trigger_queue_limit: the board's
  * mqtt.min_interval_ms, as a GPIO line's); DIS has no rate limit (a salvo is many detonations at
- * once), only its repeat filter (net/dis_events.h); every kind shares the queue's
+ * once), only its repeat filter (net/dis/dis_events.h); every kind shares the queue's
  * TRIGGER_QUEUE_MAX per frame and the particle pool. Nothing here allocates. */
 #ifndef SBFX_PLAYER_TRIGGER_QUEUE_H
 #define SBFX_PLAYER_TRIGGER_QUEUE_H

@@ -3,7 +3,7 @@
 #include "player/options/options.h"
 
 #include "gpio/effect_at.h" /* EFFECT[@X,Y,Z] */
-#include "net/net_address.h" /* --dis, --mqtt */
+#include "net/common/net_address.h" /* --dis, --mqtt */
 #include "drm/drm_mode_spec.h"
 #include "player/options/board.h"
 

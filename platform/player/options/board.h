@@ -27,8 +27,8 @@
 
 #include "drm/drm_mode_spec.h" /* enum modeset_kind, mode_spec_parse: the display keys */
 #include "gpio/gpio_triggers.h"
-#include "net/mqtt_client.h"
-#include "net/net_address.h"
+#include "net/common/net_address.h"
+#include "net/mqtt/mqtt_client.h"
 
 struct board_profile {
     char name[64];

@@ -1,6 +1,6 @@
 /* The DIS socket (udp_socket.h). */
 #define _GNU_SOURCE /* recvmmsg */
-#include "net/udp_socket.h"
+#include "net/common/udp_socket.h"
 
 #include <arpa/inet.h>
 #include <errno.h>

@@ -1,5 +1,5 @@
 /* DIS detonations into effects (dis_receiver.h). */
-#include "net/dis_receiver.h"
+#include "net/dis/dis_receiver.h"
 
 #include <arpa/inet.h>
 #include <errno.h>
@@ -8,8 +8,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "net/dis_events.h"
-#include "net/geodesy.h"
+#include "net/common/geodesy.h"
+#include "net/dis/dis_events.h"
 
 struct dis_receiver {
     struct dis_settings settings;

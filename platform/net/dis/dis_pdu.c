@@ -1,6 +1,6 @@
 /* DIS PDUs from a datagram's bytes (dis_pdu.h): big-endian fields read by offset, no struct
  * overlays (no alignment or padding assumptions), every read inside the PDU's checked length. */
-#include "net/dis_pdu.h"
+#include "net/dis/dis_pdu.h"
 
 #include <math.h>
 #include <string.h>

@@ -21,9 +21,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "net/dis_effects.h"
-#include "net/dis_pdu.h"
-#include "net/udp_socket.h"
+#include "net/common/udp_socket.h"
+#include "net/dis/dis_effects.h"
+#include "net/dis/dis_pdu.h"
 
 #define DIS_DEFAULT_PORT 3000
 #define DIS_DEFAULT_RANGE_M 20000.0
