@@ -242,8 +242,8 @@ $(BUILD)/obj/platform/display/display_wayland.o $(BUILD)/obj/platform/wayland/wa
 NET_SRC := $(addprefix common/,geodesy net_address udp_socket) \
 	$(addprefix dis/,dis_pdu dis_effects dis_events dis_receiver dis_config) $(addprefix mqtt/,mqtt_client)
 # sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera, GPIO and network inputs (platform/)
-PLAYER_SRC := $(addprefix player/,player module loop host reset authoring clock) \
-	$(addprefix player/options/,args usage board) $(addprefix player/outputs/,stats notify) \
+PLAYER_SRC := $(addprefix player/,player module loop host reset authoring clock world) \
+	$(addprefix player/options/,args usage board channel) $(addprefix player/outputs/,stats notify) \
 	$(addprefix player/inputs/,triggers trigger_queue gpio_source dis_source mqtt_source detail watch signals) \
 	$(addprefix video/,luma live_detail v4l2_source clip_detail) \
 	$(addprefix gpio/,gpio_backend effect_names effect_at gpio_triggers trigger_filter) \
@@ -369,7 +369,8 @@ ASAN_TEST_TARGETS := lib build/asan/sbfx-play test-unit test-platform \
 # GStreamer. TEST_ASAN=cpu: every GL test (the GL suites run from the normal build then).
 PRECISION_GL_TESTS = $(addprefix $(BUILD)/tests/gl/,$(shell tests/precision.sh --suites))
 NORMAL_TEST_TARGETS = $(if $(filter cpu,$(TEST_ASAN)),test-gl,$(PRECISION_GL_TESTS)) \
-	$(BUILD)/tests/net/dis_send $(BUILD)/tests/vm/alloc_count.so test-hosts test-gstreamer
+	$(BUILD)/tests/net/dis_send $(BUILD)/tests/vm/alloc_count.so $(BUILD)/tests/seam/seam_check test-hosts \
+	test-gstreamer
 
 # the normal and the ASan+UBSan build side by side, sharing the job server
 .PHONY: test-build test-build-normal test-build-asan check
@@ -632,6 +633,10 @@ $(BUILD)/tests/platform/test_dis $(BUILD)/tests/platform/test_net_config: $(BUIL
 		tests/platform/%.c $(NET_TEST_OBJ) $(PLATFORM_TEST_OBJ) $(BUILD)/libsbfx.a tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(NET_TEST_OBJ) $(PLATFORM_TEST_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
+# tests/seam.sh's judge: channels side by side against the wide frame (docs/simulators.md)
+$(BUILD)/tests/seam/seam_check: tests/seam/seam_check.c $(BUILD)/obj/platform/image/png_io.o
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -o $@ $^ $(PLATFORM_LIBS)
 # tests/dis.sh's sender: DIS PDUs encoded from the standard's layout, on its own
 $(BUILD)/tests/net/dis_send: tests/net/dis_send.c | deps
 	@mkdir -p $(@D)

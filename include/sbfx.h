@@ -128,6 +128,18 @@ typedef struct sbfx_gpio_trigger {
 /* The scene's GPIO triggers; returns their count and sets *out to an array owned by the scene. */
 SBFX_API int sbfx_scene_gpio_triggers(const sbfx_scene *scene, const sbfx_gpio_trigger **out);
 
+/* One trigger of a scene's timeline (since 1.5.0): a host that runs the timeline on a clock of
+ * its own (sbfx-play's --world-time: at world times, as identified triggers) reads it here and
+ * creates the module with desc.ignore_timeline. */
+typedef struct sbfx_timeline_trigger {
+    const char *effect;  /* owned by the scene */
+    double time;         /* seconds from the timeline's start */
+    float position[3];
+} sbfx_timeline_trigger;
+/* Fills *out with the scene's timeline trigger number index (0, 1, ...) and returns true; false
+ * past the last. scene NULL: the built-in timeline (one "explosion" at 0 at the origin). */
+SBFX_API bool sbfx_scene_timeline_get(const sbfx_scene *scene, int index, sbfx_timeline_trigger *out);
+
 /* Where a viewer's camera looks at the scene: its `camera` group, read by sbfx-play (the module
  * itself draws from whatever view the host gives it). The eye circles the target. */
 typedef struct sbfx_scene_camera {

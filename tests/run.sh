@@ -275,6 +275,8 @@ list_all() {
     WEIGHT=15
     run_suite "" dis tests/dis.sh "$BUILD"
     run_suite "" mqtt tests/mqtt.sh "$BUILD"
+    # one world, many channels: three sbfx-play processes against one wide view (issue 44)
+    run_suite "" seam tests/seam.sh "$BUILD"
     WEIGHT=10
     run_suite "" install tests/install.sh "$BUILD"
     run_suite "" docs tests/docs.sh

@@ -160,9 +160,22 @@ static int open_inputs(struct player *p, char *err, size_t n)
     return rc;
 }
 
+/* The channel: the board's view, each part the flags give replacing the board's. */
+static void merge_channel(struct player *p)
+{
+    const struct player_channel *flags = &p->opt->channel;
+    p->channel = p->board.channel;
+    if (flags->have_frustum) memcpy(p->channel.frustum, flags->frustum, sizeof(flags->frustum));
+    if (flags->have_offset) memcpy(p->channel.offset, flags->offset, sizeof(flags->offset));
+    p->channel.have_frustum |= flags->have_frustum;
+    p->channel.have_offset |= flags->have_offset;
+}
+
 static int setup(struct player *p, char *err, size_t n)
 {
     int rc = load_board(p, err, n);
+    if (rc == 0) merge_channel(p);
+    if (rc == 0) rc = world_setup(p, err, n);
     if (rc == 0) rc = player_parse_scene(p, err, n);
     if (rc) return rc;
     rc = create_display(p, err, n);

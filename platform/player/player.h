@@ -52,6 +52,23 @@ struct second_stats {
     double frame_ms_sum, frame_ms_max;
 };
 
+/* One world, many channels (world.c) */
+#define WORLD_TIMELINE_MAX 256
+struct world_timeline_entry {
+    char effect[PLAYER_EFFECT_NAME_MAX];
+    double time;
+    float position[3];
+};
+struct world {
+    bool on;                  /* world mode: --world-time or --world-clock system|cigi */
+    int64_t first_k;          /* the first frame's k on the grid k / fps */
+    double base;              /* the module's desc.start_time: the whole minute at or before it */
+    uint64_t cli_fired[(PLAYER_MAX_TRIGGERS + 63) / 64];    /* identified --trigger entries started */
+    struct world_timeline_entry timeline[WORLD_TIMELINE_MAX]; /* the scene's, world mode */
+    int timeline_count;
+    uint64_t timeline_fired[WORLD_TIMELINE_MAX / 64];
+};
+
 struct player {
     const struct player_options *opt;
     struct board_profile board;
@@ -95,7 +112,23 @@ struct player {
     sbfx_scene *scene_first;  /* --scene parsed before the display opens; the first module takes it */
     double timeline_start;    /* sim_time when the timeline last started (--loop) */
     int64_t take_first;       /* headless: the first frame of this take (a reload starts one) */
+    struct world world;       /* world time, identified triggers (world.c) */
+    struct player_channel channel; /* the board's view, then --frustum, --view-offset (later: CIGI) */
 };
+
+/* world.c */
+bool world_mode(const struct player_options *opt);
+double world_system_seconds(void);              /* CLOCK_REALTIME (PTP/NTP-disciplined), seconds */
+int world_setup(struct player *p, char *err, size_t n); /* the first frame on the grid; the base */
+double world_frame_time(const struct player *p, int64_t index); /* (first_k + index) / fps */
+bool world_trigger_identified(const struct player *p, const struct player_trigger *t);
+/* The scene's timeline, copied (world mode runs it at world times). */
+void world_take_timeline(struct player *p, const sbfx_scene *scene);
+/* Starts the identified --trigger and (world mode) timeline entries due at the clock `now`. */
+int world_fire_due(struct player *p, double now, char *err, size_t n);
+/* The channel's view: the eyepoint's view turned by the offset, the frustum's projection. */
+void world_channel_view(const struct player_channel *c, float near_z, float far_z, float view[16],
+                        float projection[16]);
 
 /* clock.c */
 int64_t player_now_ns(void);

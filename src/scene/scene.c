@@ -824,6 +824,21 @@ sbfx_result sbfx_scene_parse(const char *text, const char *name, sbfx_scene **ou
 
 void sbfx_scene_free(sbfx_scene *scene) { free(scene); }
 
+bool sbfx_scene_timeline_get(const sbfx_scene *scene, int index, sbfx_timeline_trigger *out)
+{
+    if (!out || index < 0) return false;
+    if (!scene) { /* sbfx_scene_builtin's: one explosion at 0 at the origin */
+        if (index > 0) return false;
+        *out = (sbfx_timeline_trigger){.effect = "explosion"};
+        return true;
+    }
+    if (index >= scene->timeline_count) return false;
+    const sbfx_timeline_entry *t = &scene->timeline[index];
+    *out = (sbfx_timeline_trigger){.effect = scene->effects[t->effect].name, .time = t->time};
+    for (int k = 0; k < 3; k++) out->position[k] = t->position[k];
+    return true;
+}
+
 int sbfx_scene_gpio_triggers(const sbfx_scene *scene, const sbfx_gpio_trigger **out)
 {
     if (!scene || !out) return 0;
