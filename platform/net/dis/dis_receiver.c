@@ -175,7 +175,8 @@ static void detonation(struct dis_receiver *r, const struct dis_pdu *pdu, const 
     geo_frame_scene(&r->frame, d->location, scene); /* double until here: metres from the origin */
     const float position[3] = {(float)scene[0], (float)scene[1], (float)scene[2]};
     r->counts.detonations++;
-    if (sink->fire) sink->fire(effect, position, sink->user);
+    if (sink->fire_event) sink->fire_event(effect, position, &d->event, pdu->header.timestamp, sink->user);
+    else if (sink->fire) sink->fire(effect, position, sink->user);
 }
 
 void dis_receiver_datagram(struct dis_receiver *r, const uint8_t *data, size_t length, bool truncated,

@@ -3,8 +3,10 @@
 #include "player/inputs/dis_source.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 #include "gpio/effect_names.h"
 #include "net/dis/dis_config.h"
@@ -64,6 +66,13 @@ static void say_listening(const struct dis_source *d, bool quiet)
     d->log(msg, d->log_user);
 }
 
+static double world_clock_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec / 1e9;
+}
+
 /* ---- the trigger-source contract ---- */
 
 static int dis_pollfds(const struct trigger_source *s, struct pollfd *fds, int max)
@@ -79,12 +88,37 @@ struct sink_context {
     struct dis_source *source;
     struct trigger_queue *queue;
     int64_t now_ns;
+    double world_now;           /* the system clock (world time), when timestamps are used */
 };
 
 static void sink_fire(const char *effect, const float position[3], void *user)
 {
     struct sink_context *c = user;
     trigger_queue_push(c->queue, TRIGGER_DIS, effect, position, c->now_ns);
+}
+
+/* A DIS timestamp's seconds past the hour (IEEE 1278.1: 2^31 units an hour in its upper 31 bits;
+ * bit 0 set: absolute, the sender's clock) put in the hour nearest the world clock's `now`. */
+double dis_timestamp_world(uint32_t timestamp, double now)
+{
+    double past_hour = (double)(timestamp >> 1) * 3600.0 / 2147483648.0;
+    double hour = floor(now / 3600.0) * 3600.0, t = hour + past_hour;
+    if (t - now > 1800.0) t -= 3600.0;
+    else if (now - t > 1800.0) t += 3600.0;
+    return t;
+}
+
+/* Identified by the event ID (site, application, event number) under DIS's tag, 2^61; started at
+ * the PDU's absolute timestamp where the world clock is the system's, else when it fires. */
+static void sink_fire_event(const char *effect, const float position[3], const struct dis_entity_id *event,
+                            uint32_t timestamp, void *user)
+{
+    struct sink_context *c = user;
+    uint64_t identity = (UINT64_C(1) << 61) | (uint64_t)event->site << 32 | (uint64_t)event->application << 16 |
+                        event->entity;
+    double start = NAN;
+    if (c->source->world_timestamps && (timestamp & 1)) start = dis_timestamp_world(timestamp, c->world_now);
+    trigger_queue_push_identified(c->queue, TRIGGER_DIS, effect, position, identity, start, c->now_ns);
 }
 
 static void sink_log(const char *message, void *user)
@@ -97,8 +131,8 @@ static void dis_service(struct trigger_source *s, struct trigger_queue *q, const
 {
     (void)fx; /* the dis group's effects were checked when it was read */
     struct dis_source *d = (struct dis_source *)s;
-    struct sink_context context = {d, q, now_ns};
-    const struct dis_sink sink = {sink_fire, sink_log, &context};
+    struct sink_context context = {d, q, now_ns, d->world_timestamps ? world_clock_now() : 0.0};
+    const struct dis_sink sink = {sink_fire, sink_log, &context, sink_fire_event};
     int rc = dis_receiver_service(d->receiver, now_ns, &sink);
     if (rc < 0 && d->read_errors++ == 0) {
         char msg[160];
@@ -162,6 +196,7 @@ int dis_source_open(struct dis_source *d, struct trigger_sources *all, const str
     d->log_user = user;
     d->scene_path = opt->scene_path;
     d->exercise_flag = opt->dis_exercise;
+    d->world_timestamps = opt->world_clock == PLAYER_CLOCK_SYSTEM;
     const char *listen = opt->dis ? opt->dis : b->dis_listen[0] ? b->dis_listen : NULL;
     if (!listen) {
         if (!opt->dis_exercise) return 0;

@@ -21,6 +21,7 @@ struct dis_source {
     const char *scene_path;
     int exercise_flag;               /* --dis-exercise; 0: not given */
     int read_errors;                 /* socket read errors (logged the first time) */
+    bool world_timestamps;           /* --world-clock system: absolute timestamps are world times */
     input_log_fn log;
     void *log_user;
 };
@@ -30,6 +31,9 @@ struct dis_source {
  * to do. Nothing stays open on failure. quiet: no "listening on" line. */
 int dis_source_open(struct dis_source *d, struct trigger_sources *all, const struct player_options *opt,
                     const struct board_profile *b, const sbfx *fx, input_log_fn log, void *user, char *err, size_t n);
+/* A DIS timestamp (absolute: seconds past the hour) in world time: the hour nearest `now`
+ * (the system clock's seconds). */
+double dis_timestamp_world(uint32_t timestamp, double now);
 /* Its counters (NULL: no --dis). */
 const struct dis_counts *dis_source_counts(const struct dis_source *d);
 

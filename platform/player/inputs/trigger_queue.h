@@ -40,6 +40,8 @@ struct trigger_request {
     enum trigger_kind kind;
     char effect[TRIGGER_EFFECT_MAX];
     float position[3];
+    uint64_t identity;          /* 0: a plain trigger (sbfx_trigger); else sbfx_trigger_identified */
+    double start;               /* its start on the module's clock; NAN: the clock when it fires */
 };
 
 struct trigger_log_entry {
@@ -68,6 +70,7 @@ struct trigger_queue {
     uint64_t full[TRIGGER_KIND_COUNT];          /* refused: the frame's queue was full */
     uint64_t limited[TRIGGER_KIND_COUNT];       /* refused: within the rate limit */
     uint64_t pool_full[TRIGGER_KIND_COUNT];     /* refused by the module (the particle pool) */
+    uint64_t expired[TRIGGER_KIND_COUNT];       /* identified, over before they were heard */
 };
 
 /* An empty queue, no rate limit. */
@@ -78,7 +81,11 @@ void trigger_queue_limit(struct trigger_queue *q, enum trigger_kind kind, int mi
  * (now_ns: the monotonic clock at the trigger's arrival). */
 bool trigger_queue_push(struct trigger_queue *q, enum trigger_kind kind, const char *effect, const float position[3],
                         int64_t now_ns);
-/* Starts every queued trigger (sbfx_trigger); returns how many started. */
+/* The same for an identified instance (sbfx_trigger_identified): identity 1..2^63-1, start on
+ * the module's clock (NAN: the clock when it fires). */
+bool trigger_queue_push_identified(struct trigger_queue *q, enum trigger_kind kind, const char *effect,
+                                   const float position[3], uint64_t identity, double start, int64_t now_ns);
+/* Starts every queued trigger (sbfx_trigger, or sbfx_trigger_identified); returns how many started. */
 int trigger_queue_fire(struct trigger_queue *q, sbfx *fx);
 /* The listener to give sbfx_set_trigger_listener, with the queue as user. */
 void trigger_queue_listen(const char *effect, const float position[3], double time, sbfx_trigger_origin origin,
