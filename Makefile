@@ -237,10 +237,12 @@ $(BUILD)/obj/platform/display/display_wayland.o: $(WAYLAND_HEADERS)
 $(BUILD)/obj/platform/display/display_wayland.o $(BUILD)/obj/platform/wayland/wayland_egl.o: \
 	PLATFORM_CFLAGS += $(WAYLAND_PKG_CFLAGS) -I$(WAYLAND_GEN)
 
-# Network triggers (platform/net/, docs/triggers.md): DIS over UDP (libc), MQTT through libmosquitto
+# Network triggers (platform/net/, docs/triggers.md, docs/cigi.md): DIS and CIGI over UDP (libc), MQTT
+# through libmosquitto
 # platform/net/ is in rooms (platform/net/rooms.txt): what the protocols share, then one folder each
 NET_SRC := $(addprefix common/,geodesy net_address udp_socket) \
-	$(addprefix dis/,dis_pdu dis_effects dis_events dis_receiver dis_config) $(addprefix mqtt/,mqtt_client)
+	$(addprefix dis/,dis_pdu dis_effects dis_events dis_receiver dis_config) \
+	$(addprefix cigi/,cigi_packet cigi_entities cigi_receiver cigi_config) $(addprefix mqtt/,mqtt_client)
 # sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera, GPIO and network inputs (platform/)
 PLAYER_SRC := $(addprefix player/,player module loop host reset authoring clock) \
 	$(addprefix player/options/,args usage board) $(addprefix player/outputs/,stats notify) \
