@@ -371,7 +371,8 @@ ASAN_TEST_TARGETS := lib build/asan/sbfx-play test-unit test-platform \
 # GStreamer. TEST_ASAN=cpu: every GL test (the GL suites run from the normal build then).
 PRECISION_GL_TESTS = $(addprefix $(BUILD)/tests/gl/,$(shell tests/precision.sh --suites))
 NORMAL_TEST_TARGETS = $(if $(filter cpu,$(TEST_ASAN)),test-gl,$(PRECISION_GL_TESTS)) \
-	$(BUILD)/tests/net/dis_send $(BUILD)/tests/vm/alloc_count.so test-hosts test-gstreamer
+	$(BUILD)/tests/net/dis_send $(BUILD)/tests/net/cigi_send $(BUILD)/tests/net/cigi_ig $(BUILD)/tests/vm/alloc_count.so \
+	test-hosts test-gstreamer
 
 # the normal and the ASan+UBSan build side by side, sharing the job server
 .PHONY: test-build test-build-normal test-build-asan check
@@ -638,7 +639,16 @@ $(BUILD)/tests/platform/test_dis $(BUILD)/tests/platform/test_net_config: $(BUIL
 $(BUILD)/tests/net/dis_send: tests/net/dis_send.c | deps
 	@mkdir -p $(@D)
 	$(CC) -std=c11 -O1 -g $(WARN) -o $@ $< -lm
-test-platform: $(BUILD)/tests/net/dis_send $(BUILD)/tests/vm/alloc_count.so
+# tests/cigi.sh's host: CIGI 3.3 messages encoded from the standard's layout, on its own; and its
+# image generator, the player's CIGI receiver alone (events printed, Start of Frame sent back)
+$(BUILD)/tests/net/cigi_send: tests/net/cigi_send.c | deps
+	@mkdir -p $(@D)
+	$(CC) -std=c11 -O1 -g $(WARN) -o $@ $< -lm
+CIGI_IG_OBJ := $(addprefix $(BUILD)/obj/platform/net/,$(addsuffix .o,$(filter cigi/% common/%,$(NET_SRC))))
+$(BUILD)/tests/net/cigi_ig: tests/net/cigi_ig.c $(CIGI_IG_OBJ) | deps
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) $(LDSAN) -o $@ $< $(CIGI_IG_OBJ) $(PLATFORM_LIBS)
+test-platform: $(BUILD)/tests/net/dis_send $(BUILD)/tests/net/cigi_send $(BUILD)/tests/net/cigi_ig $(BUILD)/tests/vm/alloc_count.so
 # the GPIO backend this build chose, where no chip is needed (errors, calls on no line)
 $(BUILD)/tests/platform/test_gpio_backend: tests/platform/test_gpio_backend.c \
 		$(BUILD)/obj/platform/gpio/gpio_backend.o tests/check.h
