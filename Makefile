@@ -628,10 +628,12 @@ $(BUILD)/tests/platform/test_gpio_recovery: tests/platform/test_gpio_recovery.c 
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio/gpio_triggers.o \
 		$(BUILD)/obj/platform/gpio/trigger_filter.o $(BUILD)/obj/platform/gpio/effect_names.o $(PLATFORM_LIBS)
 # DIS without a network and the one trigger queue (test_dis), the network's flags, board keys and
-# scene keys (test_net_config): platform/net/ but its MQTT client, which the player's runs test
+# scene keys (test_net_config), CIGI's parser, receiver and scene group (test_cigi): platform/net/
+# but its MQTT client, which the player's runs test
 NET_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,$(patsubst %,net/%.o,$(filter-out mqtt/mqtt_client common/net_address,$(NET_SRC))) \
 	player/inputs/trigger_queue.o)
-$(BUILD)/tests/platform/test_dis $(BUILD)/tests/platform/test_net_config: $(BUILD)/tests/platform/%: \
+$(BUILD)/tests/platform/test_dis $(BUILD)/tests/platform/test_net_config $(BUILD)/tests/platform/test_cigi: \
+		$(BUILD)/tests/platform/%: \
 		tests/platform/%.c $(NET_TEST_OBJ) $(PLATFORM_TEST_OBJ) $(BUILD)/libsbfx.a tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(NET_TEST_OBJ) $(PLATFORM_TEST_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
