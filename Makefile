@@ -36,7 +36,7 @@
 #   make mesa-shim    Mesa 25 with the drm-shims of panfrost, v3d, freedreno, etnaviv (docs/gpus.md)
 #   make soak         SOAK_HOURS (10) simulated hours of the kiosk loop: build/soak/soak.csv, .png
 #   make fuzz         FUZZ_SECONDS (60) of libFuzzer on the scene parser, FUZZ_DIS_SECONDS (15) on the
-#                     DIS parser and receiver (clang)
+#                     DIS parser and receiver, FUZZ_CIGI_SECONDS (15) on the CIGI ones (clang)
 #   make clean        remove build/
 #   make V=1 ...      print every command line (quiet by default: "  CC      build/obj/src/sim.o")
 # Every build first checks the Debian packages it needs (tools/deps.sh $(DEPS): as root it
@@ -464,9 +464,11 @@ clean:
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
 
 # ---- fuzzing (clang, libFuzzer): FUZZ_SECONDS bounded, the example scenes as corpus ----
-# and FUZZ_DIS_SECONDS of the DIS parser and receiver, valid v6 and v7 PDUs as corpus
+# and FUZZ_DIS_SECONDS of the DIS parser and receiver, valid v6 and v7 PDUs as corpus, and
+# FUZZ_CIGI_SECONDS of the CIGI parser and receiver, messages in both byte orders as corpus
 FUZZ_SECONDS ?= 60
 FUZZ_DIS_SECONDS ?= 15
+FUZZ_CIGI_SECONDS ?= 15
 FUZZ_SRC := src/scene/scene.c src/scene/effects.c src/scene/quality_name.c
 $(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) src/sbfx.h src/scene/scene.h
 	@mkdir -p $(@D)
@@ -481,8 +483,16 @@ $(BUILD)/fuzz/fuzz_dis: tests/fuzz/fuzz_dis.c $(FUZZ_DIS_SRC) $(wildcard platfor
 	clang -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined \
 		-Iplatform -o $@ tests/fuzz/fuzz_dis.c $(FUZZ_DIS_SRC) -lm
 
+FUZZ_CIGI_SRC := $(addprefix platform/net/,cigi/cigi_packet.c cigi/cigi_entities.c cigi/cigi_receiver.c \
+	common/geodesy.c common/udp_socket.c common/net_address.c)
+$(BUILD)/fuzz/fuzz_cigi: tests/fuzz/fuzz_cigi.c $(FUZZ_CIGI_SRC) $(wildcard platform/net/*/*.h)
+	@mkdir -p $(@D)
+	clang -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined \
+		-Iplatform -o $@ tests/fuzz/fuzz_cigi.c $(FUZZ_CIGI_SRC) -lm
+
 .PHONY: fuzz
-fuzz: $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_dis $(BUILD)/tests/net/dis_send
+fuzz: $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_dis $(BUILD)/tests/net/dis_send $(BUILD)/fuzz/fuzz_cigi \
+		$(BUILD)/tests/net/cigi_send
 	@rm -rf $(BUILD)/fuzz/corpus && mkdir -p $(BUILD)/fuzz/corpus && cp scenes/*.cfg $(BUILD)/fuzz/corpus/
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0 \
 		$(BUILD)/fuzz/fuzz_scene -max_total_time=$(FUZZ_SECONDS) -max_len=8192 -timeout=10 \
@@ -499,6 +509,17 @@ fuzz: $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_dis $(BUILD)/tests/net/dis_sen
 		-artifact_prefix=$(BUILD)/fuzz/dis- -print_final_stats=1 $(BUILD)/fuzz/dis-corpus > $(BUILD)/fuzz/dis.log 2>&1 \
 		|| { tail -n 40 $(BUILD)/fuzz/dis.log; exit 1; }
 	@grep -E "stat::number_of_executed_units|Done" $(BUILD)/fuzz/dis.log | tail -n 2
+	@rm -rf $(BUILD)/fuzz/cigi-corpus && mkdir -p $(BUILD)/fuzz/cigi-corpus
+	@d=$(BUILD)/fuzz/cigi-corpus; s=$(BUILD)/tests/net/cigi_send; o=48.137154,11.576124,519; \
+		$$s --file $$d/be --origin $$o entity=5,1001,1,2@100,0,0/10,2,1 entity=0,7,1,0@0,0,300 \
+			view-def=1,2,-30,30,-20,20,0.5,20000 view-ctrl=1,0,0,1,2,3,45,-5,0 other=50,16 && \
+		$$s --file $$d/le --little-endian --origin $$o entity=5,1001,2,0@100,0,0 entity=6,1001,1,0@0,100,50 && \
+		$$s --file $$d/animation --origin $$o entity=5,1001,1,0@0,0,0 entity=5,1001,1,2@0,0,0 && \
+		$$s --file $$d/ig-control-only
+	$(BUILD)/fuzz/fuzz_cigi -max_total_time=$(FUZZ_CIGI_SECONDS) -max_len=9000 -timeout=10 \
+		-artifact_prefix=$(BUILD)/fuzz/cigi- -print_final_stats=1 $(BUILD)/fuzz/cigi-corpus > $(BUILD)/fuzz/cigi.log 2>&1 \
+		|| { tail -n 40 $(BUILD)/fuzz/cigi.log; exit 1; }
+	@grep -E "stat::number_of_executed_units|Done" $(BUILD)/fuzz/cigi.log | tail -n 2
 
 # ---- bench (issue #4: what accuracy costs) ------------------------------------------------
 # tests/bench/*.c link into one program. --wrap lets the bench time the module's particle pass

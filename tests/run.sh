@@ -288,11 +288,12 @@ list_all() {
         run_suite "precision:" "$part" env "$cache_env" tests/precision.sh "$BUILD" "$part"
     done
     # the scene parser under libFuzzer for FUZZ_SECONDS, the example scenes as corpus; the DIS
-    # parser for FUZZ_DIS_SECONDS: 15 and 5 s here, of make test's CPU (make fuzz: 60 and 15,
-    # which CI runs too)
-    local fuzz_s=${FUZZ_SECONDS:-15} fuzz_dis_s=${FUZZ_DIS_SECONDS:-5}
-    WEIGHT=$((fuzz_s + fuzz_dis_s + 30))
-    run_suite "" fuzz env FUZZ_SECONDS="$fuzz_s" FUZZ_DIS_SECONDS="$fuzz_dis_s" tests/fuzz.sh "$BUILD"
+    # parser for FUZZ_DIS_SECONDS, the CIGI parser for FUZZ_CIGI_SECONDS: 15, 5 and 5 s here, of
+    # make test's CPU (make fuzz: 60, 15 and 15, which CI runs too)
+    local fuzz_s=${FUZZ_SECONDS:-15} fuzz_dis_s=${FUZZ_DIS_SECONDS:-5} fuzz_cigi_s=${FUZZ_CIGI_SECONDS:-5}
+    WEIGHT=$((fuzz_s + fuzz_dis_s + fuzz_cigi_s + 30))
+    run_suite "" fuzz env FUZZ_SECONDS="$fuzz_s" FUZZ_DIS_SECONDS="$fuzz_dis_s" FUZZ_CIGI_SECONDS="$fuzz_cigi_s" \
+        tests/fuzz.sh "$BUILD"
 
     if [ -d "$ASAN_BUILD" ]; then
         local timeout=$TIMEOUT

@@ -258,7 +258,7 @@ CHECK_TEST(values_that_are_not_numbers_or_out_of_range)
     int count;
     struct ent e = effect_at_origin;
     const double bad_positions[][3] = {{NAN, LON, ALT}, {LAT, INFINITY, ALT}, {LAT, LON, -NAN}, {90.5, LON, ALT},
-                                       {LAT, -180.5, ALT}};
+                                       {LAT, -180.5, ALT}, {LAT, LON, 1e300}, {LAT, LON, -2e7}};
     for (size_t i = 0; i < sizeof(bad_positions) / sizeof(bad_positions[0]); i++) {
         memcpy(e.pos, bad_positions[i], sizeof(e.pos));
         size_t n = ig(buf, 1, 1);

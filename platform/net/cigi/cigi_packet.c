@@ -104,7 +104,7 @@ static enum cigi_status entity_control(const uint8_t *p, bool le, struct cigi_en
     for (int k = 0; k < 3; k++) o->position[k] = getd(p + 24 + 8 * k, le);
     if (!angle_ok(o->roll) || !angle_ok(o->pitch) || !angle_ok(o->yaw)) return CIGI_BAD_VALUE;
     for (int k = 0; k < 3; k++)
-        if (!isfinite(o->position[k])) return CIGI_BAD_VALUE;
+        if (!isfinite(o->position[k]) || fabs(o->position[k]) > CIGI_DISTANCE_MAX) return CIGI_BAD_VALUE;
     if (!o->attached && (fabs(o->position[0]) > 90.0 || fabs(o->position[1]) > 180.0)) return CIGI_BAD_VALUE;
     return CIGI_PACKET;
 }
@@ -120,7 +120,7 @@ static enum cigi_status view_control(const uint8_t *p, bool le, struct cigi_view
     o->pitch = getf(p + 24, le);
     o->yaw = getf(p + 28, le);
     for (int k = 0; k < 3; k++)
-        if (!isfinite(o->offset[k])) return CIGI_BAD_VALUE;
+        if (!isfinite(o->offset[k]) || fabsf(o->offset[k]) > CIGI_DISTANCE_MAX) return CIGI_BAD_VALUE;
     if (!angle_ok(o->roll) || !angle_ok(o->pitch) || !angle_ok(o->yaw)) return CIGI_BAD_VALUE;
     return CIGI_PACKET;
 }
@@ -147,7 +147,8 @@ static enum cigi_status view_definition(const uint8_t *p, bool le, struct cigi_v
     o->right = getf(p + 20, le);
     o->top = getf(p + 24, le);
     o->bottom = getf(p + 28, le);
-    if (!isfinite(o->near_m) || !isfinite(o->far_m) || o->near_m < 0.0f || o->far_m < 0.0f) return CIGI_BAD_VALUE;
+    if (!(o->near_m >= 0.0f && o->near_m <= CIGI_DISTANCE_MAX) || !(o->far_m >= 0.0f && o->far_m <= CIGI_DISTANCE_MAX))
+        return CIGI_BAD_VALUE;
     if (!half_angle_ok(o->left) || !half_angle_ok(o->right) || !half_angle_ok(o->top) || !half_angle_ok(o->bottom))
         return CIGI_BAD_VALUE;
     /* enabled in pairs, they must leave something to see */
