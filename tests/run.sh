@@ -19,7 +19,8 @@
 #      example (examples/bare-egl/) built against the installed copy (tests/install.sh), a short
 #      soak and its leak detection (tests/soak.sh; make soak runs hours), the documentation's
 #      links and examples (tests/docs.sh), sbfx-play under cage and weston (tests/wayland.sh), the
-#      authoring loop (tests/reload.sh), the accuracy suites at GPU precision, a suite per part
+#      authoring loop (tests/reload.sh), DIS, CIGI and MQTT (tests/dis.sh, tests/cigi.sh,
+#      tests/mqtt.sh), the accuracy suites at GPU precision, a suite per part
 #      (tests/precision.sh, "precision:"), a bounded libFuzzer run (tests/fuzz.sh)
 #   4. from build/asan/, suite names prefixed "asan:", the ASan+UBSan build's: every test binary in
 #      tests/unit/, tests/platform/ and tests/gl/, the GL state and host-error tests again on
@@ -274,6 +275,10 @@ list_all() {
     # triggers from the network: DIS over loopback, MQTT through a broker of its own (issue 35)
     WEIGHT=15
     run_suite "" dis tests/dis.sh "$BUILD"
+    # CIGI 3.3 over loopback: a host of its own against the receiver, read by Wireshark (issue 44)
+    WEIGHT=5
+    run_suite "" cigi tests/cigi.sh "$BUILD"
+    WEIGHT=15
     run_suite "" mqtt tests/mqtt.sh "$BUILD"
     WEIGHT=10
     run_suite "" install tests/install.sh "$BUILD"
