@@ -185,15 +185,15 @@ decode() {
 # same NAME GOT WANT: tab-separated fields, numbers to 1e-9 relative (latitudes to 0.05 mm; the
 # sender prints them to 1e-9 degrees, tshark to 15 digits)
 same() {
-    if awk -F'\t' -v want="$3" 'BEGIN { n = split(want, w, "\t") }
-            { if (NF != n) exit 1
+    if awk -F'\t' -v want="$3" 'BEGIN { n = split(want, w, "\t"); bad = 0 }
+            { if (NF != n) bad = 1
               for (i = 1; i <= n; i++) {
                   if ($i == w[i]) continue
                   if ($i + 0 == $i && w[i] + 0 == w[i] && ($i - w[i]) ^ 2 <= 1e-18 * (1 + w[i] ^ 2)) continue
-                  exit 1
+                  bad = 1
               } }
-            END { exit NR != 1 }' <<<"$2"; then
-        ok "wireshark-$1 (tshark reads ${3//$'\t'/ })"
+            END { exit bad || NR != 1 }' <<<"$2"; then
+        ok "wireshark-$1 (tshark reads ${2//$'\t'/ })"
     else
         fail "wireshark-$1" "tshark read '${2//$'\t'/ }', the test meant '${3//$'\t'/ }'"
     fi
