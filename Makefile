@@ -36,7 +36,7 @@
 #   make mesa-shim    Mesa 25 with the drm-shims of panfrost, v3d, freedreno, etnaviv (docs/gpus.md)
 #   make soak         SOAK_HOURS (10) simulated hours of the kiosk loop: build/soak/soak.csv, .png
 #   make fuzz         FUZZ_SECONDS (60) of libFuzzer on the scene parser, FUZZ_DIS_SECONDS (15) on the
-#                     DIS parser and receiver (clang)
+#                     DIS parser and receiver, FUZZ_CIGI_SECONDS (15) on the CIGI ones (clang)
 #   make clean        remove build/
 #   make V=1 ...      print every command line (quiet by default: "  CC      build/obj/src/sim.o")
 # Every build first checks the Debian packages it needs (tools/deps.sh $(DEPS): as root it
@@ -237,10 +237,12 @@ $(BUILD)/obj/platform/display/display_wayland.o: $(WAYLAND_HEADERS)
 $(BUILD)/obj/platform/display/display_wayland.o $(BUILD)/obj/platform/wayland/wayland_egl.o: \
 	PLATFORM_CFLAGS += $(WAYLAND_PKG_CFLAGS) -I$(WAYLAND_GEN)
 
-# Network triggers (platform/net/, docs/triggers.md): DIS over UDP (libc), MQTT through libmosquitto
+# Network triggers (platform/net/, docs/triggers.md, docs/cigi.md): DIS and CIGI over UDP (libc), MQTT
+# through libmosquitto
 # platform/net/ is in rooms (platform/net/rooms.txt): what the protocols share, then one folder each
 NET_SRC := $(addprefix common/,geodesy net_address udp_socket) \
-	$(addprefix dis/,dis_pdu dis_effects dis_events dis_receiver dis_config) $(addprefix mqtt/,mqtt_client)
+	$(addprefix dis/,dis_pdu dis_effects dis_events dis_receiver dis_config) \
+	$(addprefix cigi/,cigi_packet cigi_entities cigi_receiver cigi_config) $(addprefix mqtt/,mqtt_client)
 # sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera, GPIO and network inputs (platform/)
 PLAYER_SRC := $(addprefix player/,player module loop host reset authoring clock world) \
 	$(addprefix player/options/,args usage board channel) $(addprefix player/outputs/,stats notify) \
@@ -369,8 +371,8 @@ ASAN_TEST_TARGETS := lib build/asan/sbfx-play test-unit test-platform \
 # GStreamer. TEST_ASAN=cpu: every GL test (the GL suites run from the normal build then).
 PRECISION_GL_TESTS = $(addprefix $(BUILD)/tests/gl/,$(shell tests/precision.sh --suites))
 NORMAL_TEST_TARGETS = $(if $(filter cpu,$(TEST_ASAN)),test-gl,$(PRECISION_GL_TESTS)) \
-	$(BUILD)/tests/net/dis_send $(BUILD)/tests/vm/alloc_count.so $(BUILD)/tests/seam/seam_check test-hosts \
-	test-gstreamer
+	$(BUILD)/tests/net/dis_send $(BUILD)/tests/net/cigi_send $(BUILD)/tests/net/cigi_ig $(BUILD)/tests/vm/alloc_count.so \
+	$(BUILD)/tests/seam/seam_check test-hosts test-gstreamer
 
 # the normal and the ASan+UBSan build side by side, sharing the job server
 .PHONY: test-build test-build-normal test-build-asan check
@@ -462,9 +464,11 @@ clean:
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
 
 # ---- fuzzing (clang, libFuzzer): FUZZ_SECONDS bounded, the example scenes as corpus ----
-# and FUZZ_DIS_SECONDS of the DIS parser and receiver, valid v6 and v7 PDUs as corpus
+# and FUZZ_DIS_SECONDS of the DIS parser and receiver, valid v6 and v7 PDUs as corpus, and
+# FUZZ_CIGI_SECONDS of the CIGI parser and receiver, messages in both byte orders as corpus
 FUZZ_SECONDS ?= 60
 FUZZ_DIS_SECONDS ?= 15
+FUZZ_CIGI_SECONDS ?= 15
 FUZZ_SRC := src/scene/scene.c src/scene/effects.c src/scene/quality_name.c
 $(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) include/sbfx.h src/scene/scene.h
 	@mkdir -p $(@D)
@@ -479,8 +483,16 @@ $(BUILD)/fuzz/fuzz_dis: tests/fuzz/fuzz_dis.c $(FUZZ_DIS_SRC) $(wildcard platfor
 	clang -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined \
 		-Iplatform -o $@ tests/fuzz/fuzz_dis.c $(FUZZ_DIS_SRC) -lm
 
+FUZZ_CIGI_SRC := $(addprefix platform/net/,cigi/cigi_packet.c cigi/cigi_entities.c cigi/cigi_receiver.c \
+	common/geodesy.c common/udp_socket.c common/net_address.c)
+$(BUILD)/fuzz/fuzz_cigi: tests/fuzz/fuzz_cigi.c $(FUZZ_CIGI_SRC) $(wildcard platform/net/*/*.h)
+	@mkdir -p $(@D)
+	clang -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined \
+		-Iplatform -o $@ tests/fuzz/fuzz_cigi.c $(FUZZ_CIGI_SRC) -lm
+
 .PHONY: fuzz
-fuzz: $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_dis $(BUILD)/tests/net/dis_send
+fuzz: $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_dis $(BUILD)/tests/net/dis_send $(BUILD)/fuzz/fuzz_cigi \
+		$(BUILD)/tests/net/cigi_send
 	@rm -rf $(BUILD)/fuzz/corpus && mkdir -p $(BUILD)/fuzz/corpus && cp scenes/*.cfg $(BUILD)/fuzz/corpus/
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0 \
 		$(BUILD)/fuzz/fuzz_scene -max_total_time=$(FUZZ_SECONDS) -max_len=8192 -timeout=10 \
@@ -497,6 +509,17 @@ fuzz: $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_dis $(BUILD)/tests/net/dis_sen
 		-artifact_prefix=$(BUILD)/fuzz/dis- -print_final_stats=1 $(BUILD)/fuzz/dis-corpus > $(BUILD)/fuzz/dis.log 2>&1 \
 		|| { tail -n 40 $(BUILD)/fuzz/dis.log; exit 1; }
 	@grep -E "stat::number_of_executed_units|Done" $(BUILD)/fuzz/dis.log | tail -n 2
+	@rm -rf $(BUILD)/fuzz/cigi-corpus && mkdir -p $(BUILD)/fuzz/cigi-corpus
+	@d=$(BUILD)/fuzz/cigi-corpus; s=$(BUILD)/tests/net/cigi_send; o=48.137154,11.576124,519; \
+		$$s --file $$d/be --origin $$o entity=5,1001,1,2@100,0,0/10,2,1 entity=0,7,1,0@0,0,300 \
+			view-def=1,2,-30,30,-20,20,0.5,20000 view-ctrl=1,0,0,1,2,3,45,-5,0 other=50,16 && \
+		$$s --file $$d/le --little-endian --origin $$o entity=5,1001,2,0@100,0,0 entity=6,1001,1,0@0,100,50 && \
+		$$s --file $$d/animation --origin $$o entity=5,1001,1,0@0,0,0 entity=5,1001,1,2@0,0,0 && \
+		$$s --file $$d/ig-control-only
+	$(BUILD)/fuzz/fuzz_cigi -max_total_time=$(FUZZ_CIGI_SECONDS) -max_len=9000 -timeout=10 \
+		-artifact_prefix=$(BUILD)/fuzz/cigi- -print_final_stats=1 $(BUILD)/fuzz/cigi-corpus > $(BUILD)/fuzz/cigi.log 2>&1 \
+		|| { tail -n 40 $(BUILD)/fuzz/cigi.log; exit 1; }
+	@grep -E "stat::number_of_executed_units|Done" $(BUILD)/fuzz/cigi.log | tail -n 2
 
 # ---- bench (issue #4: what accuracy costs) ------------------------------------------------
 # tests/bench/*.c link into one program. --wrap lets the bench time the module's particle pass
@@ -626,10 +649,12 @@ $(BUILD)/tests/platform/test_gpio_recovery: tests/platform/test_gpio_recovery.c 
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(BUILD)/obj/platform/gpio/gpio_triggers.o \
 		$(BUILD)/obj/platform/gpio/trigger_filter.o $(BUILD)/obj/platform/gpio/effect_names.o $(PLATFORM_LIBS)
 # DIS without a network and the one trigger queue (test_dis), the network's flags, board keys and
-# scene keys (test_net_config): platform/net/ but its MQTT client, which the player's runs test
+# scene keys (test_net_config), CIGI's parser, receiver and scene group (test_cigi): platform/net/
+# but its MQTT client, which the player's runs test
 NET_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,$(patsubst %,net/%.o,$(filter-out mqtt/mqtt_client common/net_address,$(NET_SRC))) \
 	player/inputs/trigger_queue.o)
-$(BUILD)/tests/platform/test_dis $(BUILD)/tests/platform/test_net_config: $(BUILD)/tests/platform/%: \
+$(BUILD)/tests/platform/test_dis $(BUILD)/tests/platform/test_net_config $(BUILD)/tests/platform/test_cigi: \
+		$(BUILD)/tests/platform/%: \
 		tests/platform/%.c $(NET_TEST_OBJ) $(PLATFORM_TEST_OBJ) $(BUILD)/libsbfx.a tests/check.h
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Itests $(LDSAN) -o $@ $< $(NET_TEST_OBJ) $(PLATFORM_TEST_OBJ) $(BUILD)/libsbfx.a $(PLATFORM_LIBS)
@@ -641,7 +666,16 @@ $(BUILD)/tests/seam/seam_check: tests/seam/seam_check.c $(BUILD)/obj/platform/im
 $(BUILD)/tests/net/dis_send: tests/net/dis_send.c | deps
 	@mkdir -p $(@D)
 	$(CC) -std=c11 -O1 -g $(WARN) -o $@ $< -lm
-test-platform: $(BUILD)/tests/net/dis_send $(BUILD)/tests/vm/alloc_count.so
+# tests/cigi.sh's host: CIGI 3.3 messages encoded from the standard's layout, on its own; and its
+# image generator, the player's CIGI receiver alone (events printed, Start of Frame sent back)
+$(BUILD)/tests/net/cigi_send: tests/net/cigi_send.c | deps
+	@mkdir -p $(@D)
+	$(CC) -std=c11 -O1 -g $(WARN) -o $@ $< -lm
+CIGI_IG_OBJ := $(addprefix $(BUILD)/obj/platform/net/,$(addsuffix .o,$(filter cigi/% common/%,$(NET_SRC))))
+$(BUILD)/tests/net/cigi_ig: tests/net/cigi_ig.c $(CIGI_IG_OBJ) | deps
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) $(LDSAN) -o $@ $< $(CIGI_IG_OBJ) $(PLATFORM_LIBS)
+test-platform: $(BUILD)/tests/net/dis_send $(BUILD)/tests/net/cigi_send $(BUILD)/tests/net/cigi_ig $(BUILD)/tests/vm/alloc_count.so
 # the GPIO backend this build chose, where no chip is needed (errors, calls on no line)
 $(BUILD)/tests/platform/test_gpio_backend: tests/platform/test_gpio_backend.c \
 		$(BUILD)/obj/platform/gpio/gpio_backend.o tests/check.h

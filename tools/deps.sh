@@ -40,6 +40,9 @@ if ! [ -r /etc/os-release ] || ! grep -qx 'VERSION_CODENAME=trixie' /etc/os-rele
 fi
 # tests/mqtt.sh: a mosquitto broker of its own and mosquitto_pub / mosquitto_sub as the clients
 test_pkgs="$test_pkgs mosquitto mosquitto-clients"
+# tests/cigi.sh: Wireshark's CIGI dissector reads what the test host sends and the receiver's
+# Start of Frame (tshark; text2pcap from wireshark-common, which tshark depends on)
+test_pkgs="$test_pkgs tshark"
 # the GStreamer element's tests (tests/gstreamer/): gst-launch-1.0 and gst-inspect-1.0, GstGL's
 # elements, videotestsrc and appsink (base), mp4mux and qtdemux (good), x264enc (ugly), kmssink
 # and waylandsink (bad), avdec_h264 for decodebin (libav: the MP4 recording's input)

@@ -53,6 +53,7 @@
 #define CIGI_MINOR_VERSION 3
 #define CIGI_BYTE_SWAP_MAGIC 0x8000u
 #define CIGI_MAX_MESSAGE 8192          /* the largest message (datagram) taken */
+#define CIGI_DISTANCE_MAX 1e7          /* m: altitudes, offsets, near and far (beyond: malformed) */
 
 #define CIGI_IG_CONTROL 1
 #define CIGI_ENTITY_CONTROL 2
@@ -75,7 +76,9 @@ enum cigi_status {
     CIGI_BAD_VERSION,     /* IG Control's CIGI version is not 3 */
     CIGI_BAD_MAGIC,       /* IG Control's byte-swap magic is neither 0x8000 nor 0x0080 */
     CIGI_BAD_VALUE,       /* a position, angle or distance that is not a finite number or is out of
-                             its range (latitude -90..90, longitude -180..180, angles -360..360) */
+                             its range (latitude -90..90, longitude -180..180, angles -360..360,
+                             altitudes, offsets and distances within CIGI_DISTANCE_MAX; a view's
+                             half-angles within ±90, left under right and bottom under top) */
     CIGI_OVERSIZED,       /* a message over CIGI_MAX_MESSAGE (the receiver's finding) */
     CIGI_STATUS_COUNT
 };
