@@ -368,6 +368,12 @@ typedef struct sbfx_trigger_desc {
  * SBFX_ERR_UNKNOWN_EFFECT, SBFX_ERR_POOL_FULL as sbfx_trigger. The trigger listener is told with
  * `time` = start_time. Allocates nothing. */
 SBFX_API sbfx_result sbfx_trigger_identified(sbfx *fx, const sbfx_trigger_desc *trigger);
+/* Ends the identified instance now (since 1.5.0): its particles are gone from the next render
+ * and its light flashes go out (CIGI: the entity was Destroyed, or its animation stopped).
+ * Returns the number of particles removed (0: none was live, e.g. it had ended, or another
+ * channel's trigger never came), or a negative sbfx_result for a NULL module or identity 0.
+ * Allocates nothing. */
+SBFX_API int sbfx_stop_identified(sbfx *fx, uint64_t identity);
 /* Where an effect instance the module started came from (sbfx_set_trigger_listener). */
 typedef enum sbfx_trigger_origin {
     SBFX_TRIGGER_CALL,     /* sbfx_trigger */

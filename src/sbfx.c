@@ -227,6 +227,12 @@ sbfx_result sbfx_trigger_identified(sbfx *fx, const sbfx_trigger_desc *t)
     return sbfx_fire_identified(fx, index, t->position, t->identity, t->start_time);
 }
 
+int sbfx_stop_identified(sbfx *fx, uint64_t identity)
+{
+    if (!fx || !identity) return SBFX_ERR_INVALID_ARGUMENT;
+    return sbfx_stop_instance(fx, identity);
+}
+
 void sbfx_set_trigger_listener(sbfx *fx, sbfx_trigger_fn fn, void *user)
 {
     if (!fx) return;

@@ -21,6 +21,7 @@ typedef struct sbfx_pool {
      * grid, start + j * step, not the module's; NAN for the others, which step with the module */
     double *start;     /* the instance's start on the clock (sbfx_time) */
     uint32_t *steps;   /* steps simulated since then */
+    uint64_t *identity; /* its instance's identity (0: none) */
 } sbfx_pool;
 
 /* A particle as the renderer sees it: view space, already validated. */

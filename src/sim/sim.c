@@ -18,7 +18,8 @@ sbfx_result sbfx_pool_create(sbfx *fx, int capacity)
     fx->sim->instances = sbfx_calloc(fx, (size_t)capacity * fx->scene->instance_floats, sizeof(float));
     p->start = sbfx_calloc(fx, (size_t)capacity, sizeof(double));
     p->steps = sbfx_calloc(fx, (size_t)capacity, sizeof(uint32_t));
-    if (!block || !p->medium || !p->start || !p->steps || !fx->sim->view || !fx->sim->sort_keys || !fx->sim->order || !fx->sim->order_tmp ||
+    p->identity = sbfx_calloc(fx, (size_t)capacity, sizeof(uint64_t));
+    if (!block || !p->medium || !p->start || !p->steps || !p->identity || !fx->sim->view || !fx->sim->sort_keys || !fx->sim->order || !fx->sim->order_tmp ||
         !fx->sim->instances) {
         sbfx_free(fx, block);
         return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "cannot allocate a pool of %d particles", capacity);
@@ -47,6 +48,7 @@ void sbfx_pool_destroy(sbfx *fx)
     sbfx_free(fx, fx->sim->pool.medium);
     sbfx_free(fx, fx->sim->pool.start);
     sbfx_free(fx, fx->sim->pool.steps);
+    sbfx_free(fx, fx->sim->pool.identity);
     sbfx_free(fx, fx->sim->view);
     sbfx_free(fx, fx->sim->sort_keys);
     sbfx_free(fx, fx->sim->order);
@@ -102,6 +104,7 @@ static void spawn_one(sbfx *fx, const sbfx_emitter *e, const float origin[3], sb
     p->medium[i] = (uint8_t)e->medium;
     p->start[i] = NAN; /* steps with the module (sbfx_spawn_identified says otherwise) */
     p->steps[i] = 0;
+    p->identity[i] = 0;
 }
 
 static sbfx_result pool_room(sbfx *fx, const sbfx_effect *effect)
@@ -144,7 +147,10 @@ sbfx_result sbfx_spawn_identified(sbfx *fx, const sbfx_effect *effect, const flo
     sbfx_rng_seed(&rng, identity * 0xD1B54A32D192ED03ull);
     int first = fx->sim->pool.alive;
     spawn_all(fx, effect, position, &rng);
-    for (int i = first; i < fx->sim->pool.alive; i++) fx->sim->pool.start[i] = start;
+    for (int i = first; i < fx->sim->pool.alive; i++) {
+        fx->sim->pool.start[i] = start;
+        fx->sim->pool.identity[i] = identity;
+    }
     return SBFX_OK;
 }
 
@@ -169,6 +175,22 @@ static void retire(sbfx_pool *p, int i)
     p->medium[i] = p->medium[last];
     p->start[i] = p->start[last];
     p->steps[i] = p->steps[last];
+    p->identity[i] = p->identity[last];
+}
+
+int sbfx_retire_identified(sbfx *fx, uint64_t identity)
+{
+    sbfx_pool *p = &fx->sim->pool;
+    int removed = 0;
+    for (int i = 0; i < p->alive;) {
+        if (p->identity[i] == identity) {
+            retire(p, i); /* the last particle moved into slot i is looked at next */
+            removed++;
+        } else {
+            i++;
+        }
+    }
+    return removed;
 }
 
 /* One step of particle i; false when it died (retired: slot i holds another particle now). */

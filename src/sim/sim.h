@@ -33,6 +33,7 @@ typedef struct sbfx_scheduled {
 } sbfx_scheduled;
 
 typedef struct sbfx_live_flash {
+    uint64_t identity;           /* its instance's (sbfx_trigger_identified), 0: none */
     double start;
     float duration;
     float color[3], position[3];
@@ -89,6 +90,8 @@ sbfx_result sbfx_spawn_identified(sbfx *fx, const sbfx_effect *effect, const flo
 /* Steps every identified particle to the host's time `now` (clock seconds): as many steps of its
  * own grid as lie in (start, now]; catching up is at most its delay + life. */
 void sbfx_sync_identified(sbfx *fx, double now);
+/* Removes every particle of the identified instance; returns how many. */
+int sbfx_retire_identified(sbfx *fx, uint64_t identity);
 /* One module step: the particles that step with the module (identified ones are synced). */
 void sbfx_simulate_step(sbfx *fx, float step);
 /* The level of detail's work memory (first lodN level). */
@@ -102,6 +105,8 @@ uint64_t sbfx_state_hash(const sbfx *fx);
 sbfx_result sbfx_fire(sbfx *fx, int index, const float position[3], sbfx_trigger_origin origin);
 /* The same for an identified instance (sbfx_trigger_identified): start on the clock (sbfx_time). */
 sbfx_result sbfx_fire_identified(sbfx *fx, int index, const float position[3], uint64_t identity, double start);
+/* Ends an identified instance: its particles and flashes; returns the particles removed. */
+int sbfx_stop_instance(sbfx *fx, uint64_t identity);
 /* The host's time: the clock (sbfx_time) plus the update's remainder not yet stepped. */
 double sbfx_host_time(const sbfx *fx);
 /* Adds a trigger of effect `index` at `seconds` (simulation time) to the timeline; it fires with

@@ -23,6 +23,7 @@ sbfx_result sbfx_fire(sbfx *fx, int index, const float position[3], sbfx_trigger
     for (int i = 0; i < e->flash_count && fx->sim->flash_count < SBFX_MAX_LIVE_FLASHES; i++) {
         const sbfx_flash *f = &e->flashes[i];
         sbfx_live_flash *live = &fx->sim->flashes[fx->sim->flash_count++];
+        live->identity = 0;
         live->start = fx->sim->time + f->delay;
         live->duration = f->duration;
         memcpy(live->color, f->color, sizeof(live->color));
@@ -69,12 +70,22 @@ sbfx_result sbfx_fire_identified(sbfx *fx, int index, const float position[3], u
         const sbfx_flash *f = &e->flashes[i];
         if (elapsed_start + f->delay + f->duration <= fx->sim->time) continue; /* over */
         sbfx_live_flash *live = &fx->sim->flashes[fx->sim->flash_count++];
+        live->identity = identity;
         live->start = elapsed_start + f->delay;
         live->duration = f->duration;
         memcpy(live->color, f->color, sizeof(live->color));
         for (int k = 0; k < 3; k++) live->position[k] = position[k] + f->offset[k];
     }
     return SBFX_OK;
+}
+
+int sbfx_stop_instance(sbfx *fx, uint64_t identity)
+{
+    for (int i = 0; i < fx->sim->flash_count;) {
+        if (fx->sim->flashes[i].identity == identity) fx->sim->flashes[i] = fx->sim->flashes[--fx->sim->flash_count];
+        else i++;
+    }
+    return sbfx_retire_identified(fx, identity);
 }
 
 /* Adds a trigger of effect `index` at `seconds` (simulation time) to the timeline. */

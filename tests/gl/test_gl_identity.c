@@ -216,4 +216,25 @@ CHECK_TEST(ended_instances_are_counted_bad_ones_refused_nothing_allocated)
     fixture_close(&f);
 }
 
+/* CIGI's Destroyed: sbfx_stop_identified ends one instance, the others go on. */
+CHECK_TEST(stop_ends_one_instance)
+{
+    gl_fixture f;
+    fixture_open(&f, 16, 16);
+    sbfx *fx = module_at(&f, 0.0);
+    fire(fx, &shots[0]);
+    fire(fx, &shots[1]);
+    CHECK(sbfx_update(fx, 1.0) == SBFX_OK);
+    int before = fx->sim->pool.alive;
+    int removed = sbfx_stop_identified(fx, shots[0].identity);
+    CHECK(removed > 0 && fx->sim->pool.alive == before - removed, "removed %d of %d", removed, before);
+    for (int i = 0; i < fx->sim->pool.alive; i++)
+        CHECK(fx->sim->pool.identity[i] == shots[1].identity, "a particle of %llu is left",
+              (unsigned long long)fx->sim->pool.identity[i]);
+    CHECK(sbfx_stop_identified(fx, shots[0].identity) == 0, "stopped twice");
+    CHECK(sbfx_stop_identified(fx, 0) == SBFX_ERR_INVALID_ARGUMENT);
+    sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
 int main(int argc, char **argv) { return check_main_args(argc, argv); }
