@@ -8,7 +8,12 @@
  * without a message (exit 3); prints "listening" on stderr once the socket is open, and at the
  * end "counts messages=... packets=... used=... ignored=... malformed=... entities=... stops=...
  * active=... sof_sent=... sof_unaddressed=... dropped=...". The Start of Frame: ig_frame the
- * turns answered (1, 2...), the timestamp of the host's last IG Control, IG status 0. */
+ * turns answered (1, 2...), the timestamp of the host's last IG Control, IG status 0.
+ *
+ *   cigi_ig --bench FILE N --origin LAT,LON,ALT [--effect TYPE=NAME]...
+ * the receiver's cost without a socket: FILE's message (cigi_send --file) handed to it N times,
+ * its events drained each time; prints "bench messages=N packets=P ns_per_message=X
+ * ns_per_packet=Y". */
 #include <errno.h>
 #include <poll.h>
 #include <stdio.h>
@@ -73,6 +78,9 @@ static int64_t now_ns(void)
     return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
 }
 
+static const char *bench_file;
+static long bench_count;
+
 static int options(int argc, char **argv, struct cigi_settings *s, int *frames, int *quiet_s)
 {
     char err[256];
@@ -82,6 +90,11 @@ static int options(int argc, char **argv, struct cigi_settings *s, int *frames, 
         unsigned type = 0;
         int used = 0;
         if (!strcmp(k, "--listen") && udp_endpoint_parse(v, &s->listen, err, sizeof(err)) == 0) continue;
+        if (!strcmp(k, "--bench") && i + 2 < argc) {
+            bench_file = v;
+            bench_count = atol(argv[++i + 1]);
+            continue;
+        }
         if (!strcmp(k, "--host") && udp_endpoint_parse(v, &s->host, err, sizeof(err)) == 0) s->have_host = true;
         else if (!strcmp(k, "--origin") && sscanf(v, "%lf,%lf,%lf", &s->origin[0], &s->origin[1], &s->origin[2]) == 3)
             s->have_origin = true;
@@ -126,13 +139,42 @@ static int turn(struct cigi_receiver *r, int *answered)
     return frames;
 }
 
+static int bench(const struct cigi_settings *s)
+{
+    static uint8_t message[CIGI_MAX_MESSAGE];
+    FILE *f = fopen(bench_file, "rb");
+    size_t n = f ? fread(message, 1, sizeof(message), f) : 0;
+    if (f) fclose(f);
+    struct cigi_receiver *r;
+    char err[512];
+    if (!n || bench_count < 1 || cigi_receiver_make(&r, s, err, sizeof(err)) != 0) {
+        fprintf(stderr, "cigi_ig: --bench %s %ld: no message, no count, or %s\n", bench_file, bench_count, err);
+        return 2;
+    }
+    struct cigi_event e;
+    int64_t t0 = now_ns();
+    for (long i = 0; i < bench_count; i++) {
+        cigi_receiver_datagram(r, message, n, false, NULL, i);
+        while (cigi_receiver_next(r, &e)) {}
+    }
+    int64_t t1 = now_ns();
+    const struct cigi_counts *c = cigi_receiver_counts(r);
+    printf("bench messages=%ld packets=%llu ns_per_message=%.1f ns_per_packet=%.1f\n", bench_count,
+           (unsigned long long)c->packets, (double)(t1 - t0) / (double)bench_count,
+           (double)(t1 - t0) / (double)c->packets);
+    cigi_receiver_close(r);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     static struct cigi_settings s = {.view_id = CIGI_ANY_VIEW};
     int frames = 1, quiet_s = 10, heard = 0, answered = 0;
-    if (options(argc, argv, &s, &frames, &quiet_s) != 0 || !s.listen.port) {
+    int rc = options(argc, argv, &s, &frames, &quiet_s);
+    if (rc == 0 && bench_file) return bench(&s);
+    if (rc != 0 || !s.listen.port) {
         fprintf(stderr, "usage: cigi_ig --listen [ADDR:]PORT --origin LAT,LON,ALT [--effect TYPE=NAME]... "
-                "[--host ADDR:PORT] [--view V] [--frames N] [--quiet-s S]\n");
+                "[--host ADDR:PORT] [--view V] [--frames N] [--quiet-s S], or --bench FILE N --origin ...\n");
         return 2;
     }
     struct cigi_receiver *r;
