@@ -246,7 +246,8 @@ NET_SRC := $(addprefix common/,geodesy net_address udp_socket) \
 # sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera, GPIO and network inputs (platform/)
 PLAYER_SRC := $(addprefix player/,player module loop host reset authoring clock world) \
 	$(addprefix player/options/,args usage board channel) $(addprefix player/outputs/,stats notify) \
-	$(addprefix player/inputs/,triggers trigger_queue gpio_source dis_source mqtt_source detail watch signals) \
+	$(addprefix player/inputs/,triggers trigger_queue gpio_source dis_source cigi_source mqtt_source detail watch \
+	signals) \
 	$(addprefix video/,luma live_detail v4l2_source clip_detail) \
 	$(addprefix gpio/,gpio_backend effect_names effect_at gpio_triggers trigger_filter) \
 	$(addprefix net/,$(NET_SRC)) \

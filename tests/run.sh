@@ -280,8 +280,10 @@ list_all() {
     run_suite "" cigi tests/cigi.sh "$BUILD"
     WEIGHT=15
     run_suite "" mqtt tests/mqtt.sh "$BUILD"
-    # one world, many channels: three sbfx-play processes against one wide view (issue 44)
+    # one world, many channels: three sbfx-play processes against one wide view, CIGI into the
+    # player (issue 44)
     run_suite "" seam tests/seam.sh "$BUILD"
+    run_suite "" cigi-play tests/cigi_play.sh "$BUILD"
     WEIGHT=10
     run_suite "" install tests/install.sh "$BUILD"
     run_suite "" docs tests/docs.sh

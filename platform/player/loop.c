@@ -98,7 +98,9 @@ static int draw_scene(struct player *p, double t, sbfx_frame *frame, char *err, 
 {
     int w = p->display->width, h = p->display->height;
     test_scene_camera(&p->camera, t, (float)w / (float)h, frame->view, frame->projection);
-    world_channel_view(&p->channel, TEST_SCENE_NEAR, TEST_SCENE_FAR, frame->view, frame->projection);
+    if (p->cigi.have_ownship) world_ownship_view(&p->cigi.ownship, frame->view); /* the eyepoint: entity 0 */
+    const struct player_channel channel = world_channel(p);
+    world_channel_view(&channel, TEST_SCENE_NEAR, TEST_SCENE_FAR, frame->view, frame->projection);
     if (test_scene_draw(&p->scene, frame->view, frame->projection) != 0) {
         snprintf(err, n, "test scene: GL error while drawing");
         return -EIO;
@@ -149,6 +151,9 @@ static void record_times(struct frame_times *t, double sbfx_ms, double total_ms)
  * advancing at most MAX_REALTIME_STEP per frame. */
 static double frame_time(struct player *p, int64_t index, int64_t now)
 {
+    double host = 0.0;
+    if (p->world.on && p->opt->world_clock == PLAYER_CLOCK_CIGI) /* the host's clock once heard; until then still */
+        return cigi_source_time(&p->cigi, now, &host) && host > p->sim_time ? host : p->sim_time;
     if (p->world.on && p->opt->world_clock == PLAYER_CLOCK_SYSTEM && p->realtime) return world_system_seconds();
     if (p->world.on && !p->realtime) return world_frame_time(p, index);
     if (!p->realtime) return (double)index / p->opt->fps;
@@ -200,6 +205,7 @@ static int play_frame(struct player *p, int64_t index, char *err, size_t n)
     int64_t shown = index - p->take_first; /* headless --watch: each take writes frame-0000.png on */
     rc = p->display->ops->present(p->display, shown < INT_MAX ? (int)shown : INT_MAX, err, n);
     if (rc) return rc;
+    cigi_source_frame_done(&p->cigi, player_now_ns()); /* Start of Frame: this frame is drawn */
     report_time(p, (double)(fx_end - fx_start) / 1e6);
     record_times(&p->times, (double)(fx_end - fx_start) / 1e6, (double)(player_now_ns() - start) / 1e6);
     return 0;

@@ -153,6 +153,7 @@ static int open_inputs(struct player *p, char *err, size_t n)
     int rc = gpio_source_add_options(&p->gpio, &p->board, opt, err, n);
     if (rc == 0) rc = gpio_source_open(&p->gpio, &p->triggers, p->fx, player_now_ns(), player_log, p, err, n);
     if (rc == 0) rc = dis_source_open(&p->dis, &p->triggers, opt, &p->board, p->fx, player_log, p, err, n);
+    if (rc == 0) rc = cigi_source_open(&p->cigi, &p->triggers, opt, p->fx, player_log, p, err, n);
     if (rc == 0) rc = mqtt_source_open(&p->mqtt, &p->triggers, opt, &p->board, player_log, p, err, n);
     p->paced = !player_on_screen(opt) && trigger_sources_realtime(&p->triggers);
     if (rc == 0) rc = detail_open_clip(p->fx, player_log, p, err, n);
@@ -234,6 +235,17 @@ static void collect_triggers(const struct player *p, struct player_stats_record 
         r->dis_pdus = (long long)d->pdus, r->dis_detonations = (long long)d->detonations;
         r->dis_ignored = (long long)d->ignored, r->dis_malformed = (long long)d->malformed;
     }
+    const struct cigi_counts *g = cigi_source_counts(&p->cigi);
+    r->cigi_on = g != NULL;
+    r->kiosk_on = r->kiosk_on || r->cigi_on;
+    if (g) {
+        r->cigi_messages = (long long)g->messages, r->cigi_malformed = (long long)g->malformed;
+        r->cigi_ignored = (long long)g->ignored, r->cigi_entities = (long long)g->entities;
+        r->cigi_stopped = (long long)q->stopped[TRIGGER_CIGI], r->cigi_start_of_frame = (long long)g->sof_sent;
+    }
+    r->world_on = p->world.on;
+    r->world_time = p->sim_time;
+    r->triggers_expired = (long long)p->last.triggers_expired;
     r->mqtt_messages = (long long)m.messages;
     r->mqtt_malformed = (long long)(p->mqtt.bad_syntax + p->mqtt.bad_effect);
     r->mqtt_reconnects = (long long)m.reconnects;

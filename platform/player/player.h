@@ -20,6 +20,7 @@
 #include "display/display.h"
 #include "egl/gl_reset.h"
 #include "host/test_scene.h"
+#include "player/inputs/cigi_source.h"
 #include "player/inputs/detail.h"
 #include "player/inputs/dis_source.h"
 #include "player/inputs/gpio_source.h"
@@ -95,6 +96,7 @@ struct player {
     struct trigger_sources triggers; /* GPIO, DIS, MQTT; with the timeline and --trigger, one path */
     struct gpio_source gpio;  /* the GPIO lines, one of the trigger sources when it has any */
     struct dis_source dis;    /* --dis: DIS detonations */
+    struct cigi_source cigi;  /* --cigi: a simulation host's IG messages */
     struct mqtt_source mqtt;  /* --mqtt: MQTT messages */
     struct detail_feed detail;
     struct second_stats second;
@@ -126,6 +128,12 @@ bool world_trigger_identified(const struct player *p, const struct player_trigge
 void world_take_timeline(struct player *p, const sbfx_scene *scene);
 /* Starts the identified --trigger and (world mode) timeline entries due at the clock `now`. */
 int world_fire_due(struct player *p, double now, char *err, size_t n);
+/* The eyepoint riding on CIGI's entity 0 (scene metres; yaw from north clockwise, pitch up,
+ * roll right) as a view matrix. */
+void world_ownship_view(const struct cigi_pose *ownship, float view[16]);
+/* The channel of the moment: the board's and the flags' (p->channel), CIGI's View Definition and
+ * View Control over them where the host sent them. */
+struct player_channel world_channel(const struct player *p);
 /* The channel's view: the eyepoint's view turned by the offset, the frustum's projection. */
 void world_channel_view(const struct player_channel *c, float near_z, float far_z, float view[16],
                         float projection[16]);

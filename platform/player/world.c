@@ -166,6 +166,25 @@ static void offset_view(const float offset[3], float view[16])
     memcpy(view, turned, sizeof(turned));
 }
 
+void world_ownship_view(const struct cigi_pose *o, float view[16])
+{
+    float translate[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    for (int k = 0; k < 3; k++) translate[12 + k] = -o->position[k];
+    memcpy(view, translate, sizeof(translate));
+    /* the camera looks down -z, north in the scene (x east, y up, z south): heading = yaw */
+    const float angles[3] = {o->yaw, o->pitch, o->roll};
+    offset_view(angles, view);
+}
+
+struct player_channel world_channel(const struct player *p)
+{
+    struct player_channel c = p->channel;
+    const struct player_channel *host = &p->cigi.view;
+    if (host->have_frustum) memcpy(c.frustum, host->frustum, sizeof(c.frustum)), c.have_frustum = true;
+    if (host->have_offset) memcpy(c.offset, host->offset, sizeof(c.offset)), c.have_offset = true;
+    return c;
+}
+
 void world_channel_view(const struct player_channel *c, float near_z, float far_z, float view[16],
                         float projection[16])
 {

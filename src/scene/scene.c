@@ -699,9 +699,10 @@ bool sbfx_scene_camera_get(const sbfx_scene *scene, sbfx_scene_camera *out)
 
 static int parse_root(parser *p, const config_setting_t *root)
 {
-    /* dis: the player's network triggers (docs/triggers.md), read by the player, not the module */
+    /* dis, cigi: the player's network inputs (docs/triggers.md, docs/simulators.md), read by the
+     * player, not the module */
     static const char *const keys[] = {"render", "lights", "ambient", "media", "effects", "triggers", "post",
-                                       "camera", "sky", "dis", NULL};
+                                       "camera", "sky", "dis", "cigi", NULL};
     if (check_keys(p, root, "the scene", keys)) return -1;
     const config_setting_t *s;
     if ((s = config_setting_get_member(root, "render")) && parse_render(p, s)) return -1;

@@ -53,8 +53,23 @@ bool trigger_queue_push_identified(struct trigger_queue *q, enum trigger_kind ki
     return true;
 }
 
+bool trigger_queue_push_stop(struct trigger_queue *q, enum trigger_kind kind, uint64_t identity, int64_t now_ns)
+{
+    (void)now_ns; /* a stop is never rate limited */
+    if (q->count == TRIGGER_QUEUE_MAX) {
+        q->full[kind]++;
+        return false;
+    }
+    q->pending[q->count++] = (struct trigger_request){.kind = kind, .identity = identity, .stop = true};
+    return true;
+}
+
 static sbfx_result start_one(struct trigger_queue *q, sbfx *fx, const struct trigger_request *r)
 {
+    if (r->stop) {
+        if (sbfx_stop_identified(fx, r->identity) > 0) q->stopped[r->kind]++;
+        return SBFX_OK;
+    }
     if (!r->identity) return sbfx_trigger(fx, r->effect, r->position);
     sbfx_trigger_desc d = {.version = SBFX_TRIGGER_DESC_VERSION, .effect = r->effect, .identity = r->identity,
                            .start_time = isnan(r->start) ? sbfx_time(fx) : r->start};
@@ -73,7 +88,7 @@ int trigger_queue_fire(struct trigger_queue *q, sbfx *fx)
     for (int i = 0; i < q->count; i++) {
         const struct trigger_request *r = &q->pending[i];
         q->firing = r->kind; /* the listener logs the call under this kind */
-        if (start_one(q, fx, r) == SBFX_OK) started++;
+        if (start_one(q, fx, r) == SBFX_OK) started += !r->stop;
         else q->pool_full[r->kind]++;
     }
     q->count = 0;
@@ -122,7 +137,7 @@ const char *trigger_kind_name(enum trigger_kind kind)
 {
     static const char *const names[TRIGGER_KIND_COUNT] = {
         [TRIGGER_GPIO] = "gpio", [TRIGGER_DIS] = "dis", [TRIGGER_MQTT] = "mqtt",
-        [TRIGGER_TIMELINE] = "timeline", [TRIGGER_CLI] = "cli",
+        [TRIGGER_TIMELINE] = "timeline", [TRIGGER_CLI] = "cli", [TRIGGER_CIGI] = "cigi",
     };
     return (unsigned)kind < TRIGGER_KIND_COUNT ? names[kind] : "?";
 }
