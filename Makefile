@@ -14,6 +14,8 @@
 #   make gstreamer    the GStreamer element sbfx, build/gstreamer/libgstsbfx.so (docs/hosts/gstreamer.md;
 #                     part of make where GStreamer's -dev packages are)
 #   make test-gstreamer  the element and its tests (tests/gstreamer/; make test runs them)
+#   make test-load    60 s of 5,000 DIS Entity State PDUs and 50 detonations a second while rendering
+#                     (tests/load.sh; make test runs 5 s; docs/simulators.md)
 #   make test-precision  the accuracy suites at GPU precision: SBFX_MEDIUMP=native SBFX_FILTER_BITS=8
 #                     (and 6 bits for NVIDIA's cases; tests/precision.sh; make test runs it)
 #   make bench        timings into build/bench/
@@ -353,6 +355,13 @@ test-gl: $(GL_TESTS) $(BUILD)/sbfx-play $(BUILD)/sbfx-probe
 .PHONY: test-precision
 test-precision: test-gl
 	@tests/precision.sh $(BUILD)
+
+# A real exercise's load (tests/load.sh, docs/simulators.md): 5,000 DIS Entity State PDUs and 50
+# detonations a second for LOAD_SECONDS (60) while sbfx-play renders; make test runs 5 s of it
+LOAD_SECONDS ?= 60
+.PHONY: test-load
+test-load: $(BUILD)/sbfx-play $(BUILD)/tests/net/dis_send
+	@LOAD_SECONDS=$(LOAD_SECONDS) tests/load.sh $(BUILD)
 
 # make test and make check use every core without -j: their builds run with -j(cores) unless
 # make was given a job server already (make -jN test), and tests/run.sh runs suites in parallel.

@@ -4,6 +4,9 @@
  *
  *   dis_send --port P [options] detonation     one Detonation PDU
  *   dis_send --port P [options] entity-state   one Entity State PDU (type 1), 144 bytes
+ *   dis_send --port P [options] load S ES DET  for S seconds, ES Entity State PDUs and DET
+ *                                              detonations (events of their own, in range) a
+ *                                              second, paced by the clock (tests/load.sh)
  *   dis_send --port P [options] storm N        N PDUs: detonations, other types, repeats and
  *                                              malformed ones mixed; prints what it sent:
  *                                              "sent N detonations D ignored I malformed M"
@@ -239,6 +242,42 @@ static int storm(struct pdu_spec base, int count, int port)
     return 0;
 }
 
+/* A real exercise's load (tests/load.sh): for `seconds`, es_rate Entity State PDUs and det_rate
+ * detonations a second, spread evenly (due ones sent each millisecond), each detonation an event
+ * of its own (event numbers 1.., the site and application given) at one of 16 points within
+ * 400 m of the origin. Prints "sent E entity-states D detonations" at the end. */
+static int load(struct pdu_spec base, const double origin[3], double seconds, double es_rate, double det_rate)
+{
+    double points[16][3];
+    for (int k = 0; k < 16; k++) {
+        const double enu[3] = {(k % 4) * 100.0 - 150.0, (k / 4) * 100.0 - 150.0, 0.0};
+        if (offset_point(origin, enu, points[k]) != 0) return 1;
+    }
+    struct timespec t0, now;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    long es = 0, det = 0;
+    for (;;) {
+        clock_gettime(CLOCK_MONOTONIC, &now);
+        double t = (double)(now.tv_sec - t0.tv_sec) + (double)(now.tv_nsec - t0.tv_nsec) / 1e9;
+        if (t > seconds) t = seconds;
+        for (; es < (long)(t * es_rate); es++) {
+            base.event = 1 + (int)(es % 60000);
+            if (send_pdu(&base, true) != 0) return 1;
+        }
+        for (; det < (long)(t * det_rate); det++) {
+            struct pdu_spec d = base;
+            d.event = 1 + (int)(det % 65535);
+            memcpy(d.ecef, points[det % 16], sizeof(d.ecef));
+            if (send_pdu(&d, false) != 0) return 1;
+        }
+        if (t >= seconds) break;
+        struct timespec tick = {0, 1000000};
+        nanosleep(&tick, NULL);
+    }
+    printf("sent %ld entity-states %ld detonations\n", es, det);
+    return 0;
+}
+
 /* ---- the command line ------------------------------------------------------------------ */
 
 static bool triple(const char *s, double out[3])
@@ -298,9 +337,11 @@ int main(int argc, char **argv)
         return 2;
     }
     if (!strcmp(what, "storm") && i + 1 < argc) return storm(s, atoi(argv[i + 1]), port);
+    if (!strcmp(what, "load") && i + 3 < argc)
+        return load(s, origin, atof(argv[i + 1]), atof(argv[i + 2]), atof(argv[i + 3]));
     bool entity = !strcmp(what, "entity-state");
     if (!entity && strcmp(what, "detonation") != 0) {
-        fprintf(stderr, "dis_send: detonation, entity-state, storm N or ecef\n");
+        fprintf(stderr, "dis_send: detonation, entity-state, storm N, load S ES DET or ecef\n");
         return 2;
     }
     for (int n = 0; n < count; n++)
