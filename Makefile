@@ -646,7 +646,7 @@ bench: $(BUILD)/bench/bench_shadow
 # tests/platform/: the player's logic without devices (luma slices, debounce, board profiles,
 # the --gpio/--mode syntax), run by tests/run.sh like the unit tests.
 PLATFORM_TEST_OBJ := $(addprefix $(BUILD)/obj/platform/,video/luma.o gpio/trigger_filter.o player/options/board.o drm/drm_mode_spec.o \
-	player/options/args.o display/display_link.o gpio/effect_at.o net/common/net_address.o) $(BUILD)/obj/tools/soak/soak_check.o
+	player/options/args.o player/options/channel.o display/display_link.o gpio/effect_at.o net/common/net_address.o) $(BUILD)/obj/tools/soak/soak_check.o
 PLATFORM_TESTS := $(patsubst tests/platform/%.c,$(BUILD)/tests/platform/%,$(wildcard tests/platform/*.c))
 $(BUILD)/tests/platform/%: tests/platform/%.c $(PLATFORM_TEST_OBJ) tests/check.h
 	@mkdir -p $(@D)
