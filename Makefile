@@ -360,7 +360,7 @@ test-precision: test-gl
 # detonations a second for LOAD_SECONDS (60) while sbfx-play renders; make test runs 5 s of it
 LOAD_SECONDS ?= 60
 .PHONY: test-load
-test-load: $(BUILD)/sbfx-play $(BUILD)/tests/net/dis_send
+test-load: $(BUILD)/sbfx-play $(BUILD)/tests/net/dis_send $(BUILD)/tests/net/cigi_send $(BUILD)/tests/vm/alloc_count.so
 	@LOAD_SECONDS=$(LOAD_SECONDS) tests/load.sh $(BUILD)
 
 # make test and make check use every core without -j: their builds run with -j(cores) unless

@@ -7,8 +7,10 @@
 #     range and set off its effect (dis_detonations = detonations sent), and every one of them was
 #     started or counted refused (triggers_fired + triggers_refused + triggers_expired =
 #     dis_detonations);
-#   - memory flat: no heap allocation after load (heap_allocs_after_load 0) and the resident set
-#     after the first 20 % of the run and at its end within 2 MiB (VmRSS, /proc);
+#   - memory flat: no heap allocation after load, by sbfx (heap_allocs_after_load 0) nor by the
+#     player's own code (tests/vm/alloc_count.so: as many as a run of one detonation and a few
+#     frames), and the resident set (VmRSS) grows by at most 8 MiB from the first 20 % of the run
+#     to its end (what grows there is Mesa's and libpng's, reported: docs/simulators.md "Load");
 #   - the frame: frames drawn, the frame times and the budget's count of frames over it are printed
 #     (measured, not asserted: docs/simulators.md has the figures);
 #   - the same through CIGI (tests/net/cigi_send): 50 messages a second, each an effect entity going
@@ -29,17 +31,35 @@ SCENE=tests/net/range.cfg
 ORIGIN=48.137154,11.576124,519.0
 . tests/net/common.sh
 
-for f in "$PLAYER" "$SEND"; do
+ALLOC=$BUILD/tests/vm/alloc_count.so
+for f in "$PLAYER" "$SEND" "$ALLOC"; do
     [ -e "$f" ] || { fail built "$f was not built (make $f)"; exit 1; }
 done
 
 rss_kib() { awk '/^VmRSS:/ { print $2 }' "/proc/$1/status" 2>/dev/null; }
+program_allocs() { sed -n 's/^alloc-count: program \([0-9]*\),.*/\1/p' "$1" | tail -n 1; }
+all_allocs() { sed -n 's/^alloc-count: program [0-9]*, all \([0-9]*\).*/\1/p' "$1" | tail -n 1; }
+
+# the baseline of the player's own allocations: one detonation, a few frames
+port=$(free_port udp)
+out=$tmp/baseline
+mkdir -p "$out"
+LD_PRELOAD=$ALLOC "$PLAYER" --scene "$SCENE" --no-timeline --size 320x180 --fps 30 --frames 100000 --budget-ms 20 \
+    --out "$out" --dis "127.0.0.1:$port" >"$out/log" 2>"$out/err" &
+pid=$!
+until_log "$out/err" 'dis: listening on' || { fail start "the player did not listen: $(head -c 300 "$out/err")"; exit 1; }
+"$SEND" --port "$port" --origin "$ORIGIN" --event 1 detonation
+sleep 1
+kill -TERM "$pid"
+wait "$pid"
+pid=""
+baseline=$(program_allocs "$out/err")
 
 port=$(free_port udp)
 out=$tmp/run
 mkdir -p "$out"
-"$PLAYER" --scene "$SCENE" --no-timeline --size 320x180 --fps 30 --frames 100000 --budget-ms 20 --out "$out" \
-    --stats "$out/stats.json" --dis "127.0.0.1:$port" >"$out/log" 2>"$out/err" &
+LD_PRELOAD=$ALLOC "$PLAYER" --scene "$SCENE" --no-timeline --size 320x180 --fps 30 --frames 100000 --budget-ms 20 \
+    --out "$out" --stats "$out/stats.json" --dis "127.0.0.1:$port" >"$out/log" 2>"$out/err" &
 pid=$!
 until_log "$out/err" 'dis: listening on' || { fail start "the player did not listen: $(head -c 300 "$out/err")"; exit 1; }
 # the frames' PNGs are not what is measured: keep the folder from filling the disk
@@ -80,10 +100,14 @@ if [ $((fired + refused + ${expired:-0})) = "$dets" ]; then
 else
     fail every-detonation-fired-or-counted-refused "fired $fired + refused $refused + expired ${expired:-0} != $dets"
 fi
-if [ "$allocs" = 0 ] && [ -n "$rss_early" ] && [ -n "$rss_late" ] && [ $((rss_late - rss_early)) -le 2048 ]; then
-    ok "memory-flat (no allocation after load; resident set $rss_early -> $rss_late KiB)"
+program=$(program_allocs "$out/err") everything=$(all_allocs "$out/err")
+echo "# allocations: the player's own code $program (a run of one detonation: $baseline), all $everything"
+if [ "$allocs" = 0 ] && [ -n "$baseline" ] && [ "$program" = "$baseline" ] && [ -n "$rss_early" ] &&
+    [ -n "$rss_late" ] && [ $((rss_late - rss_early)) -le 8192 ]; then
+    ok "memory-flat (no allocation by sbfx or the player after load; resident set $rss_early -> $rss_late KiB)"
 else
-    fail memory-flat "heap_allocs_after_load $allocs, resident set $rss_early -> $rss_late KiB"
+    fail memory-flat "heap_allocs_after_load $allocs, the player's own $program (baseline $baseline), resident" \
+        "set $rss_early -> $rss_late KiB"
 fi
 
 # ---- the same through CIGI: 50 messages a second, each an effect entity going Active and 100
