@@ -298,8 +298,32 @@ test_refused() {
     fi
 }
 
+# ---- --world-clock dis: the exercise's absolute timestamps are the world clock ----------------------
+test_world_clock() {
+    # now, past the hour, by the system clock (as the exercise's senders have it): x 2^31 / 3600,
+    # shifted over the absolute bit
+    local past=$(($(date +%s) % 3600))
+    local ts=$(((past * 2147483648 / 3600) << 1 | 1))
+    FPS=10 start world-clock --world-clock dis || return
+    send --timestamp "$ts" entity-state
+    send --timestamp "$ts" --event 77 --enu 10,0,0 detonation
+    sleep 1
+    stop || true
+    local t s
+    t=$(grep -o '"world_time": [0-9.e+]*' "$out/stats.json" | grep -o '[0-9.e+]*$')
+    s=$(log_entries | awk '$1 == "dis" { print $6; exit }')
+    # the hour is the system clock's: $past s past it, a few seconds later at the last frame
+    if awk -v t="$t" -v s="$s" -v p="$past" 'BEGIN { a = t % 3600; d = s % 3600;
+        exit !(a >= p && a < p + 10 && d > p - 0.001 && d < p + 0.001) }'; then
+        ok "world-clock-from-timestamps (world time $t s: $past s past the hour + the run; the detonation started at $s)"
+    else
+        fail world-clock-from-timestamps "world_time '$t', the detonation's start '$s' (want $past s past the hour)"
+    fi
+}
+
 test_detonations
 test_storm
 test_reload
 test_refused
+test_world_clock
 exit $((failures > 0))

@@ -154,6 +154,8 @@ static double frame_time(struct player *p, int64_t index, int64_t now)
     double host = 0.0;
     if (p->world.on && p->opt->world_clock == PLAYER_CLOCK_CIGI) /* the host's clock once heard; until then still */
         return cigi_source_time(&p->cigi, now, &host) && host > p->sim_time ? host : p->sim_time;
+    if (p->world.on && p->opt->world_clock == PLAYER_CLOCK_DIS) /* the exercise's timestamps, the same way */
+        return dis_source_time(&p->dis, now, &host) && host > p->sim_time ? host : p->sim_time;
     if (p->world.on && p->opt->world_clock == PLAYER_CLOCK_SYSTEM && p->realtime) return world_system_seconds();
     if (p->world.on && !p->realtime) return world_frame_time(p, index);
     if (!p->realtime) return (double)index / p->opt->fps;

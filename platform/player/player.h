@@ -61,13 +61,14 @@ struct world_timeline_entry {
     float position[3];
 };
 struct world {
-    bool on;                  /* world mode: --world-time or --world-clock system|cigi */
+    bool on;                  /* world mode: --world-time or --world-clock system|cigi|dis */
     int64_t first_k;          /* the first frame's k on the grid k / fps */
     double base;              /* the module's desc.start_time: the whole minute at or before it */
     uint64_t cli_fired[(PLAYER_MAX_TRIGGERS + 63) / 64];    /* identified --trigger entries started */
     struct world_timeline_entry timeline[WORLD_TIMELINE_MAX]; /* the scene's, world mode */
     int timeline_count;
     uint64_t timeline_fired[WORLD_TIMELINE_MAX / 64];
+    int jump_said;            /* a world clock far ahead of the module was logged */
 };
 
 struct player {

@@ -2,7 +2,7 @@
  * triggers started at world times as identified instances (sbfx_trigger_identified), and the
  * channel's view (its frustum and view offset from the eyepoint).
  *
- * World mode (--world-time, --world-clock system|cigi): frames lie on the grid k / fps from world
+ * World mode (--world-time, --world-clock system|cigi|dis): frames lie on the grid k / fps from world
  * time 0, so frames of different channels at the same k are at the same world time; the module's
  * clock (desc.start_time) starts at the whole minute at or before the first frame and is brought
  * to it in fixed steps, so channels started within the same minute have clocks equal to the bit.
@@ -45,7 +45,10 @@ int world_setup(struct player *p, char *err, size_t n)
     w->on = world_mode(opt);
     if (!w->on) return 0;
     double first = opt->world_time;
+    /* the system clock; DIS's timestamps, seconds past the system clock's hour, lie within half an
+     * hour of it: the module starts half an hour before and follows them (module.c, advance) */
     if (!opt->world_time_set && opt->world_clock == PLAYER_CLOCK_SYSTEM) first = world_system_seconds();
+    if (!opt->world_time_set && opt->world_clock == PLAYER_CLOCK_DIS) first = world_system_seconds() - 1800.0;
     double k = opt->world_time_set ? round(first * opt->fps) : ceil(first * opt->fps);
     if (opt->world_time_set && fabs(first * opt->fps - k) > 1e-6) {
         snprintf(err, n, "--world-time %.9g is not on the frame grid k / fps (fps %g): the nearest are %.9g and "

@@ -53,7 +53,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (dis_receiver_make(&r, &s, err, sizeof(err)) != 0) abort();
     }
     check_cursor(data, size);
-    const struct dis_sink sink = {fire, NULL, NULL, NULL};
+    const struct dis_sink sink = {fire, NULL, NULL, NULL, NULL};
     dis_receiver_datagram(r, data, size, size > DIS_MAX_PDU_SIZE, NULL, now += 1000000, &sink);
     const struct dis_counts *c = dis_receiver_counts(r);
     if (c->pdus != c->detonations + c->ignored + c->malformed) abort();

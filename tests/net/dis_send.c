@@ -18,7 +18,8 @@
  *          --result R --origin LAT,LON,ALT --enu E,N,U (the location; default the origin)
  *          --ecef X,Y,Z --vp N (variable parameter records) --announce N (the record count the
  *          PDU says, wrong on purpose: a wrong length) --length L (the header's length field)
- *          --cut N (send only the first N bytes) --count N (send it N times).
+ *          --cut N (send only the first N bytes) --count N (send it N times) --timestamp T (the
+ *          header's, raw: bit 0 set is absolute, seconds past the hour x 2^31 / 3600 above it).
  * The location: geodetic -> ECEF in closed form; a point E east, N north, U up is reached
  * geodetically (latitude + N / M, longitude + E / (N_prime cos lat), height + U, with the
  * meridian and prime vertical radii of curvature), not through the player's tangent-plane
@@ -47,6 +48,7 @@
 
 struct pdu_spec {
     int version, exercise, type, site, app, event, result, vp, announce, length, cut;
+    uint32_t timestamp;
     int munition[7];
     double ecef[3];
 };
@@ -128,7 +130,7 @@ static void put_float(uint8_t *p, float f)
 static void header(uint8_t *p, const struct pdu_spec *s, int type, int family, size_t length)
 {
     p[0] = (uint8_t)s->version, p[1] = (uint8_t)s->exercise, p[2] = (uint8_t)type, p[3] = (uint8_t)family;
-    put32(p + 4, 0x12345679u); /* timestamp: relative, any */
+    put32(p + 4, s->timestamp); /* --timestamp: bit 0 set, absolute (the default 0x12345679: 9:46 past) */
     put16(p + 8, (unsigned)length);
     p[10] = p[11] = 0;
 }
@@ -288,6 +290,7 @@ static bool triple(const char *s, double out[3])
 int main(int argc, char **argv)
 {
     struct pdu_spec s = {.version = 7, .exercise = 1, .type = 3, .site = 1, .app = 1, .event = 1, .result = 5,
+                         .timestamp = 0x12345679u,
                          .announce = -1, .length = -1, .cut = -1, .munition = {2, 9, 225, 2, 14, 1, 0}};
     double origin[3] = {0, 0, 0}, enu[3] = {0, 0, 0};
     int port = 0, count = 1, i = 1;
@@ -307,6 +310,7 @@ int main(int argc, char **argv)
         else if (!strcmp(k, "length")) s.length = atoi(v);
         else if (!strcmp(k, "cut")) s.cut = atoi(v);
         else if (!strcmp(k, "count")) count = atoi(v);
+        else if (!strcmp(k, "timestamp")) s.timestamp = (uint32_t)strtoul(v, NULL, 0);
         else if (!strcmp(k, "file")) path = v;
         else if (!strcmp(k, "origin") && triple(v, origin)) continue;
         else if (!strcmp(k, "enu") && triple(v, enu)) continue;

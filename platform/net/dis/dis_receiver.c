@@ -194,6 +194,7 @@ void dis_receiver_datagram(struct dis_receiver *r, const uint8_t *data, size_t l
     dis_cursor_init(&c, data, length);
     while (dis_cursor_next(&c, &pdu, &status)) {
         r->counts.pdus++;
+        if (!dis_status_malformed(status) && sink->heard) sink->heard(pdu.header.timestamp, sink->user);
         if (dis_status_malformed(status)) malformed(r, status, from, sink);
         else if (status == DIS_OTHER) ignore(r, DIS_IGNORED_TYPE, NULL, from, sink);
         else detonation(r, &pdu, from, now_ns, sink);

@@ -52,13 +52,15 @@ struct dis_counts {
 
 /* Where detonations go: fire() takes the effect and the scene position; fire_event(), where set,
  * is called instead with the detonation's event ID (its identity on every channel) and the PDU's
- * timestamp (docs/simulators.md). */
+ * timestamp (docs/simulators.md); heard(), where set, with every well-formed PDU's timestamp. */
 struct dis_sink {
     void (*fire)(const char *effect, const float position[3], void *user);
     void (*log)(const char *message, void *user);
     void *user;
     void (*fire_event)(const char *effect, const float position[3], const struct dis_entity_id *event,
                        uint32_t timestamp, void *user);
+    /* every well-formed PDU's timestamp, where set (the world clock from DIS) */
+    void (*heard)(uint32_t timestamp, void *user);
 };
 
 struct dis_receiver;

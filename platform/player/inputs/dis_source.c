@@ -121,6 +121,25 @@ static void sink_fire_event(const char *effect, const float position[3], const s
     trigger_queue_push_identified(c->queue, TRIGGER_DIS, effect, position, identity, start, c->now_ns);
 }
 
+static void sink_heard(uint32_t timestamp, void *user)
+{
+    struct sink_context *c = user;
+    if (!(timestamp & 1)) return; /* relative: the sender's own count, no world time */
+    struct dis_source *d = c->source;
+    d->have_time = true;
+    d->last_timestamp = timestamp;
+    d->last_timestamp_ns = c->now_ns;
+    d->last_timestamp_system = c->world_now;
+}
+
+bool dis_source_time(const struct dis_source *d, int64_t now_ns, double *seconds)
+{
+    if (!d->receiver || !d->have_time) return false;
+    *seconds = dis_timestamp_world(d->last_timestamp, d->last_timestamp_system) +
+               (double)(now_ns - d->last_timestamp_ns) / 1e9;
+    return true;
+}
+
 static void sink_log(const char *message, void *user)
 {
     const struct sink_context *c = user;
@@ -131,8 +150,8 @@ static void dis_service(struct trigger_source *s, struct trigger_queue *q, const
 {
     (void)fx; /* the dis group's effects were checked when it was read */
     struct dis_source *d = (struct dis_source *)s;
-    struct sink_context context = {d, q, now_ns, d->world_timestamps ? world_clock_now() : 0.0};
-    const struct dis_sink sink = {sink_fire, sink_log, &context, sink_fire_event};
+    struct sink_context context = {d, q, now_ns, world_clock_now()};
+    const struct dis_sink sink = {sink_fire, sink_log, &context, sink_fire_event, sink_heard};
     int rc = dis_receiver_service(d->receiver, now_ns, &sink);
     if (rc < 0 && d->read_errors++ == 0) {
         char msg[160];
@@ -196,7 +215,11 @@ int dis_source_open(struct dis_source *d, struct trigger_sources *all, const str
     d->log_user = user;
     d->scene_path = opt->scene_path;
     d->exercise_flag = opt->dis_exercise;
-    d->world_timestamps = opt->world_clock == PLAYER_CLOCK_SYSTEM;
+    d->world_timestamps = opt->world_clock == PLAYER_CLOCK_SYSTEM || opt->world_clock == PLAYER_CLOCK_DIS;
+    if (opt->world_clock == PLAYER_CLOCK_DIS && !opt->dis && !b->dis_listen[0]) {
+        snprintf(err, n, "--world-clock dis needs --dis [ADDR:]PORT (or a board profile's dis.listen)");
+        return -EINVAL;
+    }
     const char *listen = opt->dis ? opt->dis : b->dis_listen[0] ? b->dis_listen : NULL;
     if (!listen) {
         if (!opt->dis_exercise) return 0;

@@ -21,7 +21,11 @@ struct dis_source {
     const char *scene_path;
     int exercise_flag;               /* --dis-exercise; 0: not given */
     int read_errors;                 /* socket read errors (logged the first time) */
-    bool world_timestamps;           /* --world-clock system: absolute timestamps are world times */
+    bool world_timestamps;           /* --world-clock system|dis: absolute timestamps are world times */
+    bool have_time;                  /* an absolute timestamp was heard (--world-clock dis) */
+    uint32_t last_timestamp;
+    int64_t last_timestamp_ns;       /* when (the monotonic clock) */
+    double last_timestamp_system;    /* and the system clock then (the hour) */
     input_log_fn log;
     void *log_user;
 };
@@ -34,6 +38,9 @@ int dis_source_open(struct dis_source *d, struct trigger_sources *all, const str
 /* A DIS timestamp (absolute: seconds past the hour) in world time: the hour nearest `now`
  * (the system clock's seconds). */
 double dis_timestamp_world(uint32_t timestamp, double now);
+/* --world-clock dis: the world time now, from the last absolute timestamp heard (the hour from
+ * the system clock) and the monotonic time since; false before the first. */
+bool dis_source_time(const struct dis_source *d, int64_t now_ns, double *seconds);
 /* Its counters (NULL: no --dis). */
 const struct dis_counts *dis_source_counts(const struct dis_source *d);
 

@@ -464,7 +464,7 @@ static int set_world_time(struct player_options *opt, const char *value, char *e
 static int set_world_clock(struct player_options *opt, const char *value, char *err, size_t n)
 {
     static const struct choice choices[] = {{"frames", PLAYER_CLOCK_FRAMES}, {"system", PLAYER_CLOCK_SYSTEM},
-                                            {"cigi", PLAYER_CLOCK_CIGI}};
+                                            {"cigi", PLAYER_CLOCK_CIGI}, {"dis", PLAYER_CLOCK_DIS}};
     int v = 0;
     int rc = parse_choice("--world-clock", value, choices, ARRAY_SIZE(choices), &v, err, n);
     if (rc == 0) opt->world_clock = (enum player_world_clock)v;
@@ -525,7 +525,7 @@ static const struct flag flags[] = {
     {"--stats", "FILE", set_stats},
     {"--trigger", "EFFECT@SECONDS[:X,Y,Z][#ID]", set_trigger},
     {"--world-time", "SECONDS (0..1e10)", set_world_time},
-    {"--world-clock", "frames|system|cigi", set_world_clock},
+    {"--world-clock", "frames|system|cigi|dis", set_world_clock},
     {"--frustum", "LEFT,RIGHT,BOTTOM,TOP (degrees)", set_frustum},
     {"--view-offset", "YAW,PITCH,ROLL (degrees)", set_view_offset},
     {"--cigi", "[ADDR:]PORT (e.g. 8004 or 239.1.2.3:8004)", set_cigi},

@@ -30,8 +30,9 @@ struct player_trigger {
 #define PLAYER_MAX_WORLD_TIME 1e10
 
 /* Where the world clock comes from (docs/simulators.md): none (the player's own frame count),
- * the system clock (kept in step by PTP or NTP), or CIGI's IG Control timestamps. */
-enum player_world_clock { PLAYER_CLOCK_FRAMES, PLAYER_CLOCK_SYSTEM, PLAYER_CLOCK_CIGI };
+ * the system clock (kept in step by PTP or NTP), CIGI's IG Control timestamps, or DIS PDUs'
+ * absolute timestamps (the seconds past the hour; the hour from the system clock). */
+enum player_world_clock { PLAYER_CLOCK_FRAMES, PLAYER_CLOCK_SYSTEM, PLAYER_CLOCK_CIGI, PLAYER_CLOCK_DIS };
 
 /* A channel: one display's slice of the eyepoint's view (--frustum, --view-offset, the board's
  * view group, CIGI's View Definition and View Control). Degrees. */
@@ -103,7 +104,7 @@ struct player_options {
     /* one world, many channels (docs/simulators.md) */
     bool world_time_set;
     double world_time;        /* --world-time: the first frame's world time (on the grid k / fps) */
-    enum player_world_clock world_clock; /* --world-clock */
+    enum player_world_clock world_clock; /* --world-clock frames|system|cigi|dis */
     struct player_channel channel;       /* --frustum, --view-offset */
     const char *cigi;         /* --cigi [ADDR:]PORT */
     const char *cigi_host;    /* --cigi-host ADDR:PORT */

@@ -79,7 +79,7 @@ static const struct stats_key stats_keys[] = {
     KEY(cigi_entities, KIND_INT, GROUP_CIGI, "effect entities started (Entity Control went Active)"),
     KEY(cigi_stopped, KIND_INT, GROUP_CIGI, "effect instances ended (Destroyed, Inactive, animation stopped)"),
     KEY(cigi_start_of_frame, KIND_INT, GROUP_CIGI, "Start of Frame messages sent to the host"),
-    KEY(world_time, KIND_G, GROUP_WORLD, "the last frame's world time (s)"),
+    KEY(world_time, KIND_MS3, GROUP_WORLD, "the last frame's world time (s)"),
     KEY(triggers_expired, KIND_INT, GROUP_WORLD, "identified triggers heard after their effect had ended"),
 };
 
