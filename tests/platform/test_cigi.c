@@ -245,6 +245,12 @@ CHECK_TEST(malformed_messages_are_named)
     odd[k + 40] = 99, odd[k + 41] = 8;
     CHECK(nth_status(odd, k + 48, 1, &count) == CIGI_BAD_SIZE && count == 3, "%d packets", count);
     CHECK(nth_status(odd, k + 48, 2, &count) == CIGI_OTHER, "the next packet starts 40 bytes on");
+    uint8_t big[128] = {0};
+    k = ig(big, 1, 1);
+    big[k] = 21, big[k + 1] = 40; /* View Definition, 40 bytes: oversized, skipped by its size */
+    big[k + 40] = 99, big[k + 41] = 8;
+    CHECK(nth_status(big, k + 48, 1, &count) == CIGI_BAD_SIZE && count == 3 &&
+          nth_status(big, k + 48, 2, &count) == CIGI_OTHER, "an oversized View Definition");
     buf[72 + 1] = 1; /* size 1 */
     CHECK(nth_status(buf, n, 2, &count) == CIGI_BAD_SIZE && count == 3);
     buf[72 + 1] = 255; /* past the end */
