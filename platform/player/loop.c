@@ -98,7 +98,7 @@ static int draw_scene(struct player *p, double t, sbfx_frame *frame, char *err, 
 {
     int w = p->display->width, h = p->display->height;
     test_scene_camera(&p->camera, t, (float)w / (float)h, frame->view, frame->projection);
-    if (p->cigi.have_ownship) world_ownship_view(&p->cigi.ownship, frame->view); /* the eyepoint: entity 0 */
+    world_eyepoint(p, frame->view); /* CIGI's entity 0 or --follow's DIS entity, where there is one */
     const struct player_channel channel = world_channel(p);
     world_channel_view(&channel, TEST_SCENE_NEAR, TEST_SCENE_FAR, frame->view, frame->projection);
     if (test_scene_draw(&p->scene, frame->view, frame->projection) != 0) {

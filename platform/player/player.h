@@ -129,9 +129,11 @@ bool world_trigger_identified(const struct player *p, const struct player_trigge
 void world_take_timeline(struct player *p, const sbfx_scene *scene);
 /* Starts the identified --trigger and (world mode) timeline entries due at the clock `now`. */
 int world_fire_due(struct player *p, double now, char *err, size_t n);
-/* The eyepoint riding on CIGI's entity 0 (scene metres; yaw from north clockwise, pitch up,
- * roll right) as a view matrix. */
-void world_ownship_view(const struct cigi_pose *ownship, float view[16]);
+/* An eyepoint (scene metres; yaw from north clockwise, pitch up, roll right, degrees) as a view. */
+void world_eyepoint_view(const float position[3], const float angles[3], float view[16]);
+/* The eyepoint's view: CIGI's entity 0, else the DIS entity --follow names, once heard (true);
+ * false: the scene's camera. */
+bool world_eyepoint(const struct player *p, float view[16]);
 /* The channel of the moment: the board's and the flags' (p->channel), CIGI's View Definition and
  * View Control over them where the host sent them. */
 struct player_channel world_channel(const struct player *p);

@@ -169,14 +169,28 @@ static void offset_view(const float offset[3], float view[16])
     memcpy(view, turned, sizeof(turned));
 }
 
-void world_ownship_view(const struct cigi_pose *o, float view[16])
+void world_eyepoint_view(const float position[3], const float angles[3], float view[16])
 {
     float translate[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    for (int k = 0; k < 3; k++) translate[12 + k] = -o->position[k];
+    for (int k = 0; k < 3; k++) translate[12 + k] = -position[k];
     memcpy(view, translate, sizeof(translate));
     /* the camera looks down -z, north in the scene (x east, y up, z south): heading = yaw */
-    const float angles[3] = {o->yaw, o->pitch, o->roll};
     offset_view(angles, view);
+}
+
+bool world_eyepoint(const struct player *p, float view[16])
+{
+    if (p->cigi.have_ownship) { /* CIGI's entity 0 */
+        const struct cigi_pose *o = &p->cigi.ownship;
+        const float angles[3] = {o->yaw, o->pitch, o->roll};
+        world_eyepoint_view(o->position, angles, view);
+        return true;
+    }
+    if (p->dis.have_pose) { /* --follow: a DIS entity */
+        world_eyepoint_view(p->dis.pose_position, p->dis.pose_angles, view);
+        return true;
+    }
+    return false; /* the scene's camera */
 }
 
 struct player_channel world_channel(const struct player *p)

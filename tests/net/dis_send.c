@@ -3,7 +3,10 @@
  * src/dis7/Pdu.cpp), independent of the player's parser, and sent over UDP to 127.0.0.1.
  *
  *   dis_send --port P [options] detonation     one Detonation PDU
- *   dis_send --port P [options] entity-state   one Entity State PDU (type 1), 144 bytes
+ *   dis_send --port P [options] entity-state   one Entity State PDU (type 1), 144 bytes: entity
+ *                                              --site:--app:--entity at --enu, its --attitude
+ *                                              (heading, pitch, roll there, degrees) as DIS's
+ *                                              Euler angles
  *   dis_send --port P [options] load S ES DET  for S seconds, ES Entity State PDUs and DET
  *                                              detonations (events of their own, in range) a
  *                                              second, paced by the clock (tests/load.sh)
@@ -51,6 +54,8 @@ struct pdu_spec {
     uint32_t timestamp;
     int munition[7];
     double ecef[3];
+    int entity;                    /* entity-state: the entity number (site and app as given) */
+    double attitude[3];            /* entity-state: heading, pitch, roll at its place (degrees) */
 };
 
 /* ---- geodesy of its own ----------------------------------------------------------------- */
@@ -159,10 +164,44 @@ static size_t detonation(uint8_t *p, const struct pdu_spec *s)
     return length;
 }
 
+/* DIS's Euler angles (psi, theta, phi: z-y-x from ECEF's axes) of a body with this heading (from
+ * north, clockwise), pitch (up) and roll (right) in the local frame at ECEF point p: the body's
+ * axes built in east, north, up and read back as the angles of R = Rz(psi) Ry(theta) Rx(phi). */
+static void euler_angles(const double p[3], const double attitude[3], float out[3])
+{
+    double lat, lon, alt;
+    to_geodetic(p, &lat, &lon, &alt);
+    double sa = sin(lat * DEG), ca = cos(lat * DEG), so = sin(lon * DEG), co = cos(lon * DEG);
+    const double east[3] = {-so, co, 0}, north[3] = {-sa * co, -sa * so, ca}, up[3] = {ca * co, ca * so, sa};
+    double h = attitude[0] * DEG, t = attitude[1] * DEG, r = attitude[2] * DEG;
+    /* forward, and the level right and down before the roll, in east, north, up */
+    const double f[3] = {sin(h) * cos(t), cos(h) * cos(t), sin(t)};
+    const double r0[3] = {cos(h), -sin(h), 0}, d0[3] = {sin(h) * sin(t), cos(h) * sin(t), -cos(t)};
+    double fe[3], re[3], de[3];
+    for (int k = 0; k < 3; k++) {
+        const double *axis[3] = {east, north, up};
+        fe[k] = re[k] = de[k] = 0;
+        for (int j = 0; j < 3; j++) {
+            double right = cos(r) * r0[j] + sin(r) * d0[j], down = -sin(r) * r0[j] + cos(r) * d0[j];
+            fe[k] += f[j] * axis[j][k];
+            re[k] += right * axis[j][k];
+            de[k] += down * axis[j][k];
+        }
+    }
+    out[0] = (float)atan2(fe[1], fe[0]);
+    out[1] = (float)-asin(fe[2]);
+    out[2] = (float)atan2(re[2], de[2]);
+}
+
 static size_t entity_state(uint8_t *p, const struct pdu_spec *s)
 {
     memset(p, 0, 144);
     header(p, s, 1, 1, 144);
+    put16(p + 12, (unsigned)s->site), put16(p + 14, (unsigned)s->app), put16(p + 16, (unsigned)s->entity);
+    for (int k = 0; k < 3; k++) put_double(p + 48 + 8 * k, s->ecef[k]);
+    float euler[3];
+    euler_angles(s->ecef, s->attitude, euler);
+    for (int k = 0; k < 3; k++) put_float(p + 72 + 4 * k, euler[k]);
     return 144;
 }
 
@@ -311,6 +350,8 @@ int main(int argc, char **argv)
         else if (!strcmp(k, "cut")) s.cut = atoi(v);
         else if (!strcmp(k, "count")) count = atoi(v);
         else if (!strcmp(k, "timestamp")) s.timestamp = (uint32_t)strtoul(v, NULL, 0);
+        else if (!strcmp(k, "entity")) s.entity = atoi(v);
+        else if (!strcmp(k, "attitude") && triple(v, s.attitude)) continue;
         else if (!strcmp(k, "file")) path = v;
         else if (!strcmp(k, "origin") && triple(v, origin)) continue;
         else if (!strcmp(k, "enu") && triple(v, enu)) continue;

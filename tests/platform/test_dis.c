@@ -255,7 +255,7 @@ CHECK_TEST(receiver_counts_filters_and_places)
     static struct dis_settings s;
     struct dis_receiver *r = receiver(&s);
     struct caught c = {0};
-    const struct dis_sink sink = {catch_fire, NULL, &c, NULL, NULL};
+    const struct dis_sink sink = {catch_fire, NULL, &c, NULL, NULL, NULL};
     struct geo_frame f;
     geo_frame_init(&f, s.origin[0], s.origin[1], s.origin[2]);
     double near[3], far[3];

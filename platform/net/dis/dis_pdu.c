@@ -96,6 +96,18 @@ static void skip_padding(struct dis_cursor *c)
     c->at += n;
 }
 
+bool dis_entity_state_parse(const uint8_t *buf, size_t len, struct dis_entity_state *out)
+{
+    if (len < DIS_ENTITY_STATE_SIZE) return false;
+    out->id = (struct dis_entity_id){be16(buf + 12), be16(buf + 14), be16(buf + 16)};
+    for (int k = 0; k < 3; k++) {
+        out->location[k] = be_double(buf + 48 + 8 * k);
+        out->orientation[k] = be_float(buf + 72 + 4 * k);
+        if (!isfinite(out->location[k]) || !isfinite(out->orientation[k])) return false;
+    }
+    return true;
+}
+
 bool dis_cursor_next(struct dis_cursor *c, struct dis_pdu *out, enum dis_status *status)
 {
     if (c->at > 0) skip_padding(c);

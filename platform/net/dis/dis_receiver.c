@@ -179,6 +179,16 @@ static void detonation(struct dis_receiver *r, const struct dis_pdu *pdu, const 
     else if (sink->fire) sink->fire(effect, position, sink->user);
 }
 
+/* The Entity State PDU the cursor just passed (its length field was trusted: it ends at c->at). */
+static void entity_state(const struct dis_receiver *r, const struct dis_cursor *c, const struct dis_pdu *pdu,
+                         const struct dis_sink *sink)
+{
+    struct dis_entity_state es;
+    if (r->settings.exercise != DIS_ANY && pdu->header.exercise != r->settings.exercise) return;
+    if (dis_entity_state_parse(c->data + c->at - pdu->header.length, pdu->header.length, &es))
+        sink->entity(&es, sink->user);
+}
+
 void dis_receiver_datagram(struct dis_receiver *r, const uint8_t *data, size_t length, bool truncated,
                            const struct sockaddr_in *from, int64_t now_ns, const struct dis_sink *sink)
 {
@@ -195,6 +205,8 @@ void dis_receiver_datagram(struct dis_receiver *r, const uint8_t *data, size_t l
     while (dis_cursor_next(&c, &pdu, &status)) {
         r->counts.pdus++;
         if (!dis_status_malformed(status) && sink->heard) sink->heard(pdu.header.timestamp, sink->user);
+        if (status == DIS_OTHER && pdu.header.type == DIS_PDU_ENTITY_STATE && sink->entity)
+            entity_state(r, &c, &pdu, sink);
         if (dis_status_malformed(status)) malformed(r, status, from, sink);
         else if (status == DIS_OTHER) ignore(r, DIS_IGNORED_TYPE, NULL, from, sink);
         else detonation(r, &pdu, from, now_ns, sink);

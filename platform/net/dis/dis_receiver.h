@@ -61,6 +61,9 @@ struct dis_sink {
                        uint32_t timestamp, void *user);
     /* every well-formed PDU's timestamp, where set (the world clock from DIS) */
     void (*heard)(uint32_t timestamp, void *user);
+    /* every well-formed Entity State PDU of the exercise, where set (an entity to follow); the PDU
+     * is still counted as ignored (it starts no effect) */
+    void (*entity)(const struct dis_entity_state *state, void *user);
 };
 
 struct dis_receiver;

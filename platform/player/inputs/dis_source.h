@@ -8,6 +8,7 @@
 #ifndef SBFX_PLAYER_DIS_SOURCE_H
 #define SBFX_PLAYER_DIS_SOURCE_H
 
+#include "net/common/geodesy.h"
 #include "net/dis/dis_receiver.h"
 #include "player/inputs/inputs.h"
 #include "player/options/board.h"
@@ -26,6 +27,14 @@ struct dis_source {
     uint32_t last_timestamp;
     int64_t last_timestamp_ns;       /* when (the monotonic clock) */
     double last_timestamp_system;    /* and the system clock then (the hour) */
+    /* --follow SITE:APP:ENTITY: that entity's Entity State PDUs are the eyepoint */
+    bool follow;
+    struct dis_entity_id follow_id;
+    bool have_pose;
+    float pose_position[3];          /* scene metres from dis.origin */
+    float pose_angles[3];            /* yaw from north clockwise, pitch up, roll right (degrees) */
+    uint64_t poses;                  /* Entity State PDUs of the followed entity heard */
+    struct geo_frame frame;          /* dis.origin's, for the poses */
     input_log_fn log;
     void *log_user;
 };
@@ -41,6 +50,10 @@ double dis_timestamp_world(uint32_t timestamp, double now);
 /* --world-clock dis: the world time now, from the last absolute timestamp heard (the hour from
  * the system clock) and the monotonic time since; false before the first. */
 bool dis_source_time(const struct dis_source *d, int64_t now_ns, double *seconds);
+/* DIS's Euler angles (psi, theta, phi: the body axes from ECEF's, z-y-x, radians) at an ECEF
+ * point as the heading (from north, clockwise), pitch (up) and roll (right) of the local frame, in
+ * degrees. */
+void dis_orientation_local(const struct geo_frame *f, const float euler[3], float out[3]);
 /* Its counters (NULL: no --dis). */
 const struct dis_counts *dis_source_counts(const struct dis_source *d);
 

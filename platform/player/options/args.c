@@ -487,6 +487,21 @@ static int set_view_offset(struct player_options *opt, const char *value, char *
     return why ? -EINVAL : 0;
 }
 
+static int set_follow(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    unsigned v[3];
+    char tail;
+    if (sscanf(value, "%u:%u:%u%c", &v[0], &v[1], &v[2], &tail) != 3 || v[0] > 65535 || v[1] > 65535 ||
+        v[2] > 65535 || strchr(value, '-') || strchr(value, '+') || strchr(value, ' ')) {
+        snprintf(err, n, "--follow: expected SITE:APP:ENTITY, each 0..65535 (a DIS entity ID, e.g. 1:3:101), got '%s'",
+                 value);
+        return -EINVAL;
+    }
+    for (int k = 0; k < 3; k++) opt->follow[k] = (uint16_t)v[k];
+    opt->follow_set = true;
+    return 0;
+}
+
 static int set_cigi(struct player_options *opt, const char *value, char *err, size_t n)
 {
     (void)err, (void)n; /* checked with the socket's address rules when it opens */
@@ -528,6 +543,7 @@ static const struct flag flags[] = {
     {"--world-clock", "frames|system|cigi|dis", set_world_clock},
     {"--frustum", "LEFT,RIGHT,BOTTOM,TOP (degrees)", set_frustum},
     {"--view-offset", "YAW,PITCH,ROLL (degrees)", set_view_offset},
+    {"--follow", "SITE:APP:ENTITY (a DIS entity)", set_follow},
     {"--cigi", "[ADDR:]PORT (e.g. 8004 or 239.1.2.3:8004)", set_cigi},
     {"--cigi-host", "ADDR:PORT (where Start of Frame goes)", set_cigi_host},
     {"--no-timeline", NULL, set_no_timeline},

@@ -106,6 +106,8 @@ struct player_options {
     double world_time;        /* --world-time: the first frame's world time (on the grid k / fps) */
     enum player_world_clock world_clock; /* --world-clock frames|system|cigi|dis */
     struct player_channel channel;       /* --frustum, --view-offset */
+    bool follow_set;
+    uint16_t follow[3];       /* --follow SITE:APP:ENTITY: a DIS entity as the eyepoint */
     const char *cigi;         /* --cigi [ADDR:]PORT */
     const char *cigi_host;    /* --cigi-host ADDR:PORT */
 };
