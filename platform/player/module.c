@@ -111,14 +111,15 @@ int player_create_fx(struct player *p, char *err, size_t n)
 #define UPDATE_MAX 0.25 /* s: what sbfx_update takes at a time (more is cut there) */
 #define CATCH_UP_MAX 600.0 /* s a frame: a world clock that jumps further is followed over frames */
 
-/* dt in updates of at most UPDATE_MAX: a world-mode module is brought from its base to the first
- * frame (up to a minute) in whole steps, as if it had run. A world clock that jumps ahead (a
+/* In world mode dt in updates of at most UPDATE_MAX, so the module's clock is the world's: a
+ * world-mode module is brought from its base to the first frame (up to a minute) in whole steps,
+ * as if it had run. A world clock that jumps ahead (a
  * host's clock that was set, CIGI's or DIS's time heard for the first time far from the system
  * clock's) is followed at most CATCH_UP_MAX a frame (72,000 empty steps, a few ms), said once. */
 static int advance(struct player *p, double dt, char *err, size_t n)
 {
     if (dt <= 0.0) return 0; /* already there (player_host_prepare advanced it) */
-    if (dt > CATCH_UP_MAX) {
+    if (p->world.on && dt > CATCH_UP_MAX) {
         if (!p->world.jump_said++)
             fprintf(stderr, "sbfx-play: the world clock is %.0f s ahead of the module's: followed %.0f s a frame\n",
                     dt, CATCH_UP_MAX);
@@ -126,7 +127,8 @@ static int advance(struct player *p, double dt, char *err, size_t n)
     }
     double target = p->sim_time + dt;
     while (dt > 0.0) {
-        double part = dt > UPDATE_MAX ? UPDATE_MAX : dt;
+        /* outside world mode one update, as always: sbfx_update cuts a long dt at its 0.25 s */
+        double part = p->world.on && dt > UPDATE_MAX ? UPDATE_MAX : dt;
         sbfx_result r = sbfx_update(p->fx, part);
         if (r != SBFX_OK) {
             snprintf(err, n, "sbfx_update(%g) at t=%.4f s: %s: %s", part, p->sim_time,
