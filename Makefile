@@ -15,7 +15,7 @@
 #                     part of make where GStreamer's -dev packages are)
 #   make test-gstreamer  the element and its tests (tests/gstreamer/; make test runs them)
 #   make test-load    60 s of 5,000 DIS Entity State PDUs and 50 detonations a second while rendering
-#                     (tests/load.sh; make test runs 5 s; docs/simulators.md)
+#                     (tests/load.sh; make test runs 3 s; docs/simulators.md)
 #   make test-precision  the accuracy suites at GPU precision: SBFX_MEDIUMP=native SBFX_FILTER_BITS=8
 #                     (and 6 bits for NVIDIA's cases; tests/precision.sh; make test runs it)
 #   make bench        timings into build/bench/
@@ -357,7 +357,7 @@ test-precision: test-gl
 	@tests/precision.sh $(BUILD)
 
 # A real exercise's load (tests/load.sh, docs/simulators.md): 5,000 DIS Entity State PDUs and 50
-# detonations a second for LOAD_SECONDS (60) while sbfx-play renders; make test runs 5 s of it
+# detonations a second for LOAD_SECONDS (60) while sbfx-play renders; make test runs 3 s of it
 LOAD_SECONDS ?= 60
 .PHONY: test-load
 test-load: $(BUILD)/sbfx-play $(BUILD)/tests/net/dis_send $(BUILD)/tests/net/cigi_send $(BUILD)/tests/vm/alloc_count.so

@@ -2,7 +2,7 @@
 # Under a real exercise's load (issue 44, docs/simulators.md "Load"): sbfx-play --dis headless at
 # 30 frames a second (320x180, a 20 ms frame budget) on tests/net/range.cfg, while
 # tests/net/dis_send sends 5,000 Entity State PDUs and 50 detonations a second over loopback for
-# LOAD_SECONDS (60 in make test-load; make test runs 5):
+# LOAD_SECONDS (60 in make test-load; make test runs 3):
 #   - none lost silently: the player read every PDU sent (dis_pdus = sent), every detonation was in
 #     range and set off its effect (dis_detonations = detonations sent), and every one of them was
 #     started or counted refused (triggers_fired + triggers_refused + triggers_expired =
