@@ -9,7 +9,8 @@
 # target's texel, where the host's own picture differs, a neighbouring texel's value the
 # nearest-depth upsample chose, or a difference of at most 2 of 255); a rerun writes the same
 # bytes; and a channel given another identity for one detonation fails the check (it can fail).
-# Usage: tests/seam.sh [BUILD] (default build). Prints ok/not ok lines.
+# Usage: tests/seam.sh [BUILD] (default build); SEAM_SCENE=FILE: on that scene rather than the
+# built-in explosion (docs/simulators.md says what other scenes leave). Prints ok/not ok lines.
 set -u
 cd "$(dirname "$0")/.." || exit 1
 BUILD=${1:-build}
@@ -36,6 +37,7 @@ run() { # NAME SIZE FRUSTUM WORLD_TIME FRAMES [TRIGGER...]
     local args=()
     for t in "$@"; do args+=(--trigger "$t"); done
     "$PLAYER" --headless --quiet --no-timeline --fps 2 --size "$size" --frustum="$frustum" --world-time "$world" \
+        ${SEAM_SCENE:+--scene "$SEAM_SCENE"} \
         --frames "$frames" --out "$OUT/$name" "${args[@]}" >"$OUT/$name.log" 2>&1 ||
         { not_ok "$name" "sbfx-play failed: $(tail -3 "$OUT/$name.log")"; return 1; }
 }
