@@ -8,7 +8,8 @@
 # differing pixel accounted for (tests/seam/seam_check.c: at the seams within the particle
 # target's texel, where the host's own picture differs, a neighbouring texel's value the
 # nearest-depth upsample chose, or a difference of at most 2 of 255); a rerun writes the same
-# bytes; and a channel given another identity for one detonation fails the check (it can fail).
+# bytes; and a channel given another identity for one detonation fails the check (it can fail);
+# with --world-clock system the frames lie on k / fps of the system clock, drawn when it gets there.
 # Usage: tests/seam.sh [BUILD] (default build); SEAM_SCENE=FILE: on that scene rather than the
 # built-in explosion (docs/simulators.md says what other scenes leave). Prints ok/not ok lines.
 set -u
@@ -77,5 +78,16 @@ if result=$("$CHECK" 4 2 "$(frame wide 2.5 2.5)" "$(frame host-wide 2.5 2.5)" "$
 else
     echo "# another identity: $result"
     ok "another_identity_is_another_explosion"
+fi
+# --world-clock system: frames at k / fps of the system clock, drawn when it gets there
+start=$(date +%s.%N)
+"$PLAYER" --headless --quiet --world-clock system --fps 4 --frames 6 --size 64x36 --out "$OUT/system" \
+    --stats "$OUT/system.json" >/dev/null 2>&1
+end=$(date +%s.%N)
+t=$(grep -o '"world_time": [0-9.]*' "$OUT/system.json" | grep -o '[0-9.]*$')
+if awk -v t="$t" -v a="$start" -v b="$end" 'BEGIN { k = t * 4; exit !(k == int(k) && t >= a + 1.0 && t <= b) }'; then
+    ok "system-clock-frames-on-the-grid (the last frame at $t: on k / 4, between the run's start + 1.25 s and its end)"
+else
+    not_ok "system-clock-frames-on-the-grid" "world_time '$t', the run from $start to $end"
 fi
 exit "$failed"

@@ -155,7 +155,9 @@ static int open_inputs(struct player *p, char *err, size_t n)
     if (rc == 0) rc = dis_source_open(&p->dis, &p->triggers, opt, &p->board, p->fx, player_log, p, err, n);
     if (rc == 0) rc = cigi_source_open(&p->cigi, &p->triggers, opt, p->fx, player_log, p, err, n);
     if (rc == 0) rc = mqtt_source_open(&p->mqtt, &p->triggers, opt, &p->board, player_log, p, err, n);
-    p->paced = !player_on_screen(opt) && trigger_sources_realtime(&p->triggers);
+    /* headless with a real-time source, or on the system clock: frames at their times on the clock */
+    p->paced = !player_on_screen(opt) &&
+               (trigger_sources_realtime(&p->triggers) || (p->world.on && opt->world_clock == PLAYER_CLOCK_SYSTEM));
     if (rc == 0) rc = detail_open_clip(p->fx, player_log, p, err, n);
     if (rc == 0) rc = detail_open_camera(&p->detail, p->fx, opt->video, &p->board, player_log, p, err, n);
     return rc;
