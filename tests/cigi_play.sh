@@ -11,6 +11,8 @@
 #     version 3, the host's last frame number), and cigi_start_of_frame counts one per frame;
 #   - View Definition and View Control make the channel: the frame after them is byte for byte
 #     the frame of a run given the same --frustum and --view-offset;
+#   - entity 0 is the eyepoint: placed 30 m south and 2 m up within 1 cm, its yaw, pitch and roll
+#     as sent, and the frames after it differ from the scene camera's (those before do not);
 #   - --cigi without a scene, and --cigi-host without --cigi, are refused naming what is missing.
 # Every wait is bounded. Usage: tests/cigi_play.sh [BUILD] (default build). Prints ok/not ok lines.
 set -u
@@ -114,6 +116,50 @@ test_view() {
     fi
 }
 
+test_ownship() {
+    start ownship --frames 100000 || return
+    wait_frames_cigi 1
+    local before=$newest_frame
+    send --frame 1 'entity=0,0,1,0@0,-30,2/20,5,-3'
+    sleep 0.6
+    stop || true
+    local line last
+    line=$(grep -o 'cigi: the eyepoint rides on entity 0 at .*' "$out/err" | head -n 1)
+    if awk -v l="$line" 'BEGIN { split(l, w, /[ ,()]+/); x = w[9]; y = w[10]; z = w[11]; h = w[13]; p = w[15]; r = w[17];
+        d = sqrt(x * x + (y - 2) ^ 2 + (z - 30) ^ 2);
+        exit !(d < 0.01 && (h - 20) ^ 2 < 1e-6 && (p - 5) ^ 2 < 1e-6 && (r + 3) ^ 2 < 1e-6) }'; then
+        ok "ownship-is-the-eyepoint ($line)"
+    else
+        fail ownship-is-the-eyepoint "'$line' (want 0, 2, 30, yaw 20, pitch 5, roll -3)"
+    fi
+    last=$(ls "$out" | grep -o 'frame-[0-9]*' | sort | tail -n 1)
+    last=$((10#${last#frame-}))
+    "$PLAYER" --scene "$SCENE" --no-timeline --size 64x36 --fps 4 --frames $((last + 1)) --quiet \
+        --out "$tmp/scene-camera" >/dev/null 2>&1
+    local a b c d
+    printf -v a '%s/frame-%04d.png' "$out" "$last"
+    printf -v b '%s/scene-camera/frame-%04d.png' "$tmp" "$last"
+    printf -v c '%s/frame-%04d.png' "$out" "$before"
+    printf -v d '%s/scene-camera/frame-%04d.png' "$tmp" "$before"
+    if [ -e "$a" ] && ! cmp -s "$a" "$b" && cmp -s "$c" "$d"; then
+        ok "ownship-moves-the-view (frame $last differs from the scene camera's; frame $before, before, does not)"
+    else
+        fail ownship-moves-the-view "frame $last against $b, frame $before against $d"
+    fi
+}
+
+# wait_frames_cigi N: until frame N is written (newest_frame: the newest then).
+wait_frames_cigi() {
+    local deadline=$(($(now_ms) + WAIT_S * 1000)) name
+    printf -v name '%s/frame-%04d.png' "$out" "$1"
+    until [ -e "$name" ]; do
+        [ "$(now_ms)" -gt "$deadline" ] && break
+        sleep 0.01
+    done
+    newest_frame=$(ls "$out" | grep -o 'frame-[0-9]*' | sort | tail -n 1)
+    newest_frame=$((10#${newest_frame#frame-}))
+}
+
 test_refusals() {
     local err
     err=$("$PLAYER" --cigi 4000 --frames 1 --out "$tmp/r1" 2>&1 >/dev/null)
@@ -124,5 +170,6 @@ test_refusals() {
 
 test_entities
 test_view
+test_ownship
 test_refusals
 [ "$failures" = 0 ]

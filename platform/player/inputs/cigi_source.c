@@ -79,6 +79,13 @@ static void on_event(struct cigi_source *c, struct trigger_queue *q, const struc
     case CIGI_EVENT_EFFECT_STOP: trigger_queue_push_stop(q, TRIGGER_CIGI, e->effect.identity, now_ns); break;
     case CIGI_EVENT_OWNSHIP:
         c->ownship = e->ownship;
+        if (!c->have_ownship) {
+            char msg[256];
+            const struct cigi_pose *o = &e->ownship;
+            snprintf(msg, sizeof(msg), "cigi: the eyepoint rides on entity 0 at %.3f, %.3f, %.3f (yaw %.3f, pitch %.3f, "
+                     "roll %.3f)", o->position[0], o->position[1], o->position[2], o->yaw, o->pitch, o->roll);
+            c->log(msg, c->log_user);
+        }
         c->have_ownship = true;
         break;
     case CIGI_EVENT_VIEW_DEFINITION: on_view_definition(c, &e->view_definition); break;
