@@ -30,6 +30,9 @@
 #   make test-fresh   the README's quick start in a bare Debian root: DIST=bookworm (12) or trixie
 #                     (13); debootstrap, a clone of HEAD, make demo and make test (tests/fresh/run.sh), as root
 #   make test-debian13  make test-fresh DIST=trixie
+#   make web          sbfx for WebGL 2 with emscripten and the authoring page into build/web/ (docs/web.md)
+#   make web-serve    serve build/web/ on 127.0.0.1 (python3 -m http.server); make test-web: the page
+#                     in headless Chromium over the DevTools protocol (tests/web/)
 #   make test-gpus    every scene's shaders through Mesa's Mali, V3D, Adreno, Vivante compilers
 #                     (drm-shims; builds Mesa 25 into build/mesa-shim/ once; docs/gpus.md)
 #   make gpiod2       sbfx-play again against libgpiod 2.x built from Debian 13's source (docs/gpio.md)
@@ -457,6 +460,8 @@ clean:
 	rm -rf --one-file-system build
 
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
+# make web, web-serve, test-web (docs/web.md)
+include web/web.mk
 
 # ---- fuzzing (clang, libFuzzer): FUZZ_SECONDS bounded, the example scenes as corpus ----
 # and FUZZ_DIS_SECONDS of the DIS parser and receiver, valid v6 and v7 PDUs as corpus
