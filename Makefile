@@ -61,7 +61,7 @@ SHELL := $(CURDIR)/tools/quiet-shell.sh
 endif
 CC ?= cc
 PKG_CONFIG ?= pkg-config
-# The library's version: the minor grows when a function is added to src/sbfx.h, the major
+# The library's version: the minor grows when a function is added to include/sbfx.h, the major
 # (the soname's number) when a signature or a public struct's layout changes.
 VERSION := 1.4.0
 SOVERSION := $(firstword $(subst ., ,$(VERSION)))
@@ -97,9 +97,9 @@ ifeq ($(SANITIZE),1)
 OPT := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined
 endif
 BASE_CFLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $(OPT) $(WARN) -fPIC -MMD -MP
-SRC_CFLAGS = $(BASE_CFLAGS) $(SRC_PKG_CFLAGS) -Isrc $(CFLAGS)
+SRC_CFLAGS = $(BASE_CFLAGS) $(SRC_PKG_CFLAGS) -Iinclude -Isrc $(CFLAGS)
 SRC_LIBS = $(SRC_PKG_LIBS) -lm
-PLATFORM_CFLAGS = $(BASE_CFLAGS) $(PLATFORM_PKG_CFLAGS) -Isrc -Iplatform $(CFLAGS)
+PLATFORM_CFLAGS = $(BASE_CFLAGS) $(PLATFORM_PKG_CFLAGS) -Iinclude -Isrc -Iplatform $(CFLAGS)
 PLATFORM_LIBS = $(PLATFORM_PKG_LIBS) $(SRC_LIBS)
 comma := ,
 # The ASan+UBSan tree (tests only, never installed) links with gold where the toolchain has it
@@ -108,7 +108,7 @@ comma := ,
 LDSAN := $(if $(filter 1,$(SANITIZE)),-fsanitize=address$(comma)undefined \
 	$(shell env $(CC) -fuse-ld=gold -Wl,--version 2>/dev/null | grep -q '^GNU gold' && echo -fuse-ld=gold))
 
-# The runtime library: src/ and the embedded shaders. Only what src/sbfx.h declares (SBFX_API)
+# The runtime library: src/ and the embedded shaders. Only what include/sbfx.h declares (SBFX_API)
 # is exported from the .so; the rest is hidden, and what no public function reaches is dropped.
 # src/ is in rooms, one folder per floor (src/rooms.txt): src/ROOM/NAME.c -> $(BUILD)/obj/src/ROOM/NAME.o
 SRC := $(sort $(wildcard src/*.c src/*/*.c))
@@ -280,7 +280,7 @@ $(BUILD)/obj/platform/player/outputs/notify.o: PLATFORM_CFLAGS += $(NOTIFY_PKG_C
 $(BUILD)/obj/platform/video/clip_detail.o: PLATFORM_CFLAGS += $(CLIP_PKG_CFLAGS)
 
 # sbfx-probe and sbfx-soak (tools/probe/, tools/soak/): tools that look inside the module through
-# src/'s private headers, so they live outside platform/, which only uses src/sbfx.h.
+# src/'s private headers, so they live outside platform/, which only uses include/sbfx.h.
 $(BUILD)/obj/tools/%.o: tools/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -Iref -c -o $@ $<
@@ -439,7 +439,7 @@ figures:
 # system. Not the CPU reference (libsbfx_ref.a): tests only.
 install: all
 	install -d $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(INCLUDEDIR) $(DESTDIR)$(BINDIR)
-	install -m 644 src/sbfx.h $(DESTDIR)$(INCLUDEDIR)/
+	install -m 644 include/sbfx.h $(DESTDIR)$(INCLUDEDIR)/
 	install -m 644 $(BUILD)/libsbfx.a $(DESTDIR)$(LIBDIR)/
 	install -m 755 $(BUILD)/libsbfx.so.$(VERSION) $(DESTDIR)$(LIBDIR)/
 	ln -sf libsbfx.so.$(VERSION) $(DESTDIR)$(LIBDIR)/$(SONAME)
@@ -468,9 +468,9 @@ include web/web.mk
 FUZZ_SECONDS ?= 60
 FUZZ_DIS_SECONDS ?= 15
 FUZZ_SRC := src/scene/scene.c src/scene/effects.c src/scene/quality_name.c
-$(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) src/sbfx.h src/scene/scene.h
+$(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_SRC) include/sbfx.h src/scene/scene.h
 	@mkdir -p $(@D)
-	clang -std=c11 -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -Isrc \
+	clang -std=c11 -D_DEFAULT_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -Iinclude -Isrc \
 		$(shell $(PKG_CONFIG) --cflags glesv2 libconfig) -o $@ tests/fuzz/fuzz_scene.c $(FUZZ_SRC) \
 		$(shell $(PKG_CONFIG) --libs libconfig)
 
@@ -714,7 +714,7 @@ gpiod2:
 # never need them. Their tests run headless: SDL's offscreen driver (tests/hosts/).
 SDL2_CFLAGS = $(call pkg_config,SDL2_CFLAGS,--cflags sdl2)
 SDL2_LIBS = $(call pkg_config,SDL2_LIBS,--libs sdl2)
-EXAMPLE_CFLAGS = $(BASE_CFLAGS) $(SRC_PKG_CFLAGS) -Isrc $(CFLAGS)
+EXAMPLE_CFLAGS = $(BASE_CFLAGS) $(SRC_PKG_CFLAGS) -Iinclude -Isrc $(CFLAGS)
 $(BUILD)/obj/examples/sdl2/%.o: examples/sdl2/%.c examples/sdl2/sdl2_host.h | deps
 	@mkdir -p $(@D)
 	$(CC) $(EXAMPLE_CFLAGS) $(SDL2_CFLAGS) -c -o $@ $<
@@ -744,7 +744,7 @@ QT_PKGS := Qt6Quick Qt6Qml Qt6Gui
 QT_PKG_CFLAGS = $(call pkg_config,QT_PKG_CFLAGS,--cflags $(QT_PKGS))
 QT_PKG_LIBS = $(call pkg_config,QT_PKG_LIBS,--libs $(QT_PKGS))
 QT_LIBEXEC = $(call pkg_config,QT_LIBEXEC,--variable=libexecdir Qt6Core)
-QT_CXXFLAGS = -std=c++17 $(OPT) -Wall -Wextra -Wno-unused-parameter -fPIC -MMD -MP $(SRC_PKG_CFLAGS) -Isrc \
+QT_CXXFLAGS = -std=c++17 $(OPT) -Wall -Wextra -Wno-unused-parameter -fPIC -MMD -MP $(SRC_PKG_CFLAGS) -Iinclude -Isrc \
 	-Iintegrations/qt $(QT_PKG_CFLAGS) $(CXXFLAGS)
 QT_LIBS = $(QT_PKG_LIBS) $(SRC_LIBS)
 QT_OBJ := $(addprefix $(BUILD)/obj/integrations/qt/,sbfx_item.o sbfx_render_node.o moc_sbfx_item.o)

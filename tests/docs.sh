@@ -16,7 +16,7 @@
 #   docs/walkthrough/TITLE
 #                      each step of a walkthrough of docs/hacking.md ("## Adding ..."): every path
 #                      it gives in backquotes exists; one followed by "(ROOM)" lies in that room
-#                      (src/ and platform/player/: their rooms.txt; src/sbfx.h: public); every
+#                      (src/ and platform/player/: their rooms.txt; include/sbfx.h: public); every
 #                      name it gives in backquotes (a C identifier) occurs in one of its files
 #   docs/requirements  README's Requirements name the packages make test-fresh's bare root has.
 # Usage: tests/docs.sh. Prints "ok - docs/..." / "not ok - docs/...: why"; exits 1 on a failure.
@@ -226,11 +226,11 @@ check_room_map() {
     fi
 }
 
-# room_of PATH: the room a path of src/ or platform/player/ lies in ("public" for src/sbfx.h),
+# room_of PATH: the room a path of src/ or platform/player/ lies in ("public" for include/sbfx.h),
 # or nothing for a path outside them.
 room_of() {
     local path=$1 root dir
-    [ "$path" = src/sbfx.h ] && { echo public; return; }
+    [ "$path" = include/sbfx.h ] && { echo public; return; }
     case $path in src/*) root=src ;; platform/player/*) root=platform/player ;; *) return ;; esac
     dir=$(dirname "$path")/
     [ -d "$path" ] && dir=${path%/}/

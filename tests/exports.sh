@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # What libsbfx.so shows the world (issue 10, docs/design.md §5 "Library surface"): exactly the
-# functions src/sbfx.h declares, under a versioned soname with the usual links, needing only
+# functions include/sbfx.h declares, under a versioned soname with the usual links, needing only
 # what src/ may use (GLESv2, libconfig, libc, libm).
 #
 # The header's functions come from the compiler, not from reading the text: GCC's -aux-info
@@ -20,13 +20,13 @@ failed=0
 ok() { echo "ok - exports/$1"; }
 not_ok() { echo "not ok - exports/$1: $2"; failed=1; }
 
-# header_functions: the functions src/sbfx.h declares (not static inline ones), one a line.
+# header_functions: the functions include/sbfx.h declares (not static inline ones), one a line.
 # "NAME (" with no "*" after the parenthesis is the function's own name, even for one that
 # returns a function pointer ("void (*name (int)) (void)").
 header_functions() {
     echo '#include "sbfx.h"' >"$tmp/header.c"
-    gcc -std=c11 -Isrc -fsyntax-only -aux-info "$tmp/header.aux" "$tmp/header.c" || return 1
-    grep -F '/* src/sbfx.h:' "$tmp/header.aux" | grep -v ' static ' | sed 's|^/\*[^*]*\*/ *||' |
+    gcc -std=c11 -Iinclude -fsyntax-only -aux-info "$tmp/header.aux" "$tmp/header.c" || return 1
+    grep -F '/* include/sbfx.h:' "$tmp/header.aux" | grep -v ' static ' | sed 's|^/\*[^*]*\*/ *||' |
         grep -oE '[A-Za-z_][A-Za-z0-9_]* \([^*]' | sed 's/ (.$//' | sort -u
 }
 
@@ -44,13 +44,13 @@ if [ ! -f "$so" ]; then
     exit 1
 fi
 
-header_functions >"$tmp/header" || { not_ok header "gcc -aux-info could not read src/sbfx.h"; exit 1; }
+header_functions >"$tmp/header" || { not_ok header "gcc -aux-info could not read include/sbfx.h"; exit 1; }
 library_symbols >"$tmp/library"
 count=$(wc -l <"$tmp/header")
 if [ "$count" -gt 0 ]; then
-    ok "header: src/sbfx.h declares $count functions"
+    ok "header: include/sbfx.h declares $count functions"
 else
-    not_ok header "no function found in src/sbfx.h"
+    not_ok header "no function found in include/sbfx.h"
 fi
 
 missing=$(comm -23 "$tmp/header" "$tmp/library" | tr '\n' ' ' | sed 's/ $//')
@@ -58,12 +58,12 @@ extra=$(comm -13 "$tmp/header" "$tmp/library" | tr '\n' ' ' | sed 's/ $//')
 if [ -z "$missing" ]; then
     ok "every-declared-function-exported"
 else
-    not_ok every-declared-function-exported "declared in src/sbfx.h, not exported (SBFX_API?): $missing"
+    not_ok every-declared-function-exported "declared in include/sbfx.h, not exported (SBFX_API?): $missing"
 fi
 if [ -z "$extra" ]; then
     ok "nothing-else-exported ($(wc -l <"$tmp/library") symbols)"
 else
-    not_ok nothing-else-exported "exported, not declared in src/sbfx.h (static, or not SBFX_API): $extra"
+    not_ok nothing-else-exported "exported, not declared in include/sbfx.h (static, or not SBFX_API): $extra"
 fi
 
 soname=$(readelf -d "$so" | sed -n 's/.*(SONAME).*\[\(.*\)\]/\1/p')

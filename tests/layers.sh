@@ -64,7 +64,7 @@ fresh_copy() {
 compile_planted() {
     local file=$1
     mkdir -p "$(dirname "$tmp/obj/${file%.c}.o")"
-    cc -std=c11 -c -Isrc -o "$tmp/obj/${file%.c}.o" "$tmp/src/$file"
+    cc -std=c11 -c -Iinclude -Isrc -o "$tmp/obj/${file%.c}.o" "$tmp/src/$file"
 }
 
 tree src src "$BUILD/obj/src"

@@ -114,6 +114,9 @@ fi
 echo "deps.sh: installing:$missing" >&2
 export DEBIAN_FRONTEND=noninteractive
 [ -n "$add_arch" ] && dpkg --add-architecture arm64
-apt-get update -qq
+# another apt-get (unattended-upgrades, a second make) may hold dpkg's lock: wait for it rather than fail
+apt_wait="-o DPkg::Lock::Timeout=900"
 # shellcheck disable=SC2086
-apt-get install -y -qq --no-install-recommends $missing >&2
+apt-get $apt_wait update -qq
+# shellcheck disable=SC2086
+apt-get $apt_wait install -y -qq --no-install-recommends $missing >&2

@@ -5,7 +5,7 @@
 #   tools/layers.sh [-v] [-I INCDIR]... ROOT OBJDIR
 # ROOT/rooms.txt lists the rooms, ground floor first, one a line: NAME FOLDER (relative to ROOT,
 # "." for the files directly in it) and what the room holds; a line "+ FILE what" names a header
-# every room may include (src/sbfx.h, the public types). Every .c and .h under ROOT must be in a
+# every room may include (include/sbfx.h, the public types). Every .c and .h under ROOT must be in a
 # room. Includes are read from the sources: a "quoted" name is looked up in each INCDIR (the
 # tree's -I folders; default ROOT), then in the including file's folder; one that resolves
 # outside ROOT, or nowhere, is not the tree's. Calls are read from the objects: OBJDIR mirrors

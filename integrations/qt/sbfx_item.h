@@ -72,7 +72,7 @@ public:
     Q_INVOKABLE void reloadScene();
 
     /* Called on Qt's render thread before every frame with the item's size in pixels and
-     * sbfx_time(): fills view and projection (column-major, src/sbfx.h conventions). */
+     * sbfx_time(): fills view and projection (column-major, include/sbfx.h conventions). */
     using CameraHook = std::function<void(int width, int height, double seconds, float view[16], float projection[16])>;
     void setCameraHook(CameraHook hook);
     /* Called on the render thread right before (after = false) and right after (true) the item's

@@ -21,7 +21,7 @@ void log_sbfx(sbfx_log_level level, const char *message, void *user)
 
 /* GL errors Qt left pending (Qt 6.4 leaves GL_INVALID_OPERATION from glPolygonMode on ES each
  * frame): read off before the node's own work so that its check sees only its own, and posted
- * again afterwards as sbfx does (src/sbfx.h "GL errors the host left pending"). */
+ * again afterwards as sbfx does (include/sbfx.h "GL errors the host left pending"). */
 struct HostErrors {
     GLenum codes[8];
     int count = 0;

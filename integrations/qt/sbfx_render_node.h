@@ -10,7 +10,7 @@
  * ("no surface": nothing in a 2D interface hides particles). Items drawn after this one (above
  * it in QML) are drawn over the effect: the node sets no DepthAwareRendering, so Qt draws every
  * item in order. The node puts back the GL state it changes (sbfx does so for its own), and a GL
- * error Qt left pending is handed back, as sbfx does (src/sbfx.h). */
+ * error Qt left pending is handed back, as sbfx does (include/sbfx.h). */
 #ifndef SBFX_QT_RENDER_NODE_H
 #define SBFX_QT_RENDER_NODE_H
 

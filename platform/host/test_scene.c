@@ -79,7 +79,7 @@ static const char fragment_source[] =
     "uniform vec3 u_point_position[16];\n"
     "uniform vec4 u_point_color_radius[16];\n"
     "out vec4 o_color;\n"
-    /* the fire's lights (sbfx_emitted_lights) with the falloff src/sbfx.h documents */
+    /* the fire's lights (sbfx_emitted_lights) with the falloff include/sbfx.h documents */
     "vec3 point_lights(vec3 world, vec3 n) {\n"
     "    vec3 sum = vec3(0.0);\n"
     "    for (int i = 0; i < u_point_count; i++) {\n"

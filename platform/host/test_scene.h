@@ -76,7 +76,7 @@ void test_scene_set_daylight(struct test_scene *scene, const sbfx_scene_host *ho
  * sampled on unit 0 by the next draws (0: no shadow). */
 void test_scene_set_shadow(struct test_scene *scene, GLuint texture, const float view_projection[16]);
 
-/* The fire's lights (sbfx_emitted_lights), shaded with the falloff src/sbfx.h gives, times the
+/* The fire's lights (sbfx_emitted_lights), shaded with the falloff include/sbfx.h gives, times the
  * exposure; up to TEST_SCENE_POINT_LIGHTS, the rest ignored; 0: none. Takes effect at the next
  * draw. */
 void test_scene_set_point_lights(struct test_scene *scene, const sbfx_point_light *lights, int count);

@@ -91,7 +91,7 @@ const char *sbfx_filter_library(void);
 /* gl_util.c */
 bool sbfx_gl_check(sbfx *fx, const char *what);
 /* Around the GL work of a public entry point: enter reads off the errors the host left
- * pending; leave, after sbfx's own errors were checked, posts them again (src/sbfx.h, "GL errors
+ * pending; leave, after sbfx's own errors were checked, posts them again (include/sbfx.h, "GL errors
  * the host left pending"). */
 void sbfx_gl_enter(sbfx *fx);
 void sbfx_gl_leave(sbfx *fx, const char *entry);

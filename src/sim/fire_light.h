@@ -114,7 +114,7 @@ typedef struct sbfx_fire_gathered {
 int sbfx_fire_gather(const sbfx_fire_model *m, const sbfx_fire_particle *particles, int count,
                      sbfx_fire_work *work, sbfx_fire_gathered *out, int max);
 
-/* The host's falloff of a point light (src/sbfx.h, sbfx_emitted_lights): at distance d from a
+/* The host's falloff of a point light (include/sbfx.h, sbfx_emitted_lights): at distance d from a
  * light of influence radius R, window(d / R) / max(d^2, SBFX_LIGHT_MIN_D2) with
  * window(x) = clamp(1 - x^4, 0, 1)^2. */
 #define SBFX_LIGHT_MIN_D2 0.25

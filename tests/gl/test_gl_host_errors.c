@@ -1,4 +1,4 @@
-/* A host's pending GL error is not sbfx's failure (issue 18; src/sbfx.h, "GL errors the host
+/* A host's pending GL error is not sbfx's failure (issue 18; include/sbfx.h, "GL errors the host
  * left pending"). A host leaves an error pending before every call — create, set_quality,
  * trigger, update, push_slice, render (first frame, live, idle), destroy — as Qt 6.4 does with
  * GL_INVALID_OPERATION each frame. Every call must succeed, draw the picture a clean host gets,
