@@ -370,7 +370,7 @@ ASAN_TEST_TARGETS := lib build/asan/sbfx-play test-unit test-platform \
 # GStreamer. TEST_ASAN=cpu: every GL test (the GL suites run from the normal build then).
 PRECISION_GL_TESTS = $(addprefix $(BUILD)/tests/gl/,$(shell tests/precision.sh --suites))
 NORMAL_TEST_TARGETS = $(if $(filter cpu,$(TEST_ASAN)),test-gl,$(PRECISION_GL_TESTS)) \
-	$(BUILD)/tests/net/dis_send $(BUILD)/tests/vm/alloc_count.so test-hosts test-gstreamer
+	$(BUILD)/tests/net/dis_send $(BUILD)/tests/vm/alloc_count.so test-hosts test-gstreamer web
 
 # the normal and the ASan+UBSan build side by side, sharing the job server
 .PHONY: test-build test-build-normal test-build-asan check

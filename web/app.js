@@ -290,6 +290,7 @@ function tick(now) {
   }
   if (now - page.lastStats > 250) {
     showStats();
+    if (page.infoPending) showInfo(); // the particle target is made at the first frame that draws
     page.lastStats = now;
   }
   requestAnimationFrame(tick);
@@ -321,6 +322,7 @@ function showStats() {
 
 function showInfo() {
   const i = JSON.parse(page.api.info());
+  page.infoPending = i.target_format === "default";
   $("gl-status").textContent = `${i.version} · ${i.renderer} · target ${i.target_format}`;
   const notes = [
     i.timer_query

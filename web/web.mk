@@ -5,7 +5,7 @@
 #   make web          build/web/: index.html, app.js, sbfx.js + sbfx.wasm, scenes/
 #   make web-serve    serve build/web/ on http://127.0.0.1:$(WEB_PORT)/ (python3 -m http.server)
 #   make test-web     the page in headless Chromium over the DevTools protocol (tests/web/)
-WEB := build/web
+WEB := $(BUILD)/web
 WEB_PORT ?= 8045
 EMCC ?= emcc
 # emscripten's JavaScript tools require() Debian's node modules, also where the node on PATH is
