@@ -56,8 +56,9 @@ cross_arm64_pkgs="$host_tools liblcms2-dev colord-data gcc-aarch64-linux-gnu lib
 
 # make web and test-web (docs/web.md): Debian's emscripten (its LLVM, binaryen and node modules),
 # dpkg-dev (dpkg-source unpacks libconfig's source package: tools/web-libconfig.sh), Chromium for
-# the browser tests (driven over its DevTools pipe by node, which emscripten brings)
-web_pkgs="$build_pkgs emscripten dpkg-dev chromium"
+# the browser tests (driven over its DevTools pipe by node, which emscripten brings), ImageMagick
+# (the browser's frames beside sbfx-play's PNGs: tests/web/same_picture.js)
+web_pkgs="$build_pkgs emscripten dpkg-dev chromium imagemagick"
 # make test runs one case of the browser tests (tests/web/run.sh --quick)
 test_pkgs="$test_pkgs emscripten dpkg-dev chromium"
 

@@ -4,7 +4,8 @@
 # (web/) and the example scenes. Its own tree: BOARD, SANITIZE and CFLAGS do not reach it.
 #   make web          build/web/: index.html, app.js, sbfx.js + sbfx.wasm, scenes/
 #   make web-serve    serve build/web/ on http://127.0.0.1:$(WEB_PORT)/ (python3 -m http.server)
-#   make test-web     the page in headless Chromium over the DevTools protocol (tests/web/)
+#   make test-web     the page in headless Chromium over the DevTools protocol, and its frames beside
+#                     sbfx-play's on Mesa (tests/web/; frames and differences in build/web-same-picture/)
 WEB := $(BUILD)/web
 WEB_PORT ?= 8045
 EMCC ?= emcc
@@ -74,7 +75,7 @@ web-serve: web
 	@echo "web-serve: http://127.0.0.1:$(WEB_PORT)/ (Ctrl-C stops it)"
 	cd $(WEB) && python3 -m http.server --bind 127.0.0.1 $(WEB_PORT)
 
-test-web: web
+test-web: web $(BUILD)/sbfx-play
 	@tools/deps.sh web
 	@tests/web/run.sh $(WEB)
 

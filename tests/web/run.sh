@@ -9,4 +9,10 @@ web=${1:?usage: tests/web/run.sh WEB_DIR [--quick]}
 [ -f "$web/sbfx.js" ] || { echo "not ok - web: $web/sbfx.js is missing (make web)"; exit 1; }
 command -v node >/dev/null || { echo "not ok - web: no node (tools/deps.sh web installs emscripten, which brings it)"; exit 1; }
 [ -x "${CHROMIUM:-/usr/bin/chromium}" ] || { echo "not ok - web: no ${CHROMIUM:-/usr/bin/chromium} (tools/deps.sh web)"; exit 1; }
-node "$here/test_page.js" "$web" ${2:-}
+rc=0
+node "$here/test_page.js" "$web" ${2:-} || rc=1
+[ "${2:-}" = --quick ] && exit $rc
+player=$(dirname "$web")/sbfx-play
+[ -x "$player" ] || { echo "not ok - same_picture: $player is missing (make test-web builds it)"; exit 1; }
+node "$here/same_picture.js" "$web" "$player" "$web/../web-same-picture" || rc=1
+exit $rc
