@@ -21,9 +21,11 @@ WEB_OPT := -O2
 WEB_CFLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $(WEB_OPT) $(WARN) -Iinclude -Isrc \
 	-I$(WEB_LIBCONFIG)/src/lib
 WEB_LIBCONFIG_CFLAGS := $(WEB_OPT) -DHAVE_NEWLOCALE -DHAVE_USELOCALE -DHAVE_FREELOCALE -I$(WEB_LIBCONFIG)/src/lib
-WEB_PLATFORM := host/test_scene host/host_depth egl/gl_check web/web_host web/web_pick web/web_stats
-WEB_OBJ := $(SRC:src/%.c=$(WEB)/obj/src/%.o) $(WEB)/obj/gen/shaders_es.o $(WEB)/obj/gen/cie1931_2deg.o \
-	$(WEB_PLATFORM:%=$(WEB)/obj/platform/%.o) $(WEB_LIBCONFIG_SRC:%=$(WEB)/obj/libconfig/%.o)
+WEB_HOST := host/test_scene host/host_depth egl/gl_check
+WEB_PLATFORM := $(WEB_HOST) web/web_host web/web_pick web/web_stats
+WEB_LIB_OBJ := $(SRC:src/%.c=$(WEB)/obj/src/%.o) $(WEB)/obj/gen/shaders_es.o $(WEB)/obj/gen/cie1931_2deg.o \
+	$(WEB_LIBCONFIG_SRC:%=$(WEB)/obj/libconfig/%.o)
+WEB_OBJ := $(WEB_LIB_OBJ) $(WEB_PLATFORM:%=$(WEB)/obj/platform/%.o)
 WEB_EXPORTS := sbfx_web_start sbfx_web_resize sbfx_web_load sbfx_web_settings sbfx_web_frame \
 	sbfx_web_read_pixels sbfx_web_trigger sbfx_web_effect_name sbfx_web_click_coordinate sbfx_web_pick \
 	sbfx_web_project sbfx_web_stats sbfx_web_info sbfx_web_message malloc free
@@ -57,6 +59,9 @@ $(WEB)/obj/gen/%.o: $(BUILD)/gen/%.c | web-deps
 $(WEB)/obj/platform/%.o: platform/%.c | web-deps
 	@mkdir -p $(@D)
 	$(EMCC) $(WEB_CFLAGS) -Iplatform -MMD -MP -c -o $@ $<
+$(WEB)/obj/ref/%.o: ref/%.c | web-deps
+	@mkdir -p $(@D)
+	$(EMCC) $(WEB_CFLAGS) -Iref -MMD -MP -c -o $@ $<
 $(WEB)/sbfx.js: $(WEB_OBJ)
 	$(EMCC) $(WEB_OPT) $(WEB_LDFLAGS) -o $@ $^
 
@@ -70,6 +75,28 @@ $(WEB)/scenes/%.cfg: scenes/%.cfg
 $(WEB)/scenes/index.json: $(WEB_SCENES)
 	@mkdir -p $(@D)
 	printf '[%s]\n' "$$(for s in $(notdir $(WEB_SCENES)); do printf '"%s",' "$$s"; done | sed 's/,$$//')" > $@
+
+# The accuracy suites (tests/precision.sh --suites) built for the browser: the same test programs
+# over egl_web.c's WebGL 2 contexts, one page each (tests/web/suite.html), run by make
+# test-web-suites (tests/web/suites.js; docs/web.md "A second OpenGL ES").
+WEB_SUITES := $(shell tests/precision.sh --suites)
+WEB_SUITE_OBJ := $(WEB_LIB_OBJ) $(patsubst ref/%.c,$(WEB)/obj/ref/%.o,$(wildcard ref/*.c)) \
+	$(WEB_HOST:%=$(WEB)/obj/platform/%.o) $(WEB)/obj/platform/web/egl_web.o
+# test_gl_look renders and measures through tests/look/ (as the Makefile's LOOK_OBJ)
+$(WEB)/suites/test_gl_look.js: WEB_SUITE_EXTRA := tests/look/look_metrics.c tests/look/look_render.c
+$(WEB)/suites/%.js: tests/gl/%.c $(WEB_SUITE_OBJ) tests/check.h tests/gl/gl_fixture.h tests/web/clearenv.c
+	@mkdir -p $(@D)
+	$(EMCC) $(WEB_CFLAGS) -Iplatform -Iref -Itests -Itests/look -Wno-unused-function -o $@ $< tests/web/clearenv.c \
+		$(WEB_SUITE_EXTRA) $(WEB_SUITE_OBJ) -sUSE_WEBGL2=1 \
+		-sFULL_ES3=1 -sMIN_WEBGL_VERSION=2 -sMAX_WEBGL_VERSION=2 -sALLOW_MEMORY_GROWTH=1 -sENVIRONMENT=web \
+		-sEXIT_RUNTIME=1
+$(WEB)/suites/suite.html: tests/web/suite.html
+	@mkdir -p $(@D)
+	cp $< $@
+.PHONY: test-web-suites
+test-web-suites: $(WEB_SUITES:%=$(WEB)/suites/%.js) $(WEB)/suites/suite.html
+	@tools/deps.sh web
+	@node tests/web/suites.js $(WEB)/suites $(WEB_SUITES)
 
 web-serve: web
 	@echo "web-serve: http://127.0.0.1:$(WEB_PORT)/ (Ctrl-C stops it)"
