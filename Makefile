@@ -31,8 +31,10 @@
 #                     (13); debootstrap, a clone of HEAD, make demo and make test (tests/fresh/run.sh), as root
 #   make test-debian13  make test-fresh DIST=trixie
 #   make web          sbfx for WebGL 2 with emscripten and the authoring page into build/web/ (docs/web.md)
-#   make web-serve    serve build/web/ on 127.0.0.1 (python3 -m http.server); make test-web: the page
-#                     in headless Chromium over the DevTools protocol (tests/web/)
+#   make web-serve    serve build/web/ on 127.0.0.1 (python3 -m http.server)
+#   make test-web     the page in headless Chromium over the DevTools protocol, its frames beside
+#                     sbfx-play's on Mesa (tests/web/; make test runs its first case)
+#   make test-web-suites  the accuracy suites in headless Chromium: ANGLE over SwiftShader (docs/web.md)
 #   make test-gpus    every scene's shaders through Mesa's Mali, V3D, Adreno, Vivante compilers
 #                     (drm-shims; builds Mesa 25 into build/mesa-shim/ once; docs/gpus.md)
 #   make gpiod2       sbfx-play again against libgpiod 2.x built from Debian 13's source (docs/gpio.md)
