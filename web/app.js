@@ -333,7 +333,7 @@ function showInfo() {
       : "No float colour targets here: the particle target falls back to RGBA8 (logged), as on a GLES 3.0 GPU without EXT_color_buffer_half_float.",
     i.float_blend ? "Blending into 32-bit float targets: offered (EXT_float_blend)." : "No blending into RGBA32F (EXT_float_blend missing): rgba32f falls back as on GLES 3.0.",
     "Detail clips (FFmpeg), V4L2 cameras, GPIO, DIS and MQTT triggers are sbfx-play's, not the page's: clicks and the scene's timeline set effects off here.",
-    "Reversed-Z needs GL_EXT_clip_control, which WebGL 2 does not have: the page's host uses the default depth, as sbfx-play does.",
+    "Reversed-Z needs glClipControlEXT: Chromium offers WebGL's EXT_clip_control, but this build's emscripten (Debian 12's 3.1.6) does not bind it; the page's host uses the default depth, as sbfx-play does.",
   ];
   const ul = $("webgl-notes");
   ul.textContent = "";

@@ -14,7 +14,6 @@ EMCC ?= emcc
 $(WEB)/%: export NODE_PATH := /usr/share/nodejs
 $(WEB)/%: export PATH := /usr/bin:$(PATH)
 WEB_LIBCONFIG := $(WEB)/libconfig
-WEB_LIBCONFIG_SRC := scanctx scanner grammar libconfig strbuf
 # -O2 as the native build; the library's own warnings; libconfig's locale calls as its configure
 # finds them on a glibc system (emscripten's libc has newlocale, uselocale, freelocale)
 WEB_OPT := -O2
@@ -24,7 +23,7 @@ WEB_LIBCONFIG_CFLAGS := $(WEB_OPT) -DHAVE_NEWLOCALE -DHAVE_USELOCALE -DHAVE_FREE
 WEB_HOST := host/test_scene host/host_depth egl/gl_check
 WEB_PLATFORM := $(WEB_HOST) web/web_host web/web_pick web/web_stats
 WEB_LIB_OBJ := $(SRC:src/%.c=$(WEB)/obj/src/%.o) $(WEB)/obj/gen/shaders_es.o $(WEB)/obj/gen/cie1931_2deg.o \
-	$(WEB_LIBCONFIG_SRC:%=$(WEB)/obj/libconfig/%.o)
+	$(WEB)/obj/libconfig/libconfig.a
 WEB_OBJ := $(WEB_LIB_OBJ) $(WEB_PLATFORM:%=$(WEB)/obj/platform/%.o)
 WEB_EXPORTS := sbfx_web_start sbfx_web_resize sbfx_web_load sbfx_web_settings sbfx_web_frame \
 	sbfx_web_read_pixels sbfx_web_trigger sbfx_web_effect_name sbfx_web_click_coordinate sbfx_web_pick \
@@ -47,9 +46,13 @@ $(WEB_LIBCONFIG)/src/lib/libconfig.h: | web-deps
 web-deps:
 	@tools/deps.sh web
 
-$(WEB)/obj/libconfig/%.o: $(WEB_LIBCONFIG)/src/lib/libconfig.h
+# every C file of its lib/ (1.5 in Debian 12 has five, 1.7 in Debian 13 more), into one archive
+$(WEB)/obj/libconfig/libconfig.a: $(WEB_LIBCONFIG)/src/lib/libconfig.h
+	@rm -rf $(@D)
 	@mkdir -p $(@D)
-	$(EMCC) $(WEB_LIBCONFIG_CFLAGS) -c -o $@ $(WEB_LIBCONFIG)/src/lib/$*.c
+	@for f in $(WEB_LIBCONFIG)/src/lib/*.c; do echo "  CC      $(@D)/$$(basename $$f .c).o"; \
+		$(EMCC) $(WEB_LIBCONFIG_CFLAGS) -c -o $(@D)/$$(basename $$f .c).o $$f || exit 1; done
+	emar rcs $@ $(@D)/*.o
 $(WEB)/obj/src/%.o: src/%.c $(WEB_LIBCONFIG)/src/lib/libconfig.h
 	@mkdir -p $(@D)
 	$(EMCC) $(WEB_CFLAGS) -MMD -MP -c -o $@ $<
