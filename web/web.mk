@@ -87,12 +87,13 @@ WEB_SUITE_OBJ := $(WEB_LIB_OBJ) $(patsubst ref/%.c,$(WEB)/obj/ref/%.o,$(wildcard
 	$(WEB_HOST:%=$(WEB)/obj/platform/%.o) $(WEB)/obj/platform/web/egl_web.o
 # test_gl_look renders and measures through tests/look/ (as the Makefile's LOOK_OBJ)
 $(WEB)/suites/test_gl_look.js: WEB_SUITE_EXTRA := tests/look/look_metrics.c tests/look/look_render.c
-$(WEB)/suites/%.js: tests/gl/%.c $(WEB_SUITE_OBJ) tests/check.h tests/gl/gl_fixture.h tests/web/clearenv.c
+# the example scenes some cases load are embedded (emscripten's in-memory file system)
+$(WEB)/suites/%.js: tests/gl/%.c $(WEB_SUITE_OBJ) tests/check.h tests/gl/gl_fixture.h tests/web/clearenv.c $(WEB_SCENES)
 	@mkdir -p $(@D)
 	$(EMCC) $(WEB_CFLAGS) -Iplatform -Iref -Itests -Itests/look -Wno-unused-function -o $@ $< tests/web/clearenv.c \
 		$(WEB_SUITE_EXTRA) $(WEB_SUITE_OBJ) -sUSE_WEBGL2=1 \
 		-sFULL_ES3=1 -sMIN_WEBGL_VERSION=2 -sMAX_WEBGL_VERSION=2 -sALLOW_MEMORY_GROWTH=1 -sENVIRONMENT=web \
-		-sEXIT_RUNTIME=1
+		-sEXIT_RUNTIME=1 --embed-file scenes
 $(WEB)/suites/suite.html: tests/web/suite.html
 	@mkdir -p $(@D)
 	cp $< $@

@@ -151,8 +151,10 @@ class Page {
     } else if (msg.method === "Runtime.exceptionThrown") {
       const d = p.exceptionDetails;
       this.errors.push(`exception: ${d.exception ? d.exception.description : d.text}`);
-    } else if (msg.method === "Log.entryAdded" && p.entry.level === "error") {
-      this.errors.push(`log: ${p.entry.source}: ${p.entry.text} ${p.entry.url || ""}`);
+    } else if (msg.method === "Log.entryAdded") {
+      // the browser's own messages: a refused WebGL call ("WebGL: INVALID_VALUE: ...") is a warning
+      this.console.push({ type: `log-${p.entry.level}`, text: p.entry.text });
+      if (p.entry.level === "error") this.errors.push(`log: ${p.entry.source}: ${p.entry.text} ${p.entry.url || ""}`);
     } else if (msg.method === "Page.loadEventFired") {
       this.loadWaiters.splice(0).forEach((w) => w());
     }

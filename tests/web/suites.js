@@ -47,6 +47,8 @@ async function main() {
             console.log(`${m[1]} - ${run.prefix}${m[2]}`);
           } else if (line.startsWith("#")) {
             console.log(line);
+          } else if (/^WebGL: /.test(line)) {
+            console.log(`# ${line}`); // what the browser says about a refused call
           }
         }
         failed += counts["not ok"];
