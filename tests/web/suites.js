@@ -14,10 +14,14 @@ const RUNS = [
   { prefix: "browser-precision:", env: "SBFX_MEDIUMP=native,SBFX_FILTER_BITS=8" },
 ];
 
-async function runSuite(browser, origin, name, run) {
+const fs = require("fs");
+const path = require("path");
+
+// One page: the suite (or its test `only`); its exit status and console lines.
+async function runPage(browser, origin, name, run, only) {
   const page = await browser.newPage();
   const started = Date.now();
-  await page.goto(`${origin}/suite.html?name=${name}&env=${run.env}`);
+  await page.goto(`${origin}/suite.html?name=${name}&env=${run.env}${only ? `&only=${only}` : ""}`);
   const limit = Number(process.env.SUITE_TIMEOUT || 600) * 1000;
   let exit;
   while ((exit = await page.eval("window.suiteExit", limit)) === undefined) {
@@ -26,7 +30,66 @@ async function runSuite(browser, origin, name, run) {
   }
   const lines = page.console.map((c) => c.text);
   await page.send("Target.closeTarget", { targetId: page.targetId }).catch(() => {});
-  return { exit, lines, seconds: (Date.now() - started) / 1000, errors: page.errors };
+  return { exit, lines, errors: page.errors };
+}
+
+// The suite's tests in their order (tests/gl/NAME.c's CHECK_TEST lines).
+function testNames(name) {
+  const source = fs.readFileSync(path.join(__dirname, "..", "gl", `${name}.c`), "utf8");
+  return [...source.matchAll(/^CHECK_TEST\((\w+)\)/gm)].map((m) => m[1]);
+}
+
+// A suite in the browser. check.h's CHECK_SKIP ends the process (exit 77: a forked test's way);
+// with no fork that ends the page, so the skipped test is reported here with its reason, and the
+// tests after it run each in a page of its own.
+async function runSuite(browser, origin, name, run) {
+  const started = Date.now();
+  const counts = { ok: 0, "not ok": 0, skip: 0 };
+  const reported = new Set();
+  const print = (r) => {
+    for (const line of r.lines) {
+      const m = /^(ok|not ok|skip) - [^/]*\/(\w+)(.*)$/.exec(line);
+      if (m) {
+        counts[m[1]]++;
+        reported.add(m[2]);
+        console.log(`${m[1]} - ${run.prefix}${name}/${m[2]}${m[3]}`);
+      } else if (line.startsWith("#") && !line.startsWith("#SKIP")) {
+        console.log(line);
+      } else if (/^WebGL: /.test(line)) {
+        console.log(`# ${line}`); // what the browser says about a refused call
+      }
+    }
+  };
+  const ended = (r, expected) => {
+    if (r.exit === 77) {
+      const skip = r.lines.filter((l) => l.startsWith("#SKIP ")).pop() || "#SKIP (no reason printed)";
+      const test = expected.find((t) => !reported.has(t));
+      counts.skip++;
+      reported.add(test);
+      console.log(`skip - ${run.prefix}${name}/${test}: ${skip.slice(6)}`);
+      return true;
+    }
+    if (r.exit === undefined) {
+      counts["not ok"]++;
+      console.log(`not ok - ${run.prefix}${name}: did not finish within its limit: ${r.errors.join("; ")}`);
+    } else if (r.exit !== 0 && !r.lines.some((l) => l.startsWith("not ok - "))) {
+      counts["not ok"]++;
+      console.log(`not ok - ${run.prefix}${name}: exited with status ${r.exit} without reporting a failed test: ${r.errors.join("; ")}`);
+    }
+    return false;
+  };
+  const all = testNames(name);
+  let r = await runPage(browser, origin, name, run, null);
+  print(r);
+  if (ended(r, all))
+    for (const test of all.filter((t) => !reported.has(t))) {
+      r = await runPage(browser, origin, name, run, test);
+      print(r);
+      ended(r, [test]);
+    }
+  console.log(`# ${run.prefix}${name}: ${counts.ok} ok, ${counts["not ok"]} not ok, ${counts.skip} skipped, ` +
+    `${((Date.now() - started) / 1000).toFixed(1)} s`);
+  return counts["not ok"];
 }
 
 async function main() {
@@ -36,31 +99,7 @@ async function main() {
   const browser = await Browser.launch();
   let failed = 0;
   try {
-    for (const run of RUNS)
-      for (const name of names) {
-        const r = await runSuite(browser, srv.origin, name, run);
-        let counts = { ok: 0, "not ok": 0, skip: 0 };
-        for (const line of r.lines) {
-          const m = /^(ok|not ok|skip) - (.*)$/.exec(line);
-          if (m) {
-            counts[m[1]]++;
-            console.log(`${m[1]} - ${run.prefix}${m[2]}`);
-          } else if (line.startsWith("#")) {
-            console.log(line);
-          } else if (/^WebGL: /.test(line)) {
-            console.log(`# ${line}`); // what the browser says about a refused call
-          }
-        }
-        failed += counts["not ok"];
-        if (r.exit === undefined) {
-          console.log(`not ok - ${run.prefix}${name}: did not finish within its limit`);
-          failed++;
-        } else if (r.exit !== 0 && !counts["not ok"]) {
-          console.log(`not ok - ${run.prefix}${name}: exited with status ${r.exit} without reporting a failed test: ${r.errors.join("; ")}`);
-          failed++;
-        }
-        console.log(`# ${run.prefix}${name}: ${counts.ok} ok, ${counts["not ok"]} not ok, ${counts.skip} skipped, ${r.seconds.toFixed(1)} s`);
-      }
+    for (const run of RUNS) for (const name of names) failed += await runSuite(browser, srv.origin, name, run);
   } finally {
     await browser.close();
     srv.server.close();
