@@ -463,7 +463,12 @@ async function main() {
     console.error("sbfx: start: " + page.api.message());
     return;
   }
-  const fromAddress = location.hash ? await decodeScene(location.hash) : null;
+  let fromAddress = null;
+  try {
+    fromAddress = location.hash ? await decodeScene(location.hash) : null;
+  } catch (e) {
+    log(1, `the address's scene cannot be read (${e.message || e}): the example plays`);
+  }
   const example = params.get("example");
   await listExamples();
   let text = fromAddress;

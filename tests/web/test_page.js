@@ -148,6 +148,18 @@ async function addressRoundTrips(browser, origin, ctx) {
   return "";
 }
 
+async function brokenLinkFallsBack(browser, origin, ctx) {
+  const page = await browser.newPage();
+  await page.goto(`${origin}/index.html?size=${W}x${H}&paused#scene=not-a-deflated-scene`);
+  await page.eval("sbfxPage.ready", 120000);
+  ctx.pages.push(page);
+  const text = await page.eval(sceneTextJs);
+  if (text !== ctx.explosion) return "a link whose scene cannot be read did not fall back to the example";
+  const warned = page.console.some((c) => /cannot be read/.test(c.text));
+  if (!warned) return "the page did not say that the link's scene cannot be read";
+  return "";
+}
+
 async function main() {
   const root = process.argv[2];
   const quick = process.argv.includes("--quick");
@@ -171,6 +183,7 @@ async function main() {
         ["the_address_holds_the_scene", async () => { ctx.address = await page.eval("sbfxPage.address()"); return ""; }],
         ["a_click_sets_off_the_effect_where_clicked", () => clickSetsOffEffect(page, ctx)],
         ["a_link_reproduces_the_scene", () => addressRoundTrips(browser, srv.origin, ctx)],
+        ["a_broken_link_plays_the_example", () => brokenLinkFallsBack(browser, srv.origin, ctx)],
       );
     for (const [name, run] of cases) {
       let why;
