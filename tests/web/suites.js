@@ -7,15 +7,20 @@
 // Usage: node tests/web/suites.js SUITES_DIR NAME...   (SUITE_TIMEOUT: seconds per suite, 600)
 "use strict";
 
+const fs = require("fs");
+const path = require("path");
 const { serve, Browser } = require("./cdp.js");
 
 const RUNS = [
   { prefix: "browser:", env: "" },
   { prefix: "browser-precision:", env: "SBFX_MEDIUMP=native,SBFX_FILTER_BITS=8" },
 ];
-
-const fs = require("fs");
-const path = require("path");
+// and, as tests/precision.sh's part 6-bit, the hard cases NVIDIA failed again at 6 bits
+const SIX_BIT = { prefix: "browser-6-bit:", env: "SBFX_MEDIUMP=native,SBFX_FILTER_BITS=6", suite: "test_gl_hard_cases" };
+function sixBitCases() {
+  const m = /SIX_BIT_CASES="([^"]*)"/.exec(fs.readFileSync(path.join(__dirname, "..", "precision.sh"), "utf8"));
+  return m[1].split(/\s+/).filter(Boolean);
+}
 
 // One page: the suite (or its test `only`); its exit status and console lines.
 async function runPage(browser, origin, name, run, only) {
@@ -92,6 +97,23 @@ async function runSuite(browser, origin, name, run) {
   return counts["not ok"];
 }
 
+async function runSixBit(browser, origin) {
+  let failed = 0;
+  for (const test of sixBitCases()) {
+    const r = await runPage(browser, origin, SIX_BIT.suite, SIX_BIT, test);
+    const result = r.lines.find((l) => /^(ok|not ok|skip) - /.test(l));
+    for (const l of r.lines) if (l.startsWith("#") && !l.startsWith("#SKIP")) console.log(l);
+    if (!result || r.exit === undefined) {
+      failed++;
+      console.log(`not ok - ${SIX_BIT.prefix}${SIX_BIT.suite}/${test}: no result (exit ${r.exit})`);
+    } else {
+      if (result.startsWith("not ok")) failed++;
+      console.log(result.replace(/ - [^/]*\//, ` - ${SIX_BIT.prefix}${SIX_BIT.suite}/`));
+    }
+  }
+  return failed;
+}
+
 async function main() {
   const [root, ...names] = process.argv.slice(2);
   if (!names.length) throw new Error("usage: node tests/web/suites.js SUITES_DIR NAME...");
@@ -100,6 +122,7 @@ async function main() {
   let failed = 0;
   try {
     for (const run of RUNS) for (const name of names) failed += await runSuite(browser, srv.origin, name, run);
+    if (names.includes(SIX_BIT.suite)) failed += await runSixBit(browser, srv.origin);
   } finally {
     await browser.close();
     srv.server.close();
