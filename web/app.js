@@ -327,7 +327,7 @@ function showInfo() {
   const notes = [
     i.timer_query
       ? "GPU timer queries: offered."
-      : "No GPU timer queries in WebGL 2 (GL_EXT_disjoint_timer_query): a frame budget cannot measure itself; the library takes its fallback (the host's reported time), and the counters' gpu_ms stays 0.",
+      : "No GPU timer queries in WebGL 2 (GL_EXT_disjoint_timer_query): a scene's frame budget cannot measure itself; the library takes its fallback, the time this page measures around sbfx_render (glFinish before and after).",
     i.color_buffer_float || i.color_buffer_half_float
       ? `Float targets colour-renderable (EXT_color_buffer_${i.color_buffer_float ? "float" : "half_float"}): the particle target is ${i.target_format}.`
       : "No float colour targets here: the particle target falls back to RGBA8 (logged), as on a GLES 3.0 GPU without EXT_color_buffer_half_float.",

@@ -283,8 +283,19 @@ EMSCRIPTEN_KEEPALIVE int sbfx_web_frame(double t)
     frame.height = h->height;
     rc = advance(h, t);
     if (rc) return rc;
+    /* a scene's frame budget without GPU timer queries (WebGL 2 has none): its fallback, the
+     * host's own time of sbfx's work, between two glFinish calls as sbfx-play headless does */
+    sbfx_counters c;
+    sbfx_stats(h->fx, &c);
+    bool timed = c.budget_ms > 0;
+    if (timed) glFinish();
+    double start = timed ? emscripten_get_now() : 0.0;
     sbfx_result r = sbfx_render(h->fx, &frame);
     if (r != SBFX_OK) return fail(h, -EIO, "sbfx_render", r);
+    if (timed) {
+        glFinish();
+        sbfx_report_frame_time(h->fx, emscripten_get_now() - start);
+    }
     glBindFramebuffer(GL_READ_FRAMEBUFFER, h->out_framebuffer);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     glBlitFramebuffer(0, 0, h->width, h->height, 0, 0, h->width, h->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);

@@ -20,12 +20,14 @@ const char *web_stats_json(struct web_host *h, char *buf, size_t size)
              "\"particles_simulated\":%d,\"particles_alive\":%d,\"heap_allocs_after_load\":%llu,"
              "\"quality\":\"%s\",\"target_format\":\"%s\",\"triggers_fired\":%d,\"triggers_refused\":%d,"
              "\"gl_state_queries\":%d,\"emitted_lights\":%d,\"fire_lit_particles\":%d,\"shadow_passes\":%d,"
-             "\"programs_compiled\":%d,\"targets_created\":%d,\"scene_reloads\":%d,\"width\":%d,\"height\":%d}",
+             "\"programs_compiled\":%d,\"targets_created\":%d,\"scene_reloads\":%d,\"budget_ms\":%g,"
+             "\"gpu_ms\":%.3f,\"frames_over_budget\":%d,\"quality_changes\":%d,\"width\":%d,\"height\":%d}",
              h->sim_time, c.programs, c.textures, c.framebuffers, c.gpu_bytes, c.passes, c.draw_calls,
              c.composite_tiles, c.composite_pixels, c.particles_simulated, c.particles_alive,
              (unsigned long long)c.heap_allocs_after_load, c.quality, format, c.triggers_fired, c.triggers_refused,
              c.gl_state_queries, c.emitted_lights, c.fire_lit_particles, c.shadow_passes, c.programs_compiled,
-             c.targets_created, c.scene_reloads, h->width, h->height);
+             c.targets_created, c.scene_reloads, c.budget_ms, c.gpu_ms, c.frames_over_budget, c.quality_changes,
+             h->width, h->height);
     return buf;
 }
 

@@ -148,6 +148,17 @@ async function addressRoundTrips(browser, origin, ctx) {
   return "";
 }
 
+// A scene's frame budget without timer queries: the page times sbfx_render itself (the fallback).
+async function budgetIsTimed(page, ctx) {
+  const text = ctx.explosion.replace("render = {", "render = {\n  budget_ms = 16.0;");
+  if (!(await loads(page, text))) return "the explosion with a frame budget did not load";
+  for (let i = 0; i <= 4; i++) await page.eval(`sbfxPage.drawAt(${i} / 4)`);
+  const s = await page.eval("sbfxPage.stats()");
+  if (s.budget_ms !== 16) return `budget_ms ${s.budget_ms}, the scene says 16`;
+  if (!(s.gpu_ms > 0)) return `the budget got no time (gpu_ms ${s.gpu_ms}): the fallback was not fed`;
+  return "";
+}
+
 async function brokenLinkFallsBack(browser, origin, ctx) {
   const page = await browser.newPage();
   await page.goto(`${origin}/index.html?size=${W}x${H}&paused#scene=not-a-deflated-scene`);
@@ -183,6 +194,7 @@ async function main() {
         ["the_address_holds_the_scene", async () => { ctx.address = await page.eval("sbfxPage.address()"); return ""; }],
         ["a_click_sets_off_the_effect_where_clicked", () => clickSetsOffEffect(page, ctx)],
         ["a_link_reproduces_the_scene", () => addressRoundTrips(browser, srv.origin, ctx)],
+        ["a_scene_budget_is_timed_by_the_page", () => budgetIsTimed(page, ctx)],
         ["a_broken_link_plays_the_example", () => brokenLinkFallsBack(browser, srv.origin, ctx)],
       );
     for (const [name, run] of cases) {
