@@ -1,3 +1,4 @@
+# shellcheck shell=sh
 # Sourced (". tools/debian-archive.sh"), not run: the Debian archive this machine's apt uses,
 # read at run time (no archive host is written in the repository), and apt-get with a private
 # state (its own sources list, package lists and cache under a folder of the build), so the

@@ -10,6 +10,7 @@ web=${1:?usage: tests/web/run.sh WEB_DIR [--quick]}
 command -v node >/dev/null || { echo "not ok - web: no node (tools/deps.sh web installs emscripten, which brings it)"; exit 1; }
 [ -x "${CHROMIUM:-/usr/bin/chromium}" ] || { echo "not ok - web: no ${CHROMIUM:-/usr/bin/chromium} (tools/deps.sh web)"; exit 1; }
 rc=0
+# shellcheck disable=SC2086 # no second argument: none passed on
 node "$here/test_page.js" "$web" ${2:-} || rc=1
 [ "${2:-}" = --quick ] && exit $rc
 player=$(dirname "$web")/sbfx-play
