@@ -159,6 +159,32 @@ async function budgetIsTimed(page, ctx) {
   return "";
 }
 
+// Keyboard: the picture takes focus, arrows move the aim, Enter sets the effect off there.
+async function keyboardSetsOffEffect(page, ctx) {
+  if (!(await loads(page, emptyScene(ctx.explosion)))) return "the empty scene did not load";
+  await page.eval("sbfxPage.drawAt(0.5)");
+  await page.eval("document.getElementById('sbfx-canvas').focus()");
+  const key = async (key, code, vk) => {
+    for (const type of ["keyDown", "keyUp"])
+      await page.send("Input.dispatchKeyEvent", { type, key, code, windowsVirtualKeyCode: vk, nativeVirtualKeyCode: vk });
+  };
+  await key("ArrowLeft", "ArrowLeft", 37);
+  await key("Enter", "Enter", 13);
+  const fired = (await page.eval("sbfxPage.stats()")).triggers_fired;
+  if (fired !== 1) return `triggers_fired ${fired} after Enter on the focused picture`;
+  const said = await page.eval("document.getElementById('click-status').textContent");
+  if (!/^explosion at \(/.test(said)) return `the status line says "${said}"`;
+  return "";
+}
+
+// Every form control has a label a screen reader reads (label, aria-label or its text).
+async function controlsAreLabelled(page) {
+  const unlabelled = await page.eval(`[...document.querySelectorAll("input, select, textarea, button, canvas")]
+    .filter((e) => !((e.labels && e.labels.length) || e.getAttribute("aria-label") || e.textContent.trim()))
+    .map((e) => e.id || e.tagName)`);
+  return unlabelled.length ? `no label: ${unlabelled.join(", ")}` : "";
+}
+
 async function brokenLinkFallsBack(browser, origin, ctx) {
   const page = await browser.newPage();
   await page.goto(`${origin}/index.html?size=${W}x${H}&paused#scene=not-a-deflated-scene`);
@@ -194,6 +220,8 @@ async function main() {
         ["the_address_holds_the_scene", async () => { ctx.address = await page.eval("sbfxPage.address()"); return ""; }],
         ["a_click_sets_off_the_effect_where_clicked", () => clickSetsOffEffect(page, ctx)],
         ["a_link_reproduces_the_scene", () => addressRoundTrips(browser, srv.origin, ctx)],
+        ["the_keyboard_sets_off_an_effect", () => keyboardSetsOffEffect(page, ctx)],
+        ["every_control_is_labelled", () => controlsAreLabelled(page)],
         ["a_scene_budget_is_timed_by_the_page", () => budgetIsTimed(page, ctx)],
         ["a_broken_link_plays_the_example", () => brokenLinkFallsBack(browser, srv.origin, ctx)],
       );
