@@ -11,7 +11,7 @@
 #                      inclusive). PATH must be built by the tests: named (it or its folder) in
 #                      the Makefile, .ci/ or a test script.
 #   docs/make-help     `make help` lists every .PHONY target a user runs.
-#   docs/rooms/TREE    docs/hacking.md's map of TREE's rooms (src, player) names the rooms and
+#   docs/rooms/TREE    docs/hacking.md's map of TREE's rooms (src, player, net) names the rooms and
 #                      folders of TREE/rooms.txt, in its order
 #   docs/walkthrough/TITLE
 #                      each step of a walkthrough of docs/hacking.md ("## Adding ..."): every path
@@ -305,6 +305,7 @@ report_walkthrough() {
 if [ -f docs/hacking.md ]; then
     check_room_map src src "The library's rooms"
     check_room_map player platform/player "The player's rooms"
+    check_room_map net platform/net "The network's rooms"
     check_walkthroughs
 fi
 
