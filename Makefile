@@ -32,6 +32,11 @@
 #   make test-fresh   the README's quick start in a bare Debian root: DIST=bookworm (12) or trixie
 #                     (13); debootstrap, a clone of HEAD, make demo and make test (tests/fresh/run.sh), as root
 #   make test-debian13  make test-fresh DIST=trixie
+#   make web          sbfx for WebGL 2 with emscripten and the authoring page into build/web/ (docs/web.md)
+#   make web-serve    serve build/web/ on 127.0.0.1 (python3 -m http.server)
+#   make test-web     the page in headless Chromium over the DevTools protocol, its frames beside
+#                     sbfx-play's on Mesa (tests/web/; make test runs its first case)
+#   make test-web-suites  the accuracy suites in headless Chromium: ANGLE over SwiftShader (docs/web.md)
 #   make test-gpus    every scene's shaders through Mesa's Mali, V3D, Adreno, Vivante compilers
 #                     (drm-shims; builds Mesa 25 into build/mesa-shim/ once; docs/gpus.md)
 #   make gpiod2       sbfx-play again against libgpiod 2.x built from Debian 13's source (docs/gpio.md)
@@ -382,7 +387,7 @@ ASAN_TEST_TARGETS := lib build/asan/sbfx-play test-unit test-platform \
 PRECISION_GL_TESTS = $(addprefix $(BUILD)/tests/gl/,$(shell tests/precision.sh --suites))
 NORMAL_TEST_TARGETS = $(if $(filter cpu,$(TEST_ASAN)),test-gl,$(PRECISION_GL_TESTS)) \
 	$(BUILD)/tests/net/dis_send $(BUILD)/tests/net/cigi_send $(BUILD)/tests/net/cigi_ig $(BUILD)/tests/vm/alloc_count.so \
-	$(BUILD)/tests/seam/seam_check test-hosts test-gstreamer
+	$(BUILD)/tests/seam/seam_check test-hosts test-gstreamer web
 
 # the normal and the ASan+UBSan build side by side, sharing the job server
 .PHONY: test-build test-build-normal test-build-asan check
@@ -472,6 +477,8 @@ clean:
 	rm -rf --one-file-system build
 
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
+# make web, web-serve, test-web (docs/web.md)
+include web/web.mk
 
 # ---- fuzzing (clang, libFuzzer): FUZZ_SECONDS bounded, the example scenes as corpus ----
 # and FUZZ_DIS_SECONDS of the DIS parser and receiver, valid v6 and v7 PDUs as corpus, and

@@ -4,6 +4,7 @@
  * the difference between this and the GPU is the model and the precision, never a forgotten
  * term. Pure libc + reference.h. */
 #include "reference_frame.h"
+#include "base/float16.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -14,7 +15,7 @@
 /* IEEE half rounding (nearest even) where the shader has a mediump value, else nothing. */
 static double mp(const sbfx_rf_frame *f, double v)
 {
-    return f->precision == SBFX_RF_MEDIUMP ? (double)(_Float16)v : v;
+    return f->precision == SBFX_RF_MEDIUMP ? (double)(sbfx_float16)v : v;
 }
 
 static double clampd(double x, double lo, double hi)

@@ -20,7 +20,8 @@
 #      soak and its leak detection (tests/soak.sh; make soak runs hours), the documentation's
 #      links and examples (tests/docs.sh), sbfx-play under cage and weston (tests/wayland.sh), the
 #      authoring loop (tests/reload.sh), DIS, CIGI and MQTT (tests/dis.sh, tests/cigi.sh,
-#      tests/mqtt.sh), the accuracy suites at GPU precision, a suite per part
+#      tests/mqtt.sh), the WebGL 2 page's first browser case (tests/web/run.sh --quick; make
+#      test-web runs them all), the accuracy suites at GPU precision, a suite per part
 #      (tests/precision.sh, "precision:"), a bounded libFuzzer run (tests/fuzz.sh)
 #   4. from build/asan/, suite names prefixed "asan:", the ASan+UBSan build's: every test binary in
 #      tests/unit/, tests/platform/ and tests/gl/, the GL state and host-error tests again on
@@ -289,6 +290,8 @@ list_all() {
     WEIGHT=10
     run_suite "" install tests/install.sh "$BUILD"
     run_suite "" docs tests/docs.sh
+    # the authoring page in headless Chromium, its first case (make test-web runs them all)
+    run_suite "" web tests/web/run.sh "$BUILD/web" --quick
     run_suite "" soak env GLIBC_TUNABLES="$caller_tunables" tests/soak.sh "$BUILD"
     # the accuracy suites at the precision GPUs compute at (issue 25, tests/precision.sh, make
     # test-precision), each part a suite of its own

@@ -57,6 +57,14 @@ vm_pkgs="$vm_pkgs $gst_runtime_pkgs"
 # multiarch -dev packages, with the host's make, pkg-config and compiler (build/tools/ runs here)
 cross_arm64_pkgs="$host_tools liblcms2-dev colord-data gcc-aarch64-linux-gnu libc6-dev:arm64 libegl-dev:arm64 libgles-dev:arm64 libdrm-dev:arm64 libgbm-dev:arm64 libgpiod-dev:arm64 libpng-dev:arm64 libconfig-dev:arm64 libsystemd-dev:arm64 libavformat-dev:arm64 libavcodec-dev:arm64 libswscale-dev:arm64 libavutil-dev:arm64 libwayland-dev:arm64 wayland-protocols libwayland-bin libmosquitto-dev:arm64"
 
+# make web and test-web (docs/web.md): Debian's emscripten (its LLVM, binaryen and node modules),
+# dpkg-dev (dpkg-source unpacks libconfig's source package: tools/web-libconfig.sh), Chromium for
+# the browser tests (driven over its DevTools pipe by node, which emscripten brings), ImageMagick
+# (the browser's frames beside sbfx-play's PNGs: tests/web/same_picture.js)
+web_pkgs="$build_pkgs emscripten dpkg-dev chromium imagemagick"
+# make test runs one case of the browser tests (tests/web/run.sh --quick)
+test_pkgs="$test_pkgs emscripten dpkg-dev chromium"
+
 # make test-fresh (and test-debian13): bare Debian roots made with debootstrap, checked against
 # the archive's key
 fresh_pkgs="debootstrap debian-archive-keyring"
@@ -71,7 +79,8 @@ case "$set_of" in
     vm) want="$vm_pkgs" ;;
     cross-arm64) want="$cross_arm64_pkgs" ;;
     mesa-shim) want="$mesa_shim_pkgs" ;;
-    *) echo "deps.sh: unknown package set '$set_of' (build|test|vm|cross-arm64|fresh|mesa-shim)" >&2; exit 2 ;;
+    web) want="$web_pkgs" ;;
+    *) echo "deps.sh: unknown package set '$set_of' (build|test|vm|cross-arm64|fresh|mesa-shim|web)" >&2; exit 2 ;;
 esac
 
 # arm64 packages need the architecture enabled first (dpkg --add-architecture arm64)

@@ -31,40 +31,14 @@ gc7000l etnaviv ETNA_SHIM_GPU=GC7000L
 EOF
 }
 
-# The archive URI of the stanza that serves bookworm (not -security) in the deb822 sources
-# file, or of the first deb line of a one-line sources.list.
-archive_uri() {
-    src=/etc/apt/sources.list.d/debian.sources
-    uri=""
-    if [ -r "$src" ]; then
-        uri=$(awk 'BEGIN{RS=""} /Suites:[^\n]*bookworm([ \n]|$)/ && !/security/ {
-                  if (match($0, /URIs: *[^ \n]+/)) { s = substr($0, RSTART, RLENGTH);
-                  sub(/URIs: */, "", s); print s; exit } }' "$src")
-    fi
-    if [ -z "$uri" ] && [ -r /etc/apt/sources.list ]; then
-        uri=$(awk '$1 == "deb" && $0 !~ /security/ { for (i = 2; i <= NF; i++)
-                  if ($i ~ /^[a-z]+:\/\//) { print $i; exit } }' /etc/apt/sources.list)
-    fi
-    [ -n "$uri" ] || { echo "mesa-shim: no Debian archive URI in /etc/apt/sources.list.d/debian.sources or /etc/apt/sources.list" >&2; exit 1; }
-    echo "$uri"
-}
-
-trixie_apt() {
-    # as root apt would download as _apt, who may not write into the build folder
-    sandbox=""
-    [ "$(id -u)" -ne 0 ] || sandbox="-o APT::Sandbox::User=root"
-    # shellcheck disable=SC2086 # $sandbox is one option or none
-    apt-get -q -o Dir::Etc::SourceList="$dir/apt/trixie.list" -o Dir::Etc::SourceParts=/dev/null \
-        -o Dir::State::Lists="$dir/apt/lists" -o Dir::Cache="$dir/apt/cache" \
-        -o Dir::State::Status=/var/lib/dpkg/status $sandbox "$@"
-}
+# the archive and the private apt state (tools/debian-archive.sh)
+. "$here/tools/debian-archive.sh"
+trixie_apt() { debian_private_apt "$dir/apt" "$@"; }
 
 fetch_sources() {
     if ls "$dir"/dl/mesa_*.orig.tar.xz "$dir"/dl/meson_*.deb >/dev/null 2>&1; then return 0; fi
-    mkdir -p "$dir/apt/lists/partial" "$dir/apt/cache/archives/partial" "$dir/dl"
-    uri=$(archive_uri)
-    printf 'deb %s trixie main\ndeb-src %s trixie main\n' "$uri" "$uri" > "$dir/apt/trixie.list"
-    trixie_apt update >&2
+    mkdir -p "$dir/dl"
+    debian_private_sources "$dir/apt" trixie
     (cd "$dir/dl" && trixie_apt source --download-only mesa >&2 && trixie_apt download meson/trixie >&2)
 }
 

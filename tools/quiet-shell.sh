@@ -16,7 +16,7 @@ set -- $line
 [ "$1" = ccache ] && shift
 tag=""
 case "${1##*/}" in
-    cc | gcc | clang | c99 | *-gcc | *-cc | gcc-[0-9]* | clang-[0-9]*)
+    cc | gcc | clang | c99 | emcc | *-gcc | *-cc | gcc-[0-9]* | clang-[0-9]*)
         case " $line " in
             *" -c "*) tag=CC ;;
             *) tag=LD ;;

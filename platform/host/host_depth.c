@@ -31,18 +31,26 @@ static bool desktop_version(int *version)
     return true;
 }
 
-bool host_depth_has_clip_control(void)
+static bool advertises_clip_control(void)
 {
     int version = 0;
     if (desktop_version(&version)) return version >= 45 || has_extension("GL_ARB_clip_control");
     return has_extension("GL_EXT_clip_control");
 }
 
-void (*host_depth_clip_control(void))(GLenum origin, GLenum depth)
+static clip_control_fn clip_control_function(void)
 {
     int version = 0;
-    if (!host_depth_has_clip_control()) return NULL;
     return (clip_control_fn)eglGetProcAddress(desktop_version(&version) ? "glClipControl" : "glClipControlEXT");
+}
+
+/* Advertised and reachable: Chromium's WebGL 2 offers EXT_clip_control, whose function Debian
+ * 12's emscripten (3.1.6) does not bind (docs/web.md), so the name alone is not enough. */
+bool host_depth_has_clip_control(void) { return advertises_clip_control() && clip_control_function() != NULL; }
+
+void (*host_depth_clip_control(void))(GLenum origin, GLenum depth)
+{
+    return advertises_clip_control() ? clip_control_function() : NULL;
 }
 
 /* A full-screen quad at clip w = distance, clip z = the depth row at view z = -distance. */

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "base/float16.h"
 #include "gl/gl.h"
 
 /* ---- the scene's tables (scene/scene_tables.c builds them) ---------------------------------- */
@@ -300,7 +301,7 @@ sbfx_result sbfx_detail_push_slice(sbfx *fx, const uint16_t *half_texels, int si
     if (fx->scene->desc.detail_format == SBFX_DETAIL_R32F) {
         float *row = fx->gl->detail_scratch; /* sized at load: no allocation per slice */
         for (int i = 0; i < size * size; i++) {
-            _Float16 h;
+            sbfx_float16 h;
             memcpy(&h, &half_texels[i], sizeof(h));
             row[i] = (float)h;
         }

@@ -38,13 +38,14 @@ static void set_medium_uniforms(sbfx *fx, const sbfx_program *p, sbfx_medium m, 
     float exposure = fx->scene->desc.exposure, scatter = mp->albedo * exposure;
     glUniform3f(p->albedo_color, scatter * mp->color[0], scatter * mp->color[1], scatter * mp->color[2]);
     glUniform1i(p->light_count, lights->count);
-    glUniform4fv(p->light_vector, lights->count, &lights->vector[0][0]);
+    /* count 0 is a no-op in ES 3.0 but INVALID_VALUE in WebGL 2 (an empty array): not called */
+    if (lights->count > 0) glUniform4fv(p->light_vector, lights->count, &lights->vector[0][0]);
     /* the phase model's 4 pi (a light of colour E scattered isotropically gives back E) folded in
      * here, not per fragment; lit media take the colours as they are */
     float color[SBFX_SHADER_LIGHTS][3];
     for (int i = 0; i < lights->count; i++)
         for (int k = 0; k < 3; k++) color[i][k] = lights->color[i][k] * (mp->lit ? 1.0f : SBFX_FOUR_PI_F);
-    glUniform3fv(p->light_color, lights->count, &color[0][0]);
+    if (lights->count > 0) glUniform3fv(p->light_color, lights->count, &color[0][0]);
     glUniform3fv(p->ambient, 1, fx->scene->ambient);
     glUniform4f(p->temperature, mp->t0, mp->t1, mp->cooling, mp->soot);
     glUniform1f(p->emission_scale, mp->emission_scale * (1.0f - mp->albedo) * exposure);

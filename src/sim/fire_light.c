@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
+#include "base/float16.h"
 #include "sim/fire_light.h"
 #include "tables/tables.h"
 
@@ -85,7 +86,7 @@ void sbfx_fire_detail_levels(const float *volume, int size, int frames, double o
 
 static double half_texel(const uint16_t *slice, int size, int x, int y)
 {
-    _Float16 h;
+    sbfx_float16 h;
     memcpy(&h, &slice[(size_t)(y & (size - 1)) * size + (x & (size - 1))], sizeof(h));
     return (double)h;
 }

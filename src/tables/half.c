@@ -1,10 +1,11 @@
 /* Floats to half floats in bulk (tables.h): the detail volume at load. */
 #include <string.h>
+#include "base/float16.h"
 #include "tables/tables.h"
 
 static inline void store_half(const float *in, uint16_t *out, size_t i)
 {
-    _Float16 h = (_Float16)in[i];
+    sbfx_float16 h = (sbfx_float16)in[i];
     memcpy(&out[i], &h, sizeof(h));
 }
 

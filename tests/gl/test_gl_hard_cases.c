@@ -34,6 +34,7 @@
  *          the lookup is monotone in it) and carries the spread through "over" (ref/
  *          reference_frame.c, filter_bound): that bound, per pixel and channel, is added to the
  *          tolerance. Without the variable it is 0. */
+#include "base/float16.h"
 #include "gl_fixture.h"
 #include "reference_frame.h"
 #include "scene/scene.h"
@@ -168,7 +169,7 @@ static double filter_weight_error(void)
 }
 static float *half_detail;
 
-static double to_half(double v) { return (double)(_Float16)v; }
+static double to_half(double v) { return (double)(sbfx_float16)v; }
 
 static void load_tables(void)
 {
