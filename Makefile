@@ -305,13 +305,23 @@ soak:
 
 # sbfx.pc: sbfx.pc.in with the install directories. build/sbfx.pc is rewritten on every run, as
 # they may differ between "make" and "make install", which writes its own.
-pc_from_template = sed -e 's|@PREFIX@|$(PREFIX)|' \
-	-e 's|@LIBDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(LIBDIR))|' \
-	-e 's|@INCLUDEDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(INCLUDEDIR))|' \
+# $(call pc_write,OUT,PREFIX,LIBDIR,INCLUDEDIR)
+pc_write = sed -e 's|@PREFIX@|$2|' \
+	-e 's|@LIBDIR@|$(patsubst $2/%,$${prefix}/%,$3)|' \
+	-e 's|@INCLUDEDIR@|$(patsubst $2/%,$${prefix}/%,$4)|' \
 	-e 's|@VERSION@|$(VERSION)|' -e 's|@REQUIRES_PRIVATE@|$(SRC_PKGS)|' sbfx.pc.in > $1
+pc_from_template = $(call pc_write,$1,$(PREFIX),$(LIBDIR),$(INCLUDEDIR))
 $(BUILD)/sbfx.pc: sbfx.pc.in FORCE
 	@mkdir -p $(@D)
 	@$(call pc_from_template,$@)
+# The same for the tree itself: sbfx-uninstalled.pc names include/ and $(BUILD)/ (pkg-config prefers
+# NAME-uninstalled.pc on its path), so the in-tree hosts take their flags as installed ones do.
+SBFX_PC_UNINSTALLED := $(BUILD)/pkgconfig/sbfx-uninstalled.pc
+SBFX_PC_PATH := $(CURDIR)/$(BUILD)/pkgconfig$(if $(PKG_CONFIG_PATH),:$(PKG_CONFIG_PATH))
+SBFX_PC_CFLAGS = $(eval SBFX_PC_CFLAGS := $$(shell PKG_CONFIG_PATH=$(SBFX_PC_PATH) $(PKG_CONFIG) --cflags sbfx))$(SBFX_PC_CFLAGS)
+$(SBFX_PC_UNINSTALLED): sbfx.pc.in Makefile
+	@mkdir -p $(@D)
+	@$(call pc_write,$@,$(CURDIR),$(CURDIR)/$(BUILD),$(CURDIR)/include)
 
 # ---- tests -------------------------------------------------------------------------------
 $(BUILD)/tests/unit/%: tests/unit/%.c $(REF_LIBS) tests/check.h
@@ -709,8 +719,12 @@ gpiod2:
 # never need them. Their tests run headless: SDL's offscreen driver (tests/hosts/).
 SDL2_CFLAGS = $(call pkg_config,SDL2_CFLAGS,--cflags sdl2)
 SDL2_LIBS = $(call pkg_config,SDL2_LIBS,--libs sdl2)
-EXAMPLE_CFLAGS = $(BASE_CFLAGS) $(SRC_PKG_CFLAGS) -Iinclude -Isrc $(CFLAGS)
-$(BUILD)/obj/examples/sdl2/%.o: examples/sdl2/%.c examples/sdl2/sdl2_host.h | deps
+# The examples and integrations are hosts: they see only include/sbfx.h, through pkg-config as a
+# user's build does (SBFX_PC_CFLAGS: $(BUILD)/pkgconfig/sbfx-uninstalled.pc, which pkg-config takes
+# for sbfx when its folder is on PKG_CONFIG_PATH; tests/install.sh builds them again against an
+# installed copy). Only the tests that look inside the module add -Isrc.
+EXAMPLE_CFLAGS = $(BASE_CFLAGS) $(SBFX_PC_CFLAGS) $(CFLAGS)
+$(BUILD)/obj/examples/sdl2/%.o: examples/sdl2/%.c examples/sdl2/sdl2_host.h $(SBFX_PC_UNINSTALLED) | deps
 	@mkdir -p $(@D)
 	$(CC) $(EXAMPLE_CFLAGS) $(SDL2_CFLAGS) -c -o $@ $<
 $(BUILD)/examples/sbfx-sdl2: $(BUILD)/obj/examples/sdl2/main.o $(BUILD)/obj/examples/sdl2/sdl2_host.o $(BUILD)/libsbfx.a
@@ -718,14 +732,14 @@ $(BUILD)/examples/sbfx-sdl2: $(BUILD)/obj/examples/sdl2/main.o $(BUILD)/obj/exam
 	$(CC) $(LDSAN) -o $@ $^ $(SDL2_LIBS) $(SRC_LIBS)
 $(BUILD)/tests/hosts/test_sdl2: tests/hosts/test_sdl2.c $(BUILD)/obj/examples/sdl2/sdl2_host.o $(BUILD)/libsbfx.a tests/check.h
 	@mkdir -p $(@D)
-	$(CC) $(EXAMPLE_CFLAGS) $(SDL2_CFLAGS) -Iexamples/sdl2 -Itests $(LDSAN) -o $@ $< \
+	$(CC) $(EXAMPLE_CFLAGS) $(SDL2_CFLAGS) -Isrc -Iexamples/sdl2 -Itests $(LDSAN) -o $@ $< \
 		$(BUILD)/obj/examples/sdl2/sdl2_host.o $(BUILD)/libsbfx.a $(SDL2_LIBS) $(SRC_LIBS)
 .PHONY: test-hosts
 test-hosts: $(BUILD)/examples/sbfx-sdl2 $(BUILD)/tests/hosts/test_sdl2
 
 # The desktop OpenGL host (examples/desktop-gl/, docs/hosts/desktop-gl.md): a 3.3 core profile
 # context through EGL, its own GLSL 330 shaders and libOpenGL, sbfx on the same context.
-$(BUILD)/examples/sbfx-desktop-gl: examples/desktop-gl/host.c $(BUILD)/libsbfx.a | deps
+$(BUILD)/examples/sbfx-desktop-gl: examples/desktop-gl/host.c $(BUILD)/libsbfx.a $(SBFX_PC_UNINSTALLED) | deps
 	@mkdir -p $(@D)
 	$(CC) $(EXAMPLE_CFLAGS) $(LDSAN) -o $@ $< $(BUILD)/libsbfx.a $(OPENGL_LIBS) \
 		$(call pkg_config,EGL_LIBS,--libs egl) $(SRC_LIBS)
@@ -739,23 +753,23 @@ QT_PKGS := Qt6Quick Qt6Qml Qt6Gui
 QT_PKG_CFLAGS = $(call pkg_config,QT_PKG_CFLAGS,--cflags $(QT_PKGS))
 QT_PKG_LIBS = $(call pkg_config,QT_PKG_LIBS,--libs $(QT_PKGS))
 QT_LIBEXEC = $(call pkg_config,QT_LIBEXEC,--variable=libexecdir Qt6Core)
-QT_CXXFLAGS = -std=c++17 $(OPT) -Wall -Wextra -Wno-unused-parameter -fPIC -MMD -MP $(SRC_PKG_CFLAGS) -Iinclude -Isrc \
+QT_CXXFLAGS = -std=c++17 $(OPT) -Wall -Wextra -Wno-unused-parameter -fPIC -MMD -MP $(SBFX_PC_CFLAGS) \
 	-Iintegrations/qt $(QT_PKG_CFLAGS) $(CXXFLAGS)
 QT_LIBS = $(QT_PKG_LIBS) $(SRC_LIBS)
 QT_OBJ := $(addprefix $(BUILD)/obj/integrations/qt/,sbfx_item.o sbfx_render_node.o moc_sbfx_item.o)
-$(BUILD)/gen/qt/moc_%.cpp: integrations/qt/%.h | deps
+$(BUILD)/gen/qt/moc_%.cpp: integrations/qt/%.h $(SBFX_PC_UNINSTALLED) | deps
 	@mkdir -p $(@D)
 	$(QT_LIBEXEC)/moc -o $@ $<
 $(BUILD)/gen/qt/qrc_qt_quick.cpp: examples/qt-quick/qt-quick.qrc examples/qt-quick/main.qml | deps
 	@mkdir -p $(@D)
 	$(QT_LIBEXEC)/rcc --name qt_quick -o $@ $<
-$(BUILD)/obj/integrations/qt/%.o: integrations/qt/%.cpp integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h | deps
+$(BUILD)/obj/integrations/qt/%.o: integrations/qt/%.cpp integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h $(SBFX_PC_UNINSTALLED) | deps
 	@mkdir -p $(@D)
 	$(CXX) $(QT_CXXFLAGS) -c -o $@ $<
 $(BUILD)/obj/integrations/qt/moc_%.o: $(BUILD)/gen/qt/moc_%.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(QT_CXXFLAGS) -c -o $@ $<
-$(BUILD)/obj/examples/qt-quick/%.o: examples/qt-quick/%.cpp integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h | deps
+$(BUILD)/obj/examples/qt-quick/%.o: examples/qt-quick/%.cpp integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h $(SBFX_PC_UNINSTALLED) | deps
 	@mkdir -p $(@D)
 	$(CXX) $(QT_CXXFLAGS) -c -o $@ $<
 $(BUILD)/obj/examples/qt-quick/qrc_qt_quick.o: $(BUILD)/gen/qt/qrc_qt_quick.cpp
@@ -895,9 +909,12 @@ GST_PKG_LIBS = $(call pkg_config,GST_PKG_LIBS,--libs $(GST_PKGS))
 GST_PLUGIN := $(BUILD)/gstreamer/libgstsbfx.so
 GST_OBJ := $(patsubst %.c,$(BUILD)/obj/%.o,$(wildcard integrations/gstreamer/*.c))
 GST_PLATFORM_OBJ := $(BUILD)/obj/platform/video/luma.o $(BUILD)/obj/platform/video/clip_detail.o
-$(BUILD)/obj/integrations/gstreamer/%.o: integrations/gstreamer/%.c | deps
+# The element is a host: include/sbfx.h through pkg-config (as the examples), and platform/'s luma
+# and clip decoding (-Iplatform), never src/'s private headers.
+GST_CFLAGS = $(BASE_CFLAGS) $(SBFX_PC_CFLAGS) $(PLATFORM_PKG_CFLAGS) -Iplatform $(CFLAGS)
+$(BUILD)/obj/integrations/gstreamer/%.o: integrations/gstreamer/%.c $(SBFX_PC_UNINSTALLED) | deps
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) $(GST_PKG_CFLAGS) -fvisibility=hidden -DSBFX_VERSION='"$(VERSION)"' -c -o $@ $<
+	$(CC) $(GST_CFLAGS) $(GST_PKG_CFLAGS) -fvisibility=hidden -DSBFX_VERSION='"$(VERSION)"' -c -o $@ $<
 $(GST_PLUGIN): $(GST_OBJ) $(GST_PLATFORM_OBJ) $(SO_LINKS) integrations/gstreamer/plugin.map
 	@mkdir -p $(@D)
 	$(CC) -shared -Wl,-z,defs -Wl,--version-script=integrations/gstreamer/plugin.map -o $@ $(GST_OBJ) \

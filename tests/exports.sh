@@ -66,6 +66,14 @@ else
     not_ok nothing-else-exported "exported, not declared in include/sbfx.h (static, or not SBFX_API): $extra"
 fi
 
+# include/ publishes the one public header; src/'s headers stay private (issue 46)
+published=$(cd include && find . -mindepth 1 | sed 's|^\./||' | sort | tr '\n' ' ' | sed 's/ $//')
+if [ "$published" = sbfx.h ]; then
+    ok "include-holds-only-sbfx.h"
+else
+    not_ok include-holds-only-sbfx.h "include/ holds: $published (only the public header belongs there)"
+fi
+
 soname=$(readelf -d "$so" | sed -n 's/.*(SONAME).*\[\(.*\)\]/\1/p')
 if [ "$soname" = "libsbfx.so.$SOVERSION" ]; then
     ok "soname ($soname)"

@@ -15,8 +15,8 @@
 #   3. the probe's tests (tests/probe.sh), what
 #      libsbfx.so exports (tests/exports.sh), that it reads no data file and renders fire with
 #      colord-data hidden (tests/no_data_files.sh), the CIE table generator (tests/gen_cmf.sh), the
-#      kiosk's unit, udev rule and their exposure (tests/kiosk_unit.sh), make install and the host
-#      example (examples/bare-egl/) built against the installed copy (tests/install.sh), a short
+#      kiosk's unit, udev rule and their exposure (tests/kiosk_unit.sh), make install and the hosts
+#      (examples/, integrations/qt/) built against the installed copy (tests/install.sh), a short
 #      soak and its leak detection (tests/soak.sh; make soak runs hours), the documentation's
 #      links and examples (tests/docs.sh), sbfx-play under cage and weston (tests/wayland.sh), the
 #      authoring loop (tests/reload.sh), the accuracy suites at GPU precision, a suite per part
