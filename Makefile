@@ -26,6 +26,9 @@
 #   make uninstall    remove what make install put there (same PREFIX, DESTDIR)
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
+#   make deb          the Debian packages libsbfx1, libsbfx-dev, sbfx-player, gstreamer1.0-sbfx into
+#                     build/deb/ARCH/ (dpkg-buildpackage from dist/debian/, then lintian: no errors,
+#                     no warnings); make deb ARCH=arm64 cross builds them (docs/packaging.md)
 #   make test-vm      real-kernel tests in a qemu VM (vkms, vivid, gpio-sim; tests/vm/)
 #   make test-fresh   the README's quick start in a bare Debian root: DIST=bookworm (12) or trixie
 #                     (13); debootstrap, a clone of HEAD, make demo and make test (tests/fresh/run.sh), as root
@@ -202,7 +205,7 @@ $(BUILD)/libsbfx_ref.a: $(REF_OBJ)
 # -z defs: every symbol the library needs comes from a library it names (not under ASan, whose
 # runtime the executable brings).
 $(BUILD)/libsbfx.so.$(VERSION): $(LIB_OBJ)
-	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--gc-sections $(if $(LDSAN),,-Wl,-z,defs) $(LDSAN) \
+	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--gc-sections $(if $(LDSAN),,-Wl,-z,defs) $(LDSAN) $(LDFLAGS) \
 		-o $@ $^ $(SRC_LIBS)
 
 $(BUILD)/$(SONAME): $(BUILD)/libsbfx.so.$(VERSION)
@@ -265,7 +268,7 @@ $(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
-	$(CC) $(LDSAN) $(PLAYER_TEST_WRAP) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS) $(WAYLAND_PKG_LIBS) $(MQTT_PKG_LIBS)
+	$(CC) $(LDSAN) $(LDFLAGS) $(PLAYER_TEST_WRAP) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS) $(WAYLAND_PKG_LIBS) $(MQTT_PKG_LIBS)
 # libmosquitto runs the MQTT client on a thread of its own (net/mqtt_client.h); the player only
 MQTT_PKG_CFLAGS = $(call pkg_config,MQTT_PKG_CFLAGS,--cflags libmosquitto)
 MQTT_PKG_LIBS = $(call pkg_config,MQTT_PKG_LIBS,--libs libmosquitto) -pthread
@@ -283,7 +286,7 @@ $(BUILD)/obj/tools/%.o: tools/%.c | deps
 	$(CC) $(PLATFORM_CFLAGS) -Iref -c -o $@ $<
 
 $(BUILD)/sbfx-probe: $(BUILD)/obj/tools/probe/probe.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
-	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
+	$(CC) $(LDSAN) $(LDFLAGS) -o $@ $^ $(PLATFORM_LIBS)
 
 # sbfx-soak: the kiosk loop for simulated hours, flatness checked (docs/kiosk-and-devices.md,
 # "Kiosk months"); a test tool, not installed. `make soak` runs it for SOAK_HOURS and plots the record
@@ -442,7 +445,7 @@ figures:
 	@tools/figures.sh $(BUILD)
 
 # The header, both libraries (the .so as libsbfx.so.VERSION with its soname and development
-# links), sbfx.pc, the two programs and sbfx-play's man page; ldconfig when it is the live
+# links), sbfx.pc, the two programs and their man pages; ldconfig when it is the live
 # system. Not the CPU reference (libsbfx_ref.a): tests only.
 install: all
 	install -d $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(INCLUDEDIR) $(DESTDIR)$(BINDIR)
@@ -454,14 +457,15 @@ install: all
 	$(call pc_from_template,$(DESTDIR)$(LIBDIR)/pkgconfig/sbfx.pc)
 	install -m 755 $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(DESTDIR)$(BINDIR)/
 	install -d $(DESTDIR)$(MANDIR)/man1
-	install -m 644 platform/player/sbfx-play.1 $(DESTDIR)$(MANDIR)/man1/
+	install -m 644 platform/player/sbfx-play.1 tools/probe/sbfx-probe.1 $(DESTDIR)$(MANDIR)/man1/
 	@if [ -z "$(DESTDIR)" ] && [ "$$(id -u)" -eq 0 ]; then ldconfig; fi
 
 uninstall:
 	rm -f $(DESTDIR)$(INCLUDEDIR)/sbfx.h $(DESTDIR)$(LIBDIR)/libsbfx.a \
 		$(DESTDIR)$(LIBDIR)/libsbfx.so.$(VERSION) $(DESTDIR)$(LIBDIR)/$(SONAME) \
 		$(DESTDIR)$(LIBDIR)/libsbfx.so $(DESTDIR)$(LIBDIR)/pkgconfig/sbfx.pc \
-		$(DESTDIR)$(BINDIR)/sbfx-play $(DESTDIR)$(BINDIR)/sbfx-probe $(DESTDIR)$(MANDIR)/man1/sbfx-play.1
+		$(DESTDIR)$(BINDIR)/sbfx-play $(DESTDIR)$(BINDIR)/sbfx-probe $(DESTDIR)$(MANDIR)/man1/sbfx-play.1 \
+		$(DESTDIR)$(MANDIR)/man1/sbfx-probe.1
 
 clean:
 	rm -rf --one-file-system build
@@ -866,6 +870,18 @@ uninstall-kiosk:
 	rm -f $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT) $(DESTDIR)$(UDEVRULESDIR)/$(KIOSK_UDEV_RULE) \
 		$(DESTDIR)$(SYSUSERSDIR)/sbfx.conf
 
+# ---- Debian packages (issue 46; docs/packaging.md) ------------------------------------------
+# make deb: libsbfx1, libsbfx-dev, sbfx-player, gstreamer1.0-sbfx with dpkg-buildpackage from
+# dist/debian/ (tools/deb.sh: a copy of the tree in build/deb/ARCH/, the version the Makefile's
+# VERSION), then lintian. ARCH=arm64: the same cross built with Debian's aarch64 toolchain and
+# the arm64 build dependencies (multiarch). The packages land in build/deb/ARCH/.
+DEB_HOST_ARCH := $(or $(ARCH),$(shell dpkg --print-architecture 2>/dev/null))
+DEB_DEPS := $(if $(filter $(DEB_HOST_ARCH),$(shell dpkg --print-architecture 2>/dev/null)),deb,deb-$(DEB_HOST_ARCH))
+.PHONY: deb
+deb:
+	@tools/deps.sh $(DEB_DEPS)
+	@tools/deb.sh $(DEB_HOST_ARCH) build/deb
+
 # ---- a fresh machine (issue 36; docs/testing.md "A fresh machine") ---------------------------
 # The README's quick start, verbatim, in a bare Debian root (debootstrap minbase plus git and
 # make): the commit under test cloned, then make demo and make test as root, and make demo as a
@@ -917,7 +933,7 @@ $(BUILD)/obj/integrations/gstreamer/%.o: integrations/gstreamer/%.c $(SBFX_PC_UN
 	$(CC) $(GST_CFLAGS) $(GST_PKG_CFLAGS) -fvisibility=hidden -DSBFX_VERSION='"$(VERSION)"' -c -o $@ $<
 $(GST_PLUGIN): $(GST_OBJ) $(GST_PLATFORM_OBJ) $(SO_LINKS) integrations/gstreamer/plugin.map
 	@mkdir -p $(@D)
-	$(CC) -shared -Wl,-z,defs -Wl,--version-script=integrations/gstreamer/plugin.map -o $@ $(GST_OBJ) \
+	$(CC) -shared -Wl,-z,defs -Wl,--version-script=integrations/gstreamer/plugin.map $(LDFLAGS) -o $@ $(GST_OBJ) \
 		$(GST_PLATFORM_OBJ) -L$(BUILD) -lsbfx $(GST_PKG_LIBS) $(CLIP_PKG_LIBS) $(call pkg_config,GLES_LIBS,--libs glesv2) -lm
 .PHONY: gstreamer
 all: gstreamer

@@ -57,7 +57,7 @@ fi
 
 # what is installed, and nothing of the reference or of the private headers
 want="usr/include/sbfx.h usr/lib/libsbfx.a usr/lib/libsbfx.so.$VERSION usr/lib/pkgconfig/sbfx.pc
-usr/bin/sbfx-play usr/bin/sbfx-probe usr/share/man/man1/sbfx-play.1"
+usr/bin/sbfx-play usr/bin/sbfx-probe usr/share/man/man1/sbfx-play.1 usr/share/man/man1/sbfx-probe.1"
 absent=""
 for f in $want; do [ -f "$root/$f" ] || absent="$absent $f"; done
 stray=$(cd "$root" && find . \( -name '*ref*' -o -name 'internal.h' -o -name 'tables.h' \) | tr '\n' ' ')

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Makes sure the Debian packages sbfx needs are installed.
 # As root: installs what is missing (apt-get, non-interactive). Otherwise: prints the exact
-# apt-get line and exits 1. Usage: tools/deps.sh [build|test|vm|cross-arm64|fresh|mesa-shim]
+# apt-get line and exits 1. Usage: tools/deps.sh [build|test|vm|cross-arm64|deb|deb-arm64|fresh|mesa-shim]
 set -eu
 set_of="${1:-test}"
 
@@ -54,6 +54,17 @@ vm_pkgs="$vm_pkgs $gst_runtime_pkgs"
 # multiarch -dev packages, with the host's make, pkg-config and compiler (build/tools/ runs here)
 cross_arm64_pkgs="$host_tools liblcms2-dev colord-data gcc-aarch64-linux-gnu libc6-dev:arm64 libegl-dev:arm64 libgles-dev:arm64 libdrm-dev:arm64 libgbm-dev:arm64 libgpiod-dev:arm64 libpng-dev:arm64 libconfig-dev:arm64 libsystemd-dev:arm64 libavformat-dev:arm64 libavcodec-dev:arm64 libswscale-dev:arm64 libavutil-dev:arm64 libwayland-dev:arm64 wayland-protocols libwayland-bin libmosquitto-dev:arm64"
 
+# make deb (tools/deb.sh, dist/debian/control): dpkg-buildpackage's tools and lintian, and the
+# build dependencies debian/control names (the build set and systemd's .pc: systemd-dev on 13,
+# systemd on 12); make deb ARCH=arm64 the same for arm64 with the cross toolchain
+deb_tools="dpkg-dev debhelper fakeroot lintian"
+systemd_pc=systemd
+if [ -r /etc/os-release ] && grep -qx 'VERSION_CODENAME=trixie' /etc/os-release; then systemd_pc=systemd-dev; fi
+deb_pkgs="$deb_tools $build_pkgs $systemd_pc"
+deb_arm64_pkgs="$deb_tools $cross_arm64_pkgs $systemd_pc libgstreamer1.0-dev:arm64 libgstreamer-plugins-base1.0-dev:arm64"
+# make test's ABI check (tests/abi.sh): libabigail's abidw and abidiff
+test_pkgs="$test_pkgs abigail-tools"
+
 # make test-fresh (and test-debian13): bare Debian roots made with debootstrap, checked against
 # the archive's key
 fresh_pkgs="debootstrap debian-archive-keyring"
@@ -67,13 +78,15 @@ case "$set_of" in
     test) want="$test_pkgs" ;;
     vm) want="$vm_pkgs" ;;
     cross-arm64) want="$cross_arm64_pkgs" ;;
+    deb) want="$deb_pkgs" ;;
+    deb-arm64) want="$deb_arm64_pkgs" ;;
     mesa-shim) want="$mesa_shim_pkgs" ;;
-    *) echo "deps.sh: unknown package set '$set_of' (build|test|vm|cross-arm64|fresh|mesa-shim)" >&2; exit 2 ;;
+    *) echo "deps.sh: unknown package set '$set_of' (build|test|vm|cross-arm64|deb|deb-arm64|fresh|mesa-shim)" >&2; exit 2 ;;
 esac
 
 # arm64 packages need the architecture enabled first (dpkg --add-architecture arm64)
 add_arch=""
-if [ "$set_of" = cross-arm64 ] && ! dpkg --print-foreign-architectures | grep -qx arm64; then
+if { [ "$set_of" = cross-arm64 ] || [ "$set_of" = deb-arm64 ]; } && ! dpkg --print-foreign-architectures | grep -qx arm64; then
     add_arch="dpkg --add-architecture arm64 && "
 fi
 

@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# make deb: sbfx's Debian packages with dpkg-buildpackage (docs/packaging.md).
+#   tools/deb.sh ARCH OUT   (ARCH: dpkg's name, amd64 or arm64; OUT: build/deb)
+# The tree (without build/ and .git) is copied into OUT/ARCH/sbfx-VERSION/ with dist/debian/ as
+# its debian/ and a debian/changelog of the Makefile's VERSION, so the work tree stays clean;
+# dpkg-buildpackage -b builds there (-aARCH where ARCH is not this machine's: Debian's cross
+# toolchain) and leaves the .deb files, .buildinfo and .changes in OUT/ARCH/. Then lintian on
+# them: an error or a warning fails (LINTIAN=0 skips it). The build dependencies are checked
+# by dpkg-buildpackage against debian/control (tools/deps.sh deb / deb-arm64 installs them).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ARCH=${1:-$(dpkg --print-architecture)}
+OUT=${2:-build/deb}
+case $OUT in /*) ;; *) OUT=$PWD/$OUT ;; esac
+VERSION=$(sed -n 's/^VERSION := //p' Makefile)
+say() { printf 'deb %s: %s\n' "$ARCH" "$*" >&2; }
+
+work=$OUT/$ARCH
+src=$work/sbfx-$VERSION
+rm -rf --one-file-system "$work"
+mkdir -p "$src"
+tar -cf - --exclude=./build --exclude=./.git --exclude=./debian . | tar -xf - -C "$src"
+cp -a dist/debian "$src/debian"
+
+# The changelog: one entry, the Makefile's version, dated by the commit when there is one (the
+# same commit gives the same packages), else by now.
+if git rev-parse -q --verify HEAD >/dev/null 2>&1; then
+    commit=$(git log -1 --format=%h)
+    date=$(git log -1 --format=%aD)
+    what="the project's tree at commit $commit$( [ -z "$(git status --porcelain --untracked-files=no)" ] || echo ' with changes')"
+else
+    date=$(date -R)
+    what="the project's tree"
+fi
+maintainer=$(sed -n 's/^Maintainer: //p' dist/debian/control)
+cat >"$src/debian/changelog" <<CHANGELOG
+sbfx ($VERSION) unstable; urgency=medium
+
+  * Packaged from $what
+    (docs/packaging.md).
+
+ -- $maintainer  $date
+CHANGELOG
+
+host=()
+[ "$ARCH" = "$(dpkg --print-architecture)" ] || host=(-a"$ARCH")
+say "dpkg-buildpackage -b ${host[*]} in $src (log: $work/build.log)"
+if ! (cd "$src" && dpkg-buildpackage -b -us -uc "${host[@]}") >"$work/build.log" 2>&1; then
+    tail -n 25 "$work/build.log" >&2
+    say "dpkg-buildpackage failed (the whole log: $work/build.log)"
+    exit 1
+fi
+changes=$work/sbfx_${VERSION}_$ARCH.changes
+say "built: $(cd "$work" && ls -- *.deb | tr '\n' ' ')"
+if [ "${LINTIAN:-1}" != 0 ]; then
+    # --fail-on: lintian 2.116's (Debian 12) and later; an override is only taken with its reason
+    if lintian --fail-on error,warning "$changes" >"$work/lintian.log" 2>&1; then
+        say "lintian: no errors, no warnings ($(grep -c . "$work/lintian.log" || true) lines of info and notes)"
+    else
+        cat "$work/lintian.log" >&2
+        say "lintian found errors or warnings ($work/lintian.log)"
+        exit 1
+    fi
+fi
