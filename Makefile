@@ -26,6 +26,8 @@
 #   make uninstall    remove what make install put there (same PREFIX, DESTDIR)
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
+#   make abi-baseline dist/abi/libsbfx.so.N.abi from the built library (abidw), the ABI that tests/abi.sh
+#                     (make test) holds the library to; at a release that adds functions or moves the SONAME
 #   make deb          the Debian packages libsbfx1, libsbfx-dev, sbfx-player, gstreamer1.0-sbfx into
 #                     build/deb/ARCH/ (dpkg-buildpackage from dist/debian/, then lintian: no errors,
 #                     no warnings); make deb ARCH=arm64 cross builds them (docs/packaging.md)
@@ -881,6 +883,17 @@ DEB_DEPS := $(if $(filter $(DEB_HOST_ARCH),$(shell dpkg --print-architecture 2>/
 deb:
 	@tools/deps.sh $(DEB_DEPS)
 	@tools/deb.sh $(DEB_HOST_ARCH) build/deb
+
+# The ABI's baseline (tests/abi.sh, in make test, compares the built library with it): abidw's
+# XML of the release's libsbfx.so, the types limited to include/sbfx.h's, no build paths.
+# Written once per release that changes the ABI (a new function, or a new SONAME).
+ABI_BASELINE := dist/abi/libsbfx.so.$(SOVERSION).abi
+.PHONY: abi-baseline
+abi-baseline: lib
+	@mkdir -p $(dir $(ABI_BASELINE))
+	abidw --headers-dir include --drop-private-types --no-comp-dir-path --no-corpus-path --no-elf-needed \
+		--out-file $(ABI_BASELINE) $(BUILD)/libsbfx.so.$(VERSION)
+	@echo "abi-baseline: $(ABI_BASELINE) from $(BUILD)/libsbfx.so.$(VERSION) (sbfx $(VERSION))"
 
 # ---- a fresh machine (issue 36; docs/testing.md "A fresh machine") ---------------------------
 # The README's quick start, verbatim, in a bare Debian root (debootstrap minbase plus git and
