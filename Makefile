@@ -35,6 +35,10 @@
 #   make test-fresh   the README's quick start in a bare Debian root: DIST=bookworm (12) or trixie
 #                     (13); debootstrap, a clone of HEAD, make demo and make test (tests/fresh/run.sh), as root
 #   make test-debian13  make test-fresh DIST=trixie
+#   make test-deb     the Debian packages from a bare root (DIST as make test-fresh, as root): built there
+#                     with debian/control's build dependencies and lintian, installed with apt into a
+#                     second bare root, run (player, a pkg-config host, gst-inspect-1.0, systemd-analyze
+#                     verify) and purged; ARCH=arm64 cross builds them (tests/fresh/run.sh)
 #   make test-gpus    every scene's shaders through Mesa's Mali, V3D, Adreno, Vivante compilers
 #                     (drm-shims; builds Mesa 25 into build/mesa-shim/ once; docs/gpus.md)
 #   make gpiod2       sbfx-play again against libgpiod 2.x built from Debian 13's source (docs/gpio.md)
@@ -907,6 +911,14 @@ test-fresh:
 	@DIST=$(or $(DIST),bookworm) tests/fresh/run.sh
 test-debian13:
 	@$(MAKE) --no-print-directory test-fresh DIST=trixie
+
+# The Debian packages proven from the same bare root (issue 46; tests/fresh/run.sh's scenario deb,
+# docs/packaging.md): built there from debian/control's build dependencies, installed with apt into
+# a second bare root, run, verified and purged. ARCH=arm64: cross built and checked as aarch64 code.
+.PHONY: test-deb
+test-deb:
+	@tools/deps.sh fresh
+	@DIST=$(or $(DIST),bookworm) FRESH_AS=deb DEB_ARCH=$(DEB_HOST_ARCH) tests/fresh/run.sh
 
 # ---- the look (issue 17): the β metric (tests/look/look_metrics.c, docs/look.md) ----------
 $(BUILD)/tests/unit/test_look_metrics: tests/unit/test_look_metrics.c $(BUILD)/obj/look/look_metrics.o $(REF_LIBS) \

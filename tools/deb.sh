@@ -44,6 +44,17 @@ CHANGELOG
 
 host=()
 [ "$ARCH" = "$(dpkg --print-architecture)" ] || host=(-a"$ARCH")
+# DEB_BUILD_PROFILES=pkg.sbfx.nogst: without the GStreamer element. A cross build where the
+# element's arm64 build dependency cannot be installed beside the machine's own (Debian 12's
+# libgstreamer-plugins-base1.0-dev is not Multi-Arch: same) says so rather than fail later.
+if [ ${#host[@]} -gt 0 ] && [[ " ${DEB_BUILD_PROFILES:-} " != *" pkg.sbfx.nogst "* ]] &&
+    ! dpkg-query -W -f='${Status}' "libgstreamer-plugins-base1.0-dev:$ARCH" 2>/dev/null | grep -q 'ok installed'; then
+    say "libgstreamer-plugins-base1.0-dev:$ARCH is not installed: on Debian 12 it replaces the machine's own"
+    say "(not Multi-Arch: same). Either install it (apt-get install libgstreamer-plugins-base1.0-dev:$ARCH,"
+    say "best in a root of its own: make test-deb ARCH=$ARCH), or build without the GStreamer element:"
+    say "  make deb ARCH=$ARCH DEB_BUILD_PROFILES=pkg.sbfx.nogst"
+    exit 1
+fi
 say "dpkg-buildpackage -b ${host[*]} in $src (log: $work/build.log)"
 if ! (cd "$src" && dpkg-buildpackage -b -us -uc "${host[@]}") >"$work/build.log" 2>&1; then
     tail -n 25 "$work/build.log" >&2
@@ -52,6 +63,35 @@ if ! (cd "$src" && dpkg-buildpackage -b -us -uc "${host[@]}") >"$work/build.log"
 fi
 changes=$work/sbfx_${VERSION}_$ARCH.changes
 say "built: $(cd "$work" && ls -- *.deb | tr '\n' ' ')"
+
+# Every ELF file in the packages is code for ARCH, every library in ARCH's multiarch folder.
+triplet=$(dpkg-architecture -a"$ARCH" -qDEB_HOST_MULTIARCH 2>/dev/null)
+case $ARCH in arm64) machine=AArch64 ;; amd64) machine='X86-64' ;; *) machine="" ;; esac
+unpacked=$work/unpacked
+rm -rf "$unpacked"
+bad=""
+elves=0
+for deb in "$work"/*.deb; do
+    case $deb in *-dbgsym_*) continue ;; esac
+    dpkg-deb -x "$deb" "$unpacked"
+done
+while IFS= read -r f; do
+    readelf -h "$f" >/dev/null 2>&1 || continue
+    elves=$((elves + 1))
+    rel=${f#"$unpacked"/}
+    [ -z "$machine" ] || readelf -h "$f" | grep -q "Machine:.*$machine" || bad="$bad $rel (not $machine)"
+    case $rel in
+        usr/bin/*) ;;
+        usr/lib/"$triplet"/*) ;;
+        *) bad="$bad $rel (not in usr/lib/$triplet/)" ;;
+    esac
+done < <(find "$unpacked" -type f)
+rm -rf "$unpacked"
+if [ -n "$bad" ] || [ "$elves" -eq 0 ]; then
+    say "files that are not $ARCH's:${bad:- no ELF file at all}"
+    exit 1
+fi
+say "$elves ELF files, each ${machine:-$ARCH} code, libraries in /usr/lib/$triplet/"
 if [ "${LINTIAN:-1}" != 0 ]; then
     # --fail-on: lintian 2.116's (Debian 12) and later; an override is only taken with its reason
     if lintian --fail-on error,warning "$changes" >"$work/lintian.log" 2>&1; then

@@ -61,7 +61,9 @@ deb_tools="dpkg-dev debhelper fakeroot lintian"
 systemd_pc=systemd
 if [ -r /etc/os-release ] && grep -qx 'VERSION_CODENAME=trixie' /etc/os-release; then systemd_pc=systemd-dev; fi
 deb_pkgs="$deb_tools $build_pkgs $systemd_pc"
-deb_arm64_pkgs="$deb_tools $cross_arm64_pkgs $systemd_pc libgstreamer1.0-dev:arm64 libgstreamer-plugins-base1.0-dev:arm64"
+# (not libgstreamer-plugins-base1.0-dev:arm64: on Debian 12 it is not Multi-Arch: same and would
+# replace the machine's amd64 one, which make needs; tools/deb.sh says how to build the element)
+deb_arm64_pkgs="$deb_tools $cross_arm64_pkgs $systemd_pc libgstreamer1.0-dev:arm64"
 # make test's ABI check (tests/abi.sh): libabigail's abidw and abidiff
 test_pkgs="$test_pkgs abigail-tools"
 
