@@ -1,4 +1,4 @@
-# sbfx — build, test, demo, bench, install. `make help` prints the "#   make" lines below.
+# sbfx — build, test, demo, bench, install. `make help` prints the "#   make" entries below, whole.
 #   make [all]        library (build/libsbfx.a, .so), build/sbfx-play, build/sbfx-probe, build/sbfx-soak
 #   make help         this list of targets
 #   make demo         render the built-in explosion headless into build/demo/
@@ -143,8 +143,10 @@ GL_TESTS := $(patsubst tests/gl/%.c,$(BUILD)/tests/gl/%,$(wildcard tests/gl/*.c)
 all: lib $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(BUILD)/sbfx-soak $(BUILD)/sbfx.pc
 lib: $(BUILD)/libsbfx.a $(SO_LINKS) $(BUILD)/libsbfx_ref.a
 
+# each "#   make" line and the comment lines that go on with it (indented under its text), whole
 help:
-	@sed -n 's/^#   make /make /p' $(firstword $(MAKEFILE_LIST))
+	@awk '/^#   make / { on = 1; print substr($$0, 5); next } on && /^#     / { print substr($$0, 5); next } \
+		{ on = 0 }' $(firstword $(MAKEFILE_LIST))
 
 # Every compile waits for this step (order-only: it never makes anything out of date).
 # DEPS=none skips it (a toolchain and sysroot that do not come from Debian packages).
