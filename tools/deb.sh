@@ -79,7 +79,11 @@ while IFS= read -r f; do
     readelf -h "$f" >/dev/null 2>&1 || continue
     elves=$((elves + 1))
     rel=${f#"$unpacked"/}
-    [ -z "$machine" ] || readelf -h "$f" | grep -q "Machine:.*$machine" || bad="$bad $rel (not $machine)"
+    # every header's machine (an archive has one per member); read whole, not piped into grep -q,
+    # whose early exit would fail readelf under pipefail
+    machines=$(readelf -h "$f" 2>/dev/null | sed -n 's/^ *Machine: *//p' | sort -u)
+    [ -z "$machine" ] || { [ -n "$machines" ] && ! grep -qv -- "$machine" <<<"$machines"; } ||
+        bad="$bad $rel (not $machine: $machines)"
     case $rel in
         usr/bin/*) ;;
         usr/lib/"$triplet"/*) ;;
