@@ -44,8 +44,9 @@ fi
 
 # shellcheck disable=SC2046 # pkg-config's words are meant to split
 if cc -Wall -Werror -o "$w/host" /tmp/host.c $(pkg-config --cflags --libs sbfx egl glesv2) >"$w/host.log" 2>&1; then
+    # (the same file by its real path: with a merged /usr, ld.so may name it under /lib)
     loaded=$(ldd "$w/host" | awk '/libsbfx/ {print $3}')
-    if [ "$loaded" != "/usr/lib/$triplet/libsbfx.so.1" ]; then
+    if [ -z "$loaded" ] || [ "$(readlink -f "$loaded")" != "$(readlink -f "/usr/lib/$triplet/libsbfx.so.1")" ]; then
         not_ok host "it loads '$loaded', not /usr/lib/$triplet/libsbfx.so.1"
     elif "$w/host" >"$w/host.run" 2>&1; then
         ok "host (examples/bare-egl/host.c, pkg-config --cflags --libs sbfx: $(pkg-config --cflags --libs sbfx | tr -s ' '); $(tail_of "$w/host.run" 1))"
@@ -56,8 +57,10 @@ else
     not_ok host "cc host.c \$(pkg-config --cflags --libs sbfx egl glesv2): $(tail_of "$w/host.log")"
 fi
 
-if gst-inspect-1.0 sbfx >"$w/gst.log" 2>&1 && grep -q "/usr/lib/$triplet/gstreamer-1.0/libgstsbfx.so" "$w/gst.log"; then
-    ok "gst-inspect (sbfx from /usr/lib/$triplet/gstreamer-1.0/libgstsbfx.so)"
+plugin=/usr/lib/$triplet/gstreamer-1.0/libgstsbfx.so
+if gst-inspect-1.0 sbfx >"$w/gst.log" 2>&1 &&
+    [ "$(readlink -f "$(awk '$1 == "Filename" {print $2}' "$w/gst.log")")" = "$(readlink -f "$plugin")" ]; then
+    ok "gst-inspect (the element sbfx from $plugin, version $(awk '$1 == "Version" {print $2}' "$w/gst.log"))"
 else
     not_ok gst-inspect "gst-inspect-1.0 sbfx: $(tail_of "$w/gst.log")"
 fi

@@ -231,8 +231,8 @@ scenario_root() {
 # second fresh copy, where tests/fresh/deb-checks.sh runs the player, a host built with
 # pkg-config, gst-inspect-1.0 and systemd-analyze verify, then purges them and looks for what is
 # left. DEB_ARCH=arm64: the same packages cross built (apt-get build-dep -a arm64, multiarch) and
-# checked as aarch64 objects in the multiarch folders (tools/deb.sh); they are not installed (an
-# arm64 root would run under qemu-user: not done, see docs/packaging.md).
+# checked as aarch64 objects in the multiarch folders (tools/deb.sh); not installed in an arm64
+# root, but the player run under qemu-user in the build root (deb_under_qemu).
 DEB_ARCH=${DEB_ARCH:-$(dpkg --print-architecture)}
 scenario_deb() {
     local build=$DIR/deb-build install=$DIR/deb-install native version arch_opt="" add_arch=""
@@ -256,8 +256,8 @@ scenario_deb() {
     grep '^deb ' "$DIR/deb-build.log" | sed "s/^/fresh $DIST: /" >&3
     local debs=$build/root/sbfx/build/deb/$DEB_ARCH
     if [ "$DEB_ARCH" != "$native" ]; then
-        say "deb: $DEB_ARCH packages are not installed here (no $DEB_ARCH root): their files were checked as $DEB_ARCH code above"
-        return 0
+        deb_under_qemu
+        return
     fi
     new_root "$install"
     mkdir -p "$install/tmp/debs"
@@ -278,6 +278,29 @@ scenario_deb() {
     timed "deb: checks" in_root "$install" sh /tmp/deb-checks.sh "$version" 2>&1 | tee "$DIR/deb-checks.log" |
         sed "s/^/fresh $DIST: /" >&3
     ! grep -q '^not ok' "$DIR/deb-checks.log" && grep -q '^ok - deb/purge' "$DIR/deb-checks.log"
+}
+
+# The cross built player under qemu-user in the build root, whose DEB_ARCH libraries are there as
+# the build dependencies' (with DEB_ARCH's Mesa added): --version and one headless frame of an
+# installed scene, from the unpacked sbfx-player package. DEB_QEMU=0 skips it, saying so.
+deb_under_qemu() {
+    if [ "${DEB_QEMU:-1}" = 0 ]; then
+        say "deb: DEB_QEMU=0: the $DEB_ARCH player is not run under qemu-user (its files were checked as $DEB_ARCH code above)"
+        return 0
+    fi
+    timed "deb: the $DEB_ARCH player under qemu-user" in_root "$DIR/deb-build" env DEBIAN_FRONTEND=noninteractive sh -c "
+        set -e
+        apt-get install -y -qq --no-install-recommends qemu-user-static libegl-mesa0:$DEB_ARCH libgl1-mesa-dri:$DEB_ARCH
+        rm -rf /tmp/player /tmp/qemu-frame && dpkg-deb -x /root/sbfx/build/deb/$DEB_ARCH/sbfx-player_*_$DEB_ARCH.deb /tmp/player
+        q=qemu-\$(dpkg-architecture -a$DEB_ARCH -qDEB_HOST_GNU_CPU)-static
+        \$q /tmp/player/usr/bin/sbfx-play --version
+        \$q /tmp/player/usr/bin/sbfx-play --headless --quiet --scene /tmp/player/usr/share/sbfx/scenes/explosion.cfg \
+            --size 160x90 --frames 1 --out /tmp/qemu-frame
+        test -s /tmp/qemu-frame/frame-0000.png" >"$DIR/deb-qemu.log" 2>&1 || {
+        tail -n 12 "$DIR/deb-qemu.log" >&3
+        return 1
+    }
+    say "deb: under qemu-user: $(grep -m1 '^sbfx-play ' "$DIR/deb-qemu.log"), one headless frame: $(stat -c %s "$DIR/deb-build/tmp/qemu-frame/frame-0000.png") bytes"
 }
 
 start=$SECONDS
