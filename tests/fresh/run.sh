@@ -235,12 +235,15 @@ scenario_root() {
 # root, but the player run under qemu-user in the build root (deb_under_qemu).
 DEB_ARCH=${DEB_ARCH:-$(dpkg --print-architecture)}
 scenario_deb() {
-    local build=$DIR/deb-build install=$DIR/deb-install native version arch_opt="" add_arch=""
+    local build=$DIR/deb-build install=$DIR/deb-install native version arch_opt="" add_arch="" cross=""
     native=$(dpkg --print-architecture)
     version=$(git show "$COMMIT:Makefile" | sed -n 's/^VERSION := //p')
     if [ "$DEB_ARCH" != "$native" ]; then
+        # a cross build: DEB_ARCH's build dependencies through multiarch, and Debian's cross
+        # toolchain (crossbuild-essential, as sbuild installs it; build-dep brings build-essential)
         arch_opt="-a $DEB_ARCH"
         add_arch="dpkg --add-architecture $DEB_ARCH && "
+        cross="crossbuild-essential-$DEB_ARCH"
     fi
     new_root "$build"
     timed "deb: build-dep, dpkg-buildpackage $arch_opt, lintian" in_root "$build" env DEBIAN_FRONTEND=noninteractive sh -c "
@@ -248,7 +251,7 @@ scenario_deb() {
         mkdir -p /tmp/control/debian && cp dist/debian/control /tmp/control/debian/
         ${add_arch}apt-get update -qq
         apt-get build-dep -y -qq --no-install-recommends $arch_opt /tmp/control
-        apt-get install -y -qq --no-install-recommends lintian
+        apt-get install -y -qq --no-install-recommends lintian $cross
         tools/deb.sh $DEB_ARCH build/deb" >"$DIR/deb-build.log" 2>&1 || {
         tail -n 25 "$DIR/deb-build.log" >&3
         return 1
