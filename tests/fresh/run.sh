@@ -325,7 +325,7 @@ for s in user root deb; do
     timed "scenario $s" "scenario_$s" || { rc=1; say "scenario $s FAILED"; break; }
 done
 unmount_all
-roots=$(for r in "$ROOT" "$DIR/deb-build" "$DIR/deb-install"; do [ -d "$r" ] && echo "$r"; done)
+roots=$(for r in "$ROOT" "$DIR/deb-build" "$DIR/deb-install"; do if [ -d "$r" ]; then echo "$r"; fi; done)
 if [ $rc -eq 0 ] && [ -z "${FRESH_KEEP:-}" ]; then
     for r in $roots; do rm -rf --one-file-system "$r"; done
 else
