@@ -883,12 +883,12 @@ uninstall-kiosk:
 # dist/debian/ (tools/deb.sh: a copy of the tree in build/deb/ARCH/, the version the Makefile's
 # VERSION), then lintian. ARCH=arm64: the same cross built with Debian's aarch64 toolchain and
 # the arm64 build dependencies (multiarch). The packages land in build/deb/ARCH/.
-DEB_HOST_ARCH := $(or $(ARCH),$(shell dpkg --print-architecture 2>/dev/null))
-DEB_DEPS := $(if $(filter $(DEB_HOST_ARCH),$(shell dpkg --print-architecture 2>/dev/null)),deb,deb-$(DEB_HOST_ARCH))
+SBFX_DEB_ARCH = $(or $(ARCH),$(shell dpkg --print-architecture 2>/dev/null))
+DEB_DEPS = $(if $(filter $(SBFX_DEB_ARCH),$(shell dpkg --print-architecture 2>/dev/null)),deb,deb-$(SBFX_DEB_ARCH))
 .PHONY: deb
 deb:
 	@tools/deps.sh $(DEB_DEPS)
-	@tools/deb.sh $(DEB_HOST_ARCH) build/deb
+	@tools/deb.sh $(SBFX_DEB_ARCH) build/deb
 
 # The ABI's baseline (tests/abi.sh, in make test, compares the built library with it): abidw's
 # XML of the release's libsbfx.so, the types limited to include/sbfx.h's, no build paths.
@@ -920,7 +920,7 @@ test-debian13:
 .PHONY: test-deb
 test-deb:
 	@tools/deps.sh fresh
-	@DIST=$(or $(DIST),bookworm) FRESH_AS=deb DEB_ARCH=$(DEB_HOST_ARCH) tests/fresh/run.sh
+	@DIST=$(or $(DIST),bookworm) FRESH_AS=deb DEB_ARCH=$(SBFX_DEB_ARCH) tests/fresh/run.sh
 
 # ---- the look (issue 17): the β metric (tests/look/look_metrics.c, docs/look.md) ----------
 $(BUILD)/tests/unit/test_look_metrics: tests/unit/test_look_metrics.c $(BUILD)/obj/look/look_metrics.o $(REF_LIBS) \
