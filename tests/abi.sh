@@ -9,7 +9,7 @@
 # The check is shown to catch what it must on planted builds: the library linked again with
 # src/sbfx.c compiled against a copy of the header with one field added at the top of
 # sbfx_desc (a layout change), and with sbfx_elapsed returning float (a signature change); both
-# must fail the comparison, and the unchanged library must pass.
+# must fail the comparison; the unchanged library and one with a function added must pass.
 # Usage: tests/abi.sh [BUILD] (default build). Prints ok/not ok lines (tests/check.h style).
 set -u
 cd "$(dirname "$0")/.." || exit 1
@@ -122,4 +122,15 @@ check_plant layout "a field added at the top of sbfx_desc" \
     '0,/^    int target_divisor; /s//    int planted_field;\n    int target_divisor; /'
 check_plant signature "sbfx_elapsed returns float" \
     's/^SBFX_API double sbfx_elapsed(/SBFX_API float sbfx_elapsed(/' 's/^double sbfx_elapsed(/float sbfx_elapsed(/'
+# and an addition, which is compatible: a new function passes (with a note that the minor grows)
+if planted added 's/^SBFX_API double sbfx_elapsed(/SBFX_API int sbfx_planted_added(void);\n&/' \
+    '$a int sbfx_planted_added(void) { return 1; }'; then
+    verdict=$(abi_verdict "$tmp/added/libsbfx.so")
+    case $verdict in
+        compatible:*) ok "planted-added-passes (a function added: ${verdict#compatible: })" ;;
+        *) not_ok planted-added-passes "an added function was not found compatible: $verdict" ;;
+    esac
+else
+    not_ok planted-added-passes "the planted build failed: $(tail -n 3 "$tmp/added/log" | tr '\n' ' ')"
+fi
 exit "$failed"
