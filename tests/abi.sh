@@ -8,8 +8,10 @@
 # moved (the Makefile's major grew): then the new baseline is due.
 # The check is shown to catch what it must on planted builds: the library linked again with
 # src/sbfx.c compiled against a copy of the header with one field added at the top of
-# sbfx_desc (a layout change), and with sbfx_elapsed returning float (a signature change); both
-# must fail the comparison; the unchanged library and one with a function added must pass.
+# sbfx_desc (a layout change), with sbfx_elapsed returning float (a signature change) and with a
+# value added in the middle of an enum (its later values move); these must fail the comparison;
+# the unchanged library, one with a function added and one with an enum value added before the
+# enum's *_COUNT sentinel must pass.
 # Usage: tests/abi.sh [BUILD] (default build). Prints ok/not ok lines (tests/check.h style).
 set -u
 cd "$(dirname "$0")/.." || exit 1
@@ -18,6 +20,8 @@ VERSION=$(sed -n 's/^VERSION := //p' Makefile)
 SOVERSION=${VERSION%%.*}
 so=$BUILD/libsbfx.so.$VERSION
 baseline=dist/abi/libsbfx.so.$SOVERSION.abi
+# what is not an incompatible change although abidiff reports it, each with its reason
+suppressions=dist/abi/sbfx.abignore
 
 failed=0
 ok() { echo "ok - abi/$1"; }
@@ -39,7 +43,8 @@ soname_of() { readelf -d "$1" | sed -n 's/.*(SONAME).*\[\(.*\)\]/\1/p'; }
 # "incompatible: ..." (the summary of what changed), the report in $tmp/report.
 abi_verdict() {
     local lib=$1 rc removed changed added syms_removed
-    abidiff --headers-dir2 include --drop-private-types "$baseline" "$lib" >"$tmp/report" 2>&1
+    abidiff --suppressions "$suppressions" --headers-dir2 include --drop-private-types "$baseline" "$lib" \
+        >"$tmp/report" 2>&1
     rc=$?
     if [ $((rc & 3)) -ne 0 ]; then
         echo "error: abidiff exit status $rc: $(head -n 3 "$tmp/report" | tr '\n' ' ')"
@@ -122,6 +127,19 @@ check_plant layout "a field added at the top of sbfx_desc" \
     '0,/^    int target_divisor; /s//    int planted_field;\n    int target_divisor; /'
 check_plant signature "sbfx_elapsed returns float" \
     's/^SBFX_API double sbfx_elapsed(/SBFX_API float sbfx_elapsed(/' 's/^double sbfx_elapsed(/float sbfx_elapsed(/'
+# an enum: a value added before its *_COUNT sentinel is compatible (dist/abi/sbfx.abignore says
+# why); one added before an existing value moves that value, and is not
+check_plant enum-moved "a value added before SBFX_UPSAMPLE_BILINEAR" \
+    's/^    SBFX_UPSAMPLE_BILINEAR,/    SBFX_UPSAMPLE_PLANTED,\n&/'
+if planted enum-appended 's/^    SBFX_UPSAMPLE_COUNT/    SBFX_UPSAMPLE_PLANTED,\n&/'; then
+    verdict=$(abi_verdict "$tmp/enum-appended/libsbfx.so")
+    case $verdict in
+        compatible:*) ok "planted-enum-appended-passes (a value added before SBFX_UPSAMPLE_COUNT)" ;;
+        *) not_ok planted-enum-appended-passes "a value added before the sentinel was not found compatible: $verdict" ;;
+    esac
+else
+    not_ok planted-enum-appended-passes "the planted build failed: $(tail -n 3 "$tmp/enum-appended/log" | tr '\n' ' ')"
+fi
 # and an addition, which is compatible: a new function passes (with a note that the minor grows)
 if planted added 's/^SBFX_API double sbfx_elapsed(/SBFX_API int sbfx_planted_added(void);\n&/' \
     '$a int sbfx_planted_added(void) { return 1; }'; then
