@@ -15,6 +15,16 @@ case $OUT in /*) ;; *) OUT=$PWD/$OUT ;; esac
 VERSION=$(sed -n 's/^VERSION := //p' Makefile)
 say() { printf 'deb %s: %s\n' "$ARCH" "$*" >&2; }
 
+# The library's package is named after its soname (Debian's policy): a new major, which moves
+# the soname, renames it in dist/debian/ (control, its .install and .symbols files).
+SOVERSION=${VERSION%%.*}
+if ! grep -qx "Package: libsbfx$SOVERSION" dist/debian/control || [ ! -f "dist/debian/libsbfx$SOVERSION.symbols" ]; then
+    say "the soname is libsbfx.so.$SOVERSION (VERSION $VERSION) but dist/debian/ names another library package:"
+    say "rename libsbfxN to libsbfx$SOVERSION in dist/debian/control (and libsbfx-dev's Depends), its .install and"
+    say ".symbols files (the symbols file's first line and versions too), then make abi-baseline (docs/packaging.md)"
+    exit 1
+fi
+
 work=$OUT/$ARCH
 src=$work/sbfx-$VERSION
 rm -rf --one-file-system "$work"
