@@ -128,6 +128,18 @@ typedef struct sbfx_gpio_trigger {
 /* The scene's GPIO triggers; returns their count and sets *out to an array owned by the scene. */
 SBFX_API int sbfx_scene_gpio_triggers(const sbfx_scene *scene, const sbfx_gpio_trigger **out);
 
+/* One trigger of a scene's timeline (since 1.5.0): a host that runs the timeline on a clock of
+ * its own (sbfx-play's --world-time: at world times, as identified triggers) reads it here and
+ * creates the module with desc.ignore_timeline. */
+typedef struct sbfx_timeline_trigger {
+    const char *effect;  /* owned by the scene */
+    double time;         /* seconds from the timeline's start */
+    float position[3];
+} sbfx_timeline_trigger;
+/* Fills *out with the scene's timeline trigger number index (0, 1, ...) and returns true; false
+ * past the last. scene NULL: the built-in timeline (one "explosion" at 0 at the origin). */
+SBFX_API bool sbfx_scene_timeline_get(const sbfx_scene *scene, int index, sbfx_timeline_trigger *out);
+
 /* Where a viewer's camera looks at the scene: its `camera` group, read by sbfx-play (the module
  * itself draws from whatever view the host gives it). The eye circles the target. */
 typedef struct sbfx_scene_camera {
@@ -271,6 +283,9 @@ typedef struct sbfx_counters {
                                  can change (0: it drew no particle); docs/gpus.md "Tiles" */
     int composite_pixels;     /* output pixels those tiles cover: the composite's and the depth
                                  downsample's share of the screen */
+    /* since 1.5.0 */
+    int triggers_expired;     /* identified triggers not started: every particle and flash of
+                                 theirs had ended by the module's clock (sbfx_trigger_identified) */
 } sbfx_counters;
 
 typedef struct sbfx sbfx;
@@ -327,6 +342,38 @@ SBFX_API sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float posi
  * first simulation step at or after that time, so results do not depend on frame times. */
 SBFX_API sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds,
                                    const float position[3]);
+/* Effects as functions of identity and time (since 1.5.0; docs/embedding.md "Channels: identity
+ * and time"). Several processes that draw slices of one world (a simulator's channels) start the
+ * same effect with the same identity and start time, and draw the same particles at the same
+ * world time: an identified instance's particles are seeded from its identity alone (not from
+ * desc.seed, nor from how many triggers came before), and simulated with the fixed step from its
+ * start time (step j at start_time + j * sim_step), whatever the order the triggers arrive in,
+ * the frame rate, or when the module was made. A module that hears of it after it started (a
+ * channel restarted late) catches up at once in fixed steps, at most the effect's longest
+ * delay + life, and shows it at its age; one whose every particle and flash has already ended is
+ * not started (counted in triggers_expired). Frames of different modules agree when their clocks
+ * (sbfx_time) agree at the frame: give them the same desc.sim_step and start times on its grid. */
+#define SBFX_TRIGGER_DESC_VERSION 1
+typedef struct sbfx_trigger_desc {
+    uint32_t version;        /* SBFX_TRIGGER_DESC_VERSION: the layout the caller was built with */
+    const char *effect;      /* the effect's name (sbfx_has_effect) */
+    float position[3];       /* world */
+    uint64_t identity;       /* 1 .. 2^63-1: what names this instance in every process (DIS: site,
+                                application and event number; CIGI: entity ID and generation) */
+    double start_time;       /* on the module's clock (sbfx_time): the world time it started at;
+                                may be in the past (drawn at its age) or ahead (waits) */
+} sbfx_trigger_desc;
+/* Starts an identified instance (above). SBFX_ERR_INVALID_ARGUMENT for a version this library
+ * does not know, an identity of 0 or >= 2^63, a position or start time that is not finite;
+ * SBFX_ERR_UNKNOWN_EFFECT, SBFX_ERR_POOL_FULL as sbfx_trigger. The trigger listener is told with
+ * `time` = start_time. Allocates nothing. */
+SBFX_API sbfx_result sbfx_trigger_identified(sbfx *fx, const sbfx_trigger_desc *trigger);
+/* Ends the identified instance now (since 1.5.0): its particles are gone from the next render
+ * and its light flashes go out (CIGI: the entity was Destroyed, or its animation stopped).
+ * Returns the number of particles removed (0: none was live, e.g. it had ended, or another
+ * channel's trigger never came), or a negative sbfx_result for a NULL module or identity 0.
+ * Allocates nothing. */
+SBFX_API int sbfx_stop_identified(sbfx *fx, uint64_t identity);
 /* Where an effect instance the module started came from (sbfx_set_trigger_listener). */
 typedef enum sbfx_trigger_origin {
     SBFX_TRIGGER_CALL,     /* sbfx_trigger */

@@ -209,6 +209,30 @@ sbfx_result sbfx_trigger(sbfx *fx, const char *effect, const float position[3])
     return sbfx_fire(fx, index, position, SBFX_TRIGGER_CALL);
 }
 
+sbfx_result sbfx_trigger_identified(sbfx *fx, const sbfx_trigger_desc *t)
+{
+    if (!fx || !t) return SBFX_ERR_INVALID_ARGUMENT;
+    if (t->version != SBFX_TRIGGER_DESC_VERSION)
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "sbfx_trigger_identified: version %u, this library knows %d",
+                         (unsigned)t->version, SBFX_TRIGGER_DESC_VERSION);
+    const char *effect = t->effect ? t->effect : "(null)";
+    if (!t->effect || !position_valid(t->position) || !isfinite(t->start_time))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "trigger \"%s\": no effect, or a position or start time "
+                         "that is not finite", effect);
+    if (t->identity == 0 || t->identity >= (UINT64_C(1) << 63))
+        return sbfx_fail(fx, SBFX_ERR_INVALID_ARGUMENT, "trigger \"%s\": identity %llu is outside 1..2^63-1",
+                         effect, (unsigned long long)t->identity);
+    int index = sbfx_effect_index(fx, t->effect);
+    if (index < 0) return sbfx_fail(fx, SBFX_ERR_UNKNOWN_EFFECT, "trigger: no effect named \"%s\"", effect);
+    return sbfx_fire_identified(fx, index, t->position, t->identity, t->start_time);
+}
+
+int sbfx_stop_identified(sbfx *fx, uint64_t identity)
+{
+    if (!fx || !identity) return SBFX_ERR_INVALID_ARGUMENT;
+    return sbfx_stop_instance(fx, identity);
+}
+
 void sbfx_set_trigger_listener(sbfx *fx, sbfx_trigger_fn fn, void *user)
 {
     if (!fx) return;

@@ -39,11 +39,12 @@ trap 'rm -rf "$tmp"' EXIT
 
 soname_of() { readelf -d "$1" | sed -n 's/.*(SONAME).*\[\(.*\)\]/\1/p'; }
 
-# abi_verdict LIB: compares LIB with the baseline; prints "compatible: ..." or
+# abi_verdict LIB [REFERENCE]: compares LIB with REFERENCE (the baseline; the plants: this build's
+# ABI, so that they test the check whatever this build is); prints "compatible: ..." or
 # "incompatible: ..." (the summary of what changed), the report in $tmp/report.
 abi_verdict() {
-    local lib=$1 rc removed changed added syms_removed
-    abidiff --suppressions "$suppressions" --headers-dir2 include --drop-private-types "$baseline" "$lib" \
+    local lib=$1 reference=${2:-$baseline} rc removed changed added syms_removed
+    abidiff --suppressions "$suppressions" --headers-dir2 include --drop-private-types "$reference" "$lib" \
         >"$tmp/report" 2>&1
     rc=$?
     if [ $((rc & 3)) -ne 0 ]; then
@@ -84,13 +85,16 @@ case $verdict in
         if [ "$soname" != "$base_soname" ]; then
             ok "this-build (SONAME moved $base_soname -> $soname, so incompatible changes are allowed: ${verdict#incompatible: }; make abi-baseline at the release)"
         else
-            not_ok this-build "an incompatible change under the same SONAME $soname (${verdict#incompatible: }): $(changed_names). Keep the ABI, or grow the Makefile's major (the SONAME); abidiff's report: abidiff --headers-dir2 include $baseline $so"
+            not_ok this-build "an incompatible change under the same SONAME $soname (${verdict#incompatible: }): $(changed_names). Keep the ABI, or grow the Makefile's major (a new SONAME, and the library's package renamed: docs/packaging.md) and run make abi-baseline; abidiff's report: abidiff --suppressions $suppressions --headers-dir2 include $baseline $so"
         fi
         ;;
     *) not_ok this-build "$verdict" ;;
 esac
 
-# 2. planted builds: the library linked again with one object made differently
+# 2. planted builds: the library linked again with one object made differently, each compared
+# with this build's own ABI (abidw, as make abi-baseline writes it)
+abidw --headers-dir include --drop-private-types --no-comp-dir-path --no-corpus-path --no-elf-needed \
+    --out-file "$tmp/this.abi" "$so" 2>"$tmp/abidw.log" || { not_ok abidw "$(head -n 2 "$tmp/abidw.log")"; exit 1; }
 pkg_cflags=$(pkg-config --cflags glesv2 libconfig)
 pkg_libs=$(pkg-config --libs glesv2 libconfig)
 objects=$(find "$BUILD/obj/src" -name '*.o' ! -path '*/sbfx.o' | sort)
@@ -117,7 +121,7 @@ check_plant() {
         not_ok "planted-$name" "the planted build failed: $(tail -n 3 "$tmp/$name/log" | tr '\n' ' ')"
         return
     fi
-    verdict=$(abi_verdict "$tmp/$name/libsbfx.so")
+    verdict=$(abi_verdict "$tmp/$name/libsbfx.so" "$tmp/this.abi")
     case $verdict in
         incompatible:*) ok "planted-$name-fails ($label: ${verdict#incompatible: }; $(changed_names))" ;;
         *) not_ok "planted-$name-fails" "$label was not found incompatible: $verdict" ;;
@@ -132,7 +136,7 @@ check_plant signature "sbfx_elapsed returns float" \
 check_plant enum-moved "a value added before SBFX_UPSAMPLE_BILINEAR" \
     's/^    SBFX_UPSAMPLE_BILINEAR,/    SBFX_UPSAMPLE_PLANTED,\n&/'
 if planted enum-appended 's/^    SBFX_UPSAMPLE_COUNT/    SBFX_UPSAMPLE_PLANTED,\n&/'; then
-    verdict=$(abi_verdict "$tmp/enum-appended/libsbfx.so")
+    verdict=$(abi_verdict "$tmp/enum-appended/libsbfx.so" "$tmp/this.abi")
     case $verdict in
         compatible:*) ok "planted-enum-appended-passes (a value added before SBFX_UPSAMPLE_COUNT)" ;;
         *) not_ok planted-enum-appended-passes "a value added before the sentinel was not found compatible: $verdict" ;;
@@ -143,7 +147,7 @@ fi
 # and an addition, which is compatible: a new function passes (with a note that the minor grows)
 if planted added 's/^SBFX_API double sbfx_elapsed(/SBFX_API int sbfx_planted_added(void);\n&/' \
     '$a int sbfx_planted_added(void) { return 1; }'; then
-    verdict=$(abi_verdict "$tmp/added/libsbfx.so")
+    verdict=$(abi_verdict "$tmp/added/libsbfx.so" "$tmp/this.abi")
     case $verdict in
         compatible:*) ok "planted-added-passes (a function added: ${verdict#compatible: })" ;;
         *) not_ok planted-added-passes "an added function was not found compatible: $verdict" ;;

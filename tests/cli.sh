@@ -106,6 +106,16 @@ test_bad_arguments() {
     usage_error trigger-negative-time --trigger --trigger explosion@-1
     usage_error trigger-short-position --trigger --trigger explosion@1:1,2
     usage_error trigger-no-name --trigger --trigger @1
+    usage_error trigger-id-zero --trigger --trigger explosion@1#0
+    usage_error trigger-id-too-big --trigger --trigger 'explosion@1:0,0,0#9223372036854775808'
+    usage_error trigger-id-junk --trigger --trigger 'explosion@1#12a'
+    usage_error world-time-negative --world-time --world-time -1
+    usage_error world-time-off-grid 'not on the frame grid' --world-time 0.05 --fps 12 --frames 1
+    usage_error world-clock-unknown --world-clock --world-clock gps
+    usage_error frustum-short --frustum --frustum=-30,30,-10
+    usage_error frustum-reversed 'LEFT must be less' --frustum=30,-30,-10,10
+    usage_error frustum-too-wide --frustum --frustum=-90,30,-10,10
+    usage_error view-offset-junk --view-offset --view-offset=0,a,0
     usage_error bad-scale --scale --scale 3
     usage_error bad-opacity --opacity --opacity fuzzy
     usage_error bad-format --format --format rgb565

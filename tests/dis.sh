@@ -298,8 +298,70 @@ test_refused() {
     fi
 }
 
+# ---- --world-clock dis: the exercise's absolute timestamps are the world clock ----------------------
+test_world_clock() {
+    # now, past the hour, by the system clock (as the exercise's senders have it): x 2^31 / 3600,
+    # shifted over the absolute bit
+    local past=$(($(date +%s) % 3600))
+    local ts=$(((past * 2147483648 / 3600) << 1 | 1))
+    FPS=10 start world-clock --world-clock dis || return
+    send --timestamp "$ts" entity-state
+    send --timestamp "$ts" --event 77 --enu 10,0,0 detonation
+    sleep 1
+    stop || true
+    local t s
+    t=$(grep -o '"world_time": [0-9.e+]*' "$out/stats.json" | grep -o '[0-9.e+]*$')
+    s=$(log_entries | awk '$1 == "dis" { print $6; exit }')
+    # the hour is the system clock's: $past s past it, a few seconds later at the last frame
+    if awk -v t="$t" -v s="$s" -v p="$past" 'BEGIN { a = t % 3600; d = s % 3600;
+        exit !(a >= p && a < p + 10 && d > p - 0.001 && d < p + 0.001) }'; then
+        ok "world-clock-from-timestamps (world time $t s: $past s past the hour + the run; the detonation started at $s)"
+    else
+        fail world-clock-from-timestamps "world_time '$t', the detonation's start '$s' (want $past s past the hour)"
+    fi
+}
+
+# ---- --follow: a DIS entity as the eyepoint ------------------------------------------------------
+test_follow() {
+    FPS=10 start follow --follow 1:3:42 || return
+    wait_frames 1
+    local before
+    before=$(newest)
+    send --site 1 --app 3 --entity 41 --enu 0,-100,5 --attitude 90,0,0 entity-state  # another entity
+    send --site 1 --app 3 --entity 42 --enu 0,-30,2 --attitude 20,5,-3 entity-state
+    sleep 0.6
+    stop || true
+    local line
+    line=$(grep -o 'dis: following 1:3:42 at .*' "$out/err" | head -n 1)
+    # 30 m south, 2 m up: (0, 2, 30) within 1 cm; its attitude within 0.01 degrees (the sender's own
+    # conversion at its place, the player's at dis.origin's: 30 m apart, 0.0003 degrees)
+    if awk -v l="$line" 'BEGIN { n = split(l, w, /[ ,()]+/); x = w[5]; y = w[6]; z = w[7]; h = w[9]; p = w[11]; r = w[13];
+        d = sqrt(x * x + (y - 2) ^ 2 + (z - 30) ^ 2);
+        exit !(d < 0.01 && (h - 20) ^ 2 < 1e-4 && (p - 5) ^ 2 < 1e-4 && (r + 3) ^ 2 < 1e-4) }'; then
+        ok "follow-an-entity ($line)"
+    else
+        fail follow-an-entity "'$line' (want 0, 2, 30, heading 20, pitch 5, roll -3)"
+    fi
+    # the last frame against the same frame without --follow (the scene's camera at the same time)
+    local last a b
+    last=$(newest)
+    "$PLAYER" --scene "$SCENE" --no-timeline --size 64x36 --fps 10 --frames $((last + 1)) --quiet \
+        --out "$tmp/unfollowed" >/dev/null 2>&1
+    printf -v a '%s/frame-%04d.png' "$out" "$last"
+    printf -v b '%s/unfollowed/frame-%04d.png' "$tmp" "$last"
+    printf -v c '%s/frame-%04d.png' "$out" "$before"
+    printf -v d '%s/unfollowed/frame-%04d.png' "$tmp" "$before"
+    if [ -e "$a" ] && [ -e "$b" ] && ! cmp -s "$a" "$b" && cmp -s "$c" "$d"; then
+        ok "follow-moves-the-eyepoint (frame $last differs from the scene camera's; frame $before, before, does not)"
+    else
+        fail follow-moves-the-eyepoint "frame $last against $b, frame $before against $d"
+    fi
+}
+
 test_detonations
 test_storm
 test_reload
 test_refused
+test_world_clock
+test_follow
 exit $((failures > 0))

@@ -14,7 +14,7 @@
 #   docs/make-help-whole
 #                      `make help` prints each entry whole: every comment line of the Makefile's
 #                      "#   make" entries, none stopping mid-sentence.
-#   docs/rooms/TREE    docs/hacking.md's map of TREE's rooms (src, player) names the rooms and
+#   docs/rooms/TREE    docs/hacking.md's map of TREE's rooms (src, player, net) names the rooms and
 #                      folders of TREE/rooms.txt, in its order
 #   docs/walkthrough/TITLE
 #                      each step of a walkthrough of docs/hacking.md ("## Adding ..."): every path
@@ -341,6 +341,7 @@ report_walkthrough() {
 if [ -f docs/hacking.md ]; then
     check_room_map src src "The library's rooms"
     check_room_map player platform/player "The player's rooms"
+    check_room_map net platform/net "The network's rooms"
     check_walkthroughs
 fi
 

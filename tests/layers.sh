@@ -3,12 +3,15 @@
 #   layers/src                 src/'s rooms (src/rooms.txt): no include of, or call into, a room
 #                              listed after a file's own; no circle of files; every file in a room
 #   layers/player              platform/player/'s rooms (platform/player/rooms.txt), the same
+#   layers/net                 platform/net/'s rooms (platform/net/rooms.txt), the same
 #   layers/planted-include     a copy of src/ whose base/alloc.c includes render/render.h: the check
 #                              fails, naming that include
 #   layers/planted-call        a copy whose base/ has an object that calls sbfx_create (the top): the
 #                              check fails, naming that call (read from the object's symbols)
 #   layers/planted-circle      two files of sim/ that call each other: the check fails, naming both
 #   layers/planted-unplaced    a file in a folder that is no room: the check fails, naming it
+#   layers/planted-net         a copy of platform/net/ whose common/geodesy.c includes a protocol's
+#                              header (dis/dis_pdu.h): the check fails, naming that include
 # The planted copies are made in a temporary folder; the tree and its objects are not touched.
 # Usage: tests/layers.sh [BUILD] (default build; make check builds the objects it reads).
 set -u
@@ -69,6 +72,7 @@ compile_planted() {
 
 tree src src "$BUILD/obj/src"
 [ -f platform/player/rooms.txt ] && tree player platform/player "$BUILD/obj/platform/player" platform
+[ -f platform/net/rooms.txt ] && tree net platform/net "$BUILD/obj/platform/net" platform
 
 if [ -d "$BUILD/obj/src" ]; then
     fresh_copy
@@ -91,5 +95,22 @@ if [ -d "$BUILD/obj/src" ]; then
     fresh_copy
     mkdir -p "$tmp/src/misc" && echo 'int sbfx_planted_nowhere;' >"$tmp/src/misc/nowhere.c"
     planted planted-unplaced "not in a room: misc/nowhere.c"
+fi
+
+# platform/net/'s rooms: what the protocols share may not reach into one of them
+if [ -d "$BUILD/obj/platform/net" ]; then
+    rm -rf "$tmp/platform" "$tmp/obj"
+    mkdir -p "$tmp/platform" && cp -r platform/net "$tmp/platform/net" && cp -r "$BUILD/obj/platform/net" "$tmp/obj"
+    echo '#include "net/dis/dis_pdu.h" /* planted: the shared floor reaching into DIS */' \
+        >>"$tmp/platform/net/common/geodesy.c"
+    if out=$(tools/layers.sh -I "$tmp/platform" "$tmp/platform/net" "$tmp/obj" 2>&1); then
+        echo "not ok - layers/planted-net: the check passed: $(tail -n1 <<<"$out")"
+        failed=1
+    elif line=$(grep -F "upward include: common/geodesy.c (common) -> dis/dis_pdu.h (dis)" <<<"$out"); then
+        echo "ok - layers/planted-net ($line)"
+    else
+        echo "not ok - layers/planted-net: failed without naming the include: $(tr '\n' ';' <<<"$out")"
+        failed=1
+    fi
 fi
 exit "$failed"

@@ -20,7 +20,8 @@
 #      (examples/, integrations/qt/) built against the installed copy (tests/install.sh), a short
 #      soak and its leak detection (tests/soak.sh; make soak runs hours), the documentation's
 #      links and examples (tests/docs.sh), sbfx-play under cage and weston (tests/wayland.sh), the
-#      authoring loop (tests/reload.sh), the accuracy suites at GPU precision, a suite per part
+#      authoring loop (tests/reload.sh), DIS, CIGI and MQTT (tests/dis.sh, tests/cigi.sh,
+#      tests/mqtt.sh), the accuracy suites at GPU precision, a suite per part
 #      (tests/precision.sh, "precision:"), a bounded libFuzzer run (tests/fuzz.sh)
 #   4. from build/asan/, suite names prefixed "asan:", the ASan+UBSan build's: every test binary in
 #      tests/unit/, tests/platform/ and tests/gl/, the GL state and host-error tests again on
@@ -277,7 +278,17 @@ list_all() {
     # triggers from the network: DIS over loopback, MQTT through a broker of its own (issue 35)
     WEIGHT=15
     run_suite "" dis tests/dis.sh "$BUILD"
+    # CIGI 3.3 over loopback: a host of its own against the receiver, read by Wireshark (issue 44)
+    WEIGHT=5
+    run_suite "" cigi tests/cigi.sh "$BUILD"
+    WEIGHT=15
     run_suite "" mqtt tests/mqtt.sh "$BUILD"
+    # one world, many channels: three sbfx-play processes against one wide view, CIGI into the
+    # player (issue 44)
+    run_suite "" seam tests/seam.sh "$BUILD"
+    run_suite "" cigi-play tests/cigi_play.sh "$BUILD"
+    # a real exercise's load, 3 s of it (make test-load: 60 s)
+    run_suite "" load env LOAD_SECONDS="${LOAD_SECONDS:-3}" tests/load.sh "$BUILD"
     WEIGHT=10
     run_suite "" install tests/install.sh "$BUILD"
     run_suite "" docs tests/docs.sh
@@ -291,11 +302,12 @@ list_all() {
         run_suite "precision:" "$part" env "$cache_env" tests/precision.sh "$BUILD" "$part"
     done
     # the scene parser under libFuzzer for FUZZ_SECONDS, the example scenes as corpus; the DIS
-    # parser for FUZZ_DIS_SECONDS: 15 and 5 s here, of make test's CPU (make fuzz: 60 and 15,
-    # which CI runs too)
-    local fuzz_s=${FUZZ_SECONDS:-15} fuzz_dis_s=${FUZZ_DIS_SECONDS:-5}
-    WEIGHT=$((fuzz_s + fuzz_dis_s + 30))
-    run_suite "" fuzz env FUZZ_SECONDS="$fuzz_s" FUZZ_DIS_SECONDS="$fuzz_dis_s" tests/fuzz.sh "$BUILD"
+    # parser for FUZZ_DIS_SECONDS, the CIGI parser for FUZZ_CIGI_SECONDS: 15, 5 and 5 s here, of
+    # make test's CPU (make fuzz: 60, 15 and 15, which CI runs too)
+    local fuzz_s=${FUZZ_SECONDS:-15} fuzz_dis_s=${FUZZ_DIS_SECONDS:-5} fuzz_cigi_s=${FUZZ_CIGI_SECONDS:-5}
+    WEIGHT=$((fuzz_s + fuzz_dis_s + fuzz_cigi_s + 30))
+    run_suite "" fuzz env FUZZ_SECONDS="$fuzz_s" FUZZ_DIS_SECONDS="$fuzz_dis_s" FUZZ_CIGI_SECONDS="$fuzz_cigi_s" \
+        tests/fuzz.sh "$BUILD"
 
     if [ -d "$ASAN_BUILD" ]; then
         local timeout=$TIMEOUT

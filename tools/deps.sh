@@ -8,7 +8,7 @@ set_of="${1:-test}"
 # gcc only recommends libc6-dev, which --no-install-recommends leaves out: named here
 host_tools="make gcc libc6-dev pkg-config"
 build_pkgs="$host_tools libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev liblcms2-dev libconfig-dev libdrm-dev libgbm-dev libgpiod-dev colord-data libsystemd-dev libavformat-dev libavcodec-dev libswscale-dev libavutil-dev"
-# MQTT triggers (platform/net/mqtt_client.c, docs/triggers.md): libmosquitto, the player only
+# MQTT triggers (platform/net/mqtt/mqtt_client.c, docs/triggers.md): libmosquitto, the player only
 build_pkgs="$build_pkgs libmosquitto-dev"
 # the Wayland display (display_wayland.c): libwayland-client, wayland-egl, and the protocols'
 # XML turned into C by wayland-scanner (libwayland-bin) at build time
@@ -40,6 +40,9 @@ if ! [ -r /etc/os-release ] || ! grep -qx 'VERSION_CODENAME=trixie' /etc/os-rele
 fi
 # tests/mqtt.sh: a mosquitto broker of its own and mosquitto_pub / mosquitto_sub as the clients
 test_pkgs="$test_pkgs mosquitto mosquitto-clients"
+# tests/cigi.sh: Wireshark's CIGI dissector reads what the test host sends and the receiver's
+# Start of Frame (tshark; text2pcap from wireshark-common, which tshark depends on)
+test_pkgs="$test_pkgs tshark"
 # the GStreamer element's tests (tests/gstreamer/): gst-launch-1.0 and gst-inspect-1.0, GstGL's
 # elements, videotestsrc and appsink (base), mp4mux and qtdemux (good), x264enc (ugly), kmssink
 # and waylandsink (bad), avdec_h264 for decodebin (libav: the MP4 recording's input)

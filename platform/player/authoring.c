@@ -30,8 +30,12 @@ void player_keep_scene(struct player *p, sbfx_scene *scene)
 static void schedule_triggers_again(struct player *p)
 {
     double now = sbfx_elapsed(p->fx);
+    /* identified ones (world.c) start again at their own times: the new module drops the particles */
+    memset(p->world.cli_fired, 0, sizeof(p->world.cli_fired));
+    memset(p->world.timeline_fired, 0, sizeof(p->world.timeline_fired));
     for (int i = 0; i < p->opt->trigger_count; i++) {
         const struct player_trigger *t = &p->opt->triggers[i];
+        if (world_trigger_identified(p, t)) continue;
         if (sbfx_schedule(p->fx, t->effect, now + t->seconds, t->position) != SBFX_OK)
             fprintf(stderr, "sbfx-play: --trigger %s@%g: %s\n", t->effect, t->seconds, sbfx_last_error(p->fx));
     }
@@ -73,6 +77,7 @@ static int reload_scene(struct player *p)
         return 0;
     }
     sbfx_scene_camera_get(scene, &p->camera); /* the same orbit on the same clock, unless edited */
+    if (p->world.on) world_take_timeline(p, scene); /* started again at world times, drawn at their age */
     player_keep_scene(p, scene);
     schedule_triggers_again(p);
     reopen_clip(p);

@@ -76,6 +76,8 @@ static int pace(struct player *p, char *err, size_t n)
 {
     if (!p->paced) return 0;
     int64_t due = p->run_start_ns + (int64_t)((double)p->frames_done * NS_PER_S / p->opt->fps);
+    if (p->world.on && p->opt->world_clock == PLAYER_CLOCK_SYSTEM) /* the frame's world time on the system clock */
+        due = player_now_ns() + (int64_t)((world_frame_time(p, p->frames_done) - world_system_seconds()) * NS_PER_S);
     for (;;) {
         trigger_sources_service(&p->triggers, p->fx, player_now_ns());
         int64_t now = player_now_ns();
@@ -96,6 +98,9 @@ static int draw_scene(struct player *p, double t, sbfx_frame *frame, char *err, 
 {
     int w = p->display->width, h = p->display->height;
     test_scene_camera(&p->camera, t, (float)w / (float)h, frame->view, frame->projection);
+    world_eyepoint(p, frame->view); /* CIGI's entity 0 or --follow's DIS entity, where there is one */
+    const struct player_channel channel = world_channel(p);
+    world_channel_view(&channel, TEST_SCENE_NEAR, TEST_SCENE_FAR, frame->view, frame->projection);
     if (test_scene_draw(&p->scene, frame->view, frame->projection) != 0) {
         snprintf(err, n, "test scene: GL error while drawing");
         return -EIO;
@@ -146,8 +151,15 @@ static void record_times(struct frame_times *t, double sbfx_ms, double total_ms)
  * advancing at most MAX_REALTIME_STEP per frame. */
 static double frame_time(struct player *p, int64_t index, int64_t now)
 {
+    double host = 0.0;
+    if (p->world.on && p->opt->world_clock == PLAYER_CLOCK_CIGI) /* the host's clock once heard; until then still */
+        return cigi_source_time(&p->cigi, now, &host) && host > p->sim_time ? host : p->sim_time;
+    if (p->world.on && p->opt->world_clock == PLAYER_CLOCK_DIS) /* the exercise's timestamps, the same way */
+        return dis_source_time(&p->dis, now, &host) && host > p->sim_time ? host : p->sim_time;
+    if (p->world.on && p->opt->world_clock == PLAYER_CLOCK_SYSTEM && p->realtime) return world_system_seconds();
+    if (p->world.on && !p->realtime) return world_frame_time(p, index);
     if (!p->realtime) return (double)index / p->opt->fps;
-    if (index == 0) return 0.0;
+    if (index == 0) return p->world.on ? world_frame_time(p, 0) : 0.0;
     double dt = (double)(now - p->last_frame_ns) / NS_PER_S;
     return p->sim_time + (dt < MAX_REALTIME_STEP ? dt : MAX_REALTIME_STEP);
 }
@@ -180,6 +192,8 @@ static int play_frame(struct player *p, int64_t index, char *err, size_t n)
     p->frame_simulated = 0;
     /* what arrived during the last frame starts at this one's first step */
     trigger_sources_fire(&p->triggers, p->fx, player_now_ns());
+    rc = world_fire_due(p, p->world.on ? t : p->opt->start_time + t, err, n); /* identified ones at their time */
+    if (rc) return rc;
     rc = player_host_prepare(p, t, err, n);
     if (rc) return rc;
     rc = draw_scene(p, t, &frame, err, n);
@@ -193,6 +207,7 @@ static int play_frame(struct player *p, int64_t index, char *err, size_t n)
     int64_t shown = index - p->take_first; /* headless --watch: each take writes frame-0000.png on */
     rc = p->display->ops->present(p->display, shown < INT_MAX ? (int)shown : INT_MAX, err, n);
     if (rc) return rc;
+    cigi_source_frame_done(&p->cigi, player_now_ns()); /* Start of Frame: this frame is drawn */
     report_time(p, (double)(fx_end - fx_start) / 1e6);
     record_times(&p->times, (double)(fx_end - fx_start) / 1e6, (double)(player_now_ns() - start) / 1e6);
     return 0;

@@ -2,6 +2,7 @@
  * reset.c), its triggers scheduled, and advanced to the player's time. */
 #include <errno.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "gpio/effect_names.h"
 #include "player/player.h"
@@ -23,6 +24,7 @@ static int schedule_triggers(struct player *p, char *err, size_t n)
     const struct player_options *opt = p->opt;
     for (int i = 0; i < opt->trigger_count; i++) {
         const struct player_trigger *t = &opt->triggers[i];
+        if (world_trigger_identified(p, t)) continue; /* started at its time by world_fire_due */
         double at = t->seconds;
         if (p->recovering) { /* a new module after a GPU reset: its time 0 is the player's now */
             if (at <= p->fx_time_lost) continue; /* fired before the reset */
@@ -79,14 +81,19 @@ int player_create_fx(struct player *p, char *err, size_t n)
         .tone_map = opt->tone_map,
         .exposure = opt->exposure,
         .seed = opt->seed,
-        .start_time = p->recovering ? p->fx_clock_lost : opt->start_time,
+        .start_time = p->recovering ? p->fx_clock_lost : p->world.on ? p->world.base : opt->start_time,
         .frame_budget_ms = opt->budget_ms,
         .max_particles = p->board.max_particles,
         .scene = scene,
-        .ignore_timeline = opt->no_timeline || p->recovering, /* not replayed after a reset */
+        /* not replayed after a reset; in world mode the player starts it at world times */
+        .ignore_timeline = opt->no_timeline || p->recovering || p->world.on,
         .log = on_sbfx_log,
         .log_user = (void *)opt,
     };
+    if (p->world.on) world_take_timeline(p, scene);
+    /* identified triggers start again in a new module (after a GPU reset: at their age) */
+    memset(p->world.cli_fired, 0, sizeof(p->world.cli_fired));
+    if (p->world.on && !p->recovering) p->sim_time = p->world.base;
     sbfx_result r = sbfx_create(&desc, &p->fx);
     rc = r == SBFX_OK ? player_watch_files(p, scene, err, n) : 0; /* --watch: the file and its includes */
     player_keep_scene(p, scene); /* the module keeps what it needs; --loop replays the scene */
@@ -101,19 +108,39 @@ int player_create_fx(struct player *p, char *err, size_t n)
     return schedule_triggers(p, err, n);
 }
 
+#define UPDATE_MAX 0.25 /* s: what sbfx_update takes at a time (more is cut there) */
+#define CATCH_UP_MAX 600.0 /* s a frame: a world clock that jumps further is followed over frames */
+
+/* In world mode dt in updates of at most UPDATE_MAX, so the module's clock is the world's: a
+ * world-mode module is brought from its base to the first frame (up to a minute) in whole steps,
+ * as if it had run. A world clock that jumps ahead (a
+ * host's clock that was set, CIGI's or DIS's time heard for the first time far from the system
+ * clock's) is followed at most CATCH_UP_MAX a frame (72,000 empty steps, a few ms), said once. */
 static int advance(struct player *p, double dt, char *err, size_t n)
 {
     if (dt <= 0.0) return 0; /* already there (player_host_prepare advanced it) */
-    sbfx_result r = sbfx_update(p->fx, dt);
-    if (r != SBFX_OK) {
-        snprintf(err, n, "sbfx_update(%g) at t=%.4f s: %s: %s", dt, p->sim_time,
-                 sbfx_result_string(r), sbfx_last_error(p->fx));
-        return -EIO;
+    if (p->world.on && dt > CATCH_UP_MAX) {
+        if (!p->world.jump_said++)
+            fprintf(stderr, "sbfx-play: the world clock is %.0f s ahead of the module's: followed %.0f s a frame\n",
+                    dt, CATCH_UP_MAX);
+        dt = CATCH_UP_MAX;
     }
-    sbfx_counters c;
-    sbfx_stats(p->fx, &c);
-    p->frame_simulated += c.particles_simulated;
-    p->sim_time += dt;
+    double target = p->sim_time + dt;
+    while (dt > 0.0) {
+        /* outside world mode one update, as always: sbfx_update cuts a long dt at its 0.25 s */
+        double part = p->world.on && dt > UPDATE_MAX ? UPDATE_MAX : dt;
+        sbfx_result r = sbfx_update(p->fx, part);
+        if (r != SBFX_OK) {
+            snprintf(err, n, "sbfx_update(%g) at t=%.4f s: %s: %s", part, p->sim_time,
+                     sbfx_result_string(r), sbfx_last_error(p->fx));
+            return -EIO;
+        }
+        sbfx_counters c;
+        sbfx_stats(p->fx, &c);
+        p->frame_simulated += c.particles_simulated;
+        dt -= part;
+    }
+    p->sim_time = target;
     return 0;
 }
 

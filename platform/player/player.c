@@ -153,16 +153,32 @@ static int open_inputs(struct player *p, char *err, size_t n)
     int rc = gpio_source_add_options(&p->gpio, &p->board, opt, err, n);
     if (rc == 0) rc = gpio_source_open(&p->gpio, &p->triggers, p->fx, player_now_ns(), player_log, p, err, n);
     if (rc == 0) rc = dis_source_open(&p->dis, &p->triggers, opt, &p->board, p->fx, player_log, p, err, n);
+    if (rc == 0) rc = cigi_source_open(&p->cigi, &p->triggers, opt, p->fx, player_log, p, err, n);
     if (rc == 0) rc = mqtt_source_open(&p->mqtt, &p->triggers, opt, &p->board, player_log, p, err, n);
-    p->paced = !player_on_screen(opt) && trigger_sources_realtime(&p->triggers);
+    /* headless with a real-time source, or on the system clock: frames at their times on the clock */
+    p->paced = !player_on_screen(opt) &&
+               (trigger_sources_realtime(&p->triggers) || (p->world.on && opt->world_clock == PLAYER_CLOCK_SYSTEM));
     if (rc == 0) rc = detail_open_clip(p->fx, player_log, p, err, n);
     if (rc == 0) rc = detail_open_camera(&p->detail, p->fx, opt->video, &p->board, player_log, p, err, n);
     return rc;
 }
 
+/* The channel: the board's view, each part the flags give replacing the board's. */
+static void merge_channel(struct player *p)
+{
+    const struct player_channel *flags = &p->opt->channel;
+    p->channel = p->board.channel;
+    if (flags->have_frustum) memcpy(p->channel.frustum, flags->frustum, sizeof(flags->frustum));
+    if (flags->have_offset) memcpy(p->channel.offset, flags->offset, sizeof(flags->offset));
+    p->channel.have_frustum |= flags->have_frustum;
+    p->channel.have_offset |= flags->have_offset;
+}
+
 static int setup(struct player *p, char *err, size_t n)
 {
     int rc = load_board(p, err, n);
+    if (rc == 0) merge_channel(p);
+    if (rc == 0) rc = world_setup(p, err, n);
     if (rc == 0) rc = player_parse_scene(p, err, n);
     if (rc) return rc;
     rc = create_display(p, err, n);
@@ -221,6 +237,17 @@ static void collect_triggers(const struct player *p, struct player_stats_record 
         r->dis_pdus = (long long)d->pdus, r->dis_detonations = (long long)d->detonations;
         r->dis_ignored = (long long)d->ignored, r->dis_malformed = (long long)d->malformed;
     }
+    const struct cigi_counts *g = cigi_source_counts(&p->cigi);
+    r->cigi_on = g != NULL;
+    r->kiosk_on = r->kiosk_on || r->cigi_on;
+    if (g) {
+        r->cigi_messages = (long long)g->messages, r->cigi_malformed = (long long)g->malformed;
+        r->cigi_ignored = (long long)g->ignored, r->cigi_entities = (long long)g->entities;
+        r->cigi_stopped = (long long)q->stopped[TRIGGER_CIGI], r->cigi_start_of_frame = (long long)g->sof_sent;
+    }
+    r->world_on = p->world.on;
+    r->world_time = p->sim_time;
+    r->triggers_expired = (long long)p->last.triggers_expired;
     r->mqtt_messages = (long long)m.messages;
     r->mqtt_malformed = (long long)(p->mqtt.bad_syntax + p->mqtt.bad_effect);
     r->mqtt_reconnects = (long long)m.reconnects;

@@ -20,6 +20,7 @@
 #include "display/display.h"
 #include "egl/gl_reset.h"
 #include "host/test_scene.h"
+#include "player/inputs/cigi_source.h"
 #include "player/inputs/detail.h"
 #include "player/inputs/dis_source.h"
 #include "player/inputs/gpio_source.h"
@@ -52,6 +53,24 @@ struct second_stats {
     double frame_ms_sum, frame_ms_max;
 };
 
+/* One world, many channels (world.c) */
+#define WORLD_TIMELINE_MAX 256
+struct world_timeline_entry {
+    char effect[PLAYER_EFFECT_NAME_MAX];
+    double time;
+    float position[3];
+};
+struct world {
+    bool on;                  /* world mode: --world-time or --world-clock system|cigi|dis */
+    int64_t first_k;          /* the first frame's k on the grid k / fps */
+    double base;              /* the module's desc.start_time: the whole minute at or before it */
+    uint64_t cli_fired[(PLAYER_MAX_TRIGGERS + 63) / 64];    /* identified --trigger entries started */
+    struct world_timeline_entry timeline[WORLD_TIMELINE_MAX]; /* the scene's, world mode */
+    int timeline_count;
+    uint64_t timeline_fired[WORLD_TIMELINE_MAX / 64];
+    int jump_said;            /* a world clock far ahead of the module was logged */
+};
+
 struct player {
     const struct player_options *opt;
     struct board_profile board;
@@ -78,6 +97,7 @@ struct player {
     struct trigger_sources triggers; /* GPIO, DIS, MQTT; with the timeline and --trigger, one path */
     struct gpio_source gpio;  /* the GPIO lines, one of the trigger sources when it has any */
     struct dis_source dis;    /* --dis: DIS detonations */
+    struct cigi_source cigi;  /* --cigi: a simulation host's IG messages */
     struct mqtt_source mqtt;  /* --mqtt: MQTT messages */
     struct detail_feed detail;
     struct second_stats second;
@@ -95,7 +115,31 @@ struct player {
     sbfx_scene *scene_first;  /* --scene parsed before the display opens; the first module takes it */
     double timeline_start;    /* sim_time when the timeline last started (--loop) */
     int64_t take_first;       /* headless: the first frame of this take (a reload starts one) */
+    struct world world;       /* world time, identified triggers (world.c) */
+    struct player_channel channel; /* the board's view, then --frustum, --view-offset (later: CIGI) */
 };
+
+/* world.c */
+bool world_mode(const struct player_options *opt);
+double world_system_seconds(void);              /* CLOCK_REALTIME (PTP/NTP-disciplined), seconds */
+int world_setup(struct player *p, char *err, size_t n); /* the first frame on the grid; the base */
+double world_frame_time(const struct player *p, int64_t index); /* (first_k + index) / fps */
+bool world_trigger_identified(const struct player *p, const struct player_trigger *t);
+/* The scene's timeline, copied (world mode runs it at world times). */
+void world_take_timeline(struct player *p, const sbfx_scene *scene);
+/* Starts the identified --trigger and (world mode) timeline entries due at the clock `now`. */
+int world_fire_due(struct player *p, double now, char *err, size_t n);
+/* An eyepoint (scene metres; yaw from north clockwise, pitch up, roll right, degrees) as a view. */
+void world_eyepoint_view(const float position[3], const float angles[3], float view[16]);
+/* The eyepoint's view: CIGI's entity 0, else the DIS entity --follow names, once heard (true);
+ * false: the scene's camera. */
+bool world_eyepoint(const struct player *p, float view[16]);
+/* The channel of the moment: the board's and the flags' (p->channel), CIGI's View Definition and
+ * View Control over them where the host sent them. */
+struct player_channel world_channel(const struct player *p);
+/* The channel's view: the eyepoint's view turned by the offset, the frustum's projection. */
+void world_channel_view(const struct player_channel *c, float near_z, float far_z, float view[16],
+                        float projection[16]);
 
 /* clock.c */
 int64_t player_now_ns(void);

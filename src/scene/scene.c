@@ -699,9 +699,10 @@ bool sbfx_scene_camera_get(const sbfx_scene *scene, sbfx_scene_camera *out)
 
 static int parse_root(parser *p, const config_setting_t *root)
 {
-    /* dis: the player's network triggers (docs/triggers.md), read by the player, not the module */
+    /* dis, cigi: the player's network inputs (docs/triggers.md, docs/simulators.md), read by the
+     * player, not the module */
     static const char *const keys[] = {"render", "lights", "ambient", "media", "effects", "triggers", "post",
-                                       "camera", "sky", "dis", NULL};
+                                       "camera", "sky", "dis", "cigi", NULL};
     if (check_keys(p, root, "the scene", keys)) return -1;
     const config_setting_t *s;
     if ((s = config_setting_get_member(root, "render")) && parse_render(p, s)) return -1;
@@ -823,6 +824,21 @@ sbfx_result sbfx_scene_parse(const char *text, const char *name, sbfx_scene **ou
 }
 
 void sbfx_scene_free(sbfx_scene *scene) { free(scene); }
+
+bool sbfx_scene_timeline_get(const sbfx_scene *scene, int index, sbfx_timeline_trigger *out)
+{
+    if (!out || index < 0) return false;
+    if (!scene) { /* sbfx_scene_builtin's: one explosion at 0 at the origin */
+        if (index > 0) return false;
+        *out = (sbfx_timeline_trigger){.effect = "explosion"};
+        return true;
+    }
+    if (index >= scene->timeline_count) return false;
+    const sbfx_timeline_entry *t = &scene->timeline[index];
+    *out = (sbfx_timeline_trigger){.effect = scene->effects[t->effect].name, .time = t->time};
+    for (int k = 0; k < 3; k++) out->position[k] = t->position[k];
+    return true;
+}
 
 int sbfx_scene_gpio_triggers(const sbfx_scene *scene, const sbfx_gpio_trigger **out)
 {

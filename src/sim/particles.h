@@ -17,6 +17,11 @@ typedef struct sbfx_pool {
     float *drag, *buoyancy;
     float *detail;     /* 3 per particle: window u, v, time offset */
     uint8_t *medium;
+    /* identified instances (sbfx_trigger_identified): each particle steps on its instance's own
+     * grid, start + j * step, not the module's; NAN for the others, which step with the module */
+    double *start;     /* the instance's start on the clock (sbfx_time) */
+    uint32_t *steps;   /* steps simulated since then */
+    uint64_t *identity; /* its instance's identity (0: none) */
 } sbfx_pool;
 
 /* A particle as the renderer sees it: view space, already validated. */

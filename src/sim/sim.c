@@ -16,7 +16,10 @@ sbfx_result sbfx_pool_create(sbfx *fx, int capacity)
     fx->sim->order = sbfx_calloc(fx, (size_t)capacity, sizeof(uint32_t));
     fx->sim->order_tmp = sbfx_calloc(fx, (size_t)capacity, sizeof(uint32_t));
     fx->sim->instances = sbfx_calloc(fx, (size_t)capacity * fx->scene->instance_floats, sizeof(float));
-    if (!block || !p->medium || !fx->sim->view || !fx->sim->sort_keys || !fx->sim->order || !fx->sim->order_tmp ||
+    p->start = sbfx_calloc(fx, (size_t)capacity, sizeof(double));
+    p->steps = sbfx_calloc(fx, (size_t)capacity, sizeof(uint32_t));
+    p->identity = sbfx_calloc(fx, (size_t)capacity, sizeof(uint64_t));
+    if (!block || !p->medium || !p->start || !p->steps || !p->identity || !fx->sim->view || !fx->sim->sort_keys || !fx->sim->order || !fx->sim->order_tmp ||
         !fx->sim->instances) {
         sbfx_free(fx, block);
         return sbfx_fail(fx, SBFX_ERR_OUT_OF_MEMORY, "cannot allocate a pool of %d particles", capacity);
@@ -43,6 +46,9 @@ void sbfx_pool_destroy(sbfx *fx)
 {
     sbfx_free(fx, fx->sim->pool.pos);
     sbfx_free(fx, fx->sim->pool.medium);
+    sbfx_free(fx, fx->sim->pool.start);
+    sbfx_free(fx, fx->sim->pool.steps);
+    sbfx_free(fx, fx->sim->pool.identity);
     sbfx_free(fx, fx->sim->view);
     sbfx_free(fx, fx->sim->sort_keys);
     sbfx_free(fx, fx->sim->order);
@@ -96,9 +102,12 @@ static void spawn_one(sbfx *fx, const sbfx_emitter *e, const float origin[3], sb
     p->drag[i] = e->drag;
     p->buoyancy[i] = e->buoyancy;
     p->medium[i] = (uint8_t)e->medium;
+    p->start[i] = NAN; /* steps with the module (sbfx_spawn_identified says otherwise) */
+    p->steps[i] = 0;
+    p->identity[i] = 0;
 }
 
-sbfx_result sbfx_spawn_effect(sbfx *fx, const sbfx_effect *effect, const float position[3])
+static sbfx_result pool_room(sbfx *fx, const sbfx_effect *effect)
 {
     int needed = 0;
     for (int i = 0; i < effect->emitter_count; i++) needed += effect->emitters[i].count;
@@ -106,12 +115,42 @@ sbfx_result sbfx_spawn_effect(sbfx *fx, const sbfx_effect *effect, const float p
         return sbfx_fail(fx, SBFX_ERR_POOL_FULL,
                          "trigger \"%s\" refused: needs %d particles, %d of %d are in use",
                          effect->name, needed, fx->sim->pool.alive, fx->sim->pool.capacity);
+    return SBFX_OK;
+}
+
+static void spawn_all(sbfx *fx, const sbfx_effect *effect, const float position[3], sbfx_rng *rng)
+{
+    for (int i = 0; i < effect->emitter_count; i++)
+        for (int n = 0; n < effect->emitters[i].count; n++)
+            spawn_one(fx, &effect->emitters[i], position, rng);
+}
+
+sbfx_result sbfx_spawn_effect(sbfx *fx, const sbfx_effect *effect, const float position[3])
+{
+    sbfx_result r = pool_room(fx, effect);
+    if (r != SBFX_OK) return r;
     /* Each trigger draws from its own stream: same seed + same trigger order = same particles. */
     sbfx_rng rng;
     sbfx_rng_seed(&rng, ((uint64_t)fx->scene->desc.seed << 32) ^ fx->sim->trigger_count++);
-    for (int i = 0; i < effect->emitter_count; i++)
-        for (int n = 0; n < effect->emitters[i].count; n++)
-            spawn_one(fx, &effect->emitters[i], position, &rng);
+    spawn_all(fx, effect, position, &rng);
+    return SBFX_OK;
+}
+
+sbfx_result sbfx_spawn_identified(sbfx *fx, const sbfx_effect *effect, const float position[3],
+                                  uint64_t identity, double start)
+{
+    sbfx_result r = pool_room(fx, effect);
+    if (r != SBFX_OK) return r;
+    /* The stream is the identity's alone (an odd multiplier: one identity, one stream), so the
+     * order triggers arrive in, and the triggers a process missed, change nothing. */
+    sbfx_rng rng;
+    sbfx_rng_seed(&rng, identity * 0xD1B54A32D192ED03ull);
+    int first = fx->sim->pool.alive;
+    spawn_all(fx, effect, position, &rng);
+    for (int i = first; i < fx->sim->pool.alive; i++) {
+        fx->sim->pool.start[i] = start;
+        fx->sim->pool.identity[i] = identity;
+    }
     return SBFX_OK;
 }
 
@@ -134,29 +173,83 @@ static void retire(sbfx_pool *p, int i)
     p->drag[i] = p->drag[last];
     p->buoyancy[i] = p->buoyancy[last];
     p->medium[i] = p->medium[last];
+    p->start[i] = p->start[last];
+    p->steps[i] = p->steps[last];
+    p->identity[i] = p->identity[last];
+}
+
+int sbfx_retire_identified(sbfx *fx, uint64_t identity)
+{
+    sbfx_pool *p = &fx->sim->pool;
+    int removed = 0;
+    for (int i = 0; i < p->alive;) {
+        if (p->identity[i] == identity) {
+            retire(p, i); /* the last particle moved into slot i is looked at next */
+            removed++;
+        } else {
+            i++;
+        }
+    }
+    return removed;
+}
+
+/* One step of particle i; false when it died (retired: slot i holds another particle now). */
+static bool step_particle(sbfx_pool *p, int i, float h)
+{
+    float age = p->age[i] + h;
+    p->age[i] = age;
+    if (age >= p->life[i]) {
+        retire(p, i);
+        return false;
+    }
+    if (age > 0.0f) {
+        float damping = 1.0f / (1.0f + p->drag[i] * h); /* implicit drag: stable for any h */
+        float *v = &p->vel[3 * i], *x = &p->pos[3 * i];
+        v[0] *= damping;
+        v[1] = (v[1] + p->buoyancy[i] * h) * damping;
+        v[2] *= damping;
+        x[0] += v[0] * h;
+        x[1] += v[1] * h;
+        x[2] += v[2] * h;
+    }
+    return true;
 }
 
 void sbfx_simulate_step(sbfx *fx, float h)
 {
     sbfx_pool *p = &fx->sim->pool;
     for (int i = 0; i < p->alive;) {
-        float age = p->age[i] + h;
-        p->age[i] = age;
-        if (age >= p->life[i]) {
-            retire(p, i);
-            continue;           /* the particle moved into slot i is processed next */
+        if (!isnan(p->start[i])) i++; /* identified: on its own grid (sbfx_sync_identified) */
+        else if (step_particle(p, i, h)) i++;
+        /* else the particle moved into slot i is processed next */
+    }
+}
+
+/* Steps of an identified instance's grid in (start, now]: a tolerance of a millionth of a step
+ * keeps a frame exactly on a step (k / fps, a multiple of it) on the same side in every process. */
+static double grid_steps(double start, double now, double step)
+{
+    return floor((now - start) / step + 1e-6);
+}
+
+void sbfx_sync_identified(sbfx *fx, double now)
+{
+    sbfx_pool *p = &fx->sim->pool;
+    double step = fx->scene->desc.sim_step;
+    for (int i = 0; i < p->alive;) {
+        if (isnan(p->start[i])) {
+            i++;
+            continue;
         }
-        if (age > 0.0f) {
-            float damping = 1.0f / (1.0f + p->drag[i] * h); /* implicit drag: stable for any h */
-            float *v = &p->vel[3 * i], *x = &p->pos[3 * i];
-            v[0] *= damping;
-            v[1] = (v[1] + p->buoyancy[i] * h) * damping;
-            v[2] *= damping;
-            x[0] += v[0] * h;
-            x[1] += v[1] * h;
-            x[2] += v[2] * h;
+        double target = grid_steps(p->start[i], now, step);
+        bool alive = true;
+        /* a particle dies by life - delay in steps: the catch-up is bounded by that */
+        while (alive && (double)p->steps[i] < target) {
+            p->steps[i]++;
+            alive = step_particle(p, i, (float)step);
+            fx->sim->particles_simulated++;
         }
-        i++;
+        if (alive) i++;
     }
 }
 

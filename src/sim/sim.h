@@ -33,6 +33,7 @@ typedef struct sbfx_scheduled {
 } sbfx_scheduled;
 
 typedef struct sbfx_live_flash {
+    uint64_t identity;           /* its instance's (sbfx_trigger_identified), 0: none */
     double start;
     float duration;
     float color[3], position[3];
@@ -55,6 +56,7 @@ typedef struct sbfx_sim {
     /* the frame's scratch, sized max_particles at load */
     sbfx_view_particle *view;
     float *sort_keys;
+    bool view_identified;        /* the frame's particles include identified ones (sort.c's ties) */
     uint32_t *order, *order_tmp;
     float *instances;            /* the plan's instance_floats per particle (render/particles.c) */
     float previous_view[16];     /* the last render's view and time (particle velocities) */
@@ -81,6 +83,16 @@ typedef struct sbfx_sim {
 sbfx_result sbfx_pool_create(sbfx *fx, int capacity);
 void sbfx_pool_destroy(sbfx *fx);
 sbfx_result sbfx_spawn_effect(sbfx *fx, const sbfx_effect *effect, const float position[3]);
+/* An identified instance (sbfx_trigger_identified): seeded from identity alone, its particles
+ * on the grid start + j * step (sbfx_sync_identified brings them to the clock). */
+sbfx_result sbfx_spawn_identified(sbfx *fx, const sbfx_effect *effect, const float position[3],
+                                  uint64_t identity, double start);
+/* Steps every identified particle to the host's time `now` (clock seconds): as many steps of its
+ * own grid as lie in (start, now]; catching up is at most its delay + life. */
+void sbfx_sync_identified(sbfx *fx, double now);
+/* Removes every particle of the identified instance; returns how many. */
+int sbfx_retire_identified(sbfx *fx, uint64_t identity);
+/* One module step: the particles that step with the module (identified ones are synced). */
 void sbfx_simulate_step(sbfx *fx, float step);
 /* The level of detail's work memory (first lodN level). */
 sbfx_result sbfx_lod_create(sbfx *fx);
@@ -91,6 +103,12 @@ uint64_t sbfx_state_hash(const sbfx *fx);
 /* Starts one instance of effect `index`: its particles, and its light flashes as live lights;
  * the trigger listener is told, with the origin. */
 sbfx_result sbfx_fire(sbfx *fx, int index, const float position[3], sbfx_trigger_origin origin);
+/* The same for an identified instance (sbfx_trigger_identified): start on the clock (sbfx_time). */
+sbfx_result sbfx_fire_identified(sbfx *fx, int index, const float position[3], uint64_t identity, double start);
+/* Ends an identified instance: its particles and flashes; returns the particles removed. */
+int sbfx_stop_instance(sbfx *fx, uint64_t identity);
+/* The host's time: the clock (sbfx_time) plus the update's remainder not yet stepped. */
+double sbfx_host_time(const sbfx *fx);
 /* Adds a trigger of effect `index` at `seconds` (simulation time) to the timeline; it fires with
  * its origin (sbfx_schedule's, or the scene's timeline). */
 sbfx_result sbfx_timeline_add(sbfx *fx, int index, double seconds, const float position[3],

@@ -23,12 +23,69 @@ sbfx_result sbfx_fire(sbfx *fx, int index, const float position[3], sbfx_trigger
     for (int i = 0; i < e->flash_count && fx->sim->flash_count < SBFX_MAX_LIVE_FLASHES; i++) {
         const sbfx_flash *f = &e->flashes[i];
         sbfx_live_flash *live = &fx->sim->flashes[fx->sim->flash_count++];
+        live->identity = 0;
         live->start = fx->sim->time + f->delay;
         live->duration = f->duration;
         memcpy(live->color, f->color, sizeof(live->color));
         for (int k = 0; k < 3; k++) live->position[k] = position[k] + f->offset[k];
     }
     return SBFX_OK;
+}
+
+double sbfx_host_time(const sbfx *fx)
+{
+    return fx->scene->desc.start_time + fx->sim->time + fx->sim->accumulator;
+}
+
+/* Seconds from an instance's start until its last particle and flash have ended. */
+static double effect_span(const sbfx_effect *e)
+{
+    double span = 0.0;
+    for (int i = 0; i < e->emitter_count; i++)
+        span = fmax(span, (double)e->emitters[i].delay + (double)e->emitters[i].life_max);
+    for (int i = 0; i < e->flash_count; i++)
+        span = fmax(span, (double)e->flashes[i].delay + (double)e->flashes[i].duration);
+    return span;
+}
+
+sbfx_result sbfx_fire_identified(sbfx *fx, int index, const float position[3], uint64_t identity, double start)
+{
+    const sbfx_effect *e = &fx->scene->effects[index];
+    double now = sbfx_host_time(fx);
+    if (now - start >= effect_span(e) + fx->scene->desc.sim_step) {
+        fx->counters.triggers_expired++; /* all over already: a channel that joined after it ended */
+        return SBFX_OK;
+    }
+    sbfx_result r = sbfx_spawn_identified(fx, e, position, identity, start);
+    if (r != SBFX_OK) {
+        fx->counters.triggers_refused++;
+        return r;
+    }
+    fx->counters.triggers_fired++;
+    sbfx_sync_identified(fx, now); /* a late one is drawn at its age from the next render on */
+    if (fx->sim->trigger_listener)
+        fx->sim->trigger_listener(e->name, position, start, SBFX_TRIGGER_CALL, fx->sim->trigger_listener_user);
+    double elapsed_start = start - fx->scene->desc.start_time; /* flashes live on the elapsed clock */
+    for (int i = 0; i < e->flash_count && fx->sim->flash_count < SBFX_MAX_LIVE_FLASHES; i++) {
+        const sbfx_flash *f = &e->flashes[i];
+        if (elapsed_start + f->delay + f->duration <= fx->sim->time) continue; /* over */
+        sbfx_live_flash *live = &fx->sim->flashes[fx->sim->flash_count++];
+        live->identity = identity;
+        live->start = elapsed_start + f->delay;
+        live->duration = f->duration;
+        memcpy(live->color, f->color, sizeof(live->color));
+        for (int k = 0; k < 3; k++) live->position[k] = position[k] + f->offset[k];
+    }
+    return SBFX_OK;
+}
+
+int sbfx_stop_instance(sbfx *fx, uint64_t identity)
+{
+    for (int i = 0; i < fx->sim->flash_count;) {
+        if (fx->sim->flashes[i].identity == identity) fx->sim->flashes[i] = fx->sim->flashes[--fx->sim->flash_count];
+        else i++;
+    }
+    return sbfx_retire_identified(fx, identity);
 }
 
 /* Adds a trigger of effect `index` at `seconds` (simulation time) to the timeline. */
@@ -104,4 +161,5 @@ void sbfx_timeline_advance(sbfx *fx, double dt)
         fx->sim->time = (double)fx->sim->step_index * step;
         expire_flashes(fx);
     }
+    sbfx_sync_identified(fx, sbfx_host_time(fx)); /* identified instances step on their own grids */
 }

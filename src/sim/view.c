@@ -51,8 +51,10 @@ int sbfx_collect_view_particles(sbfx *fx, const float view[16])
     const sbfx_pool *p = &fx->sim->pool;
     int n = 0;
     fx->counters.particles_skipped = 0;
+    fx->sim->view_identified = false;
     for (int i = 0; i < p->alive; i++) {
         if (p->age[i] < 0.0f) continue;
+        fx->sim->view_identified |= !isnan(p->start[i]);
         sbfx_view_particle *v = &fx->sim->view[n];
         transform_point(view, &p->pos[3 * i], v->center);
         sbfx_pool_particle_shape(p, i, &v->radius, &v->intensity);

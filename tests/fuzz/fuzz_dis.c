@@ -7,8 +7,16 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "net/dis_pdu.h"
-#include "net/dis_receiver.h"
+#include "net/dis/dis_pdu.h"
+#include "net/dis/dis_receiver.h"
+
+/* an Entity State PDU's fields (--follow): finite, as dis_entity_state_parse promises */
+static void entity(const struct dis_entity_state *e, void *user)
+{
+    (void)user;
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(e->location[k]) || !isfinite(e->orientation[k])) abort();
+}
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -53,7 +61,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (dis_receiver_make(&r, &s, err, sizeof(err)) != 0) abort();
     }
     check_cursor(data, size);
-    const struct dis_sink sink = {fire, NULL, NULL};
+    const struct dis_sink sink = {fire, NULL, NULL, NULL, NULL, entity};
     dis_receiver_datagram(r, data, size, size > DIS_MAX_PDU_SIZE, NULL, now += 1000000, &sink);
     const struct dis_counts *c = dis_receiver_counts(r);
     if (c->pdus != c->detonations + c->ignored + c->malformed) abort();

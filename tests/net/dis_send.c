@@ -3,7 +3,13 @@
  * src/dis7/Pdu.cpp), independent of the player's parser, and sent over UDP to 127.0.0.1.
  *
  *   dis_send --port P [options] detonation     one Detonation PDU
- *   dis_send --port P [options] entity-state   one Entity State PDU (type 1), 144 bytes
+ *   dis_send --port P [options] entity-state   one Entity State PDU (type 1), 144 bytes: entity
+ *                                              --site:--app:--entity at --enu, its --attitude
+ *                                              (heading, pitch, roll there, degrees) as DIS's
+ *                                              Euler angles
+ *   dis_send --port P [options] load S ES DET  for S seconds, ES Entity State PDUs and DET
+ *                                              detonations (events of their own, in range) a
+ *                                              second, paced by the clock (tests/load.sh)
  *   dis_send --port P [options] storm N        N PDUs: detonations, other types, repeats and
  *                                              malformed ones mixed; prints what it sent:
  *                                              "sent N detonations D ignored I malformed M"
@@ -15,7 +21,8 @@
  *          --result R --origin LAT,LON,ALT --enu E,N,U (the location; default the origin)
  *          --ecef X,Y,Z --vp N (variable parameter records) --announce N (the record count the
  *          PDU says, wrong on purpose: a wrong length) --length L (the header's length field)
- *          --cut N (send only the first N bytes) --count N (send it N times).
+ *          --cut N (send only the first N bytes) --count N (send it N times) --timestamp T (the
+ *          header's, raw: bit 0 set is absolute, seconds past the hour x 2^31 / 3600 above it).
  * The location: geodetic -> ECEF in closed form; a point E east, N north, U up is reached
  * geodetically (latitude + N / M, longitude + E / (N_prime cos lat), height + U, with the
  * meridian and prime vertical radii of curvature), not through the player's tangent-plane
@@ -44,8 +51,11 @@
 
 struct pdu_spec {
     int version, exercise, type, site, app, event, result, vp, announce, length, cut;
+    uint32_t timestamp;
     int munition[7];
     double ecef[3];
+    int entity;                    /* entity-state: the entity number (site and app as given) */
+    double attitude[3];            /* entity-state: heading, pitch, roll at its place (degrees) */
 };
 
 /* ---- geodesy of its own ----------------------------------------------------------------- */
@@ -125,7 +135,7 @@ static void put_float(uint8_t *p, float f)
 static void header(uint8_t *p, const struct pdu_spec *s, int type, int family, size_t length)
 {
     p[0] = (uint8_t)s->version, p[1] = (uint8_t)s->exercise, p[2] = (uint8_t)type, p[3] = (uint8_t)family;
-    put32(p + 4, 0x12345679u); /* timestamp: relative, any */
+    put32(p + 4, s->timestamp); /* --timestamp: bit 0 set, absolute (the default 0x12345679: 9:46 past) */
     put16(p + 8, (unsigned)length);
     p[10] = p[11] = 0;
 }
@@ -154,10 +164,44 @@ static size_t detonation(uint8_t *p, const struct pdu_spec *s)
     return length;
 }
 
+/* DIS's Euler angles (psi, theta, phi: z-y-x from ECEF's axes) of a body with this heading (from
+ * north, clockwise), pitch (up) and roll (right) in the local frame at ECEF point p: the body's
+ * axes built in east, north, up and read back as the angles of R = Rz(psi) Ry(theta) Rx(phi). */
+static void euler_angles(const double p[3], const double attitude[3], float out[3])
+{
+    double lat, lon, alt;
+    to_geodetic(p, &lat, &lon, &alt);
+    double sa = sin(lat * DEG), ca = cos(lat * DEG), so = sin(lon * DEG), co = cos(lon * DEG);
+    const double east[3] = {-so, co, 0}, north[3] = {-sa * co, -sa * so, ca}, up[3] = {ca * co, ca * so, sa};
+    double h = attitude[0] * DEG, t = attitude[1] * DEG, r = attitude[2] * DEG;
+    /* forward, and the level right and down before the roll, in east, north, up */
+    const double f[3] = {sin(h) * cos(t), cos(h) * cos(t), sin(t)};
+    const double r0[3] = {cos(h), -sin(h), 0}, d0[3] = {sin(h) * sin(t), cos(h) * sin(t), -cos(t)};
+    double fe[3], re[3], de[3];
+    for (int k = 0; k < 3; k++) {
+        const double *axis[3] = {east, north, up};
+        fe[k] = re[k] = de[k] = 0;
+        for (int j = 0; j < 3; j++) {
+            double right = cos(r) * r0[j] + sin(r) * d0[j], down = -sin(r) * r0[j] + cos(r) * d0[j];
+            fe[k] += f[j] * axis[j][k];
+            re[k] += right * axis[j][k];
+            de[k] += down * axis[j][k];
+        }
+    }
+    out[0] = (float)atan2(fe[1], fe[0]);
+    out[1] = (float)-asin(fe[2]);
+    out[2] = (float)atan2(re[2], de[2]);
+}
+
 static size_t entity_state(uint8_t *p, const struct pdu_spec *s)
 {
     memset(p, 0, 144);
     header(p, s, 1, 1, 144);
+    put16(p + 12, (unsigned)s->site), put16(p + 14, (unsigned)s->app), put16(p + 16, (unsigned)s->entity);
+    for (int k = 0; k < 3; k++) put_double(p + 48 + 8 * k, s->ecef[k]);
+    float euler[3];
+    euler_angles(s->ecef, s->attitude, euler);
+    for (int k = 0; k < 3; k++) put_float(p + 72 + 4 * k, euler[k]);
     return 144;
 }
 
@@ -239,6 +283,42 @@ static int storm(struct pdu_spec base, int count, int port)
     return 0;
 }
 
+/* A real exercise's load (tests/load.sh): for `seconds`, es_rate Entity State PDUs and det_rate
+ * detonations a second, spread evenly (due ones sent each millisecond), each detonation an event
+ * of its own (event numbers 1.., the site and application given) at one of 16 points within
+ * 400 m of the origin. Prints "sent E entity-states D detonations" at the end. */
+static int load(struct pdu_spec base, const double origin[3], double seconds, double es_rate, double det_rate)
+{
+    double points[16][3];
+    for (int k = 0; k < 16; k++) {
+        const double enu[3] = {(k % 4) * 100.0 - 150.0, (k / 4) * 100.0 - 150.0, 0.0};
+        if (offset_point(origin, enu, points[k]) != 0) return 1;
+    }
+    struct timespec t0, now;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    long es = 0, det = 0;
+    for (;;) {
+        clock_gettime(CLOCK_MONOTONIC, &now);
+        double t = (double)(now.tv_sec - t0.tv_sec) + (double)(now.tv_nsec - t0.tv_nsec) / 1e9;
+        if (t > seconds) t = seconds;
+        for (; es < (long)(t * es_rate); es++) {
+            base.event = 1 + (int)(es % 60000);
+            if (send_pdu(&base, true) != 0) return 1;
+        }
+        for (; det < (long)(t * det_rate); det++) {
+            struct pdu_spec d = base;
+            d.event = 1 + (int)(det % 65535);
+            memcpy(d.ecef, points[det % 16], sizeof(d.ecef));
+            if (send_pdu(&d, false) != 0) return 1;
+        }
+        if (t >= seconds) break;
+        struct timespec tick = {0, 1000000};
+        nanosleep(&tick, NULL);
+    }
+    printf("sent %ld entity-states %ld detonations\n", es, det);
+    return 0;
+}
+
 /* ---- the command line ------------------------------------------------------------------ */
 
 static bool triple(const char *s, double out[3])
@@ -249,6 +329,7 @@ static bool triple(const char *s, double out[3])
 int main(int argc, char **argv)
 {
     struct pdu_spec s = {.version = 7, .exercise = 1, .type = 3, .site = 1, .app = 1, .event = 1, .result = 5,
+                         .timestamp = 0x12345679u,
                          .announce = -1, .length = -1, .cut = -1, .munition = {2, 9, 225, 2, 14, 1, 0}};
     double origin[3] = {0, 0, 0}, enu[3] = {0, 0, 0};
     int port = 0, count = 1, i = 1;
@@ -268,6 +349,9 @@ int main(int argc, char **argv)
         else if (!strcmp(k, "length")) s.length = atoi(v);
         else if (!strcmp(k, "cut")) s.cut = atoi(v);
         else if (!strcmp(k, "count")) count = atoi(v);
+        else if (!strcmp(k, "timestamp")) s.timestamp = (uint32_t)strtoul(v, NULL, 0);
+        else if (!strcmp(k, "entity")) s.entity = atoi(v);
+        else if (!strcmp(k, "attitude") && triple(v, s.attitude)) continue;
         else if (!strcmp(k, "file")) path = v;
         else if (!strcmp(k, "origin") && triple(v, origin)) continue;
         else if (!strcmp(k, "enu") && triple(v, enu)) continue;
@@ -298,9 +382,11 @@ int main(int argc, char **argv)
         return 2;
     }
     if (!strcmp(what, "storm") && i + 1 < argc) return storm(s, atoi(argv[i + 1]), port);
+    if (!strcmp(what, "load") && i + 3 < argc)
+        return load(s, origin, atof(argv[i + 1]), atof(argv[i + 2]), atof(argv[i + 3]));
     bool entity = !strcmp(what, "entity-state");
     if (!entity && strcmp(what, "detonation") != 0) {
-        fprintf(stderr, "dis_send: detonation, entity-state, storm N or ecef\n");
+        fprintf(stderr, "dis_send: detonation, entity-state, storm N, load S ES DET or ecef\n");
         return 2;
     }
     for (int n = 0; n < count; n++)

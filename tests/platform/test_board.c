@@ -95,6 +95,19 @@ CHECK_TEST(errors_name_file_line_and_key)
     CHECK(b.gpio_count == 0 && !b.drm_device[0], "a failed load leaves the defaults");
 }
 
+CHECK_TEST(channel_group)
+{
+    struct board_profile b;
+    const char *err = load_text("channel = { frustum = [-30.0, -10.0, -15.0, 15.0]; view_offset = [5.0, 0.0, -1.0]; };\n", &b);
+    CHECK(!err[0], "%s", err);
+    CHECK(b.channel.have_frustum && b.channel.frustum[0] == -30.0f && b.channel.frustum[1] == -10.0f);
+    CHECK(b.channel.have_offset && b.channel.offset[0] == 5.0f && b.channel.offset[2] == -1.0f);
+    err = load_text("channel = { frustum = [10.0, -10.0, -15.0, 15.0]; };\n", &b);
+    CHECK(strstr(err, ":1: 'frustum' [left, right, bottom, top]: LEFT must be less than RIGHT") != NULL, "%s", err);
+    err = load_text("channel = { fov = 40.0; };\n", &b);
+    CHECK(strstr(err, "unknown key 'fov' in channel") != NULL, "%s", err);
+}
+
 CHECK_TEST(missing_file)
 {
     struct board_profile b;

@@ -6,11 +6,11 @@
 
 #include "check.h"
 #include "gpio/effect_at.h"
-#include "net/dis_effects.h"
-#include "net/dis_events.h"
-#include "net/dis_pdu.h"
-#include "net/dis_receiver.h"
-#include "net/geodesy.h"
+#include "net/common/geodesy.h"
+#include "net/dis/dis_effects.h"
+#include "net/dis/dis_events.h"
+#include "net/dis/dis_pdu.h"
+#include "net/dis/dis_receiver.h"
 #include "player/inputs/trigger_queue.h"
 
 /* ---- a Detonation PDU, big-endian by offset (IEEE 1278.1; dis_pdu.h's table) ---- */
@@ -255,7 +255,7 @@ CHECK_TEST(receiver_counts_filters_and_places)
     static struct dis_settings s;
     struct dis_receiver *r = receiver(&s);
     struct caught c = {0};
-    const struct dis_sink sink = {catch_fire, NULL, &c};
+    const struct dis_sink sink = {catch_fire, NULL, &c, NULL, NULL, NULL};
     struct geo_frame f;
     geo_frame_init(&f, s.origin[0], s.origin[1], s.origin[2]);
     double near[3], far[3];
@@ -322,7 +322,7 @@ CHECK_TEST(queue_limits_and_log)
     CHECK(n == 16 && log[0].at[0] == 5.0f && log[0].time == 2.5 && log[0].kind == TRIGGER_DIS, "%d", n);
     CHECK(log[14].kind == TRIGGER_TIMELINE && log[15].kind == TRIGGER_CLI && strcmp(log[15].effect, "dust") == 0);
     CHECK(q.fired[TRIGGER_GPIO] == 10 && q.fired[TRIGGER_DIS] == 9);
-    const char *names[] = {"gpio", "dis", "mqtt", "timeline", "cli"};
+    const char *names[] = {"gpio", "dis", "mqtt", "timeline", "cli", "cigi"};
     for (int i = 0; i < TRIGGER_KIND_COUNT; i++) CHECK(strcmp(trigger_kind_name((enum trigger_kind)i), names[i]) == 0);
 }
 

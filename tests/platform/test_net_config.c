@@ -1,13 +1,13 @@
 /* Where network triggers are configured: --dis, --dis-exercise, --mqtt, --mqtt-topic
  * (player/options/args.c), the board profile's mqtt and dis groups (options/board.c), the scene's dis group
- * (net/dis_config.c). Every error names the flag, or the file, the line and the key. */
+ * (net/dis/dis_config.c). Every error names the flag, or the file, the line and the key. */
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "check.h"
-#include "net/dis_config.h"
+#include "net/dis/dis_config.h"
 #include "player/options/board.h"
 #include "player/options/options.h"
 

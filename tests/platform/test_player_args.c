@@ -116,6 +116,30 @@ CHECK_TEST(watch_and_loop_flags)
         CHECK(strstr(err, "--loop: expected a period in seconds from 0.1 to 1e6") != NULL, "%s", err);
     }
 }
+/* One world, many channels: --trigger's #ID, --world-time, the channel's frustum and offset. */
+CHECK_TEST(channel_flags)
+{
+    struct player_options opt;
+    char err[512];
+    struct player_trigger t;
+    CHECK(player_parse_trigger("explosion@1.5:2,0,-1#17", &t, err, sizeof(err)) == 0, "%s", err);
+    CHECK(t.id == 17 && t.seconds == 1.5 && t.position[0] == 2.0f && t.position[2] == -1.0f);
+    CHECK(player_parse_trigger("explosion@1#9223372036854775807", &t, err, sizeof(err)) == 0 &&
+          t.id == UINT64_C(9223372036854775807) && t.position[0] == 0.0f, "%s", err);
+    CHECK(player_parse_trigger("explosion@1", &t, err, sizeof(err)) == 0 && t.id == 0, "no #ID: the order");
+    CHECK(player_parse_trigger("explosion@1#0", &t, err, sizeof(err)) == -EINVAL);
+    CHECK(player_parse_trigger("explosion@1#", &t, err, sizeof(err)) == -EINVAL);
+    CHECK(player_parse_trigger("explosion@1#-3", &t, err, sizeof(err)) == -EINVAL);
+    CHECK(parse(&opt, err, sizeof(err), "--world-time", "2.5", "--frustum=-30,-10,-15,15", NULL) == 0, "%s", err);
+    CHECK(opt.world_time_set && opt.world_time == 2.5 && opt.channel.have_frustum && opt.channel.frustum[1] == -10.0f);
+    CHECK(parse(&opt, err, sizeof(err), "--view-offset", "-40,2.5,0", "--world-clock", "system") == 0, "%s", err);
+    CHECK(opt.channel.have_offset && opt.channel.offset[0] == -40.0f && opt.channel.offset[1] == 2.5f &&
+          opt.world_clock == PLAYER_CLOCK_SYSTEM && !opt.channel.have_frustum);
+    CHECK(parse(&opt, err, sizeof(err), "--frustum=-30,30,15,-15", NULL, NULL, NULL) == -EINVAL &&
+          strstr(err, "BOTTOM must be less than TOP"), "%s", err);
+    CHECK(parse(&opt, err, sizeof(err), "--frustum=-30,30,-15,15,1", NULL, NULL, NULL) == -EINVAL);
+    CHECK(parse(&opt, err, sizeof(err), "--view-offset", "400,0,0", NULL, NULL) == -EINVAL);
+}
 
 int main(int argc, char **argv)
 {

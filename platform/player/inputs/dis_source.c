@@ -3,11 +3,13 @@
 #include "player/inputs/dis_source.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 #include "gpio/effect_names.h"
-#include "net/dis_config.h"
+#include "net/dis/dis_config.h"
 
 static int check_effect(const struct dis_source *d, const sbfx *fx, const char *effect, const char *where, char *err,
                         size_t n)
@@ -64,6 +66,13 @@ static void say_listening(const struct dis_source *d, bool quiet)
     d->log(msg, d->log_user);
 }
 
+static double world_clock_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec / 1e9;
+}
+
 /* ---- the trigger-source contract ---- */
 
 static int dis_pollfds(const struct trigger_source *s, struct pollfd *fds, int max)
@@ -79,12 +88,94 @@ struct sink_context {
     struct dis_source *source;
     struct trigger_queue *queue;
     int64_t now_ns;
+    double world_now;           /* the system clock (world time), when timestamps are used */
 };
 
 static void sink_fire(const char *effect, const float position[3], void *user)
 {
     struct sink_context *c = user;
     trigger_queue_push(c->queue, TRIGGER_DIS, effect, position, c->now_ns);
+}
+
+/* A DIS timestamp's seconds past the hour (IEEE 1278.1: 2^31 units an hour in its upper 31 bits;
+ * bit 0 set: absolute, the sender's clock) put in the hour nearest the world clock's `now`. */
+double dis_timestamp_world(uint32_t timestamp, double now)
+{
+    double past_hour = (double)(timestamp >> 1) * 3600.0 / 2147483648.0;
+    double hour = floor(now / 3600.0) * 3600.0, t = hour + past_hour;
+    if (t - now > 1800.0) t -= 3600.0;
+    else if (now - t > 1800.0) t += 3600.0;
+    return t;
+}
+
+/* Identified by the event ID (site, application, event number) under DIS's tag, 2^61; started at
+ * the PDU's absolute timestamp where the world clock is the system's, else when it fires. */
+static void sink_fire_event(const char *effect, const float position[3], const struct dis_entity_id *event,
+                            uint32_t timestamp, void *user)
+{
+    struct sink_context *c = user;
+    uint64_t identity = (UINT64_C(1) << 61) | (uint64_t)event->site << 32 | (uint64_t)event->application << 16 |
+                        event->entity;
+    double start = NAN;
+    if (c->source->world_timestamps && (timestamp & 1)) start = dis_timestamp_world(timestamp, c->world_now);
+    trigger_queue_push_identified(c->queue, TRIGGER_DIS, effect, position, identity, start, c->now_ns);
+}
+
+static void sink_heard(uint32_t timestamp, void *user)
+{
+    struct sink_context *c = user;
+    if (!(timestamp & 1)) return; /* relative: the sender's own count, no world time */
+    struct dis_source *d = c->source;
+    d->have_time = true;
+    d->last_timestamp = timestamp;
+    d->last_timestamp_ns = c->now_ns;
+    d->last_timestamp_system = c->world_now;
+}
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+void dis_orientation_local(const struct geo_frame *f, const float euler[3], float out[3])
+{
+    double cp = cos(euler[0]), sp = sin(euler[0]), ct = cos(euler[1]), st = sin(euler[1]);
+    double cr = cos(euler[2]), sr = sin(euler[2]);
+    /* the body's x (forward), y (right) and z (down) axes in ECEF: R = Rz(psi) Ry(theta) Rx(phi) */
+    const double forward[3] = {ct * cp, ct * sp, -st};
+    const double right[3] = {-cr * sp + sr * st * cp, cr * cp + sr * st * sp, sr * ct};
+    const double down[3] = {sr * sp + cr * st * cp, -sr * cp + cr * st * sp, cr * ct};
+    const double deg = 180.0 / M_PI;
+    out[0] = (float)(atan2(dot3(forward, f->east), dot3(forward, f->north)) * deg);
+    double up = dot3(forward, f->up);
+    out[1] = (float)(asin(up > 1.0 ? 1.0 : up < -1.0 ? -1.0 : up) * deg);
+    out[2] = (float)(atan2(-dot3(right, f->up), -dot3(down, f->up)) * deg);
+}
+
+static void sink_entity(const struct dis_entity_state *es, void *user)
+{
+    struct dis_source *d = ((struct sink_context *)user)->source;
+    const struct dis_entity_id *id = &es->id, *want = &d->follow_id;
+    if (!d->follow || id->site != want->site || id->application != want->application || id->entity != want->entity)
+        return;
+    double scene[3];
+    geo_frame_scene(&d->frame, es->location, scene);
+    for (int k = 0; k < 3; k++) d->pose_position[k] = (float)scene[k];
+    dis_orientation_local(&d->frame, es->orientation, d->pose_angles);
+    if (!d->have_pose) {
+        char msg[256];
+        snprintf(msg, sizeof(msg), "dis: following %u:%u:%u at %.3f, %.3f, %.3f (heading %.3f, pitch %.3f, roll %.3f)",
+                 id->site, id->application, id->entity, d->pose_position[0], d->pose_position[1], d->pose_position[2],
+                 d->pose_angles[0], d->pose_angles[1], d->pose_angles[2]);
+        d->log(msg, d->log_user);
+    }
+    d->have_pose = true;
+    d->poses++;
+}
+
+bool dis_source_time(const struct dis_source *d, int64_t now_ns, double *seconds)
+{
+    if (!d->receiver || !d->have_time) return false;
+    *seconds = dis_timestamp_world(d->last_timestamp, d->last_timestamp_system) +
+               (double)(now_ns - d->last_timestamp_ns) / 1e9;
+    return true;
 }
 
 static void sink_log(const char *message, void *user)
@@ -97,8 +188,8 @@ static void dis_service(struct trigger_source *s, struct trigger_queue *q, const
 {
     (void)fx; /* the dis group's effects were checked when it was read */
     struct dis_source *d = (struct dis_source *)s;
-    struct sink_context context = {d, q, now_ns};
-    const struct dis_sink sink = {sink_fire, sink_log, &context};
+    struct sink_context context = {d, q, now_ns, world_clock_now()};
+    const struct dis_sink sink = {sink_fire, sink_log, &context, sink_fire_event, sink_heard, sink_entity};
     int rc = dis_receiver_service(d->receiver, now_ns, &sink);
     if (rc < 0 && d->read_errors++ == 0) {
         char msg[160];
@@ -162,8 +253,17 @@ int dis_source_open(struct dis_source *d, struct trigger_sources *all, const str
     d->log_user = user;
     d->scene_path = opt->scene_path;
     d->exercise_flag = opt->dis_exercise;
+    d->world_timestamps = opt->world_clock == PLAYER_CLOCK_SYSTEM || opt->world_clock == PLAYER_CLOCK_DIS;
+    if (opt->world_clock == PLAYER_CLOCK_DIS && !opt->dis && !b->dis_listen[0]) {
+        snprintf(err, n, "--world-clock dis needs --dis [ADDR:]PORT (or a board profile's dis.listen)");
+        return -EINVAL;
+    }
     const char *listen = opt->dis ? opt->dis : b->dis_listen[0] ? b->dis_listen : NULL;
     if (!listen) {
+        if (opt->follow_set) {
+            snprintf(err, n, "--follow needs --dis [ADDR:]PORT (or a board profile's dis.listen)");
+            return -EINVAL;
+        }
         if (!opt->dis_exercise) return 0;
         snprintf(err, n, "--dis-exercise needs --dis [ADDR:]PORT (or a board profile's dis.listen)");
         return -EINVAL;
@@ -175,6 +275,9 @@ int dis_source_open(struct dis_source *d, struct trigger_sources *all, const str
     }
     int rc = settle(d, listen, opt, b, fx, err, n);
     if (rc == 0) rc = dis_receiver_open(&d->receiver, &d->settings, err, n);
+    if (rc == 0) geo_frame_init(&d->frame, d->settings.origin[0], d->settings.origin[1], d->settings.origin[2]);
+    d->follow = opt->follow_set;
+    d->follow_id = (struct dis_entity_id){opt->follow[0], opt->follow[1], opt->follow[2]};
     if (rc) return rc;
     say_listening(d, opt->quiet);
     rc = trigger_sources_add(all, &d->source, err, n);

@@ -8,7 +8,7 @@
 
 #include "gpio/effect_at.h"
 #include "gpio/effect_names.h"
-#include "net/net_address.h"
+#include "net/common/net_address.h"
 
 /* The 1st, 10th, 100th... of a kind of trouble is worth a line. */
 static bool worth_saying(uint64_t count)

@@ -1,5 +1,5 @@
 /* MQTT messages as a trigger source (inputs.h; docs/triggers.md): --mqtt HOST[:PORT] (or the
- * board's mqtt.host) starts a client (platform/net/mqtt_client.h does the protocol, on a thread
+ * board's mqtt.host) starts a client (platform/net/mqtt/mqtt_client.h does the protocol, on a thread
  * of its own; this is the player's side of it) that subscribes to --mqtt-topic (the board's
  * mqtt.topic, sbfx/trigger). Each payload, EFFECT or EFFECT@X,Y,Z (--gpio's syntax,
  * gpio/effect_at.h), of an effect the module has, goes to the trigger queue, rate limited per
@@ -9,7 +9,7 @@
 #ifndef SBFX_PLAYER_MQTT_SOURCE_H
 #define SBFX_PLAYER_MQTT_SOURCE_H
 
-#include "net/mqtt_client.h"
+#include "net/mqtt/mqtt_client.h"
 #include "player/inputs/inputs.h"
 #include "player/options/board.h"
 #include "player/options/options.h"

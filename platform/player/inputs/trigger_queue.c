@@ -1,6 +1,7 @@
 /* The one trigger path (trigger_queue.h). */
 #include "player/inputs/trigger_queue.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -29,6 +30,12 @@ static bool rate_allows(struct trigger_queue *q, enum trigger_kind kind, const c
 bool trigger_queue_push(struct trigger_queue *q, enum trigger_kind kind, const char *effect, const float position[3],
                         int64_t now_ns)
 {
+    return trigger_queue_push_identified(q, kind, effect, position, 0, NAN, now_ns);
+}
+
+bool trigger_queue_push_identified(struct trigger_queue *q, enum trigger_kind kind, const char *effect,
+                                   const float position[3], uint64_t identity, double start, int64_t now_ns)
+{
     if (q->count == TRIGGER_QUEUE_MAX) {
         q->full[kind]++;
         return false;
@@ -41,7 +48,38 @@ bool trigger_queue_push(struct trigger_queue *q, enum trigger_kind kind, const c
     r->kind = kind;
     snprintf(r->effect, sizeof(r->effect), "%s", effect);
     memcpy(r->position, position, sizeof(r->position));
+    r->identity = identity;
+    r->start = start;
     return true;
+}
+
+bool trigger_queue_push_stop(struct trigger_queue *q, enum trigger_kind kind, uint64_t identity, int64_t now_ns)
+{
+    (void)now_ns; /* a stop is never rate limited */
+    if (q->count == TRIGGER_QUEUE_MAX) {
+        q->full[kind]++;
+        return false;
+    }
+    q->pending[q->count++] = (struct trigger_request){.kind = kind, .identity = identity, .stop = true};
+    return true;
+}
+
+static sbfx_result start_one(struct trigger_queue *q, sbfx *fx, const struct trigger_request *r)
+{
+    if (r->stop) {
+        if (sbfx_stop_identified(fx, r->identity) > 0) q->stopped[r->kind]++;
+        return SBFX_OK;
+    }
+    if (!r->identity) return sbfx_trigger(fx, r->effect, r->position);
+    sbfx_trigger_desc d = {.version = SBFX_TRIGGER_DESC_VERSION, .effect = r->effect, .identity = r->identity,
+                           .start_time = isnan(r->start) ? sbfx_time(fx) : r->start};
+    memcpy(d.position, r->position, sizeof(d.position));
+    sbfx_counters before, after;
+    sbfx_stats(fx, &before);
+    sbfx_result result = sbfx_trigger_identified(fx, &d);
+    sbfx_stats(fx, &after);
+    if (after.triggers_expired > before.triggers_expired) q->expired[r->kind]++;
+    return result;
 }
 
 int trigger_queue_fire(struct trigger_queue *q, sbfx *fx)
@@ -50,7 +88,7 @@ int trigger_queue_fire(struct trigger_queue *q, sbfx *fx)
     for (int i = 0; i < q->count; i++) {
         const struct trigger_request *r = &q->pending[i];
         q->firing = r->kind; /* the listener logs the call under this kind */
-        if (sbfx_trigger(fx, r->effect, r->position) == SBFX_OK) started++;
+        if (start_one(q, fx, r) == SBFX_OK) started += !r->stop;
         else q->pool_full[r->kind]++;
     }
     q->count = 0;
@@ -99,7 +137,7 @@ const char *trigger_kind_name(enum trigger_kind kind)
 {
     static const char *const names[TRIGGER_KIND_COUNT] = {
         [TRIGGER_GPIO] = "gpio", [TRIGGER_DIS] = "dis", [TRIGGER_MQTT] = "mqtt",
-        [TRIGGER_TIMELINE] = "timeline", [TRIGGER_CLI] = "cli",
+        [TRIGGER_TIMELINE] = "timeline", [TRIGGER_CLI] = "cli", [TRIGGER_CIGI] = "cigi",
     };
     return (unsigned)kind < TRIGGER_KIND_COUNT ? names[kind] : "?";
 }

@@ -17,7 +17,7 @@
  * Limits per kind: GPIO lines are debounced and rate limited per line before they get here
  * (gpio/gpio_triggers.h); MQTT is rate limited here per effect (trigger_queue_limit: the board's
  * mqtt.min_interval_ms, as a GPIO line's); DIS has no rate limit (a salvo is many detonations at
- * once), only its repeat filter (net/dis_events.h); every kind shares the queue's
+ * once), only its repeat filter (net/dis/dis_events.h); every kind shares the queue's
  * TRIGGER_QUEUE_MAX per frame and the particle pool. Nothing here allocates. */
 #ifndef SBFX_PLAYER_TRIGGER_QUEUE_H
 #define SBFX_PLAYER_TRIGGER_QUEUE_H
@@ -34,12 +34,16 @@
 #define TRIGGER_EFFECT_MAX 64
 
 /* Where a trigger came from: the log's "source" (trigger_kind_name). */
-enum trigger_kind { TRIGGER_GPIO, TRIGGER_DIS, TRIGGER_MQTT, TRIGGER_TIMELINE, TRIGGER_CLI, TRIGGER_KIND_COUNT };
+enum trigger_kind { TRIGGER_GPIO, TRIGGER_DIS, TRIGGER_MQTT, TRIGGER_TIMELINE, TRIGGER_CLI, TRIGGER_CIGI,
+                    TRIGGER_KIND_COUNT };
 
 struct trigger_request {
     enum trigger_kind kind;
     char effect[TRIGGER_EFFECT_MAX];
     float position[3];
+    uint64_t identity;          /* 0: a plain trigger (sbfx_trigger); else sbfx_trigger_identified */
+    double start;               /* its start on the module's clock; NAN: the clock when it fires */
+    bool stop;                  /* end the identified instance instead (sbfx_stop_identified) */
 };
 
 struct trigger_log_entry {
@@ -68,6 +72,8 @@ struct trigger_queue {
     uint64_t full[TRIGGER_KIND_COUNT];          /* refused: the frame's queue was full */
     uint64_t limited[TRIGGER_KIND_COUNT];       /* refused: within the rate limit */
     uint64_t pool_full[TRIGGER_KIND_COUNT];     /* refused by the module (the particle pool) */
+    uint64_t expired[TRIGGER_KIND_COUNT];       /* identified, over before they were heard */
+    uint64_t stopped[TRIGGER_KIND_COUNT];       /* identified instances ended (particles there were) */
 };
 
 /* An empty queue, no rate limit. */
@@ -78,7 +84,13 @@ void trigger_queue_limit(struct trigger_queue *q, enum trigger_kind kind, int mi
  * (now_ns: the monotonic clock at the trigger's arrival). */
 bool trigger_queue_push(struct trigger_queue *q, enum trigger_kind kind, const char *effect, const float position[3],
                         int64_t now_ns);
-/* Starts every queued trigger (sbfx_trigger); returns how many started. */
+/* The same for an identified instance (sbfx_trigger_identified): identity 1..2^63-1, start on
+ * the module's clock (NAN: the clock when it fires). */
+bool trigger_queue_push_identified(struct trigger_queue *q, enum trigger_kind kind, const char *effect,
+                                   const float position[3], uint64_t identity, double start, int64_t now_ns);
+/* Ends an identified instance at the next frame (CIGI's Destroyed), in the queue's order. */
+bool trigger_queue_push_stop(struct trigger_queue *q, enum trigger_kind kind, uint64_t identity, int64_t now_ns);
+/* Starts every queued trigger (sbfx_trigger, or sbfx_trigger_identified); returns how many started. */
 int trigger_queue_fire(struct trigger_queue *q, sbfx *fx);
 /* The listener to give sbfx_set_trigger_listener, with the queue as user. */
 void trigger_queue_listen(const char *effect, const float position[3], double time, sbfx_trigger_origin origin,
@@ -87,7 +99,7 @@ void trigger_queue_listen(const char *effect, const float position[3], double ti
 int trigger_queue_log(const struct trigger_queue *q, struct trigger_log_entry out[TRIGGER_LOG_MAX]);
 /* Triggers the queue refused (full or rate limited), every kind. */
 uint64_t trigger_queue_refused(const struct trigger_queue *q);
-/* "gpio", "dis", "mqtt", "timeline", "cli": the log's source names (a contract: trigger_log). */
+/* "gpio", "dis", "mqtt", "timeline", "cli", "cigi": the log's source names (a contract: trigger_log). */
 const char *trigger_kind_name(enum trigger_kind kind);
 
 #endif

@@ -3,7 +3,7 @@
 #include "player/options/options.h"
 
 #include "gpio/effect_at.h" /* EFFECT[@X,Y,Z] */
-#include "net/net_address.h" /* --dis, --mqtt */
+#include "net/common/net_address.h" /* --dis, --mqtt */
 #include "drm/drm_mode_spec.h"
 #include "player/options/board.h"
 
@@ -448,6 +448,74 @@ struct flag {
     int (*apply)(struct player_options *opt, const char *value, char *err, size_t n);
 };
 
+static int set_world_time(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    double v = 0;
+    if (!parse_number(value, NULL, &v, NULL) || !(v >= 0.0) || v > PLAYER_MAX_WORLD_TIME) {
+        snprintf(err, n, "--world-time: expected seconds from 0 to 1e10 (the first frame's world time, e.g. 2 "
+                 "or 1764300000), got '%s'", value);
+        return -EINVAL;
+    }
+    opt->world_time = v;
+    opt->world_time_set = true;
+    return 0;
+}
+
+static int set_world_clock(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    static const struct choice choices[] = {{"frames", PLAYER_CLOCK_FRAMES}, {"system", PLAYER_CLOCK_SYSTEM},
+                                            {"cigi", PLAYER_CLOCK_CIGI}, {"dis", PLAYER_CLOCK_DIS}};
+    int v = 0;
+    int rc = parse_choice("--world-clock", value, choices, ARRAY_SIZE(choices), &v, err, n);
+    if (rc == 0) opt->world_clock = (enum player_world_clock)v;
+    return rc;
+}
+
+static int set_frustum(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    const char *why = player_parse_frustum(value, &opt->channel);
+    if (why) snprintf(err, n, "--frustum: expected LEFT,RIGHT,BOTTOM,TOP in degrees from the view axis (e.g. "
+                      "-30,-10,-15,15), got '%s': %s", value, why);
+    return why ? -EINVAL : 0;
+}
+
+static int set_view_offset(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    const char *why = player_parse_view_offset(value, &opt->channel);
+    if (why) snprintf(err, n, "--view-offset: expected YAW,PITCH,ROLL in degrees (e.g. -40,0,0), got '%s': %s",
+                      value, why);
+    return why ? -EINVAL : 0;
+}
+
+static int set_follow(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    unsigned v[3];
+    char tail;
+    if (sscanf(value, "%u:%u:%u%c", &v[0], &v[1], &v[2], &tail) != 3 || v[0] > 65535 || v[1] > 65535 ||
+        v[2] > 65535 || strchr(value, '-') || strchr(value, '+') || strchr(value, ' ')) {
+        snprintf(err, n, "--follow: expected SITE:APP:ENTITY, each 0..65535 (a DIS entity ID, e.g. 1:3:101), got '%s'",
+                 value);
+        return -EINVAL;
+    }
+    for (int k = 0; k < 3; k++) opt->follow[k] = (uint16_t)v[k];
+    opt->follow_set = true;
+    return 0;
+}
+
+static int set_cigi(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    (void)err, (void)n; /* checked with the socket's address rules when it opens */
+    opt->cigi = value;
+    return 0;
+}
+
+static int set_cigi_host(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    (void)err, (void)n;
+    opt->cigi_host = value;
+    return 0;
+}
+
 static const struct flag flags[] = {
     {"--headless", NULL, set_headless},
     {"--display", "headless|drm|wayland|auto", set_display},
@@ -470,7 +538,14 @@ static const struct flag flags[] = {
     {"--out", "DIR", set_out},
     {"--contact-sheet", NULL, set_contact_sheet},
     {"--stats", "FILE", set_stats},
-    {"--trigger", "EFFECT@SECONDS[:X,Y,Z]", set_trigger},
+    {"--trigger", "EFFECT@SECONDS[:X,Y,Z][#ID]", set_trigger},
+    {"--world-time", "SECONDS (0..1e10)", set_world_time},
+    {"--world-clock", "frames|system|cigi|dis", set_world_clock},
+    {"--frustum", "LEFT,RIGHT,BOTTOM,TOP (degrees)", set_frustum},
+    {"--view-offset", "YAW,PITCH,ROLL (degrees)", set_view_offset},
+    {"--follow", "SITE:APP:ENTITY (a DIS entity)", set_follow},
+    {"--cigi", "[ADDR:]PORT (e.g. 8004 or 239.1.2.3:8004)", set_cigi},
+    {"--cigi-host", "ADDR:PORT (where Start of Frame goes)", set_cigi_host},
     {"--no-timeline", NULL, set_no_timeline},
     {"--scale", "1|2|4|8", set_scale},
     {"--opacity", "planar|soft|spherical|exact", set_opacity},
@@ -597,30 +672,55 @@ static int parse_flags(struct player_options *opt, int argc, char **argv, char *
     return 0;
 }
 
-/* ---- --trigger EFFECT@SECONDS[:X,Y,Z] --------------------------------------------------- */
+/* ---- --trigger EFFECT@SECONDS[:X,Y,Z][#ID] ----------------------------------------------- */
 
 static int trigger_error(const char *text, const char *why, char *err, size_t n)
 {
-    snprintf(err, n, "--trigger: expected EFFECT@SECONDS[:X,Y,Z] (e.g. explosion@0.5 or "
-             "explosion@1.5:2,0,-1), got '%s': %s", text, why);
+    snprintf(err, n, "--trigger: expected EFFECT@SECONDS[:X,Y,Z][#ID] (e.g. explosion@0.5, "
+             "explosion@1.5:2,0,-1 or explosion@1.5:2,0,-1#17), got '%s': %s", text, why);
     return -EINVAL;
 }
 
-int player_parse_trigger(const char *text, struct player_trigger *out, char *err, size_t n)
+/* "#ID" at the end: 1..2^63-1, decimal; the text before it goes on to be parsed in `head`. */
+static const char *trigger_id(const char *text, char *head, size_t size, uint64_t *id)
 {
+    const char *hash = strrchr(text, '#');
+    *id = 0;
+    size_t len = hash ? (size_t)(hash - text) : strlen(text);
+    if (len >= size) return "too long";
+    memcpy(head, text, len);
+    head[len] = '\0';
+    if (!hash) return NULL;
+    const char *digits = hash + 1;
+    char *end = NULL;
+    errno = 0;
+    unsigned long long v = strtoull(digits, &end, 10);
+    if (!*digits || !isdigit((unsigned char)*digits) || *end || errno || v == 0 || v > (unsigned long long)INT64_MAX)
+        return "ID must be a whole number in 1..9223372036854775807";
+    *id = v;
+    return NULL;
+}
+
+int player_parse_trigger(const char *full, struct player_trigger *out, char *err, size_t n)
+{
+    char text[256];
+    uint64_t id = 0;
+    const char *why = trigger_id(full, text, sizeof(text), &id);
+    if (why) return trigger_error(full, why, err, n);
     const char *at = strchr(text, '@');
-    if (!at) return trigger_error(text, "no '@'", err, n);
+    if (!at) return trigger_error(full, "no '@'", err, n);
     size_t name_len = (size_t)(at - text);
     if (!effect_name_valid(text, name_len))
-        return trigger_error(text, "the effect name must be 1..63 of A-Z a-z 0-9 _ - .", err, n);
+        return trigger_error(full, "the effect name must be 1..63 of A-Z a-z 0-9 _ - .", err, n);
     struct player_trigger t = {.position = {0, 0, 0}};
     memcpy(t.effect, text, name_len);
     t.effect[name_len] = '\0';
     const char *rest = NULL;
     if (!parse_number(at + 1, ":", &t.seconds, &rest) || t.seconds < 0.0 || t.seconds > 1e6)
-        return trigger_error(text, "SECONDS must be a number in 0..1e6", err, n);
+        return trigger_error(full, "SECONDS must be a number in 0..1e6", err, n);
     if (*rest == ':' && !effect_position_parse(rest + 1, t.position))
-        return trigger_error(text, "the position must be three finite numbers X,Y,Z", err, n);
+        return trigger_error(full, "the position must be three finite numbers X,Y,Z", err, n);
+    t.id = id;
     *out = t;
     return 0;
 }

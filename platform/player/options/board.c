@@ -235,10 +235,29 @@ static int read_dis(struct reader *r, const config_setting_t *g)
     return rc;
 }
 
+static int read_channel(struct reader *r, const config_setting_t *g)
+{
+    static const char *const keys[] = {"frustum", "view_offset", NULL};
+    struct player_channel *c = &r->b->channel;
+    int rc = check_keys(r, g, "channel", keys);
+    const config_setting_t *s;
+    if (!rc && (s = config_setting_get_member(g, "frustum"))) {
+        rc = get_vector(r, g, "frustum", 4, 89.0, c->frustum);
+        const char *why = rc ? NULL : player_channel_check_frustum(c->frustum);
+        if (why) rc = fail_at(r, s, "'frustum' [left, right, bottom, top]: %s", why);
+        c->have_frustum = rc == 0;
+    }
+    if (!rc && config_setting_get_member(g, "view_offset")) {
+        rc = get_vector(r, g, "view_offset", 3, 360.0, c->offset);
+        c->have_offset = rc == 0;
+    }
+    return rc;
+}
+
 static int read_root(struct reader *r, const config_setting_t *root)
 {
     static const char *const keys[] = {"board", "description", "display", "video", "gpio", "render", "mqtt", "dis",
-                                       NULL};
+                                       "channel", NULL};
     int rc = check_keys(r, root, "the profile", keys);
     if (!rc) rc = get_string(r, root, "board", r->b->name, sizeof(r->b->name));
     if (!rc) rc = get_string(r, root, "description", r->b->description, sizeof(r->b->description));
@@ -249,6 +268,7 @@ static int read_root(struct reader *r, const config_setting_t *root)
     if (!rc && (s = config_setting_get_member(root, "render"))) rc = read_render(r, s);
     if (!rc && (s = config_setting_get_member(root, "mqtt"))) rc = read_mqtt(r, s);
     if (!rc && (s = config_setting_get_member(root, "dis"))) rc = read_dis(r, s);
+    if (!rc && (s = config_setting_get_member(root, "channel"))) rc = read_channel(r, s);
     return rc;
 }
 

@@ -17,6 +17,8 @@
  *               password_file = "/etc/sbfx/mqtt-password";                     # triggers.md)
  *               ca_file = "/etc/sbfx/broker-ca.pem"; min_interval_ms = 250; };
  *   dis     = { listen = "239.1.2.3:3000"; interface = "eth1"; };              # DIS detonations
+ *   channel = { frustum = [-30.0, -10.0, -15.0, 15.0];      # this display's slice of the view:
+ *               view_offset = [0.0, 0.0, 0.0]; };           # degrees (--frustum, --view-offset)
  *
  * Every key is optional; "" means "not set". An unknown key, a value of the wrong type or out of
  * range is an error naming the file, the line and the key. */
@@ -27,8 +29,9 @@
 
 #include "drm/drm_mode_spec.h" /* enum modeset_kind, mode_spec_parse: the display keys */
 #include "gpio/gpio_triggers.h"
-#include "net/mqtt_client.h"
-#include "net/net_address.h"
+#include "net/common/net_address.h"
+#include "net/mqtt/mqtt_client.h"
+#include "player/options/options.h" /* struct player_channel */
 
 struct board_profile {
     char name[64];
@@ -50,6 +53,7 @@ struct board_profile {
     int mqtt_min_interval_ms;        /* MQTT's rate limit per effect (GPIO's default when not set) */
     char dis_listen[64];             /* "[ADDR:]PORT" (--dis's syntax), "": not set */
     char dis_interface[16];          /* the multicast group's interface, "": the kernel's choice */
+    struct player_channel channel;   /* channel.frustum, channel.view_offset */
 };
 
 void board_profile_defaults(struct board_profile *b);

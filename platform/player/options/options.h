@@ -19,11 +19,29 @@
 #define PLAYER_MAX_GPIO 32
 #define PLAYER_MAX_START_TIME 1e10 /* desc.start_time's range: about 317 years */
 
-/* --trigger EFFECT@SECONDS[:X,Y,Z] */
+/* --trigger EFFECT@SECONDS[:X,Y,Z][#ID] */
 struct player_trigger {
     char effect[PLAYER_EFFECT_NAME_MAX];
     double seconds;
     float position[3];
+    uint64_t id;              /* #ID: 1..2^63-1, the instance's identity; 0: none (the order) */
+};
+
+#define PLAYER_MAX_WORLD_TIME 1e10
+
+/* Where the world clock comes from (docs/simulators.md): none (the player's own frame count),
+ * the system clock (kept in step by PTP or NTP), CIGI's IG Control timestamps, or DIS PDUs'
+ * absolute timestamps (the seconds past the hour; the hour from the system clock). */
+enum player_world_clock { PLAYER_CLOCK_FRAMES, PLAYER_CLOCK_SYSTEM, PLAYER_CLOCK_CIGI, PLAYER_CLOCK_DIS };
+
+/* A channel: one display's slice of the eyepoint's view (--frustum, --view-offset, the board's
+ * view group, CIGI's View Definition and View Control). Degrees. */
+struct player_channel {
+    bool have_frustum;
+    float frustum[4];         /* left, right, bottom, top: angles from the view axis, left and
+                                 bottom negative */
+    bool have_offset;
+    float offset[3];          /* yaw (right +), pitch (up +), roll (right +) from the eyepoint */
 };
 
 /* --gpio CHIP:LINE=EFFECT[@X,Y,Z] (rising edges; the board or scene may say otherwise) */
@@ -83,7 +101,22 @@ struct player_options {
     int dis_exercise;         /* --dis-exercise; 0: not given */
     const char *mqtt;         /* --mqtt HOST[:PORT] */
     const char *mqtt_topic;   /* --mqtt-topic */
+    /* one world, many channels (docs/simulators.md) */
+    bool world_time_set;
+    double world_time;        /* --world-time: the first frame's world time (on the grid k / fps) */
+    enum player_world_clock world_clock; /* --world-clock frames|system|cigi|dis */
+    struct player_channel channel;       /* --frustum, --view-offset */
+    bool follow_set;
+    uint16_t follow[3];       /* --follow SITE:APP:ENTITY: a DIS entity as the eyepoint */
+    const char *cigi;         /* --cigi [ADDR:]PORT */
+    const char *cigi_host;    /* --cigi-host ADDR:PORT */
 };
+/* "L,R,B,T" degrees (-89..89, left < right, bottom < top) into c; NULL or what is wrong. */
+const char *player_parse_frustum(const char *text, struct player_channel *c);
+/* NULL when the four angles make a frustum (each within -89..89, left < right, bottom < top). */
+const char *player_channel_check_frustum(const float frustum[4]);
+/* "YAW,PITCH,ROLL" degrees (-360..360) into c; NULL or what is wrong. */
+const char *player_parse_view_offset(const char *text, struct player_channel *c);
 
 void player_options_defaults(struct player_options *opt);
 /* A display that shows frames (drm, wayland): runs until stopped, paced by it, stats line. */

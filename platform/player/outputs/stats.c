@@ -5,7 +5,7 @@
 #include <stddef.h>
 
 enum stats_group { GROUP_EVERY_RUN, GROUP_KIOSK, GROUP_PRESENTATION, GROUP_GPIO, GROUP_VIDEO, GROUP_DIS, GROUP_MQTT,
-                   GROUP_COUNT };
+                   GROUP_CIGI, GROUP_WORLD, GROUP_COUNT };
 enum stats_kind { KIND_INT, KIND_G, KIND_MS3, KIND_STRING, KIND_TRIGGER_LOG };
 
 struct stats_key {
@@ -73,6 +73,14 @@ static const struct stats_key stats_keys[] = {
     KEY(mqtt_messages, KIND_INT, GROUP_MQTT, "messages on the trigger topic"),
     KEY(mqtt_malformed, KIND_INT, GROUP_MQTT, "payloads not EFFECT[@X,Y,Z] of an effect there is"),
     KEY(mqtt_reconnects, KIND_INT, GROUP_MQTT, "connections made again after the broker went away"),
+    KEY(cigi_messages, KIND_INT, GROUP_CIGI, "CIGI messages (datagrams) read from the host"),
+    KEY(cigi_malformed, KIND_INT, GROUP_CIGI, "packets dropped: truncated, wrong size, version or magic, not a number"),
+    KEY(cigi_ignored, KIND_INT, GROUP_CIGI, "packets not used: other types, entities that are no effect, other views"),
+    KEY(cigi_entities, KIND_INT, GROUP_CIGI, "effect entities started (Entity Control went Active)"),
+    KEY(cigi_stopped, KIND_INT, GROUP_CIGI, "effect instances ended (Destroyed, Inactive, animation stopped)"),
+    KEY(cigi_start_of_frame, KIND_INT, GROUP_CIGI, "Start of Frame messages sent to the host"),
+    KEY(world_time, KIND_MS3, GROUP_WORLD, "the last frame's world time (s)"),
+    KEY(triggers_expired, KIND_INT, GROUP_WORLD, "identified triggers heard after their effect had ended"),
 };
 
 static const char *const group_titles[GROUP_COUNT] = {
@@ -83,6 +91,8 @@ static const char *const group_titles[GROUP_COUNT] = {
     [GROUP_VIDEO] = "with a camera",
     [GROUP_DIS] = "with --dis (or a board's dis.listen)",
     [GROUP_MQTT] = "with --mqtt (or a board's mqtt.host)",
+    [GROUP_CIGI] = "with --cigi",
+    [GROUP_WORLD] = "in world mode (--world-time, --world-clock)",
 };
 
 static bool group_written(const struct player_stats_record *r, enum stats_group group)
@@ -94,6 +104,8 @@ static bool group_written(const struct player_stats_record *r, enum stats_group 
     case GROUP_VIDEO: return r->kiosk_on && r->video_on;
     case GROUP_DIS: return r->dis_on;
     case GROUP_MQTT: return r->mqtt_on;
+    case GROUP_CIGI: return r->cigi_on;
+    case GROUP_WORLD: return r->world_on;
     default: return true;
     }
 }

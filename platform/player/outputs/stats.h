@@ -18,7 +18,7 @@
 /* One entry of trigger_log: an effect started (the player's trigger log, inputs/trigger_queue.h). */
 #define STATS_TRIGGER_LOG_MAX 16
 struct stats_trigger {
-    const char *source;       /* "gpio", "dis", "mqtt", "timeline" or "cli" (a static string) */
+    const char *source;       /* "gpio", "dis", "mqtt", "timeline", "cli" or "cigi" (a static string) */
     char effect[64];
     float at[3];
     double time;              /* the module's clock at the effect's first step */
@@ -42,10 +42,13 @@ struct player_stats_record {
     long long video_frames, video_distinct, video_losses, video_reopens, video_takeovers;
     long long dis_pdus, dis_detonations, dis_ignored, dis_malformed;
     long long mqtt_messages, mqtt_malformed, mqtt_reconnects;
+    long long cigi_messages, cigi_malformed, cigi_ignored, cigi_entities, cigi_stopped, cigi_start_of_frame;
+    double world_time;
+    long long triggers_expired;
     struct stats_trigger trigger_log[STATS_TRIGGER_LOG_MAX]; /* oldest first */
     int trigger_log_count;
     bool kiosk_on, gpio_on, video_on, presentation_on; /* which groups of keys the run writes */
-    bool dis_on, mqtt_on;
+    bool dis_on, mqtt_on, cigi_on, world_on;
 };
 
 /* 0, or -EIO when writing failed (errno says why). */

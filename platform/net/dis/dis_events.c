@@ -1,5 +1,5 @@
 /* The table of recent event IDs (dis_events.h). */
-#include "net/dis_events.h"
+#include "net/dis/dis_events.h"
 
 #include <string.h>
 

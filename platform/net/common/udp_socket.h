@@ -16,7 +16,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "net/net_address.h"
+#include "net/common/net_address.h"
 
 /* interface: a name ("eth1") for the multicast join, or NULL/"" for the kernel's choice. */
 int udp_open(const struct udp_endpoint *e, const char *interface, int *fd, char *err, size_t n);

@@ -21,9 +21,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "net/dis_effects.h"
-#include "net/dis_pdu.h"
-#include "net/udp_socket.h"
+#include "net/common/udp_socket.h"
+#include "net/dis/dis_effects.h"
+#include "net/dis/dis_pdu.h"
 
 #define DIS_DEFAULT_PORT 3000
 #define DIS_DEFAULT_RANGE_M 20000.0
@@ -50,11 +50,20 @@ struct dis_counts {
     uint64_t malformed_by[DIS_STATUS_COUNT];
 };
 
-/* Where detonations go: fire() takes the effect and the scene position. */
+/* Where detonations go: fire() takes the effect and the scene position; fire_event(), where set,
+ * is called instead with the detonation's event ID (its identity on every channel) and the PDU's
+ * timestamp (docs/simulators.md); heard(), where set, with every well-formed PDU's timestamp. */
 struct dis_sink {
     void (*fire)(const char *effect, const float position[3], void *user);
     void (*log)(const char *message, void *user);
     void *user;
+    void (*fire_event)(const char *effect, const float position[3], const struct dis_entity_id *event,
+                       uint32_t timestamp, void *user);
+    /* every well-formed PDU's timestamp, where set (the world clock from DIS) */
+    void (*heard)(uint32_t timestamp, void *user);
+    /* every well-formed Entity State PDU of the exercise, where set (an entity to follow); the PDU
+     * is still counted as ignored (it starts no effect) */
+    void (*entity)(const struct dis_entity_state *state, void *user);
 };
 
 struct dis_receiver;

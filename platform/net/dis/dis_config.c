@@ -1,5 +1,5 @@
 /* The scene's dis group (dis_config.h). */
-#include "net/dis_config.h"
+#include "net/dis/dis_config.h"
 
 #include <errno.h>
 #include <libconfig.h>

@@ -1,6 +1,6 @@
 /* DIS PDUs from a datagram's bytes (dis_pdu.h): big-endian fields read by offset, no struct
  * overlays (no alignment or padding assumptions), every read inside the PDU's checked length. */
-#include "net/dis_pdu.h"
+#include "net/dis/dis_pdu.h"
 
 #include <math.h>
 #include <string.h>
@@ -94,6 +94,18 @@ static void skip_padding(struct dis_cursor *c)
     size_t n = 0;
     while (c->at + n < c->len && n < BUNDLE_ALIGN - 1 && c->data[c->at + n] == 0) n++;
     c->at += n;
+}
+
+bool dis_entity_state_parse(const uint8_t *buf, size_t len, struct dis_entity_state *out)
+{
+    if (len < DIS_ENTITY_STATE_SIZE) return false;
+    out->id = (struct dis_entity_id){be16(buf + 12), be16(buf + 14), be16(buf + 16)};
+    for (int k = 0; k < 3; k++) {
+        out->location[k] = be_double(buf + 48 + 8 * k);
+        out->orientation[k] = be_float(buf + 72 + 4 * k);
+        if (!isfinite(out->location[k]) || !isfinite(out->orientation[k])) return false;
+    }
+    return true;
 }
 
 bool dis_cursor_next(struct dis_cursor *c, struct dis_pdu *out, enum dis_status *status)

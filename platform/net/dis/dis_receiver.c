@@ -1,5 +1,5 @@
 /* DIS detonations into effects (dis_receiver.h). */
-#include "net/dis_receiver.h"
+#include "net/dis/dis_receiver.h"
 
 #include <arpa/inet.h>
 #include <errno.h>
@@ -8,8 +8,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "net/dis_events.h"
-#include "net/geodesy.h"
+#include "net/common/geodesy.h"
+#include "net/dis/dis_events.h"
 
 struct dis_receiver {
     struct dis_settings settings;
@@ -175,7 +175,18 @@ static void detonation(struct dis_receiver *r, const struct dis_pdu *pdu, const 
     geo_frame_scene(&r->frame, d->location, scene); /* double until here: metres from the origin */
     const float position[3] = {(float)scene[0], (float)scene[1], (float)scene[2]};
     r->counts.detonations++;
-    if (sink->fire) sink->fire(effect, position, sink->user);
+    if (sink->fire_event) sink->fire_event(effect, position, &d->event, pdu->header.timestamp, sink->user);
+    else if (sink->fire) sink->fire(effect, position, sink->user);
+}
+
+/* The Entity State PDU the cursor just passed (its length field was trusted: it ends at c->at). */
+static void entity_state(const struct dis_receiver *r, const struct dis_cursor *c, const struct dis_pdu *pdu,
+                         const struct dis_sink *sink)
+{
+    struct dis_entity_state es;
+    if (r->settings.exercise != DIS_ANY && pdu->header.exercise != r->settings.exercise) return;
+    if (dis_entity_state_parse(c->data + c->at - pdu->header.length, pdu->header.length, &es))
+        sink->entity(&es, sink->user);
 }
 
 void dis_receiver_datagram(struct dis_receiver *r, const uint8_t *data, size_t length, bool truncated,
@@ -193,6 +204,9 @@ void dis_receiver_datagram(struct dis_receiver *r, const uint8_t *data, size_t l
     dis_cursor_init(&c, data, length);
     while (dis_cursor_next(&c, &pdu, &status)) {
         r->counts.pdus++;
+        if (!dis_status_malformed(status) && sink->heard) sink->heard(pdu.header.timestamp, sink->user);
+        if (status == DIS_OTHER && pdu.header.type == DIS_PDU_ENTITY_STATE && sink->entity)
+            entity_state(r, &c, &pdu, sink);
         if (dis_status_malformed(status)) malformed(r, status, from, sink);
         else if (status == DIS_OTHER) ignore(r, DIS_IGNORED_TYPE, NULL, from, sink);
         else detonation(r, &pdu, from, now_ns, sink);

@@ -1,7 +1,7 @@
 /* WGS-84 conversions (geodesy.h). Geodetic to ECEF is closed form; ECEF to geodetic iterates
  * Bowring's latitude with the height written so that it holds at the poles too
  * (h = p cos(lat) + z sin(lat) - a^2 / N). */
-#include "net/geodesy.h"
+#include "net/common/geodesy.h"
 
 #include <math.h>
 

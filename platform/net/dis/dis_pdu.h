@@ -84,6 +84,22 @@ struct dis_pdu {
     struct dis_detonation detonation; /* DIS_DETONATION only */
 };
 
+#define DIS_PDU_ENTITY_STATE 1
+#define DIS_ENTITY_STATE_SIZE 144    /* + 16 per articulation parameter */
+
+/* What the player follows of an Entity State PDU (type 1; IEEE 1278.1 5.3.3.1): offsets 12 entity
+ * ID, 48 location (3 x float64, ECEF m), 72 orientation (psi, theta, phi, 3 x float32, radians:
+ * Euler angles of the body axes from ECEF's, z-y-x). */
+struct dis_entity_state {
+    struct dis_entity_id id;
+    double location[3];
+    float orientation[3];
+};
+
+/* An Entity State PDU's fields above (buf: the PDU, len: its length field, a well-formed header
+ * of type 1): false when it is shorter than 144 bytes or a value is not a number. */
+bool dis_entity_state_parse(const uint8_t *buf, size_t len, struct dis_entity_state *out);
+
 /* The PDU at the start of buf (len: the bytes left in the datagram). *used: the bytes it spans
  * (its length field) when that could be trusted, else len (the rest cannot be delimited). */
 enum dis_status dis_pdu_parse(const uint8_t *buf, size_t len, struct dis_pdu *out, size_t *used);

@@ -1,6 +1,6 @@
 /* The DIS socket (udp_socket.h). */
 #define _GNU_SOURCE /* recvmmsg */
-#include "net/udp_socket.h"
+#include "net/common/udp_socket.h"
 
 #include <arpa/inet.h>
 #include <errno.h>
@@ -58,7 +58,7 @@ int udp_open(const struct udp_endpoint *e, const char *interface, int *out, char
         return fail(fd, "binding", e,
                     errno == EADDRNOTAVAIL ? " (ADDR must be an address of this machine, a broadcast address "
                                              "or a multicast group)"
-                    : errno == EACCES      ? " (ports under 1024 need privileges: DIS uses 3000)"
+                    : errno == EACCES      ? " (ports under 1024 need privileges: DIS uses 3000, CIGI 8004)"
                     : errno == EADDRINUSE  ? " (another program holds the port without SO_REUSEADDR)"
                                            : "",
                     err, n);

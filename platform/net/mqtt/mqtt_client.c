@@ -1,5 +1,5 @@
 /* The MQTT trigger client (mqtt_client.h). */
-#include "net/mqtt_client.h"
+#include "net/mqtt/mqtt_client.h"
 
 #include <errno.h>
 #include <mosquitto.h>

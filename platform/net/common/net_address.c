@@ -1,5 +1,5 @@
 /* [ADDR:]PORT and HOST[:PORT] (net_address.h). */
-#include "net/net_address.h"
+#include "net/common/net_address.h"
 
 #include <arpa/inet.h>
 #include <errno.h>

@@ -1,5 +1,5 @@
 /* The dis.effects table (dis_effects.h). */
-#include "net/dis_effects.h"
+#include "net/dis/dis_effects.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -10,7 +10,7 @@
 
 #include <stdbool.h>
 
-#include "net/dis_pdu.h"
+#include "net/dis/dis_pdu.h"
 
 #define DIS_EFFECTS_MAX 64
 #define DIS_EFFECT_NAME_MAX 64

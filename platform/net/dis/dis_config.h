@@ -20,7 +20,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "net/dis_receiver.h"
+#include "net/dis/dis_receiver.h"
 
 /* Fills s's origin, range, exercise and effects from the scene file's dis group, leaving the
  * rest of s alone; *found: whether the file has one. 0, or -EINVAL / -ENOENT with err. */

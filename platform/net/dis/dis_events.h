@@ -14,7 +14,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "net/dis_pdu.h"
+#include "net/dis/dis_pdu.h"
 
 #define DIS_EVENT_SLOTS 4096
 #define DIS_EVENT_PROBE 16
