@@ -283,9 +283,6 @@ typedef struct sbfx_counters {
                                  can change (0: it drew no particle); docs/gpus.md "Tiles" */
     int composite_pixels;     /* output pixels those tiles cover: the composite's and the depth
                                  downsample's share of the screen */
-    /* since 1.5.0 */
-    int triggers_expired;     /* identified triggers not started: every particle and flash of
-                                 theirs had ended by the module's clock (sbfx_trigger_identified) */
 } sbfx_counters;
 
 typedef struct sbfx sbfx;
@@ -351,7 +348,7 @@ SBFX_API sbfx_result sbfx_schedule(sbfx *fx, const char *effect, double seconds,
  * the frame rate, or when the module was made. A module that hears of it after it started (a
  * channel restarted late) catches up at once in fixed steps, at most the effect's longest
  * delay + life, and shows it at its age; one whose every particle and flash has already ended is
- * not started (counted in triggers_expired). Frames of different modules agree when their clocks
+ * not started (counted by sbfx_triggers_expired). Frames of different modules agree when their clocks
  * (sbfx_time) agree at the frame: give them the same desc.sim_step and start times on its grid. */
 #define SBFX_TRIGGER_DESC_VERSION 1
 typedef struct sbfx_trigger_desc {
@@ -374,6 +371,11 @@ SBFX_API sbfx_result sbfx_trigger_identified(sbfx *fx, const sbfx_trigger_desc *
  * channel's trigger never came), or a negative sbfx_result for a NULL module or identity 0.
  * Allocates nothing. */
 SBFX_API int sbfx_stop_identified(sbfx *fx, uint64_t identity);
+/* Identified triggers not started since the module was made (since 1.5.0): every particle and
+ * flash of theirs had ended by the module's clock when they came. A call of its own rather than a
+ * field of sbfx_counters: hosts built against 1.4 pass sbfx_stats a counters struct of 1.4's
+ * size, which the library must not write past (the ABI check, tests/abi.sh). 0 for NULL. */
+SBFX_API int sbfx_triggers_expired(const sbfx *fx);
 /* Where an effect instance the module started came from (sbfx_set_trigger_listener). */
 typedef enum sbfx_trigger_origin {
     SBFX_TRIGGER_CALL,     /* sbfx_trigger */

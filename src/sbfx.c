@@ -299,3 +299,8 @@ void sbfx_stats(const sbfx *fx, sbfx_counters *out)
     out->particles_alive = fx->sim->pool.alive;
     out->heap_allocs_after_load = fx->heap_allocs_after_load;
 }
+
+int sbfx_triggers_expired(const sbfx *fx)
+{
+    return fx ? fx->triggers_expired : 0;
+}

@@ -247,7 +247,7 @@ static void collect_triggers(const struct player *p, struct player_stats_record 
     }
     r->world_on = p->world.on;
     r->world_time = p->sim_time;
-    r->triggers_expired = (long long)p->last.triggers_expired;
+    r->triggers_expired = (long long)sbfx_triggers_expired(p->fx);
     r->mqtt_messages = (long long)m.messages;
     r->mqtt_malformed = (long long)(p->mqtt.bad_syntax + p->mqtt.bad_effect);
     r->mqtt_reconnects = (long long)m.reconnects;

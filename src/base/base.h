@@ -34,6 +34,7 @@ struct sbfx {
     bool loaded;                      /* sbfx_create finished: heap allocations now count */
     uint64_t heap_allocs_after_load;
     sbfx_counters counters;           /* sbfx_stats: what each room counts */
+    int triggers_expired;             /* sbfx_triggers_expired (not in sbfx_counters: its size is ABI) */
     struct sbfx_scene_state *scene;   /* scene/plan.h: the scene as the module keeps it, the plan */
     struct sbfx_tables *tables;       /* tables/scene_tables.h: the loaded scene's tables */
     struct sbfx_sim *sim;             /* sim/sim.h: particles, clock, timeline, the fire's light */

@@ -53,7 +53,7 @@ sbfx_result sbfx_fire_identified(sbfx *fx, int index, const float position[3], u
     const sbfx_effect *e = &fx->scene->effects[index];
     double now = sbfx_host_time(fx);
     if (now - start >= effect_span(e) + fx->scene->desc.sim_step) {
-        fx->counters.triggers_expired++; /* all over already: a channel that joined after it ended */
+        fx->triggers_expired++; /* all over already: a channel that joined after it ended */
         return SBFX_OK;
     }
     sbfx_result r = sbfx_spawn_identified(fx, e, position, identity, start);

@@ -181,8 +181,8 @@ CHECK_TEST(ended_instances_are_counted_bad_ones_refused_nothing_allocated)
     fire(fx, &old); /* started at 0.2, the module's clock is at 100: long over */
     sbfx_counters c;
     sbfx_stats(fx, &c);
-    CHECK(c.triggers_expired == 1 && c.triggers_fired == 0 && c.particles_alive == 0,
-          "expired %d fired %d alive %d", c.triggers_expired, c.triggers_fired, c.particles_alive);
+    CHECK(sbfx_triggers_expired(fx) == 1 && c.triggers_fired == 0 && c.particles_alive == 0,
+          "expired %d fired %d alive %d", sbfx_triggers_expired(fx), c.triggers_fired, c.particles_alive);
     sbfx_trigger_desc t = {.version = 2, .effect = "explosion", .identity = 1, .start_time = 100.0};
     CHECK(sbfx_trigger_identified(fx, &t) == SBFX_ERR_INVALID_ARGUMENT, "version 2 accepted");
     t.version = SBFX_TRIGGER_DESC_VERSION;

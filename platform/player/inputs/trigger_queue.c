@@ -74,11 +74,9 @@ static sbfx_result start_one(struct trigger_queue *q, sbfx *fx, const struct tri
     sbfx_trigger_desc d = {.version = SBFX_TRIGGER_DESC_VERSION, .effect = r->effect, .identity = r->identity,
                            .start_time = isnan(r->start) ? sbfx_time(fx) : r->start};
     memcpy(d.position, r->position, sizeof(d.position));
-    sbfx_counters before, after;
-    sbfx_stats(fx, &before);
+    int expired_before = sbfx_triggers_expired(fx);
     sbfx_result result = sbfx_trigger_identified(fx, &d);
-    sbfx_stats(fx, &after);
-    if (after.triggers_expired > before.triggers_expired) q->expired[r->kind]++;
+    if (sbfx_triggers_expired(fx) > expired_before) q->expired[r->kind]++;
     return result;
 }
 
