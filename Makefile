@@ -1,4 +1,4 @@
-# sbfx — build, test, demo, bench, install. `make help` prints the "#   make" lines below.
+# sbfx — build, test, demo, bench, install. `make help` prints the "#   make" entries below, whole.
 #   make [all]        library (build/libsbfx.a, .so), build/sbfx-play, build/sbfx-probe, build/sbfx-soak
 #   make help         this list of targets
 #   make demo         render the built-in explosion headless into build/demo/
@@ -28,6 +28,11 @@
 #   make uninstall    remove what make install put there (same PREFIX, DESTDIR)
 #   make BOARD=name   cross build for boards/name.mk into build/name/
 #   make cross-check  BOARD=rk3588 cross build (Debian's aarch64 toolchain), checks it links
+#   make abi-baseline dist/abi/libsbfx.so.N.abi from the built library (abidw), the ABI that tests/abi.sh
+#                     (make test) holds the library to; at a release that adds functions or moves the SONAME
+#   make deb          the Debian packages libsbfx1, libsbfx-dev, sbfx-player, gstreamer1.0-sbfx into
+#                     build/deb/ARCH/ (dpkg-buildpackage from dist/debian/, then lintian: no errors,
+#                     no warnings); make deb ARCH=arm64 cross builds them (docs/packaging.md)
 #   make test-vm      real-kernel tests in a qemu VM (vkms, vivid, gpio-sim; tests/vm/)
 #   make test-fresh   the README's quick start in a bare Debian root: DIST=bookworm (12) or trixie
 #                     (13); debootstrap, a clone of HEAD, make demo and make test (tests/fresh/run.sh), as root
@@ -37,6 +42,10 @@
 #   make test-web     the page in headless Chromium over the DevTools protocol, its frames beside
 #                     sbfx-play's on Mesa (tests/web/; make test runs its first case)
 #   make test-web-suites  the accuracy suites in headless Chromium: ANGLE over SwiftShader (docs/web.md)
+#   make test-deb     the Debian packages from a bare root (DIST as make test-fresh, as root): built there
+#                     with debian/control's build dependencies and lintian, installed with apt into a
+#                     second bare root, run (player, a pkg-config host, gst-inspect-1.0, systemd-analyze
+#                     verify) and purged; ARCH=arm64 cross builds them (tests/fresh/run.sh)
 #   make test-gpus    every scene's shaders through Mesa's Mali, V3D, Adreno, Vivante compilers
 #                     (drm-shims; builds Mesa 25 into build/mesa-shim/ once; docs/gpus.md)
 #   make gpiod2       sbfx-play again against libgpiod 2.x built from Debian 13's source (docs/gpio.md)
@@ -141,8 +150,10 @@ GL_TESTS := $(patsubst tests/gl/%.c,$(BUILD)/tests/gl/%,$(wildcard tests/gl/*.c)
 all: lib $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(BUILD)/sbfx-soak $(BUILD)/sbfx.pc
 lib: $(BUILD)/libsbfx.a $(SO_LINKS) $(BUILD)/libsbfx_ref.a
 
+# each "#   make" line and the comment lines that go on with it (indented under its text), whole
 help:
-	@sed -n 's/^#   make /make /p' $(firstword $(MAKEFILE_LIST))
+	@awk '/^#   make / { on = 1; print substr($$0, 5); next } on && /^#     / { print substr($$0, 5); next } \
+		{ on = 0 }' $(firstword $(MAKEFILE_LIST))
 
 # Every compile waits for this step (order-only: it never makes anything out of date).
 # DEPS=none skips it (a toolchain and sysroot that do not come from Debian packages).
@@ -209,7 +220,7 @@ $(BUILD)/libsbfx_ref.a: $(REF_OBJ)
 # -z defs: every symbol the library needs comes from a library it names (not under ASan, whose
 # runtime the executable brings).
 $(BUILD)/libsbfx.so.$(VERSION): $(LIB_OBJ)
-	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--gc-sections $(if $(LDSAN),,-Wl,-z,defs) $(LDSAN) \
+	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--gc-sections $(if $(LDSAN),,-Wl,-z,defs) $(LDSAN) $(LDFLAGS) \
 		-o $@ $^ $(SRC_LIBS)
 
 $(BUILD)/$(SONAME): $(BUILD)/libsbfx.so.$(VERSION)
@@ -277,7 +288,7 @@ $(BUILD)/obj/platform/gpio/gpio_backend.o: platform/gpio/gpio_gpiod1.c platform/
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -c -o $@ platform/gpio/$(GPIOD_BACKEND).c
 $(BUILD)/sbfx-play: $(PLAYER_OBJ) $(PLATFORM_COMMON_OBJ) $(BUILD)/libsbfx.a
-	$(CC) $(LDSAN) $(PLAYER_TEST_WRAP) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS) $(WAYLAND_PKG_LIBS) $(MQTT_PKG_LIBS)
+	$(CC) $(LDSAN) $(LDFLAGS) $(PLAYER_TEST_WRAP) -o $@ $^ $(PLATFORM_LIBS) $(NOTIFY_PKG_LIBS) $(CLIP_PKG_LIBS) $(WAYLAND_PKG_LIBS) $(MQTT_PKG_LIBS)
 # libmosquitto runs the MQTT client on a thread of its own (net/mqtt/mqtt_client.h); the player only
 MQTT_PKG_CFLAGS = $(call pkg_config,MQTT_PKG_CFLAGS,--cflags libmosquitto)
 MQTT_PKG_LIBS = $(call pkg_config,MQTT_PKG_LIBS,--libs libmosquitto) -pthread
@@ -295,7 +306,7 @@ $(BUILD)/obj/tools/%.o: tools/%.c | deps
 	$(CC) $(PLATFORM_CFLAGS) -Iref -c -o $@ $<
 
 $(BUILD)/sbfx-probe: $(BUILD)/obj/tools/probe/probe.o $(PLATFORM_COMMON_OBJ) $(REF_LIBS)
-	$(CC) $(LDSAN) -o $@ $^ $(PLATFORM_LIBS)
+	$(CC) $(LDSAN) $(LDFLAGS) -o $@ $^ $(PLATFORM_LIBS)
 
 # sbfx-soak: the kiosk loop for simulated hours, flatness checked (docs/kiosk-and-devices.md,
 # "Kiosk months"); a test tool, not installed. `make soak` runs it for SOAK_HOURS and plots the record
@@ -317,13 +328,23 @@ soak:
 
 # sbfx.pc: sbfx.pc.in with the install directories. build/sbfx.pc is rewritten on every run, as
 # they may differ between "make" and "make install", which writes its own.
-pc_from_template = sed -e 's|@PREFIX@|$(PREFIX)|' \
-	-e 's|@LIBDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(LIBDIR))|' \
-	-e 's|@INCLUDEDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(INCLUDEDIR))|' \
+# $(call pc_write,OUT,PREFIX,LIBDIR,INCLUDEDIR)
+pc_write = sed -e 's|@PREFIX@|$2|' \
+	-e 's|@LIBDIR@|$(patsubst $2/%,$${prefix}/%,$3)|' \
+	-e 's|@INCLUDEDIR@|$(patsubst $2/%,$${prefix}/%,$4)|' \
 	-e 's|@VERSION@|$(VERSION)|' -e 's|@REQUIRES_PRIVATE@|$(SRC_PKGS)|' sbfx.pc.in > $1
+pc_from_template = $(call pc_write,$1,$(PREFIX),$(LIBDIR),$(INCLUDEDIR))
 $(BUILD)/sbfx.pc: sbfx.pc.in FORCE
 	@mkdir -p $(@D)
 	@$(call pc_from_template,$@)
+# The same for the tree itself: sbfx-uninstalled.pc names include/ and $(BUILD)/ (pkg-config prefers
+# NAME-uninstalled.pc on its path), so the in-tree hosts take their flags as installed ones do.
+SBFX_PC_UNINSTALLED := $(BUILD)/pkgconfig/sbfx-uninstalled.pc
+SBFX_PC_PATH := $(CURDIR)/$(BUILD)/pkgconfig$(if $(PKG_CONFIG_PATH),:$(PKG_CONFIG_PATH))
+SBFX_PC_CFLAGS = $(eval SBFX_PC_CFLAGS := $$(shell PKG_CONFIG_PATH=$(SBFX_PC_PATH) $(PKG_CONFIG) --cflags sbfx))$(SBFX_PC_CFLAGS)
+$(SBFX_PC_UNINSTALLED): sbfx.pc.in Makefile
+	@mkdir -p $(@D)
+	@$(call pc_write,$@,$(CURDIR),$(CURDIR)/$(BUILD),$(CURDIR)/include)
 
 # ---- tests -------------------------------------------------------------------------------
 $(BUILD)/tests/unit/%: tests/unit/%.c $(REF_LIBS) tests/check.h
@@ -452,7 +473,7 @@ figures:
 	@tools/figures.sh $(BUILD)
 
 # The header, both libraries (the .so as libsbfx.so.VERSION with its soname and development
-# links), sbfx.pc, the two programs and sbfx-play's man page; ldconfig when it is the live
+# links), sbfx.pc, the two programs and their man pages; ldconfig when it is the live
 # system. Not the CPU reference (libsbfx_ref.a): tests only.
 install: all
 	install -d $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(INCLUDEDIR) $(DESTDIR)$(BINDIR)
@@ -464,14 +485,15 @@ install: all
 	$(call pc_from_template,$(DESTDIR)$(LIBDIR)/pkgconfig/sbfx.pc)
 	install -m 755 $(BUILD)/sbfx-play $(BUILD)/sbfx-probe $(DESTDIR)$(BINDIR)/
 	install -d $(DESTDIR)$(MANDIR)/man1
-	install -m 644 platform/player/sbfx-play.1 $(DESTDIR)$(MANDIR)/man1/
+	install -m 644 platform/player/sbfx-play.1 tools/probe/sbfx-probe.1 $(DESTDIR)$(MANDIR)/man1/
 	@if [ -z "$(DESTDIR)" ] && [ "$$(id -u)" -eq 0 ]; then ldconfig; fi
 
 uninstall:
 	rm -f $(DESTDIR)$(INCLUDEDIR)/sbfx.h $(DESTDIR)$(LIBDIR)/libsbfx.a \
 		$(DESTDIR)$(LIBDIR)/libsbfx.so.$(VERSION) $(DESTDIR)$(LIBDIR)/$(SONAME) \
 		$(DESTDIR)$(LIBDIR)/libsbfx.so $(DESTDIR)$(LIBDIR)/pkgconfig/sbfx.pc \
-		$(DESTDIR)$(BINDIR)/sbfx-play $(DESTDIR)$(BINDIR)/sbfx-probe $(DESTDIR)$(MANDIR)/man1/sbfx-play.1
+		$(DESTDIR)$(BINDIR)/sbfx-play $(DESTDIR)$(BINDIR)/sbfx-probe $(DESTDIR)$(MANDIR)/man1/sbfx-play.1 \
+		$(DESTDIR)$(MANDIR)/man1/sbfx-probe.1
 
 clean:
 	rm -rf --one-file-system build
@@ -767,8 +789,12 @@ gpiod2:
 # never need them. Their tests run headless: SDL's offscreen driver (tests/hosts/).
 SDL2_CFLAGS = $(call pkg_config,SDL2_CFLAGS,--cflags sdl2)
 SDL2_LIBS = $(call pkg_config,SDL2_LIBS,--libs sdl2)
-EXAMPLE_CFLAGS = $(BASE_CFLAGS) $(SRC_PKG_CFLAGS) -Iinclude -Isrc $(CFLAGS)
-$(BUILD)/obj/examples/sdl2/%.o: examples/sdl2/%.c examples/sdl2/sdl2_host.h | deps
+# The examples and integrations are hosts: they see only include/sbfx.h, through pkg-config as a
+# user's build does (SBFX_PC_CFLAGS: $(BUILD)/pkgconfig/sbfx-uninstalled.pc, which pkg-config takes
+# for sbfx when its folder is on PKG_CONFIG_PATH; tests/install.sh builds them again against an
+# installed copy). Only the tests that look inside the module add -Isrc.
+EXAMPLE_CFLAGS = $(BASE_CFLAGS) $(SBFX_PC_CFLAGS) $(CFLAGS)
+$(BUILD)/obj/examples/sdl2/%.o: examples/sdl2/%.c examples/sdl2/sdl2_host.h $(SBFX_PC_UNINSTALLED) | deps
 	@mkdir -p $(@D)
 	$(CC) $(EXAMPLE_CFLAGS) $(SDL2_CFLAGS) -c -o $@ $<
 $(BUILD)/examples/sbfx-sdl2: $(BUILD)/obj/examples/sdl2/main.o $(BUILD)/obj/examples/sdl2/sdl2_host.o $(BUILD)/libsbfx.a
@@ -776,14 +802,14 @@ $(BUILD)/examples/sbfx-sdl2: $(BUILD)/obj/examples/sdl2/main.o $(BUILD)/obj/exam
 	$(CC) $(LDSAN) -o $@ $^ $(SDL2_LIBS) $(SRC_LIBS)
 $(BUILD)/tests/hosts/test_sdl2: tests/hosts/test_sdl2.c $(BUILD)/obj/examples/sdl2/sdl2_host.o $(BUILD)/libsbfx.a tests/check.h
 	@mkdir -p $(@D)
-	$(CC) $(EXAMPLE_CFLAGS) $(SDL2_CFLAGS) -Iexamples/sdl2 -Itests $(LDSAN) -o $@ $< \
+	$(CC) $(EXAMPLE_CFLAGS) $(SDL2_CFLAGS) -Isrc -Iexamples/sdl2 -Itests $(LDSAN) -o $@ $< \
 		$(BUILD)/obj/examples/sdl2/sdl2_host.o $(BUILD)/libsbfx.a $(SDL2_LIBS) $(SRC_LIBS)
 .PHONY: test-hosts
 test-hosts: $(BUILD)/examples/sbfx-sdl2 $(BUILD)/tests/hosts/test_sdl2
 
 # The desktop OpenGL host (examples/desktop-gl/, docs/hosts/desktop-gl.md): a 3.3 core profile
 # context through EGL, its own GLSL 330 shaders and libOpenGL, sbfx on the same context.
-$(BUILD)/examples/sbfx-desktop-gl: examples/desktop-gl/host.c $(BUILD)/libsbfx.a | deps
+$(BUILD)/examples/sbfx-desktop-gl: examples/desktop-gl/host.c $(BUILD)/libsbfx.a $(SBFX_PC_UNINSTALLED) | deps
 	@mkdir -p $(@D)
 	$(CC) $(EXAMPLE_CFLAGS) $(LDSAN) -o $@ $< $(BUILD)/libsbfx.a $(OPENGL_LIBS) \
 		$(call pkg_config,EGL_LIBS,--libs egl) $(SRC_LIBS)
@@ -797,23 +823,23 @@ QT_PKGS := Qt6Quick Qt6Qml Qt6Gui
 QT_PKG_CFLAGS = $(call pkg_config,QT_PKG_CFLAGS,--cflags $(QT_PKGS))
 QT_PKG_LIBS = $(call pkg_config,QT_PKG_LIBS,--libs $(QT_PKGS))
 QT_LIBEXEC = $(call pkg_config,QT_LIBEXEC,--variable=libexecdir Qt6Core)
-QT_CXXFLAGS = -std=c++17 $(OPT) -Wall -Wextra -Wno-unused-parameter -fPIC -MMD -MP $(SRC_PKG_CFLAGS) -Iinclude -Isrc \
+QT_CXXFLAGS = -std=c++17 $(OPT) -Wall -Wextra -Wno-unused-parameter -fPIC -MMD -MP $(SBFX_PC_CFLAGS) \
 	-Iintegrations/qt $(QT_PKG_CFLAGS) $(CXXFLAGS)
 QT_LIBS = $(QT_PKG_LIBS) $(SRC_LIBS)
 QT_OBJ := $(addprefix $(BUILD)/obj/integrations/qt/,sbfx_item.o sbfx_render_node.o moc_sbfx_item.o)
-$(BUILD)/gen/qt/moc_%.cpp: integrations/qt/%.h | deps
+$(BUILD)/gen/qt/moc_%.cpp: integrations/qt/%.h $(SBFX_PC_UNINSTALLED) | deps
 	@mkdir -p $(@D)
 	$(QT_LIBEXEC)/moc -o $@ $<
 $(BUILD)/gen/qt/qrc_qt_quick.cpp: examples/qt-quick/qt-quick.qrc examples/qt-quick/main.qml | deps
 	@mkdir -p $(@D)
 	$(QT_LIBEXEC)/rcc --name qt_quick -o $@ $<
-$(BUILD)/obj/integrations/qt/%.o: integrations/qt/%.cpp integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h | deps
+$(BUILD)/obj/integrations/qt/%.o: integrations/qt/%.cpp integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h $(SBFX_PC_UNINSTALLED) | deps
 	@mkdir -p $(@D)
 	$(CXX) $(QT_CXXFLAGS) -c -o $@ $<
 $(BUILD)/obj/integrations/qt/moc_%.o: $(BUILD)/gen/qt/moc_%.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(QT_CXXFLAGS) -c -o $@ $<
-$(BUILD)/obj/examples/qt-quick/%.o: examples/qt-quick/%.cpp integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h | deps
+$(BUILD)/obj/examples/qt-quick/%.o: examples/qt-quick/%.cpp integrations/qt/sbfx_item.h integrations/qt/sbfx_render_node.h $(SBFX_PC_UNINSTALLED) | deps
 	@mkdir -p $(@D)
 	$(CXX) $(QT_CXXFLAGS) -c -o $@ $<
 $(BUILD)/obj/examples/qt-quick/qrc_qt_quick.o: $(BUILD)/gen/qt/qrc_qt_quick.cpp
@@ -910,6 +936,29 @@ uninstall-kiosk:
 	rm -f $(DESTDIR)$(SYSTEMDUNITDIR)/$(KIOSK_UNIT) $(DESTDIR)$(UDEVRULESDIR)/$(KIOSK_UDEV_RULE) \
 		$(DESTDIR)$(SYSUSERSDIR)/sbfx.conf
 
+# ---- Debian packages (issue 46; docs/packaging.md) ------------------------------------------
+# make deb: libsbfx1, libsbfx-dev, sbfx-player, gstreamer1.0-sbfx with dpkg-buildpackage from
+# dist/debian/ (tools/deb.sh: a copy of the tree in build/deb/ARCH/, the version the Makefile's
+# VERSION), then lintian. ARCH=arm64: the same cross built with Debian's aarch64 toolchain and
+# the arm64 build dependencies (multiarch). The packages land in build/deb/ARCH/.
+SBFX_DEB_ARCH = $(or $(ARCH),$(shell dpkg --print-architecture 2>/dev/null))
+DEB_DEPS = $(if $(filter $(SBFX_DEB_ARCH),$(shell dpkg --print-architecture 2>/dev/null)),deb,deb-$(SBFX_DEB_ARCH))
+.PHONY: deb
+deb:
+	@tools/deps.sh $(DEB_DEPS)
+	@tools/deb.sh $(SBFX_DEB_ARCH) build/deb
+
+# The ABI's baseline (tests/abi.sh, in make test, compares the built library with it): abidw's
+# XML of the release's libsbfx.so, the types limited to include/sbfx.h's, no build paths.
+# Written once per release that changes the ABI (a new function, or a new SONAME).
+ABI_BASELINE := dist/abi/libsbfx.so.$(SOVERSION).abi
+.PHONY: abi-baseline
+abi-baseline: lib
+	@mkdir -p $(dir $(ABI_BASELINE))
+	abidw --headers-dir include --drop-private-types --no-comp-dir-path --no-corpus-path --no-elf-needed \
+		--out-file $(ABI_BASELINE) $(BUILD)/libsbfx.so.$(VERSION)
+	@echo "abi-baseline: $(ABI_BASELINE) from $(BUILD)/libsbfx.so.$(VERSION) (sbfx $(VERSION))"
+
 # ---- a fresh machine (issue 36; docs/testing.md "A fresh machine") ---------------------------
 # The README's quick start, verbatim, in a bare Debian root (debootstrap minbase plus git and
 # make): the commit under test cloned, then make demo and make test as root, and make demo as a
@@ -922,6 +971,14 @@ test-fresh:
 	@DIST=$(or $(DIST),bookworm) tests/fresh/run.sh
 test-debian13:
 	@$(MAKE) --no-print-directory test-fresh DIST=trixie
+
+# The Debian packages proven from the same bare root (issue 46; tests/fresh/run.sh's scenario deb,
+# docs/packaging.md): built there from debian/control's build dependencies, installed with apt into
+# a second bare root, run, verified and purged. ARCH=arm64: cross built and checked as aarch64 code.
+.PHONY: test-deb
+test-deb:
+	@tools/deps.sh fresh
+	@DIST=$(or $(DIST),bookworm) FRESH_AS=deb DEB_ARCH=$(SBFX_DEB_ARCH) tests/fresh/run.sh
 
 # ---- the look (issue 17): the β metric (tests/look/look_metrics.c, docs/look.md) ----------
 $(BUILD)/tests/unit/test_look_metrics: tests/unit/test_look_metrics.c $(BUILD)/obj/look/look_metrics.o $(REF_LIBS) \
@@ -953,12 +1010,15 @@ GST_PKG_LIBS = $(call pkg_config,GST_PKG_LIBS,--libs $(GST_PKGS))
 GST_PLUGIN := $(BUILD)/gstreamer/libgstsbfx.so
 GST_OBJ := $(patsubst %.c,$(BUILD)/obj/%.o,$(wildcard integrations/gstreamer/*.c))
 GST_PLATFORM_OBJ := $(BUILD)/obj/platform/video/luma.o $(BUILD)/obj/platform/video/clip_detail.o
-$(BUILD)/obj/integrations/gstreamer/%.o: integrations/gstreamer/%.c | deps
+# The element is a host: include/sbfx.h through pkg-config (as the examples), and platform/'s luma
+# and clip decoding (-Iplatform), never src/'s private headers.
+GST_CFLAGS = $(BASE_CFLAGS) $(SBFX_PC_CFLAGS) $(PLATFORM_PKG_CFLAGS) -Iplatform $(CFLAGS)
+$(BUILD)/obj/integrations/gstreamer/%.o: integrations/gstreamer/%.c $(SBFX_PC_UNINSTALLED) | deps
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) $(GST_PKG_CFLAGS) -fvisibility=hidden -DSBFX_VERSION='"$(VERSION)"' -c -o $@ $<
+	$(CC) $(GST_CFLAGS) $(GST_PKG_CFLAGS) -fvisibility=hidden -DSBFX_VERSION='"$(VERSION)"' -c -o $@ $<
 $(GST_PLUGIN): $(GST_OBJ) $(GST_PLATFORM_OBJ) $(SO_LINKS) integrations/gstreamer/plugin.map
 	@mkdir -p $(@D)
-	$(CC) -shared -Wl,-z,defs -Wl,--version-script=integrations/gstreamer/plugin.map -o $@ $(GST_OBJ) \
+	$(CC) -shared -Wl,-z,defs -Wl,--version-script=integrations/gstreamer/plugin.map $(LDFLAGS) -o $@ $(GST_OBJ) \
 		$(GST_PLATFORM_OBJ) -L$(BUILD) -lsbfx $(GST_PKG_LIBS) $(CLIP_PKG_LIBS) $(call pkg_config,GLES_LIBS,--libs glesv2) -lm
 .PHONY: gstreamer
 all: gstreamer

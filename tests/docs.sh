@@ -11,6 +11,9 @@
 #                      inclusive). PATH must be built by the tests: named (it or its folder) in
 #                      the Makefile, .ci/ or a test script.
 #   docs/make-help     `make help` lists every .PHONY target a user runs.
+#   docs/make-help-whole
+#                      `make help` prints each entry whole: every comment line of the Makefile's
+#                      "#   make" entries, none stopping mid-sentence.
 #   docs/rooms/TREE    docs/hacking.md's map of TREE's rooms (src, player, net) names the rooms and
 #                      folders of TREE/rooms.txt, in its order
 #   docs/walkthrough/TITLE
@@ -203,6 +206,39 @@ check_make_help() {
     fi
 }
 check_make_help
+
+# make help says each target whole (issue 46): every "#   make" entry at the Makefile's top with
+# all the comment lines that go on with it (indented under its text), and each entry ends where
+# its sentence does: parentheses closed, not on a comma, colon or semicolon or on a word that
+# wants more (and, or, the, of...). Prints the entries that do not.
+help_entries() { # help_entries: one line per entry of make help's output on stdin, spaces collapsed
+    awk '/^make / { if (e != "") print e; e = $0; next } /^ +[^ ]/ { t = $0; sub(/^ +/, "", t); e = e " " t; next }
+        END { if (e != "") print e }' | tr -s ' '
+}
+makefile_entries() { # the same from the Makefile's comments
+    awk '/^#   make / { if (e != "") print e; e = substr($0, 5); on = 1; next }
+        on && /^#     / { t = $0; sub(/^# +/, "", t); e = e " " t; next }
+        { if (e != "") print e; e = ""; on = 0 } END { if (e != "") print e }' Makefile | tr -s ' '
+}
+cut_short() { # cut_short: the entries on stdin that stop mid-sentence, one per line
+    awk '{ o = gsub(/\(/, "("); c = gsub(/\)/, ")"); t = $0
+        if (o != c || t ~ /[,;:(]$/ || t ~ / (and|or|the|of|a|an|to|with|from|into|under|for|in|on|by|at|as|also)$/) print }'
+}
+check_make_help_whole() {
+    local help want got short
+    help=$(make --no-print-directory help 2>&1)
+    got=$(printf '%s\n' "$help" | help_entries)
+    want=$(makefile_entries)
+    short=$(printf '%s\n' "$got" | cut_short | cut -c1-60 | tr '\n' ';')
+    if [ "$got" != "$want" ]; then
+        not_ok make-help-whole "make help differs from the Makefile's entries: $(diff <(echo "$want") <(echo "$got") | grep '^[<>]' | head -n 2 | cut -c1-100 | tr '\n' ' ')"
+    elif [ -n "$short" ]; then
+        not_ok make-help-whole "entries that stop mid-sentence: $short"
+    else
+        ok "make-help-whole ($(printf '%s\n' "$got" | wc -l) entries, each whole)"
+    fi
+}
+check_make_help_whole
 
 
 # ---- docs/hacking.md against the code (issue 37) ----------------------------------------------

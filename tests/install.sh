@@ -4,6 +4,8 @@
 # tests/docs.sh checks that they show this file) built as a user does it, with pkg-config
 # against the installed copy: once against the installed libsbfx.so, once against libsbfx.a
 # with pkg-config --static. Both must run headless and see the explosion over their own scene.
+# Then the other examples and the Qt integration, each built from its own files against the
+# installed copy only (below).
 # Usage: tests/install.sh [BUILD] (default build). Prints ok/not ok lines (tests/check.h style).
 set -u
 cd "$(dirname "$0")/.." || exit 1
@@ -55,7 +57,7 @@ fi
 
 # what is installed, and nothing of the reference or of the private headers
 want="usr/include/sbfx.h usr/lib/libsbfx.a usr/lib/libsbfx.so.$VERSION usr/lib/pkgconfig/sbfx.pc
-usr/bin/sbfx-play usr/bin/sbfx-probe usr/share/man/man1/sbfx-play.1"
+usr/bin/sbfx-play usr/bin/sbfx-probe usr/share/man/man1/sbfx-play.1 usr/share/man/man1/sbfx-probe.1"
 absent=""
 for f in $want; do [ -f "$root/$f" ] || absent="$absent $f"; done
 stray=$(cd "$root" && find . \( -name '*ref*' -o -name 'internal.h' -o -name 'tables.h' \) | tr '\n' ' ')
@@ -107,5 +109,56 @@ if build_and_run static $static_libs; then
     else
         ok "static/no-libsbfx-so"
     fi
+fi
+
+# The other hosts a user builds outside the tree, each from its own files only, with the
+# installed header and library through pkg-config and nothing of src/ or include/ of this tree:
+# the SDL2 example (run with SDL's offscreen driver, 3 frames) and the desktop OpenGL host
+# (linked), where their -dev packages are, in the compiler's own C dialect as a user's cc has it
+# (and -lm, which the SDL2 example calls itself); the Qt Quick item and its example compiled
+# (-fsyntax-only: moc and the link are the in-tree build's) where Qt 6 Quick is.
+# host_build NAME PKGS -- SOURCES...: compiles and links SOURCES into $tmp/NAME.
+host_build() {
+    local name=$1 pkgs=$2
+    shift 3
+    # shellcheck disable=SC2046,SC2086
+    if $CC -Wall -Wextra -Werror -o "$tmp/$name" "$@" $(pkg_sbfx --cflags) \
+        $(pkg-config --cflags $pkgs) $(pkg_sbfx --libs) $(pkg-config --libs $pkgs) -lm >"$tmp/$name.log" 2>&1; then
+        ok "$name/builds (pkg-config --cflags --libs sbfx $pkgs)"
+    else
+        not_ok "$name/builds" "$(tail_of "$tmp/$name.log")"
+        return 1
+    fi
+}
+if pkg-config --exists sdl2 && host_build sdl2 "sdl2 glesv2" -- examples/sdl2/main.c examples/sdl2/sdl2_host.c; then
+    if SDL_VIDEODRIVER=offscreen LD_LIBRARY_PATH=$lib timeout 120 "$tmp/sdl2" --frames 3 >"$tmp/sdl2.run" 2>&1; then
+        ok "sdl2/runs (3 frames, offscreen)"
+    else
+        not_ok sdl2/runs "exit status $?: $(tail_of "$tmp/sdl2.run")"
+    fi
+elif ! pkg-config --exists sdl2; then
+    echo "skip - install/sdl2: no libsdl2-dev (tools/deps.sh test installs it)"
+fi
+if pkg-config --exists opengl egl; then
+    host_build desktop-gl "opengl egl" -- examples/desktop-gl/host.c
+else
+    echo "skip - install/desktop-gl: no libopengl-dev / libegl-dev"
+fi
+qt_pkgs="Qt6Quick Qt6Qml Qt6Gui"
+# shellcheck disable=SC2086
+if pkg-config --exists $qt_pkgs && command -v "${CXX:-c++}" >/dev/null; then
+    qt_failed=""
+    for f in integrations/qt/sbfx_render_node.cpp integrations/qt/sbfx_item.cpp examples/qt-quick/main.cpp; do
+        # shellcheck disable=SC2046,SC2086
+        "${CXX:-c++}" -std=c++17 -fsyntax-only -Wall -Wextra -Werror -Wno-unused-parameter -Iintegrations/qt \
+            $(pkg_sbfx --cflags) $(pkg-config --cflags $qt_pkgs) "$f" >>"$tmp/qt.log" 2>&1 || qt_failed="$qt_failed $f"
+    done
+    if [ -z "$qt_failed" ]; then
+        ok "qt-quick/compiles (integrations/qt, examples/qt-quick; pkg-config --cflags sbfx $qt_pkgs)"
+    else
+        not_ok qt-quick/compiles "$qt_failed: $(tail_of "$tmp/qt.log")"
+    fi
+else
+    echo "skip - install/qt-quick: no Qt 6 Quick -dev packages (tools/deps.sh test installs them)"
 fi
 exit "$failed"

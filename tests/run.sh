@@ -13,10 +13,11 @@
 #   2. the shaders through glslangValidator and their "#version 300 es" line (tests/shaders.sh),
 #      the rooms' one-way dependencies (tests/layers.sh)
 #   3. the probe's tests (tests/probe.sh), what
-#      libsbfx.so exports (tests/exports.sh), that it reads no data file and renders fire with
+#      libsbfx.so exports (tests/exports.sh), its ABI against the release's (tests/abi.sh), that
+#      it reads no data file and renders fire with
 #      colord-data hidden (tests/no_data_files.sh), the CIE table generator (tests/gen_cmf.sh), the
-#      kiosk's unit, udev rule and their exposure (tests/kiosk_unit.sh), make install and the host
-#      example (examples/bare-egl/) built against the installed copy (tests/install.sh), a short
+#      kiosk's unit, udev rule and their exposure (tests/kiosk_unit.sh), make install and the hosts
+#      (examples/, integrations/qt/) built against the installed copy (tests/install.sh), a short
 #      soak and its leak detection (tests/soak.sh; make soak runs hours), the documentation's
 #      links and examples (tests/docs.sh), sbfx-play under cage and weston (tests/wayland.sh), the
 #      authoring loop (tests/reload.sh), DIS, CIGI and MQTT (tests/dis.sh, tests/cigi.sh,
@@ -264,6 +265,8 @@ list_all() {
     [ "$asan" = cpu ] && run_cli "" "$BUILD/sbfx-play"
     run_suite "" probe tests/probe.sh "$BUILD/sbfx-probe"
     run_suite "" exports tests/exports.sh "$BUILD"
+    # the ABI against the release's (dist/abi/, libabigail; issue 46)
+    run_suite "" abi tests/abi.sh "$BUILD"
     run_suite "" no-data-files tests/no_data_files.sh "$BUILD"
     run_suite "" gen-cmf tests/gen_cmf.sh "$BUILD"
     run_suite "" kiosk-unit tests/kiosk_unit.sh "$BUILD"

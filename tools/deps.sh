@@ -1,7 +1,7 @@
 #!/bin/sh
 # Makes sure the Debian packages sbfx needs are installed.
 # As root: installs what is missing (apt-get, non-interactive). Otherwise: prints the exact
-# apt-get line and exits 1. Usage: tools/deps.sh [build|test|vm|cross-arm64|fresh|mesa-shim]
+# apt-get line and exits 1. Usage: tools/deps.sh [build|test|vm|cross-arm64|deb|deb-arm64|fresh|mesa-shim]
 set -eu
 set_of="${1:-test}"
 
@@ -64,6 +64,18 @@ cross_arm64_pkgs="$host_tools liblcms2-dev colord-data gcc-aarch64-linux-gnu lib
 web_pkgs="$build_pkgs emscripten dpkg-dev chromium imagemagick"
 # make test runs one case of the browser tests (tests/web/run.sh --quick)
 test_pkgs="$test_pkgs emscripten dpkg-dev chromium"
+# make deb (tools/deb.sh, dist/debian/control): dpkg-buildpackage's tools and lintian, and the
+# build dependencies debian/control names (the build set and systemd's .pc: systemd-dev on 13,
+# systemd on 12); make deb ARCH=arm64 the same for arm64 with the cross toolchain
+deb_tools="dpkg-dev debhelper fakeroot lintian"
+systemd_pc=systemd
+if [ -r /etc/os-release ] && grep -qx 'VERSION_CODENAME=trixie' /etc/os-release; then systemd_pc=systemd-dev; fi
+deb_pkgs="$deb_tools $build_pkgs $systemd_pc"
+# (not libgstreamer-plugins-base1.0-dev:arm64: on Debian 12 it is not Multi-Arch: same and would
+# replace the machine's amd64 one, which make needs; tools/deb.sh says how to build the element)
+deb_arm64_pkgs="$deb_tools $cross_arm64_pkgs $systemd_pc libgstreamer1.0-dev:arm64"
+# make test's ABI check (tests/abi.sh): libabigail's abidw and abidiff
+test_pkgs="$test_pkgs abigail-tools"
 
 # make test-fresh (and test-debian13): bare Debian roots made with debootstrap, checked against
 # the archive's key
@@ -78,14 +90,16 @@ case "$set_of" in
     test) want="$test_pkgs" ;;
     vm) want="$vm_pkgs" ;;
     cross-arm64) want="$cross_arm64_pkgs" ;;
+    deb) want="$deb_pkgs" ;;
+    deb-arm64) want="$deb_arm64_pkgs" ;;
     mesa-shim) want="$mesa_shim_pkgs" ;;
     web) want="$web_pkgs" ;;
-    *) echo "deps.sh: unknown package set '$set_of' (build|test|vm|cross-arm64|fresh|mesa-shim|web)" >&2; exit 2 ;;
+    *) echo "deps.sh: unknown package set '$set_of' (build|test|vm|cross-arm64|deb|deb-arm64|fresh|mesa-shim|web)" >&2; exit 2 ;;
 esac
 
 # arm64 packages need the architecture enabled first (dpkg --add-architecture arm64)
 add_arch=""
-if [ "$set_of" = cross-arm64 ] && ! dpkg --print-foreign-architectures | grep -qx arm64; then
+if { [ "$set_of" = cross-arm64 ] || [ "$set_of" = deb-arm64 ]; } && ! dpkg --print-foreign-architectures | grep -qx arm64; then
     add_arch="dpkg --add-architecture arm64 && "
 fi
 

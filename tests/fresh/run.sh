@@ -20,7 +20,11 @@
 #   starts with the machine's own downloads when DIST is the machine's release), so a second
 #   run downloads nothing again. The root is removed after a run that passes (FRESH_KEEP=1 keeps
 #   it) and kept for a look when it fails.
-# Environment: DIST, FRESH_DIR (build/fresh), FRESH_AS ("user root"), FRESH_REF (HEAD; a branch or tag).
+#   5. FRESH_AS="deb" (make test-deb) or "user root deb": the Debian packages built in a fresh
+#      copy of the bare root from debian/control's build dependencies, installed with apt into
+#      another, checked and purged there (scenario_deb below; DEB_ARCH=arm64 cross builds).
+# Environment: DIST, FRESH_DIR (build/fresh), FRESH_AS ("user root"), FRESH_REF (HEAD; a branch or tag),
+# DEB_ARCH (this machine's; arm64).
 # The whole script is one brace group: bash reads it all before running it, so editing this file
 # while a run (half an hour) goes on does not change what that run does.
 {
@@ -157,15 +161,17 @@ make_base() {
     base_stamp >"$DIR/base.stamp"
 }
 
-# new_root: a fresh copy of the bare root with the commit's bundle in /tmp, mounted.
+# new_root [PATH]: a fresh copy of the bare root ($ROOT, or PATH) with the commit's bundle in
+# /tmp, mounted.
 ROOT=$DIR/root
 new_root() {
-    rm -rf --one-file-system "$ROOT"
-    cp -a "$BASE" "$ROOT"
-    mkdir "$ROOT/.fresh-host" # where in_root's pivot_root puts the machine's tree, unmounted at once
-    git bundle create -q "$ROOT/tmp/sbfx.bundle" "$REF"
-    chmod 644 "$ROOT/tmp/sbfx.bundle"
-    mount_all "$ROOT"
+    local root=${1:-$ROOT}
+    rm -rf --one-file-system "$root"
+    cp -a "$BASE" "$root"
+    mkdir "$root/.fresh-host" # where in_root's pivot_root puts the machine's tree, unmounted at once
+    git bundle create -q "$root/tmp/sbfx.bundle" "$REF"
+    chmod 644 "$root/tmp/sbfx.bundle"
+    mount_all "$root"
 }
 
 # timed LABEL COMMAND...: runs COMMAND, says how long it took; its status is COMMAND's.
@@ -219,6 +225,87 @@ scenario_root() {
     timed "root: make test" in_root "$ROOT" sh -c 'cd ~/sbfx && make test' 2>&1 | tee "$DIR/root-test.log" || return 1
 }
 
+# The Debian packages (issue 46, make test-deb; docs/packaging.md), from the same bare root and
+# package cache: built in a fresh copy of the root with what debian/control's Build-Depends name
+# (apt-get build-dep) and nothing else, lintian there (this release's); installed with apt into a
+# second fresh copy, where tests/fresh/deb-checks.sh runs the player, a host built with
+# pkg-config, gst-inspect-1.0 and systemd-analyze verify, then purges them and looks for what is
+# left. DEB_ARCH=arm64: the same packages cross built (apt-get build-dep -a arm64, multiarch) and
+# checked as aarch64 objects in the multiarch folders (tools/deb.sh); not installed in an arm64
+# root, but the player run under qemu-user in the build root (deb_under_qemu).
+DEB_ARCH=${DEB_ARCH:-$(dpkg --print-architecture)}
+scenario_deb() {
+    local build=$DIR/deb-build install=$DIR/deb-install native version arch_opt="" add_arch="" cross=""
+    native=$(dpkg --print-architecture)
+    version=$(git show "$COMMIT:Makefile" | sed -n 's/^VERSION := //p')
+    if [ "$DEB_ARCH" != "$native" ]; then
+        # a cross build: DEB_ARCH's build dependencies through multiarch, and Debian's cross
+        # toolchain (crossbuild-essential, as sbuild installs it; build-dep brings build-essential)
+        arch_opt="-a $DEB_ARCH"
+        add_arch="dpkg --add-architecture $DEB_ARCH && "
+        cross="crossbuild-essential-$DEB_ARCH"
+    fi
+    new_root "$build"
+    timed "deb: build-dep, dpkg-buildpackage $arch_opt, lintian" in_root "$build" env DEBIAN_FRONTEND=noninteractive sh -c "
+        set -e; cd && $clone_cmd
+        mkdir -p /tmp/control/debian && cp dist/debian/control /tmp/control/debian/
+        ${add_arch}apt-get update -qq
+        apt-get build-dep -y -qq --no-install-recommends $arch_opt /tmp/control
+        apt-get install -y -qq --no-install-recommends lintian $cross
+        tools/deb.sh $DEB_ARCH build/deb" >"$DIR/deb-build.log" 2>&1 || {
+        tail -n 25 "$DIR/deb-build.log" >&3
+        return 1
+    }
+    grep '^deb ' "$DIR/deb-build.log" | sed "s/^/fresh $DIST: /" >&3
+    local debs=$build/root/sbfx/build/deb/$DEB_ARCH
+    if [ "$DEB_ARCH" != "$native" ]; then
+        deb_under_qemu
+        return
+    fi
+    new_root "$install"
+    mkdir -p "$install/tmp/debs"
+    cp "$debs"/*.deb "$install/tmp/debs/"
+    rm -f "$install"/tmp/debs/*-dbgsym_*.deb
+    git show "$COMMIT:examples/bare-egl/host.c" >"$install/tmp/host.c"
+    git show "$COMMIT:tests/fresh/deb-checks.sh" >"$install/tmp/deb-checks.sh"
+    # the packages with apt (their Depends resolved from the archive), and what the checks use:
+    # a compiler and pkg-config for the host, EGL's headers and Mesa (the GL driver a board
+    # brings), gst-inspect-1.0, systemd-analyze, /bin/kill and cage (the units' commands)
+    timed "deb: apt-get install the packages" in_root "$install" env DEBIAN_FRONTEND=noninteractive sh -c "
+        apt-get update -qq && apt-get install -y -qq --no-install-recommends /tmp/debs/*.deb \
+            gcc libc6-dev pkg-config libegl-dev libegl-mesa0 libgl1-mesa-dri gstreamer1.0-tools systemd procps cage" \
+        >"$DIR/deb-install.log" 2>&1 || {
+        tail -n 15 "$DIR/deb-install.log" >&3
+        return 1
+    }
+    timed "deb: checks" in_root "$install" sh /tmp/deb-checks.sh "$version" 2>&1 | tee "$DIR/deb-checks.log" |
+        sed "s/^/fresh $DIST: /" >&3
+    ! grep -q '^not ok' "$DIR/deb-checks.log" && grep -q '^ok - deb/purge' "$DIR/deb-checks.log"
+}
+
+# The cross built player under qemu-user in the build root, whose DEB_ARCH libraries are there as
+# the build dependencies' (with DEB_ARCH's Mesa added): --version and one headless frame of an
+# installed scene, from the unpacked sbfx-player package. DEB_QEMU=0 skips it, saying so.
+deb_under_qemu() {
+    if [ "${DEB_QEMU:-1}" = 0 ]; then
+        say "deb: DEB_QEMU=0: the $DEB_ARCH player is not run under qemu-user (its files were checked as $DEB_ARCH code above)"
+        return 0
+    fi
+    timed "deb: the $DEB_ARCH player under qemu-user" in_root "$DIR/deb-build" env DEBIAN_FRONTEND=noninteractive sh -c "
+        set -e
+        apt-get install -y -qq --no-install-recommends qemu-user-static libegl-mesa0:$DEB_ARCH libgl1-mesa-dri:$DEB_ARCH
+        rm -rf /tmp/player /tmp/qemu-frame && dpkg-deb -x /root/sbfx/build/deb/$DEB_ARCH/sbfx-player_*_$DEB_ARCH.deb /tmp/player
+        q=qemu-\$(dpkg-architecture -a$DEB_ARCH -qDEB_HOST_GNU_CPU)-static
+        \$q /tmp/player/usr/bin/sbfx-play --version
+        \$q /tmp/player/usr/bin/sbfx-play --headless --quiet --scene /tmp/player/usr/share/sbfx/scenes/explosion.cfg \
+            --size 160x90 --frames 1 --out /tmp/qemu-frame
+        test -s /tmp/qemu-frame/frame-0000.png" >"$DIR/deb-qemu.log" 2>&1 || {
+        tail -n 12 "$DIR/deb-qemu.log" >&3
+        return 1
+    }
+    say "deb: under qemu-user: $(grep -m1 '^sbfx-play ' "$DIR/deb-qemu.log"), one headless frame: $(stat -c %s "$DIR/deb-build/tmp/qemu-frame/frame-0000.png") bytes"
+}
+
 start=$SECONDS
 # one run at a time in a DIST's folder: a second would unmount the first one's roots
 mkdir -p "$DIR"
@@ -229,18 +316,20 @@ if [ "$(cat "$DIR/base.stamp" 2>/dev/null)" != "$(base_stamp)" ] || ! [ -x "$BAS
     timed "bare root" make_base
 fi
 say "bare root: $(. "$BASE/etc/os-release" && echo "$PRETTY_NAME"), $(du -sm "$BASE" | cut -f1) MB, commit $(git log -1 --format=%h "$COMMIT")"
-# One root: the plain user first (the packages are not there yet), then root.
+# One root: the plain user first (the packages are not there yet), then root; the packages'
+# scenario makes roots of its own.
 rc=0
-new_root
-for s in user root; do
+case " $SCENARIOS " in *" user "* | *" root "*) new_root ;; esac
+for s in user root deb; do
     case " $SCENARIOS " in *" $s "*) ;; *) continue ;; esac
     timed "scenario $s" "scenario_$s" || { rc=1; say "scenario $s FAILED"; break; }
 done
 unmount_all
+roots=$(for r in "$ROOT" "$DIR/deb-build" "$DIR/deb-install"; do if [ -d "$r" ]; then echo "$r"; fi; done)
 if [ $rc -eq 0 ] && [ -z "${FRESH_KEEP:-}" ]; then
-    rm -rf --one-file-system "$ROOT"
+    for r in $roots; do rm -rf --one-file-system "$r"; done
 else
-    say "the root is kept in $ROOT"
+    say "the roots are kept: $(echo $roots)"
 fi
 # and what the roots downloaded serves the machine's own apt next (CI installs the same packages)
 if [ "$host_codename" = "$DIST" ]; then
