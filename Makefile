@@ -258,7 +258,7 @@ $(BUILD)/obj/platform/display/display_wayland.o $(BUILD)/obj/platform/wayland/wa
 # Network triggers (platform/net/, docs/triggers.md, docs/cigi.md): DIS and CIGI over UDP (libc), MQTT
 # through libmosquitto
 # platform/net/ is in rooms (platform/net/rooms.txt): what the protocols share, then one folder each
-NET_SRC := $(addprefix common/,geodesy net_address udp_socket) \
+NET_SRC := $(addprefix common/,geodesy net_address udp_socket scene_group) \
 	$(addprefix dis/,dis_pdu dis_effects dis_events dis_receiver dis_config) \
 	$(addprefix cigi/,cigi_packet cigi_entities cigi_receiver cigi_config) $(addprefix mqtt/,mqtt_client)
 # sbfx-play: the player, its displays (headless, DRM/KMS, Wayland), camera, GPIO and network inputs (platform/)
