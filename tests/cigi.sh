@@ -199,6 +199,25 @@ same() {
     fi
 }
 
+# dissector_knows_3_3 FILE: whether this tshark's CIGI dissector takes FILE (a datagram that begins
+# with a CIGI 3.3 IG Control) for a version it dissects. Wireshark 3.6 (Debian 12) does, field by
+# field. Wireshark 4.4 (Debian 13) reads the packet's version byte as 3 but names the datagram
+# "Common Image Generator Interface (0)" and every packet in it Unknown, and with its preference
+# cigi.version forced to CIGI 3 reads 3.0's 16-byte IG Control: it cannot be asked for 3.3, so the
+# field-by-field comparison is skipped there, saying so, rather than failed.
+dissector_knows_3_3() {
+    local tree version
+    tree=$(od -Ax -tx1 -v "$1" | text2pcap -q -u 40000,8004 - "$1.probe.pcap" >/dev/null 2>&1 &&
+        tshark -r "$1.probe.pcap" -d "udp.port==8004,cigi" -V 2>/dev/null)
+    version=$(sed -n 's/^Common Image Generator Interface (\([0-9]*\)).*/\1/p' <<<"$tree" | head -n 1)
+    [ "$version" != 0 ] && return 0
+    if grep -q 'CIGI Version: 3$' <<<"$tree"; then
+        echo "skip - $SUITE/wireshark: $(tshark -v 2>/dev/null | head -n 1 | sed 's/[ .]*$//')'s CIGI dissector reads the version byte 3 but takes a CIGI 3.3 datagram for version 0 (every packet Unknown; forced to CIGI 3 it reads 3.0's layout): the field-by-field decoding is checked where Wireshark dissects 3.3 (Debian 12's 3.6)"
+        return 1
+    fi
+    return 0 # not even the version byte: the comparisons below fail and say what tshark read
+}
+
 wireshark() {
     if ! command -v tshark >/dev/null || ! command -v text2pcap >/dev/null; then
         echo "skip - $SUITE/wireshark: tshark is not installed (apt-get install tshark): the independent decoding is not checked"
@@ -218,6 +237,7 @@ wireshark() {
         cigi.entity_control.entity_type cigi.entity_control.roll cigi.entity_control.pitch cigi.entity_control.yaw
         cigi.entity_control.lat_xoff cigi.entity_control.lon_yoff cigi.entity_control.alt_zoff)
     local t=$'\t'
+    dissector_knows_3_3 "$w/be.bin" || return 0
     same ig-control-be "$(decode "$w/be.bin" 8004 "${ig[@]}")" "3${t}0x8000${t}4${t}1${t}1${t}3${t}100${t}166700"
     same ig-control-le "$(decode "$w/le.bin" 8004 "${ig[@]}")" "3${t}0x0080${t}0${t}1${t}0${t}3${t}101${t}168367"
     same entity-control-be "$(decode "$w/be.bin" 8004 "${ent[@]}")" \
