@@ -45,23 +45,11 @@ start() {
     return 1
 }
 
-stop() {
-    kill -TERM "$pid"
-    local rc=0
-    wait "$pid" || rc=$?
-    pid=""
-    return $rc
-}
-
 send() { "$SEND" --port "$port" --origin "$ORIGIN" "$@"; }
 json() { json_number "$out/stats.json" "$1"; }
 cigi_entries() {
     grep -o '{"source": "cigi", "effect": "[^"]*", "at": \[[^]]*\]' "$out/stats.json" |
         sed 's/{"source": "cigi", "effect": "\([^"]*\)", "at": \[\([^,]*\), \([^,]*\), \([^]]*\)\]/\1 \2 \3 \4/'
-}
-near() {
-    awk -v x="$1" -v y="$2" -v z="$3" -v a="$4" -v b="$5" -v c="$6" \
-        'BEGIN { d = sqrt((x-a)^2 + (y-b)^2 + (z-c)^2); exit !(d <= 0.01) }'
 }
 
 test_entities() {
@@ -81,7 +69,7 @@ test_entities() {
     local blast airburst
     blast=$(cigi_entries | grep '^blast ' | head -n 1) airburst=$(cigi_entries | grep '^airburst ' | head -n 1)
     # shellcheck disable=SC2086
-    if [ -n "$blast" ] && near ${blast#blast } 100 0 0 && [ -n "$airburst" ] && near ${airburst#airburst } 0 0 -100; then
+    if [ -n "$blast" ] && near3 ${blast#blast } 100 0 0 && [ -n "$airburst" ] && near3 ${airburst#airburst } 0 0 -100; then
         ok "placed-through-dis-origin (blast at ${blast#blast }, airburst at ${airburst#airburst })"
     else
         fail placed-through-dis-origin "trigger_log's cigi entries: $(cigi_entries | tr '\n' ';')"

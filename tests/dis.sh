@@ -52,15 +52,6 @@ start() {
     return 1
 }
 
-# stop: SIGTERM (the run ends after its frame and writes its stats); the exit status.
-stop() {
-    kill -TERM "$pid"
-    local rc=0
-    wait "$pid" || rc=$?
-    pid=""
-    return $rc
-}
-
 send() { "$SEND" --port "$port" --origin "$ORIGIN" "$@"; }
 
 # newest: the number of the newest frame written (-1: none).
@@ -93,12 +84,6 @@ json() { json_number "$out/stats.json" "$1"; }
 log_entries() {
     grep -o '{"source": "[a-z]*", "effect": "[^"]*", "at": \[[^]]*\], "time": [0-9.e+-]*}' "$out/stats.json" |
         sed 's/{"source": "\([a-z]*\)", "effect": "\([^"]*\)", "at": \[\([^,]*\), \([^,]*\), \([^]]*\)\], "time": \(.*\)}/\1 \2 \3 \4 \5 \6/'
-}
-
-# near X Y Z WANT_X WANT_Y WANT_Z: within 1 cm.
-near() {
-    awk -v x="$1" -v y="$2" -v z="$3" -v a="$4" -v b="$5" -v c="$6" \
-        'BEGIN { d = sqrt((x-a)^2 + (y-b)^2 + (z-c)^2); exit !(d <= 0.01) }'
 }
 
 # ---- one run: placement, mapping, filters, malformed PDUs, the next frame -----------------------
@@ -140,10 +125,10 @@ test_detonations() {
     air=$(awk '$2 == "airburst"' "$tmp/entries")
     dust=$(grep -c ' dust ' "$tmp/entries")
     # shellcheck disable=SC2086
-    if [ -n "$blast" ] && near $(echo "$blast" | awk '{print $3, $4, $5}') 100 0 0 &&
-        [ -n "$air" ] && near $(echo "$air" | awk '{print $3, $4, $5}') 0 0 -100 &&
+    if [ -n "$blast" ] && near3 $(echo "$blast" | awk '{print $3, $4, $5}') 100 0 0 &&
+        [ -n "$air" ] && near3 $(echo "$air" | awk '{print $3, $4, $5}') 0 0 -100 &&
         grep -q '^dis dust ' "$tmp/entries" &&
-        near $(awk '$2 == "dust" && $4 > 25 {print $3, $4, $5}' "$tmp/entries") 0 50 0; then
+        near3 $(awk '$2 == "dust" && $4 > 25 {print $3, $4, $5}' "$tmp/entries") 0 50 0; then
         ok "placement (100 m east, north, up: within 1 cm of (100,0,0), (0,0,-100), (0,50,0); v6 and v7)"
     else
         fail placement "trigger_log: $(tr '\n' ';' <"$tmp/entries")"

@@ -1,5 +1,6 @@
-# Sourced by tests/dis.sh and tests/mqtt.sh (with SUITE set): result lines, a temporary folder
-# cleaned up with the processes the test started ($pid, $broker), bounded waits, free ports.
+# Sourced by tests/dis.sh, cigi.sh, cigi_play.sh, load.sh and mqtt.sh (with SUITE set): result
+# lines, a temporary folder cleaned up with the processes the test started ($pid, $broker), bounded
+# waits, free ports, stopping the player, positions within 1 cm.
 
 failures=0
 tmp=$(mktemp -d)
@@ -42,3 +43,19 @@ free_port() {
 
 # json FILE KEY: a number of a --stats file.
 json_number() { grep -o "\"$2\": [0-9]*" "$1" | grep -o '[0-9]*$'; }
+
+# stop: SIGTERM to the player ($pid: the run ends after its frame and writes its stats); its exit
+# status.
+stop() {
+    kill -TERM "$pid"
+    local rc=0
+    wait "$pid" || rc=$?
+    pid=""
+    return $rc
+}
+
+# near3 X Y Z WANT_X WANT_Y WANT_Z: within 1 cm (an effect placed where its message said).
+near3() {
+    awk -v x="$1" -v y="$2" -v z="$3" -v a="$4" -v b="$5" -v c="$6" \
+        'BEGIN { d = sqrt((x-a)^2 + (y-b)^2 + (z-c)^2); exit !(d <= 0.01) }'
+}
