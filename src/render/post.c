@@ -7,6 +7,10 @@
 #include "render/render.h"
 
 enum post_uniform {
+    PU_BLOCK_COLUMNS,
+    PU_BLOCK_SIZE,
+    PU_CLASS,
+    PU_CLASSES,
     PU_COLOR,
     PU_CURRENT,
     PU_DEPTH_MODEL,
@@ -38,6 +42,7 @@ enum post_uniform {
     PU_SHUTTER,
     PU_SIZE,
     PU_SOURCE,
+    PU_TARGET,
     PU_TILE,
     PU_TILES,
     PU_TILES_SIZE,
@@ -46,6 +51,10 @@ enum post_uniform {
 };
 _Static_assert(PU_COUNT <= SBFX_POST_UNIFORMS, "SBFX_POST_UNIFORMS is too small for post.c");
 static const char *const post_uniform_names[PU_COUNT] = {
+    [PU_BLOCK_COLUMNS] = "u_block_columns",
+    [PU_BLOCK_SIZE] = "u_block_size",
+    [PU_CLASS] = "u_class",
+    [PU_CLASSES] = "u_classes",
     [PU_COLOR] = "u_color",
     [PU_CURRENT] = "u_current",
     [PU_DEPTH_MODEL] = "u_depth_model",
@@ -77,6 +86,7 @@ static const char *const post_uniform_names[PU_COUNT] = {
     [PU_SHUTTER] = "u_shutter",
     [PU_SIZE] = "u_size",
     [PU_SOURCE] = "u_source",
+    [PU_TARGET] = "u_target",
     [PU_TILE] = "u_tile",
     [PU_TILES] = "u_tiles",
     [PU_TILES_SIZE] = "u_tiles_size",
@@ -88,8 +98,9 @@ static const char *const post_uniform_names[PU_COUNT] = {
 static GLuint *post_programs(sbfx_post_gl *p, int i)
 {
     GLuint *all[SBFX_POST_PROGRAMS] = {&p->copy_program, &p->history_program, &p->velocity_program, &p->tile_program,
-                                      &p->neighbor_program, &p->blur_program, &p->dof_setup_program,
-                                      &p->dof_blur_program, &p->dof_composite_program};
+                                      &p->neighbor_program, &p->class_program, &p->blur_program,
+                                      &p->still_program, &p->dof_setup_program, &p->dof_blur_program,
+                                      &p->dof_composite_program};
     return all[i];
 }
 
@@ -115,6 +126,16 @@ static GLuint build(sbfx *fx, const char *frag, const char *defines, bool wanted
     return wanted ? sbfx_program_build(fx, "fullscreen.vert", frag, defines) : 0;
 }
 
+/* A program of the velocity blur's classified blocks (blur_tiles.vert). */
+static GLuint build_tiled(sbfx *fx, const char *frag, const char *defines, bool wanted)
+{
+    return wanted ? sbfx_program_build(fx, "blur_tiles.vert", frag, defines) : 0;
+}
+
+/* Tiles per side of the velocity blur's blocks: blocks of about 32 pixels, few enough
+ * instances (2040 at 1920x1080) that the vertex work of drawing them stays small. */
+static int block_tiles(const sbfx *fx) { return fx->scene->post.tile >= 32 ? 1 : 32 / fx->scene->post.tile; }
+
 sbfx_result sbfx_post_programs_create(sbfx *fx)
 {
     sbfx_post_gl *p = &fx->render->post;
@@ -126,12 +147,13 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     if (fx->scene->plan.distortion && !float_ok)
         sbfx_log(fx, SBFX_LOG_WARN, "heat shimmer needs a float particle target (GL_EXT_color_buffer_half_float "
                  "or GL_EXT_color_buffer_float): shimmer is off");
-    char defines[128], tile_defines[160], dof_defines[32];
+    char defines[128], tile_defines[160], class_defines[160], dof_defines[32];
     bool shimmer = fx->scene->plan.distortion && float_ok;
     snprintf(defines, sizeof(defines), "%s%s", p->encode_velocity ? "#define ENCODE_UNORM\n" : "",
              fx->scene->plan.particle_velocity && float_ok ? "#define HAS_PARTICLE_VELOCITY\n" : "");
     /* loops sized to the scene, so the compilers unroll what runs, not the largest size */
     snprintf(tile_defines, sizeof(tile_defines), "%s#define TILE %d\n", defines, fx->scene->post.tile);
+    snprintf(class_defines, sizeof(class_defines), "%s#define BLOCK %d\n", defines, block_tiles(fx));
     snprintf(dof_defines, sizeof(dof_defines), "#define DOF_SCALE %d\n", fx->scene->post.dof_scale);
     bool velocity = fx->scene->post.blur == SBFX_BLUR_VELOCITY, history = fx->scene->post.blur == SBFX_BLUR_HISTORY;
     bool dof = fx->scene->post.dof;
@@ -140,13 +162,16 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     p->velocity_program = build(fx, "velocity.frag", defines, velocity);
     p->tile_program = build(fx, "tile_max.frag", tile_defines, velocity);
     p->neighbor_program = build(fx, "neighbor_max.frag", defines, velocity);
-    p->blur_program = build(fx, "motion_blur.frag", defines, velocity);
+    p->class_program = build(fx, "tile_class.frag", class_defines, velocity);
+    p->blur_program = build_tiled(fx, "motion_blur.frag", defines, velocity);
+    p->still_program = build_tiled(fx, "copy.frag", NULL, velocity);
     p->dof_setup_program = build(fx, "dof_setup.frag", dof_defines, dof);
     p->dof_blur_program = build(fx, "dof_blur.frag", NULL, dof);
     p->dof_composite_program = build(fx, "dof_composite.frag", shimmer ? "#define HAS_SHIMMER\n" : NULL, dof);
     GLuint need[] = {p->copy_program, history ? p->history_program : 1, velocity ? p->blur_program : 1,
                      velocity ? p->velocity_program : 1, velocity ? p->tile_program : 1,
-                     velocity ? p->neighbor_program : 1, dof ? p->dof_composite_program : 1,
+                     velocity ? p->neighbor_program : 1, velocity ? p->class_program : 1,
+                     velocity ? p->still_program : 1, dof ? p->dof_composite_program : 1,
                      dof ? p->dof_setup_program : 1, dof ? p->dof_blur_program : 1};
     for (size_t i = 0; i < ARRAY_SIZE(need); i++)
         if (!need[i]) return SBFX_ERR_SHADER;
@@ -158,7 +183,7 @@ static void destroy_targets(sbfx *fx)
 {
     sbfx_post_gl *p = &fx->render->post;
     sbfx_rt *all[] = {&p->frame[0], &p->frame[1], &p->history[0], &p->history[1], &p->velocity,
-                      &p->tile_rows, &p->tiles, &p->neighbors, &p->dof[0], &p->dof[1]};
+                      &p->tile_rows, &p->tiles, &p->neighbors, &p->classes, &p->dof[0], &p->dof[1]};
     for (size_t i = 0; i < ARRAY_SIZE(all); i++) sbfx_rt_destroy(fx, all[i]);
     p->width = p->height = 0;
     p->history_valid = false;
@@ -168,8 +193,8 @@ void sbfx_post_destroy(sbfx *fx)
 {
     sbfx_post_gl *p = &fx->render->post;
     destroy_targets(fx);
-    GLuint programs[] = {p->velocity_program, p->tile_program, p->neighbor_program, p->blur_program,
-                         p->history_program, p->copy_program, p->dof_setup_program, p->dof_blur_program,
+    GLuint programs[] = {p->velocity_program, p->tile_program, p->neighbor_program, p->class_program,
+                         p->blur_program, p->still_program, p->history_program, p->copy_program, p->dof_setup_program, p->dof_blur_program,
                          p->dof_composite_program};
     for (size_t i = 0; i < ARRAY_SIZE(programs); i++) sbfx_program_delete(fx, programs[i]);
 }
@@ -194,8 +219,10 @@ sbfx_result sbfx_post_targets_ensure(sbfx *fx, int w, int h)
         for (int i = 0; i < 2; i++) ok = ok && make(fx, &p->history[i], w, h, c, NULL, GL_NEAREST);
     if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) {
         int t = fx->scene->post.tile, tw = (w + t - 1) / t, th = (h + t - 1) / t;
+        int k = block_tiles(fx), bw = (tw + k - 1) / k, bh = (th + k - 1) / k;
         ok = ok && make(fx, &p->velocity, w, h, v, NULL, GL_NEAREST) && make(fx, &p->tile_rows, tw, h, v, NULL, GL_NEAREST) &&
-             make(fx, &p->tiles, tw, th, v, NULL, GL_NEAREST) && make(fx, &p->neighbors, tw, th, v, NULL, GL_NEAREST);
+             make(fx, &p->tiles, tw, th, v, NULL, GL_NEAREST) && make(fx, &p->neighbors, tw, th, v, NULL, GL_NEAREST) &&
+             make(fx, &p->classes, bw, bh, v, NULL, GL_NEAREST);
     }
     if (fx->scene->post.dof) {
         int s = fx->scene->post.dof_scale, dw = (w + s - 1) / s, dh = (h + s - 1) / s;
@@ -230,10 +257,10 @@ static void bind_unit(const sbfx *fx, GLuint program, int uniform, int unit, GLu
 
 sbfx_gl_units sbfx_post_units(const sbfx *fx)
 {
-    /* copy: unit 0; history: 0-1; velocity blur: 0-3; depth of field: 0-6 */
+    /* copy: unit 0; history: 0-1; velocity blur: 0-4; depth of field: 0-6 */
     uint32_t units = 1u;
     if (fx->scene->post.blur == SBFX_BLUR_HISTORY) units = 3u;
-    if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) units = 15u;
+    if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) units = 31u;
     if (fx->scene->post.dof) units = 127u;
     return (sbfx_gl_units){.tex_2d = units};
 }
@@ -408,7 +435,43 @@ static void pass_tile_max(sbfx *fx, const sbfx_rt *in, const sbfx_rt *out, int d
     finish(fx);
 }
 
-/* McGuire's reconstruction: velocity, tile max (rows, then columns), neighbour max, gather. */
+/* The velocity blur's blocks of `class` (tile_class.frag) with `program`, as instances of
+ * blur_tiles.vert, which reads the classes on unit 4. */
+static void draw_blocks(sbfx *fx, GLuint program, float class, const sbfx_frame *f)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    bind_unit(fx, program, PU_CLASSES, 4, p->classes.texture[0]);
+    glUniform1f(post_loc(p, program, PU_CLASS), class);
+    glUniform1i(post_loc(p, program, PU_BLOCK_COLUMNS), p->classes.width);
+    glUniform1f(post_loc(p, program, PU_BLOCK_SIZE), (float)(block_tiles(fx) * fx->scene->post.tile));
+    glUniform2f(post_loc(p, program, PU_TARGET), (float)f->width, (float)f->height);
+    glBindVertexArray(fx->gl->fullscreen_vao);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, p->classes.width * p->classes.height);
+    fx->counters.passes++;
+    fx->counters.draw_calls++;
+}
+
+/* Which blocks the gather can change (tile_class.frag); as before the classes (the tiles'
+ * full_screen: the bench's "before", the tests' control) every block is the gather's. */
+static void classify_blocks(sbfx *fx)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    if (fx->render->tiles.full_screen) {
+        static const GLfloat moving[4] = {1.0f, 0.0f, 0.0f, 1.0f};
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, p->classes.framebuffer);
+        glClearBufferfv(GL_COLOR, 0, moving);
+        return;
+    }
+    GLuint prog = p->class_program;
+    begin(prog, p->classes.framebuffer, p->classes.width, p->classes.height);
+    bind_unit(fx, prog, PU_NEIGHBOR_MAX, 0, p->neighbors.texture[0]);
+    glUniform2i(post_loc(p, prog, PU_TILES_SIZE), p->neighbors.width, p->neighbors.height);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->scene->post.tile);
+    finish(fx);
+}
+
+/* McGuire's reconstruction: velocity, tile max (rows, then columns), neighbour max, the blocks
+ * it moves (tile_class.frag), the gather over them and a copy over the rest. */
 static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
 {
     sbfx_post_gl *p = &fx->render->post;
@@ -441,6 +504,7 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
     glUniform2i(post_loc(p, prog, PU_TILES_SIZE), p->tiles.width, p->tiles.height);
     glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
     finish(fx);
+    classify_blocks(fx);
     prog = p->blur_program;
     begin(prog, fbo, f->width, f->height);
     bind_unit(fx, prog, PU_COLOR, 0, source);
@@ -452,7 +516,11 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
     glUniform1i(post_loc(p, prog, PU_SAMPLES), post->samples);
     glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
     set_depth_uniforms(p, prog, pf);
-    finish(fx);
+    draw_blocks(fx, prog, 1.0f, f);
+    prog = p->still_program;
+    begin(prog, fbo, f->width, f->height);
+    bind_unit(fx, prog, PU_SOURCE, 0, source);
+    draw_blocks(fx, prog, 0.0f, f);
 }
 
 /* Runs the post chain on `source` (the composite's image, or the bare scene on an idle frame)

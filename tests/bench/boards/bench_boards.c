@@ -64,6 +64,29 @@ static void log_line(sbfx_log_level level, const char *message, void *user)
     else fprintf(stderr, "bench_boards: sbfx: %s\n", message);
 }
 
+/* The frame before, as at 60 Hz: the camera 1/60 s earlier and the particles where they were
+ * then, so that every counted rendering (both modes render the same instant) sees the motion a
+ * 60 Hz player shows, not the step between the bench's frames nor none (the second rendering of
+ * an instant after the first). The velocity blur's classification of tiles (post.c) depends on it. */
+static void previous_frame_at_60hz(sbfx *fx, const sbfx_scene_camera *camera, double t, float aspect)
+{
+    float view[16], projection[16];
+    if (camera) test_scene_camera(camera, t - SIM_STEP, aspect, view, projection);
+    else test_scene_orbit_camera(t - SIM_STEP, aspect, view, projection);
+    memcpy(fx->sim->previous_view, view, sizeof(view));
+    fx->sim->previous_render_time = fx->sim->time - SIM_STEP;
+    fx->sim->have_previous_view = true;
+    sbfx_post_gl *p = &fx->render->post;
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            double s = 0.0;
+            for (int k = 0; k < 4; k++) s += (double)projection[k * 4 + r] * view[c * 4 + k];
+            p->previous_view_projection[c * 4 + r] = s;
+        }
+    p->last_time = fx->sim->time - SIM_STEP;
+    p->have_previous = true;
+}
+
 /* One rendering of a frame: the module's programs and what each shaded. */
 static void render_counted(sbfx *fx, const sbfx_frame *frame, const char *mode, FILE *csv, const char *scene,
                            double t)
@@ -174,10 +197,13 @@ static void scene_at_size(const options *opt, const char *name, int w, int h, FI
         if (has_camera) test_scene_camera(&camera, t, (float)w / (float)h, frame.view, frame.projection);
         else test_scene_orbit_camera(t, (float)w / (float)h, frame.view, frame.projection);
         if (test_scene_draw(&host, frame.view, frame.projection) != 0) die("test scene", "GL error");
+        float aspect = (float)w / (float)h;
         fx->render->tiles.full_screen = true;
+        previous_frame_at_60hz(fx, has_camera ? &camera : NULL, t, aspect);
         render_counted(fx, &frame, "full", csv, name, t);
         fx->render->tiles.full_screen = false;
         for (int k = 0; k < opt->tile_size_count; k++) {
+            previous_frame_at_60hz(fx, has_camera ? &camera : NULL, t, aspect);
             char mode[32] = "tiles";
             if (opt->tile_sizes[k] > 0) snprintf(mode, sizeof(mode), "tiles%d", opt->tile_sizes[k]);
             fx->render->tiles.size_wanted = opt->tile_sizes[k];
