@@ -4,6 +4,8 @@
 // pixel (cones of its own and this pixel's velocity) and which is in front (soft depth
 // compare). A half-pixel jitter per pixel hides the sample pattern. Below half a pixel of
 // motion the pixel is returned unchanged.
+//   SAMPLES  the scene's sample count, set at load (src/render/post.c): the loop the compilers
+//            unroll, so that their static estimates count every sample (docs/gpus.md)
 precision highp float;
 precision highp sampler2D;
 
@@ -24,6 +26,9 @@ const bool encode = false;
 
 out vec4 o_color;
 
+#ifndef SAMPLES
+#define SAMPLES 63                 // the most samples; the loop stops at u_samples
+#endif
 const float SOFT_Z = 0.1;          // metres over which depth ordering fades
 
 vec2 decode(vec4 t) { return encode ? (t.xy - 0.5) * 2.0 * u_max_radius : t.xy; }
@@ -65,7 +70,7 @@ void main()
     vec3 sum = center.rgb * weight;
     float j = jitter(gl_FragCoord.xy);
     int middle = (u_samples - 1) >> 1;   // (samples - 1) / 2, the centre sample (this pixel)
-    for (int i = 0; i < 64; i++) {
+    for (int i = 0; i < SAMPLES; i++) {
         if (i >= u_samples) break;
         if (i == middle) continue;
         float t = mix(-1.0, 1.0, (float(i) + j + 1.0) / float(u_samples + 1));

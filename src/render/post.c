@@ -136,6 +136,13 @@ static GLuint build_tiled(sbfx *fx, const char *frag, const char *defines, bool 
  * instances (2040 at 1920x1080) that the vertex work of drawing them stays small. */
 static int block_tiles(const sbfx *fx) { return fx->scene->post.tile >= 32 ? 1 : 32 / fx->scene->post.tile; }
 
+/* The depth of field's blur radius in blur-resolution texels, as dof_blur.frag takes it. */
+static int dof_blur_radius(const sbfx *fx)
+{
+    int r = (int)ceilf(fx->scene->post.dof_max_radius / (float)fx->scene->post.dof_scale);
+    return r < 0 ? 0 : r > 16 ? 16 : r;
+}
+
 sbfx_result sbfx_post_programs_create(sbfx *fx)
 {
     sbfx_post_gl *p = &fx->render->post;
@@ -147,14 +154,16 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     if (fx->scene->plan.distortion && !float_ok)
         sbfx_log(fx, SBFX_LOG_WARN, "heat shimmer needs a float particle target (GL_EXT_color_buffer_half_float "
                  "or GL_EXT_color_buffer_float): shimmer is off");
-    char defines[128], tile_defines[160], class_defines[160], dof_defines[32];
+    char defines[128], tile_defines[160], class_defines[160], blur_defines[160], dof_defines[32], dof_blur_defines[32];
     bool shimmer = fx->scene->plan.distortion && float_ok;
     snprintf(defines, sizeof(defines), "%s%s", p->encode_velocity ? "#define ENCODE_UNORM\n" : "",
              fx->scene->plan.particle_velocity && float_ok ? "#define HAS_PARTICLE_VELOCITY\n" : "");
     /* loops sized to the scene, so the compilers unroll what runs, not the largest size */
     snprintf(tile_defines, sizeof(tile_defines), "%s#define TILE %d\n", defines, fx->scene->post.tile);
     snprintf(class_defines, sizeof(class_defines), "%s#define BLOCK %d\n", defines, block_tiles(fx));
+    snprintf(blur_defines, sizeof(blur_defines), "%s#define SAMPLES %d\n", defines, fx->scene->post.samples);
     snprintf(dof_defines, sizeof(dof_defines), "#define DOF_SCALE %d\n", fx->scene->post.dof_scale);
+    snprintf(dof_blur_defines, sizeof(dof_blur_defines), "#define RADIUS %d\n", dof_blur_radius(fx));
     bool velocity = fx->scene->post.blur == SBFX_BLUR_VELOCITY, history = fx->scene->post.blur == SBFX_BLUR_HISTORY;
     bool dof = fx->scene->post.dof;
     p->copy_program = build(fx, "copy.frag", NULL, true);
@@ -163,10 +172,10 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     p->tile_program = build(fx, "tile_max.frag", tile_defines, velocity);
     p->neighbor_program = build(fx, "neighbor_max.frag", defines, velocity);
     p->class_program = build(fx, "tile_class.frag", class_defines, velocity);
-    p->blur_program = build_tiled(fx, "motion_blur.frag", defines, velocity);
+    p->blur_program = build_tiled(fx, "motion_blur.frag", blur_defines, velocity);
     p->still_program = build_tiled(fx, "copy.frag", NULL, velocity);
     p->dof_setup_program = build(fx, "dof_setup.frag", dof_defines, dof);
-    p->dof_blur_program = build(fx, "dof_blur.frag", NULL, dof);
+    p->dof_blur_program = build(fx, "dof_blur.frag", dof_blur_defines, dof);
     p->dof_composite_program = build(fx, "dof_composite.frag", shimmer ? "#define HAS_SHIMMER\n" : NULL, dof);
     GLuint need[] = {p->copy_program, history ? p->history_program : 1, velocity ? p->blur_program : 1,
                      velocity ? p->velocity_program : 1, velocity ? p->tile_program : 1,

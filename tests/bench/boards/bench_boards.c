@@ -10,13 +10,15 @@
  * (refined: of the fragments, those of mixed resolution's refinement, render/refine.c)
  * which tools/boards-table.sh prices with Mesa's Mali estimates (mali.csv, tools/shader-stats.sh).
  *   bench_boards [--out DIR] [--sizes WxH[,WxH...]] [--step SECONDS] [--scenes a,b] [--camera scene|orbit]
- *                [--tile-sizes N[,N...]] [--quality LEVEL]
+ *                [--tile-sizes N[,N...]] [--quality LEVEL] [--frame-rate HZ]
  * --quality LEVEL renders every scene at that level (e.g. exact/4/mx) instead of its own;
  * --quality mixed, at its own level with mixed resolution's upsampling.
  * --error also renders each frame at its level and at full resolution in RGBA32F (the level's
  * other choices kept) over the test scene and writes OUT/errors.csv:
  *   scene,width,height,t,quality,pixels,mean_abs_err
  * (mean |difference| in 8-bit levels over the pixels either image changes).
+ * --frame-rate HZ (60): each counted rendering sees the frame before as a player at HZ would (the
+ * camera and the particles 1/HZ s earlier): the motion the velocity blur's blocks follow.
  * --camera orbit: the accuracy bench's camera (test_scene_orbit_camera, 8.5 m from the blast)
  * instead of each scene's own.
  * --tile-sizes renders the tiled frame once per tile size (mode "tilesN"; the default size only:
@@ -44,6 +46,7 @@ typedef struct options {
     int sizes[MAX_SIZES][2], size_count;
     int tile_sizes[MAX_TILE_SIZES], tile_size_count;
     double step;
+    double frame_rate; /* --frame-rate: the player's, for the motion between frames */
     bool orbit;   /* --camera orbit: the accuracy bench's orbit camera, not the scene's */
     bool error;          /* --error: OUT/errors.csv, each frame against its own full resolution */
     const char *quality; /* --quality LEVEL: every scene at that level (sbfx_set_quality), not its own */
@@ -64,17 +67,18 @@ static void log_line(sbfx_log_level level, const char *message, void *user)
     else fprintf(stderr, "bench_boards: sbfx: %s\n", message);
 }
 
-/* The frame before, as at 60 Hz: the camera 1/60 s earlier and the particles where they were
- * then, so that every counted rendering (both modes render the same instant) sees the motion a
- * 60 Hz player shows, not the step between the bench's frames nor none (the second rendering of
- * an instant after the first). The velocity blur's classification of tiles (post.c) depends on it. */
-static void previous_frame_at_60hz(sbfx *fx, const sbfx_scene_camera *camera, double t, float aspect)
+/* The frame before, as at the player's frame rate (--frame-rate, 60 Hz): the camera one frame
+ * earlier and the particles where they were then, so that every counted rendering (both modes
+ * render the same instant) sees the motion a player at that rate shows, not the step between the
+ * bench's frames nor none (the second rendering of an instant after the first). The velocity
+ * blur's blocks (post.c) depend on it. */
+static void previous_frame(sbfx *fx, const sbfx_scene_camera *camera, double t, float aspect, double hz)
 {
     float view[16], projection[16];
-    if (camera) test_scene_camera(camera, t - SIM_STEP, aspect, view, projection);
-    else test_scene_orbit_camera(t - SIM_STEP, aspect, view, projection);
+    if (camera) test_scene_camera(camera, t - 1.0 / hz, aspect, view, projection);
+    else test_scene_orbit_camera(t - 1.0 / hz, aspect, view, projection);
     memcpy(fx->sim->previous_view, view, sizeof(view));
-    fx->sim->previous_render_time = fx->sim->time - SIM_STEP;
+    fx->sim->previous_render_time = fx->sim->time - 1.0 / hz;
     fx->sim->have_previous_view = true;
     sbfx_post_gl *p = &fx->render->post;
     for (int c = 0; c < 4; c++)
@@ -83,7 +87,7 @@ static void previous_frame_at_60hz(sbfx *fx, const sbfx_scene_camera *camera, do
             for (int k = 0; k < 4; k++) s += (double)projection[k * 4 + r] * view[c * 4 + k];
             p->previous_view_projection[c * 4 + r] = s;
         }
-    p->last_time = fx->sim->time - SIM_STEP;
+    p->last_time = fx->sim->time - 1.0 / hz;
     p->have_previous = true;
 }
 
@@ -199,11 +203,11 @@ static void scene_at_size(const options *opt, const char *name, int w, int h, FI
         if (test_scene_draw(&host, frame.view, frame.projection) != 0) die("test scene", "GL error");
         float aspect = (float)w / (float)h;
         fx->render->tiles.full_screen = true;
-        previous_frame_at_60hz(fx, has_camera ? &camera : NULL, t, aspect);
+        previous_frame(fx, has_camera ? &camera : NULL, t, aspect, opt->frame_rate);
         render_counted(fx, &frame, "full", csv, name, t);
         fx->render->tiles.full_screen = false;
         for (int k = 0; k < opt->tile_size_count; k++) {
-            previous_frame_at_60hz(fx, has_camera ? &camera : NULL, t, aspect);
+            previous_frame(fx, has_camera ? &camera : NULL, t, aspect, opt->frame_rate);
             char mode[32] = "tiles";
             if (opt->tile_sizes[k] > 0) snprintf(mode, sizeof(mode), "tiles%d", opt->tile_sizes[k]);
             fx->render->tiles.size_wanted = opt->tile_sizes[k];
@@ -244,7 +248,7 @@ static void parse_list(const char *text, const char *what, int *out, int max, in
 
 static options parse(int argc, char **argv)
 {
-    options o = {.out = "build/bench", .size_count = 2, .sizes = {{1280, 720}, {1920, 1080}}, .step = 0.1,
+    options o = {.out = "build/bench", .size_count = 2, .sizes = {{1280, 720}, {1920, 1080}}, .step = 0.1, .frame_rate = 60.0,
                  .tile_size_count = 1};
     const char *all[] = {"barrage", "campfire", "dust-storm", "explosion", "lit-smoke", "night", "post", "smoke"};
     for (size_t i = 0; i < sizeof(all) / sizeof(all[0]); i++) snprintf(o.scenes[o.scene_count++], 64, "%s", all[i]);
@@ -258,6 +262,7 @@ static options parse(int argc, char **argv)
         i++;
         if (!strcmp(a, "--out")) o.out = v;
         else if (!strcmp(a, "--step") && (o.step = atof(v)) > 0) continue;
+        else if (!strcmp(a, "--frame-rate") && (o.frame_rate = atof(v)) > 0) continue;
         else if (!strcmp(a, "--quality") && v) o.quality = v;
         else if (!strcmp(a, "--camera") && (!strcmp(v, "scene") || !strcmp(v, "orbit"))) o.orbit = !strcmp(v, "orbit");
         else if (!strcmp(a, "--sizes")) parse_list(v, a, &o.sizes[0][0], MAX_SIZES, &o.size_count, true);
@@ -270,7 +275,7 @@ static options parse(int argc, char **argv)
                 p += n + (p[n] == ',');
             }
         } else die(a, "unknown option or value (--out DIR, --sizes WxH,..., --step S, --scenes a,b, "
-                      "--camera scene|orbit, --tile-sizes N,..., --quality LEVEL, --error)");
+                      "--camera scene|orbit, --tile-sizes N,..., --quality LEVEL, --frame-rate HZ, --error)");
     }
     return o;
 }
