@@ -120,6 +120,15 @@ static GLint post_loc(const sbfx_post_gl *p, GLuint program, int uniform)
 
 static bool has_steps(const sbfx *fx) { return fx->scene->post.dof || fx->scene->post.blur != SBFX_BLUR_NONE; }
 
+/* The depth of field's composite writes the velocity blur's velocities (no pass of their own). */
+static bool fused_velocity(const sbfx *fx) { return fx->scene->post.dof && fx->scene->post.blur == SBFX_BLUR_VELOCITY; }
+
+static GLuint velocity_texture(const sbfx *fx)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    return fused_velocity(fx) ? p->frame[1].texture[1] : p->velocity.texture[0];
+}
+
 /* ---- programs (load) ---- */
 static GLuint build(sbfx *fx, const char *frag, const char *defines, bool wanted)
 {
@@ -168,7 +177,7 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     bool dof = fx->scene->post.dof;
     p->copy_program = build(fx, "copy.frag", NULL, true);
     p->history_program = build(fx, "history_blur.frag", NULL, history);
-    p->velocity_program = build(fx, "velocity.frag", defines, velocity);
+    p->velocity_program = build(fx, "velocity.frag", defines, velocity && !dof);
     p->tile_program = build(fx, "tile_max.frag", tile_defines, velocity);
     p->neighbor_program = build(fx, "neighbor_max.frag", defines, velocity);
     p->class_program = build(fx, "tile_class.frag", class_defines, velocity);
@@ -176,9 +185,14 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     p->still_program = build_tiled(fx, "copy.frag", NULL, velocity);
     p->dof_setup_program = build(fx, "dof_setup.frag", dof_defines, dof);
     p->dof_blur_program = build(fx, "dof_blur.frag", dof_blur_defines, dof);
-    p->dof_composite_program = build(fx, "dof_composite.frag", shimmer ? "#define HAS_SHIMMER\n" : NULL, dof);
+    char composite_defines[192];
+    snprintf(composite_defines, sizeof(composite_defines), "%s%s", shimmer ? "#define HAS_SHIMMER\n" : "",
+             velocity ? "#define WRITE_VELOCITY\n" : "");
+    if (velocity) snprintf(composite_defines + strlen(composite_defines), sizeof(composite_defines) - strlen(composite_defines),
+                           "%s", defines);
+    p->dof_composite_program = build(fx, "dof_composite.frag", composite_defines, dof);
     GLuint need[] = {p->copy_program, history ? p->history_program : 1, velocity ? p->blur_program : 1,
-                     velocity ? p->velocity_program : 1, velocity ? p->tile_program : 1,
+                     velocity && !dof ? p->velocity_program : 1, velocity ? p->tile_program : 1,
                      velocity ? p->neighbor_program : 1, velocity ? p->class_program : 1,
                      velocity ? p->still_program : 1, dof ? p->dof_composite_program : 1,
                      dof ? p->dof_setup_program : 1, dof ? p->dof_blur_program : 1};
@@ -223,13 +237,16 @@ sbfx_result sbfx_post_targets_ensure(sbfx *fx, int w, int h)
     const sbfx_rt_format *c = p->color_format, *v = p->velocity_format;
     bool ok = true;
     int frames = (fx->scene->post.dof ? 1 : 0) + (fx->scene->post.blur != SBFX_BLUR_NONE ? 1 : 0);
-    for (int i = 0; i < frames; i++) ok = ok && make(fx, &p->frame[i], w, h, c, NULL, GL_NEAREST);
+    /* frame[1] is the depth of field's image when the velocity blur follows: its composite writes
+     * the velocities beside it (dof_composite.frag, WRITE_VELOCITY) */
+    for (int i = 0; i < frames; i++) ok = ok && make(fx, &p->frame[i], w, h, c, i == 1 && fused_velocity(fx) ? v : NULL, GL_NEAREST);
     if (fx->scene->post.blur == SBFX_BLUR_HISTORY)
         for (int i = 0; i < 2; i++) ok = ok && make(fx, &p->history[i], w, h, c, NULL, GL_NEAREST);
     if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) {
         int t = fx->scene->post.tile, tw = (w + t - 1) / t, th = (h + t - 1) / t;
         int k = block_tiles(fx), bw = (tw + k - 1) / k, bh = (th + k - 1) / k;
-        ok = ok && make(fx, &p->velocity, w, h, v, NULL, GL_NEAREST) && make(fx, &p->tile_rows, tw, h, v, NULL, GL_NEAREST) &&
+        ok = ok && (fused_velocity(fx) || make(fx, &p->velocity, w, h, v, NULL, GL_NEAREST)) &&
+             make(fx, &p->tile_rows, tw, h, v, NULL, GL_NEAREST) &&
              make(fx, &p->tiles, tw, th, v, NULL, GL_NEAREST) && make(fx, &p->neighbors, tw, th, v, NULL, GL_NEAREST) &&
              make(fx, &p->classes, bw, bh, v, NULL, GL_NEAREST);
     }
@@ -252,6 +269,7 @@ typedef struct post_frame {
     const sbfx_frame *f;
     float depth_model[4];  /* window depth -> distance (projection.c) */
     float ndc_depth[2];    /* window depth -> ndc z */
+    float reproject[16];   /* current NDC -> previous clip (the velocity blur) */
 } post_frame;
 
 /* The host's textures are read through sbfx's samplers, sbfx's own through their parameters. */
@@ -302,6 +320,16 @@ static void pass_copy(sbfx *fx, GLuint source, GLuint fbo, int w, int h)
 static void set_depth_uniforms(const sbfx_post_gl *p, GLuint prog, const post_frame *pf)
 {
     glUniform4fv(post_loc(p, prog, PU_DEPTH_MODEL), 1, pf->depth_model);
+}
+
+/* What the velocities are made of (velocity.frag, or dof_composite.frag's WRITE_VELOCITY). */
+static void set_velocity_uniforms(sbfx *fx, GLuint prog, const post_frame *pf)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    glUniformMatrix4fv(post_loc(p, prog, PU_REPROJECT), 1, GL_FALSE, pf->reproject);
+    glUniform2fv(post_loc(p, prog, PU_NDC_DEPTH), 1, pf->ndc_depth);
+    glUniform1f(post_loc(p, prog, PU_SHUTTER), fx->scene->post.shutter);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->scene->post.tile);
 }
 
 /* The particles' coverage and distance (the motion target) for the DoF's CoC, when this frame
@@ -367,6 +395,7 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     /* the shimmer offsets, LINEAR like the composite's (none: an empty unit reads 0, no offset) */
     sbfx_bind_texture(6, GL_TEXTURE_2D, fx->gl->particles.texture[1], fx->gl->color_sampler);
     glUniform1i(post_loc(p, prog, PU_DISTORTION), 6);
+    if (fused_velocity(fx)) set_velocity_uniforms(fx, prog, pf);
     finish(fx);
 }
 
@@ -430,15 +459,27 @@ static void view_projection(const sbfx_frame *f, double out[16])
     multiply4(p, v, out);
 }
 
-/* The longest velocity of `tile` texels of `in` along (dx, dy), into `out`: rows, then columns. */
-static void pass_tile_max(sbfx *fx, const sbfx_rt *in, const sbfx_rt *out, int dx, int dy)
+/* Current NDC -> the previous frame's clip space, in double (identity on the first frame). */
+static void reprojection(const sbfx *fx, const sbfx_frame *f, float out[16])
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    double now[16], inverse[16], reproject[16];
+    view_projection(f, now);
+    if (!p->have_previous || !invert4(now, inverse)) memcpy(reproject, (double[16]){1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, sizeof(reproject));
+    else multiply4(p->previous_view_projection, inverse, reproject);
+    for (int i = 0; i < 16; i++) out[i] = (float)reproject[i];
+}
+
+/* The longest velocity of `tile` texels of `in` (w x h) along (dx, dy), into `out`: rows, then
+ * columns. */
+static void pass_tile_max(sbfx *fx, GLuint in, int w, int h, const sbfx_rt *out, int dx, int dy)
 {
     const sbfx_post_gl *p = &fx->render->post;
     GLuint prog = p->tile_program;
     begin(prog, out->framebuffer, out->width, out->height);
-    bind_unit(fx, prog, PU_VELOCITY, 0, in->texture[0]);
+    bind_unit(fx, prog, PU_VELOCITY, 0, in);
     glUniform1i(post_loc(p, prog, PU_TILE), fx->scene->post.tile);
-    glUniform2i(post_loc(p, prog, PU_SIZE), in->width, in->height);
+    glUniform2i(post_loc(p, prog, PU_SIZE), w, h);
     glUniform2i(post_loc(p, prog, PU_DIRECTION), dx, dy);
     glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->scene->post.tile);
     finish(fx);
@@ -486,27 +527,20 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
     sbfx_post_gl *p = &fx->render->post;
     const sbfx_frame *f = pf->f;
     const sbfx_post_params *post = &fx->scene->post;
-    double now[16], inverse[16], reproject[16];
-    view_projection(f, now);
-    if (!p->have_previous || !invert4(now, inverse)) memcpy(reproject, (double[16]){1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, sizeof(reproject));
-    else multiply4(p->previous_view_projection, inverse, reproject);
-    float reproject_f[16];
-    for (int i = 0; i < 16; i++) reproject_f[i] = (float)reproject[i];
     GLuint prog = p->velocity_program;
-    begin(prog, p->velocity.framebuffer, f->width, f->height);
-    bind_unit(fx, prog, PU_SCENE_DEPTH, 0, f->scene_depth_texture);
-    bind_unit(fx, prog, PU_PARTICLE_VELOCITY, 1, fx->gl->particles.texture[2]);
-    glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl->particles.texture[2]);
-    glUniformMatrix4fv(post_loc(p, prog, PU_REPROJECT), 1, GL_FALSE, reproject_f);
-    glUniform2fv(post_loc(p, prog, PU_NDC_DEPTH), 1, pf->ndc_depth);
-    glUniform2f(post_loc(p, prog, PU_SIZE), (float)f->width, (float)f->height);
-    glUniform1f(post_loc(p, prog, PU_SHUTTER), post->shutter);
-    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
-    glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->scene->desc.target_divisor);
-    glUniform2i(post_loc(p, prog, PU_LOW_SIZE), fx->gl->low_width, fx->gl->low_height);
-    finish(fx);
-    pass_tile_max(fx, &p->velocity, &p->tile_rows, 1, 0);
-    pass_tile_max(fx, &p->tile_rows, &p->tiles, 0, 1);
+    if (!fused_velocity(fx)) {
+        begin(prog, p->velocity.framebuffer, f->width, f->height);
+        bind_unit(fx, prog, PU_SCENE_DEPTH, 0, f->scene_depth_texture);
+        bind_unit(fx, prog, PU_PARTICLE_VELOCITY, 1, fx->gl->particles.texture[2]);
+        glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl->particles.texture[2]);
+        set_velocity_uniforms(fx, prog, pf);
+        glUniform2f(post_loc(p, prog, PU_SIZE), (float)f->width, (float)f->height);
+        glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->scene->desc.target_divisor);
+        glUniform2i(post_loc(p, prog, PU_LOW_SIZE), fx->gl->low_width, fx->gl->low_height);
+        finish(fx);
+    }
+    pass_tile_max(fx, velocity_texture(fx), f->width, f->height, &p->tile_rows, 1, 0);
+    pass_tile_max(fx, p->tile_rows.texture[0], p->tile_rows.width, p->tile_rows.height, &p->tiles, 0, 1);
     prog = p->neighbor_program;
     begin(prog, p->neighbors.framebuffer, p->neighbors.width, p->neighbors.height);
     bind_unit(fx, prog, PU_TILES, 0, p->tiles.texture[0]);
@@ -517,7 +551,7 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
     prog = p->blur_program;
     begin(prog, fbo, f->width, f->height);
     bind_unit(fx, prog, PU_COLOR, 0, source);
-    bind_unit(fx, prog, PU_VELOCITY, 1, p->velocity.texture[0]);
+    bind_unit(fx, prog, PU_VELOCITY, 1, velocity_texture(fx));
     bind_unit(fx, prog, PU_NEIGHBOR_MAX, 2, p->neighbors.texture[0]);
     bind_unit(fx, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
     glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
@@ -537,8 +571,9 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
 sbfx_result sbfx_post_run(sbfx *fx, const sbfx_frame *f, const sbfx_depth_model *depth, GLuint source)
 {
     sbfx_post_gl *p = &fx->render->post;
-    post_frame pf = {f, {0}, {depth->ndc[0], depth->ndc[1]}};
+    post_frame pf = {f, {0}, {depth->ndc[0], depth->ndc[1]}, {0}};
     sbfx_depth_model_uniform(depth, pf.depth_model);
+    if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) reprojection(fx, f, pf.reproject);
     p->host_depth = f->scene_depth_texture;
     p->host_color = f->scene_color_texture;
     double dt = p->have_previous ? fx->sim->time - p->last_time : 0.0;
