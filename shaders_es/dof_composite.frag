@@ -10,6 +10,9 @@
 // sharp full-resolution picture and only the sky seen through them is blurred, by how much of
 // it is seen; for particles in the far field (keep 1) C' = mix(C, F, w) as for the scene.
 //   HAS_SHIMMER  the scene as the composite read it: displaced by the heat's offsets
+//   NO_PARTICLES  drawn outside the particles' tiles (src/render/tiles.c), where their target is
+//                clear (transmittance 1, no motion) and the image the scene: what the particles'
+//                branch of main() gives there, without its fetches
 //   WRITE_VELOCITY  the velocity blur follows: this pass also writes its per-pixel motion, as
 //                velocity.frag would (the same depth and particle texels, read here once for
 //                both; with HAS_PARTICLE_VELOCITY and ENCODE_UNORM as there), and the velocity
@@ -56,7 +59,7 @@ void write_velocity(float depth, vec4 m)
     vec2 ndc = gl_FragCoord.xy / u_full_size * 2.0 - 1.0;
     vec4 previous = u_reproject * vec4(ndc, depth * u_ndc_depth.x + u_ndc_depth.y, 1.0);
     vec2 motion = previous.w > 1e-6 ? (ndc - previous.xy / previous.w) * 0.5 * u_full_size : vec2(0.0);
-#ifdef HAS_PARTICLE_VELOCITY
+#if defined(HAS_PARTICLE_VELOCITY) && !defined(NO_PARTICLES)
     if (u_particles_drawn) motion = m.xy + motion * m.a;
 #endif
     vec2 v = motion * 0.5 * u_shutter;
@@ -97,6 +100,7 @@ void main()
     float far_coc = clamp((view_distance(depth) - u_far.x) * ramp, 0.0, 1.0);
     vec3 x = sharp.rgb;   // what the far field holds here
     vec4 m = vec4(0.0, 0.0, 0.0, 1.0);
+#ifndef NO_PARTICLES
     if (u_particles_drawn) {
         vec2 particle_uv = gl_FragCoord.xy * u_particle_texel;
         m = textureLod(u_particle_motion, particle_uv, 0.0);
@@ -105,6 +109,7 @@ void main()
         far_coc = mix(keep, far_coc, clamp(sharp.a, 0.0, 1.0));
         x = mix(scene_behind(particle_uv), x, keep);
     }
+#endif
     vec2 uv = gl_FragCoord.xy * u_low_texel;
     vec4 far_blur = filtered_2d(u_far_field, uv);
     vec4 near_blur = filtered_2d(u_near_field, uv);

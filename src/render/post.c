@@ -44,6 +44,9 @@ enum post_uniform {
     PU_SOURCE,
     PU_TARGET,
     PU_TILE,
+    PU_TILE_GRID,
+    PU_TILE_SIZE,
+    PU_TILE_TARGET,
     PU_TILES,
     PU_TILES_SIZE,
     PU_VELOCITY,
@@ -88,6 +91,9 @@ static const char *const post_uniform_names[PU_COUNT] = {
     [PU_SOURCE] = "u_source",
     [PU_TARGET] = "u_target",
     [PU_TILE] = "u_tile",
+    [PU_TILE_GRID] = "u_tile_grid",
+    [PU_TILE_SIZE] = "u_tile_size",
+    [PU_TILE_TARGET] = "u_tile_target",
     [PU_TILES] = "u_tiles",
     [PU_TILES_SIZE] = "u_tiles_size",
     [PU_VELOCITY] = "u_velocity",
@@ -100,7 +106,7 @@ static GLuint *post_programs(sbfx_post_gl *p, int i)
     GLuint *all[SBFX_POST_PROGRAMS] = {&p->copy_program, &p->history_program, &p->velocity_program, &p->tile_program,
                                       &p->neighbor_program, &p->class_program, &p->blur_program,
                                       &p->still_program, &p->dof_setup_program, &p->dof_blur_program,
-                                      &p->dof_composite_program};
+                                      &p->dof_composite_program, &p->dof_plain_program};
     return all[i];
 }
 
@@ -190,11 +196,16 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
              velocity ? "#define WRITE_VELOCITY\n" : "");
     if (velocity) snprintf(composite_defines + strlen(composite_defines), sizeof(composite_defines) - strlen(composite_defines),
                            "%s", defines);
-    p->dof_composite_program = build(fx, "dof_composite.frag", composite_defines, dof);
+    /* over the particles' tiles, and without the particles' fetches over the rest (tiles.vert) */
+    p->dof_composite_program = dof ? sbfx_program_build(fx, "tiles.vert", "dof_composite.frag", composite_defines) : 0;
+    char plain_defines[224];
+    snprintf(plain_defines, sizeof(plain_defines), "#define NO_PARTICLES\n%s", composite_defines);
+    p->dof_plain_program = dof ? sbfx_program_build(fx, "tiles.vert", "dof_composite.frag", plain_defines) : 0;
     GLuint need[] = {p->copy_program, history ? p->history_program : 1, velocity ? p->blur_program : 1,
                      velocity && !dof ? p->velocity_program : 1, velocity ? p->tile_program : 1,
                      velocity ? p->neighbor_program : 1, velocity ? p->class_program : 1,
                      velocity ? p->still_program : 1, dof ? p->dof_composite_program : 1,
+                     dof ? p->dof_plain_program : 1,
                      dof ? p->dof_setup_program : 1, dof ? p->dof_blur_program : 1};
     for (size_t i = 0; i < ARRAY_SIZE(need); i++)
         if (!need[i]) return SBFX_ERR_SHADER;
@@ -218,7 +229,7 @@ void sbfx_post_destroy(sbfx *fx)
     destroy_targets(fx);
     GLuint programs[] = {p->velocity_program, p->tile_program, p->neighbor_program, p->class_program,
                          p->blur_program, p->still_program, p->history_program, p->copy_program, p->dof_setup_program, p->dof_blur_program,
-                         p->dof_composite_program};
+                         p->dof_composite_program, p->dof_plain_program};
     for (size_t i = 0; i < ARRAY_SIZE(programs); i++) sbfx_program_delete(fx, programs[i]);
 }
 
@@ -346,6 +357,8 @@ static void bind_particle_motion(sbfx *fx, GLuint prog, int unit)
                     1.0f / (divisor * (float)fx->gl->low_height));
 }
 
+static void dof_composite(sbfx *fx, const post_frame *pf, GLuint prog, GLuint source, GLuint fbo, bool inside);
+
 /* Depth of field: split by CoC at the blur resolution, blur both fields separably (two
  * passes), composite over the sharp image. */
 static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
@@ -379,7 +392,18 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
         glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), post->dof_max_radius / post->dof_scale);
         finish(fx);
     }
-    prog = p->dof_composite_program;
+    dof_composite(fx, pf, p->dof_composite_program, source, fbo, true);
+    dof_composite(fx, pf, p->dof_plain_program, source, fbo, false);
+}
+
+/* Depth of field, step 3, over the particles' tiles (inside) or the rest (tiles.vert). */
+static void dof_composite(sbfx *fx, const post_frame *pf, GLuint prog, GLuint source, GLuint fbo, bool inside)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    const sbfx_post_params *post = &fx->scene->post;
+    const sbfx_frame *f = pf->f;
+    const sbfx_tiles *t = &fx->render->tiles;
+    if ((inside ? t->inside : t->outside) == 0) return;
     begin(prog, fbo, f->width, f->height);
     bind_unit(fx, prog, PU_COLOR, 0, source);
     bind_unit(fx, prog, PU_FAR_FIELD, 1, p->dof[0].texture[0]);
@@ -396,7 +420,10 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     sbfx_bind_texture(6, GL_TEXTURE_2D, fx->gl->particles.texture[1], fx->gl->color_sampler);
     glUniform1i(post_loc(p, prog, PU_DISTORTION), 6);
     if (fused_velocity(fx)) set_velocity_uniforms(fx, prog, pf);
-    finish(fx);
+    sbfx_pass_uniforms u = {.tile_size = post_loc(p, prog, PU_TILE_SIZE), .tile_grid = post_loc(p, prog, PU_TILE_GRID),
+                            .tile_target = post_loc(p, prog, PU_TILE_TARGET)};
+    sbfx_tiles_draw(fx, &u, inside, f->width, f->height, 1);
+    fx->counters.passes++;
 }
 
 /* The seed's motion blur: history = mix(new, history, e^(-dt/persistence)), then shown. */
