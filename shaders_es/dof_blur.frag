@@ -2,10 +2,12 @@
 // Depth of field, step 2: one direction of a separable gather blur of both fields at the blur
 // resolution. The far field gathers only samples whose own CoC reaches this texel (a sharp
 // object does not bleed into the blurred background); the near field is blurred uniformly with
-// its coverage so it spreads over its own silhouette.
-//   RADIUS  the scene's radius in blur-resolution texels (at most 16), set at load
-//           (src/render/post.c): the loop the compilers unroll, so that their static estimates
-//           count every tap (docs/gpus.md)
+// its coverage so it spreads over its own silhouette: its taps are summed in pairs, one bilinear
+// fetch at the edge two neighbouring texels share (their mean; the fields are LINEAR and
+// CLAMP_TO_EDGE, which repeats the edge texel as the clamped taps of the far field do).
+//   RADIUS  the scene's radius in blur-resolution texels, ceil(u_max_radius) at most 16, set at
+//           load (src/render/post.c): the loops the compilers unroll, so that their static
+//           estimates count every tap (docs/gpus.md)
 precision highp float;
 precision highp sampler2D;
 
@@ -16,7 +18,7 @@ uniform ivec2 u_low_size;
 uniform float u_max_radius;        // in blur-resolution texels
 
 #ifndef RADIUS
-#define RADIUS 16                  // the largest radius; taps past u_max_radius are skipped
+#define RADIUS 3                   // post.c sets it: ceil(u_max_radius)
 #endif
 
 layout(location = 0) out vec4 o_far;
@@ -25,20 +27,21 @@ layout(location = 1) out vec4 o_near;
 void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    int radius = min(int(ceil(u_max_radius)), RADIUS);
     vec4 far_sum = vec4(0.0), near_sum = vec4(0.0);
-    float far_weight = 0.0, near_weight = 0.0;
+    float far_weight = 0.0;
     for (int k = -RADIUS; k <= RADIUS; k++) {
-        if (k < -radius || k > radius) continue;   // only the taps needed (none with RADIUS set)
         ivec2 q = clamp(p + u_direction * k, ivec2(0), u_low_size - 1);
         vec4 f = texelFetch(u_far_field, q, 0);
         float reach = f.a * u_max_radius;            // this sample's blur radius
         float w = k == 0 ? 1.0 : clamp(reach - float(abs(k)) + 1.0, 0.0, 1.0);
         far_sum += f * w;
         far_weight += w;
-        near_sum += texelFetch(u_near_field, q, 0);
-        near_weight += 1.0;
     }
+    // the near field's taps k and k + 1 from -RADIUS on: their mean at the edge between them
+    vec2 texel = 1.0 / vec2(u_low_size), along = vec2(u_direction);
+    for (int k = -RADIUS; k < RADIUS; k += 2)
+        near_sum += 2.0 * textureLod(u_near_field, (vec2(p) + 0.5 + along * (float(k) + 0.5)) * texel, 0.0);
+    near_sum += texelFetch(u_near_field, clamp(p + u_direction * RADIUS, ivec2(0), u_low_size - 1), 0);
     o_far = far_sum / far_weight;
-    o_near = near_sum / near_weight;
+    o_near = near_sum / float(2 * RADIUS + 1);
 }
