@@ -27,18 +27,24 @@ layout(location = 1) out vec4 o_near;
 void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    vec4 far_sum = vec4(0.0), near_sum = vec4(0.0);
-    float far_weight = 0.0;
-    for (int k = -RADIUS; k <= RADIUS; k++) {
-        ivec2 q = clamp(p + u_direction * k, ivec2(0), u_low_size - 1);
-        vec4 f = texelFetch(u_far_field, q, 0);
-        float reach = f.a * u_max_radius;            // this sample's blur radius
-        float w = k == 0 ? 1.0 : clamp(reach - float(abs(k)) + 1.0, 0.0, 1.0);
-        far_sum += f * w;
-        far_weight += w;
+    vec2 texel = 1.0 / vec2(u_low_size), along = vec2(u_direction);
+    vec4 far_sum = texelFetch(u_far_field, p, 0), near_sum = vec4(0.0);
+    float far_weight = 1.0;
+    // the far field's taps j and j + 1 on each side: their mean m (at the edge they share), by the
+    // weights of the two for m's CoC: exact where the two have the same CoC
+    for (int j = 1; j <= RADIUS; j += 2) {
+        bool pair = j < RADIUS;
+        float reach = 0.0;
+        for (int side = -1; side <= 1; side += 2) {
+            vec4 f = pair ? textureLod(u_far_field, (vec2(p) + 0.5 + along * float(side) * (float(j) + 0.5)) * texel, 0.0)
+                          : texelFetch(u_far_field, clamp(p + u_direction * side * j, ivec2(0), u_low_size - 1), 0);
+            reach = f.a * u_max_radius;
+            float w = clamp(reach - float(j) + 1.0, 0.0, 1.0) + (pair ? clamp(reach - float(j), 0.0, 1.0) : 0.0);
+            far_sum += f * w;
+            far_weight += w;
+        }
     }
     // the near field's taps k and k + 1 from -RADIUS on: their mean at the edge between them
-    vec2 texel = 1.0 / vec2(u_low_size), along = vec2(u_direction);
     for (int k = -RADIUS; k < RADIUS; k += 2)
         near_sum += 2.0 * textureLod(u_near_field, (vec2(p) + 0.5 + along * (float(k) + 0.5)) * texel, 0.0);
     near_sum += texelFetch(u_near_field, clamp(p + u_direction * RADIUS, ivec2(0), u_low_size - 1), 0);
