@@ -106,7 +106,8 @@ static GLuint *post_programs(sbfx_post_gl *p, int i)
     GLuint *all[SBFX_POST_PROGRAMS] = {&p->copy_program, &p->history_program, &p->velocity_program, &p->tile_program,
                                       &p->neighbor_program, &p->class_program, &p->blur_program,
                                       &p->still_program, &p->dof_setup_program, &p->dof_blur_program,
-                                      &p->dof_composite_program, &p->dof_plain_program};
+                                      &p->dof_composite_program, &p->dof_plain_program,
+                                      &p->dof_setup_plain_program};
     return all[i];
 }
 
@@ -189,7 +190,10 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     p->class_program = build(fx, "tile_class.frag", class_defines, velocity);
     p->blur_program = build_tiled(fx, "motion_blur.frag", blur_defines, velocity);
     p->still_program = build_tiled(fx, "copy.frag", NULL, velocity);
-    p->dof_setup_program = build(fx, "dof_setup.frag", dof_defines, dof);
+    p->dof_setup_program = dof ? sbfx_program_build(fx, "tiles.vert", "dof_setup.frag", dof_defines) : 0;
+    char setup_plain_defines[64];
+    snprintf(setup_plain_defines, sizeof(setup_plain_defines), "#define NO_PARTICLES\n%s", dof_defines);
+    p->dof_setup_plain_program = dof ? sbfx_program_build(fx, "tiles.vert", "dof_setup.frag", setup_plain_defines) : 0;
     p->dof_blur_program = build(fx, "dof_blur.frag", dof_blur_defines, dof);
     char composite_defines[192];
     snprintf(composite_defines, sizeof(composite_defines), "%s%s", shimmer ? "#define HAS_SHIMMER\n" : "",
@@ -205,7 +209,7 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
                      velocity && !dof ? p->velocity_program : 1, velocity ? p->tile_program : 1,
                      velocity ? p->neighbor_program : 1, velocity ? p->class_program : 1,
                      velocity ? p->still_program : 1, dof ? p->dof_composite_program : 1,
-                     dof ? p->dof_plain_program : 1,
+                     dof ? p->dof_plain_program : 1, dof ? p->dof_setup_plain_program : 1,
                      dof ? p->dof_setup_program : 1, dof ? p->dof_blur_program : 1};
     for (size_t i = 0; i < ARRAY_SIZE(need); i++)
         if (!need[i]) return SBFX_ERR_SHADER;
@@ -229,7 +233,7 @@ void sbfx_post_destroy(sbfx *fx)
     destroy_targets(fx);
     GLuint programs[] = {p->velocity_program, p->tile_program, p->neighbor_program, p->class_program,
                          p->blur_program, p->still_program, p->history_program, p->copy_program, p->dof_setup_program, p->dof_blur_program,
-                         p->dof_composite_program, p->dof_plain_program};
+                         p->dof_composite_program, p->dof_plain_program, p->dof_setup_plain_program};
     for (size_t i = 0; i < ARRAY_SIZE(programs); i++) sbfx_program_delete(fx, programs[i]);
 }
 
@@ -357,16 +361,25 @@ static void bind_particle_motion(sbfx *fx, GLuint prog, int unit)
                     1.0f / (divisor * (float)fx->gl->low_height));
 }
 
-static void dof_composite(sbfx *fx, const post_frame *pf, GLuint prog, GLuint source, GLuint fbo, bool inside);
+/* A post pass of `prog` over the particles' tiles (inside) or the rest (tiles.vert), in a target
+ * of w x h at 1/divisor of the output. */
+static void draw_tiles(sbfx *fx, GLuint prog, bool inside, int w, int h, int divisor)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    sbfx_pass_uniforms u = {.tile_size = post_loc(p, prog, PU_TILE_SIZE), .tile_grid = post_loc(p, prog, PU_TILE_GRID),
+                            .tile_target = post_loc(p, prog, PU_TILE_TARGET)};
+    sbfx_tiles_draw(fx, &u, inside, w, h, divisor);
+    fx->counters.passes++;
+}
 
-/* Depth of field: split by CoC at the blur resolution, blur both fields separably (two
- * passes), composite over the sharp image. */
-static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
+/* Depth of field, step 1, over the particles' tiles (inside) or the rest. */
+static void dof_setup(sbfx *fx, const post_frame *pf, GLuint prog, GLuint source, bool inside)
 {
     sbfx_post_gl *p = &fx->render->post;
     const sbfx_post_params *post = &fx->scene->post;
     const sbfx_frame *f = pf->f;
-    GLuint prog = p->dof_setup_program;
+    const sbfx_tiles *t = &fx->render->tiles;
+    if ((inside ? t->inside : t->outside) == 0) return;
     begin(prog, p->dof[0].framebuffer, p->dof[0].width, p->dof[0].height);
     sbfx_bind_texture(0, GL_TEXTURE_2D, source, fx->gl->color_sampler); /* LINEAR: 2 x 2 means in one fetch */
     glUniform1i(post_loc(p, prog, PU_COLOR), 0);
@@ -380,8 +393,23 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     bind_unit(fx, prog, PU_SCENE_COLOR, 3, f->scene_color_texture);
     glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->scene->desc.target_divisor);
     glUniform2i(post_loc(p, prog, PU_PARTICLE_SIZE), fx->gl->low_width, fx->gl->low_height);
-    finish(fx);
-    prog = p->dof_blur_program;
+    draw_tiles(fx, prog, inside, p->dof[0].width, p->dof[0].height, post->dof_scale);
+}
+
+static void dof_composite(sbfx *fx, const post_frame *pf, GLuint prog, GLuint source, GLuint fbo, bool inside);
+
+/* Depth of field: split by CoC at the blur resolution, blur both fields separably (two
+ * passes), composite over the sharp image. The setup and the composite draw over the particles'
+ * tiles and, without the particles' fetches (NO_PARTICLES), over the rest; the setup's blocks lie
+ * in one tile each only where its scale divides the tile: else its full variant covers both. */
+static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    const sbfx_post_params *post = &fx->scene->post;
+    bool split = fx->render->tiles.size % post->dof_scale == 0;
+    dof_setup(fx, pf, p->dof_setup_program, source, true);
+    dof_setup(fx, pf, split ? p->dof_setup_plain_program : p->dof_setup_program, source, false);
+    GLuint prog = p->dof_blur_program;
     for (int dir = 0; dir < 2; dir++) {
         const sbfx_rt *in = &p->dof[dir], *out = &p->dof[1 - dir];
         begin(prog, out->framebuffer, out->width, out->height);
@@ -420,10 +448,7 @@ static void dof_composite(sbfx *fx, const post_frame *pf, GLuint prog, GLuint so
     sbfx_bind_texture(6, GL_TEXTURE_2D, fx->gl->particles.texture[1], fx->gl->color_sampler);
     glUniform1i(post_loc(p, prog, PU_DISTORTION), 6);
     if (fused_velocity(fx)) set_velocity_uniforms(fx, prog, pf);
-    sbfx_pass_uniforms u = {.tile_size = post_loc(p, prog, PU_TILE_SIZE), .tile_grid = post_loc(p, prog, PU_TILE_GRID),
-                            .tile_target = post_loc(p, prog, PU_TILE_TARGET)};
-    sbfx_tiles_draw(fx, &u, inside, f->width, f->height, 1);
-    fx->counters.passes++;
+    draw_tiles(fx, prog, inside, f->width, f->height, 1);
 }
 
 /* The seed's motion blur: history = mix(new, history, e^(-dt/persistence)), then shown. */

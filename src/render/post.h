@@ -8,12 +8,13 @@
 #include "render/projection.h"
 
 /* Post-effect state: programs at load, targets with the output size. */
-#define SBFX_POST_PROGRAMS 12
+#define SBFX_POST_PROGRAMS 13
 #define SBFX_POST_UNIFORMS 48
 typedef struct sbfx_post_gl {
     GLuint velocity_program, tile_program, neighbor_program, class_program, blur_program, still_program;
     GLuint history_program, copy_program, dof_setup_program, dof_blur_program, dof_composite_program;
-    GLuint dof_plain_program;  /* the DoF composite outside the particles' tiles (NO_PARTICLES) */
+    GLuint dof_plain_program, dof_setup_plain_program; /* the DoF composite and setup outside the
+                                                           particles' tiles (NO_PARTICLES) */
     const sbfx_rt_format *color_format, *velocity_format;
     bool encode_velocity;      /* RGBA8 velocity: stored as v / (2 max) + 0.5 */
     sbfx_rt frame[2];          /* full-res images between post passes */

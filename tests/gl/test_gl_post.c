@@ -529,7 +529,7 @@ CHECK_TEST(post_effects_only_when_asked)
         {"", 3},
         {"post = { motion_blur = { mode = \"history\"; }; };\n", 3 + 2},
         {"post = { motion_blur = { mode = \"velocity\"; }; };\n", 3 + 7}, /* + the blocks' classes, their copy */
-        {"post = { depth_of_field = { near = [1.0, 2.0]; far = [10.0, 20.0]; }; };\n", 3 + 5}, /* + the composite outside the tiles */
+        {"post = { depth_of_field = { near = [1.0, 2.0]; far = [10.0, 20.0]; }; };\n", 3 + 6}, /* + the setup and composite outside the tiles */
     };
     for (size_t i = 0; i < ARRAY_SIZE(cases); i++) {
         char text[1024];

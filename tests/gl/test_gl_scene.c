@@ -12,8 +12,8 @@ typedef struct plan {
     const char *scene;
     int particle_programs; /* one per medium used */
     int post_programs;     /* copy (+ 5 velocity blur: tile max, neighbour max, blocks, gather, copy; + the velocity
-                              pass without depth of field, whose composite writes them; + 4 depth of field:
-                              setup, blur, composite inside and outside the tiles; + 1 history blur) */
+                              pass without depth of field, whose composite writes them; + 5 depth of field:
+                              blur, setup and composite inside and outside the tiles; + 1 history blur) */
     bool blackbody, phase;
     int max_particles;
     int shadow_map;        /* render.host_shadows: the host's shadow map, texels per side (0: none) */
@@ -26,7 +26,7 @@ static const plan plans[] = {
     {"campfire", 3, 1, true, true, 1024, 256, true},   /* heat: shimmer owns the scene, a copy program */
     {"dust-storm", 1, 0, false, true, 1024, 256, false},
     {"barrage", 3, 0, true, true, 4096, 256, true},
-    {"post", 4, 1 + 5 + 4, true, true, 2048, 0, true},
+    {"post", 4, 1 + 5 + 5, true, true, 2048, 0, true},
 };
 
 CHECK_TEST(plan_holds_only_what_each_scene_uses)
