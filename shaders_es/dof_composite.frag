@@ -52,9 +52,10 @@ const bool encode = false;
 #endif
 layout(location = 1) out vec4 o_velocity;
 
-// velocity.frag's motion of this pixel from its window depth and, where particles cover it,
-// their premultiplied velocity and transmittance (m: the particle texel under it).
-void write_velocity(float depth, vec4 m)
+// velocity.frag's motion of this pixel from its window depth (its view distance beside it) and,
+// where particles cover it, their premultiplied velocity and transmittance (m: the particle
+// texel under it).
+void write_velocity(float depth, float distance, vec4 m)
 {
     vec2 ndc = gl_FragCoord.xy / u_full_size * 2.0 - 1.0;
     vec4 previous = u_reproject * vec4(ndc, depth * u_ndc_depth.x + u_ndc_depth.y, 1.0);
@@ -66,7 +67,7 @@ void write_velocity(float depth, vec4 m)
     float len = length(v);
     if (!(len < 1e30)) v = vec2(0.0);                    // NaN or Inf: no blur
     else if (len > u_max_radius) v *= u_max_radius / len;
-    o_velocity = encode ? vec4(v / (2.0 * u_max_radius) + 0.5, 0.0, 1.0) : vec4(v, 0.0, 1.0);
+    o_velocity = encode ? vec4(v / (2.0 * u_max_radius) + 0.5, 0.0, 1.0) : vec4(v, min(distance, 6.0e4), 1.0);
 }
 #endif
 layout(location = 0) out vec4 o_color;
@@ -97,7 +98,8 @@ void main()
     vec4 sharp = texelFetch(u_color, p, 0);
     float ramp = 1.0 / max(u_far.y - u_far.x, 1e-4);
     float depth = texelFetch(u_scene_depth, p, 0).r;
-    float far_coc = clamp((view_distance(depth) - u_far.x) * ramp, 0.0, 1.0);
+    float distance = view_distance(depth);
+    float far_coc = clamp((distance - u_far.x) * ramp, 0.0, 1.0);
     vec3 x = sharp.rgb;   // what the far field holds here
     vec4 m = vec4(0.0, 0.0, 0.0, 1.0);
 #ifndef NO_PARTICLES
@@ -118,6 +120,6 @@ void main()
     vec3 near_color = near_blur.a > 1e-4 ? near_blur.rgb / near_blur.a : color;
     o_color = vec4(mix(color, near_color, coverage), 1.0);
 #ifdef WRITE_VELOCITY
-    write_velocity(depth, m);
+    write_velocity(depth, distance, m);
 #endif
 }

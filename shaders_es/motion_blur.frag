@@ -41,7 +41,13 @@ float view_distance(float d)
     return u_depth_model.w / (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z);
 }
 
-float view_depth(ivec2 q) { return view_distance(texelFetch(u_scene_depth, q, 0).r); }
+// The view distance at q, whose velocity texel is t: a float velocity target holds it in z
+// (velocity.frag, dof_composite.frag: at most 6e4), one fetch a sample for both; RGBA8 does not.
+#ifdef ENCODE_UNORM
+float view_depth(ivec2 q, vec4 t) { return view_distance(texelFetch(u_scene_depth, q, 0).r); }
+#else
+float view_depth(ivec2 q, vec4 t) { return t.z; }
+#endif
 
 // The cone and the cylinder of a sample at `distance` from this pixel, with velocity of length
 // speed (>= 0.5), on x = distance / speed: 1 - x, and 1 - smoothstep(0.95 speed, 1.05 speed, distance).
@@ -63,9 +69,10 @@ void main()
         o_color = center;
         return;
     }
-    vec2 vc = decode(texelFetch(u_velocity, p, 0));
+    vec4 tc = texelFetch(u_velocity, p, 0);
+    vec2 vc = decode(tc);
     float inv_speed_c = 1.0 / max(length(vc), 0.5);
-    float zc = view_depth(p);
+    float zc = view_depth(p, tc);
     float weight = inv_speed_c;
     vec3 sum = center.rgb * weight;
     float j = jitter(gl_FragCoord.xy);
@@ -76,9 +83,10 @@ void main()
         float t = mix(-1.0, 1.0, (float(i) + j + 1.0) / float(u_samples + 1));
         ivec2 y = clamp(ivec2(floor(vec2(p) + 0.5 + vmax * t)), ivec2(0), u_size - 1);
         float distance = length(vec2(y - p));
-        vec2 vy = decode(texelFetch(u_velocity, y, 0));
+        vec4 ty = texelFetch(u_velocity, y, 0);
+        vec2 vy = decode(ty);
         float xy = distance / max(length(vy), 0.5), xc = distance * inv_speed_c;
-        float zy = view_depth(y);
+        float zy = view_depth(y, ty);
         // distances grow away from the eye: "front" = the sample is nearer than this pixel
         float front = soft_depth_compare(zy, zc), back = soft_depth_compare(zc, zy);
         float a = front * cone(xy) + back * cone(xc) + cylinder(xy) * cylinder(xc) * 2.0;

@@ -22,9 +22,11 @@
 # The velocity blur's gather (motion_blur.frag) is a loop of SAMPLES - 1 samples that Mesa
 # unrolls only up to 7 on the Malis and 3 on V3D, and counts once beyond: it is priced per sample
 # (docs/gpus.md, "The post chain"): base + (SAMPLES - 1) x sample, the two measured from the
-# unrolled builds at SAMPLES 3, 5 and 7 (per fragment: G52 4.21 + 2.417, G610 1.75 + 0.75,
-# V3D 4.2 11 + 43, V3D 7.1 14 + 34.75). Then, for the scenes with a post chain, its programs in
-# the worst frame on the G52: fragments, cycles per fragment as priced, ms.
+# unrolled builds at SAMPLES 3, 5 and 7 (tools/shader-stats.sh -s over scenes/post.cfg with
+# `samples` 3, 5 and 7; V3D unrolls only 3: its sample is 3's less the loop counted once; per
+# fragment: G52 3.875 + 2.25, G610 1.234 + 0.6875, V3D 4.2 12 + 39, V3D 7.1 14.25 + 30.75);
+# measure them again when motion_blur.frag changes. Then, for the scenes with a post chain, its
+# programs in the worst frame on the G52: fragments, cycles per fragment as priced, ms.
 # With ERRORS_CSV (bench_boards --error), a last table: each scene's error against its own
 # full-resolution RGBA32F render (mean |difference| in 8-bit levels over the pixels either image
 # changes), the mean over its life and the worst frame.
@@ -44,10 +46,10 @@ function pass_of(shader, variant) {
 }
 function left(ms) { return ms >= 16.667 ? "none" : sprintf("%.0f %%", 100 * (16.667 - ms) / 16.667) }
 BEGIN {
-    gather_base["g52"] = 4.2083; gather_sample["g52"] = 2.4167
-    gather_base["g610"] = 1.75; gather_sample["g610"] = 0.75
-    gather_base["rpi4"] = 11; gather_sample["rpi4"] = 43
-    gather_base["rpi5"] = 14; gather_sample["rpi5"] = 34.75
+    gather_base["g52"] = 3.875; gather_sample["g52"] = 2.25
+    gather_base["g610"] = 1.2344; gather_sample["g610"] = 0.6875
+    gather_base["rpi4"] = 12; gather_sample["rpi4"] = 39
+    gather_base["rpi5"] = 14.25; gather_sample["rpi5"] = 30.75
 }
 FNR == 1 { file++; next }
 file == 1 && $6 == "fragment" { cycles[key_of($1, $3, $4, $5)] = $8; texture[key_of($1, $3, $4, $5)] = $10; has[$1] = 1; next }

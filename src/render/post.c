@@ -586,6 +586,7 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
         bind_unit(fx, prog, PU_PARTICLE_VELOCITY, 1, fx->gl->particles.texture[2]);
         glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl->particles.texture[2]);
         set_velocity_uniforms(fx, prog, pf);
+        set_depth_uniforms(p, prog, pf);
         glUniform2f(post_loc(p, prog, PU_SIZE), (float)f->width, (float)f->height);
         glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->scene->desc.target_divisor);
         glUniform2i(post_loc(p, prog, PU_LOW_SIZE), fx->gl->low_width, fx->gl->low_height);
