@@ -170,7 +170,7 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     if (fx->scene->plan.distortion && !float_ok)
         sbfx_log(fx, SBFX_LOG_WARN, "heat shimmer needs a float particle target (GL_EXT_color_buffer_half_float "
                  "or GL_EXT_color_buffer_float): shimmer is off");
-    char defines[128], tile_defines[160], class_defines[160], blur_defines[160], dof_defines[32], dof_blur_defines[32];
+    char defines[128], tile_defines[160], class_defines[160], blur_defines[160], dof_defines[32], dof_blur_defines[48];
     bool shimmer = fx->scene->plan.distortion && float_ok;
     snprintf(defines, sizeof(defines), "%s%s", p->encode_velocity ? "#define ENCODE_UNORM\n" : "",
              fx->scene->plan.particle_velocity && float_ok ? "#define HAS_PARTICLE_VELOCITY\n" : "");
@@ -179,7 +179,8 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     snprintf(class_defines, sizeof(class_defines), "%s#define BLOCK %d\n", defines, block_tiles(fx));
     snprintf(blur_defines, sizeof(blur_defines), "%s#define SAMPLES %d\n", defines, fx->scene->post.samples);
     snprintf(dof_defines, sizeof(dof_defines), "#define DOF_SCALE %d\n", fx->scene->post.dof_scale);
-    snprintf(dof_blur_defines, sizeof(dof_blur_defines), "#define RADIUS %d\n", dof_blur_radius(fx));
+    snprintf(dof_blur_defines, sizeof(dof_blur_defines), "#define RADIUS %d\n%s", dof_blur_radius(fx),
+             float_ok ? "#define PAIRS\n" : "");
     bool velocity = fx->scene->post.blur == SBFX_BLUR_VELOCITY, history = fx->scene->post.blur == SBFX_BLUR_HISTORY;
     bool dof = fx->scene->post.dof;
     p->copy_program = build(fx, "copy.frag", NULL, true);
