@@ -159,6 +159,53 @@ static int dof_blur_radius(const sbfx *fx)
     return r < 0 ? 0 : r > 16 ? 16 : r;
 }
 
+/* The velocity blur's programs (defines: the velocity target's encoding, the particles' motion);
+ * no velocity pass with depth of field, whose composite writes the velocities. */
+static bool velocity_programs(sbfx *fx, const char *defines)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    const sbfx_post_params *post = &fx->scene->post;
+    char tile[160], block[160], samples[160];
+    /* loops sized to the scene, so the compilers unroll what runs, not the largest size */
+    snprintf(tile, sizeof(tile), "%s#define TILE %d\n", defines, post->tile);
+    snprintf(block, sizeof(block), "%s#define BLOCK %d\n", defines, block_tiles(fx));
+    snprintf(samples, sizeof(samples), "%s#define SAMPLES %d\n", defines, post->samples);
+    p->velocity_program = build(fx, "velocity.frag", defines, !post->dof);
+    p->tile_program = build(fx, "tile_max.frag", tile, true);
+    p->neighbor_program = build(fx, "neighbor_max.frag", defines, true);
+    p->class_program = build(fx, "tile_class.frag", block, true);
+    p->blur_program = build_tiled(fx, "motion_blur.frag", samples, true);
+    p->still_program = build_tiled(fx, "copy.frag", NULL, true);
+    return (post->dof || p->velocity_program) && p->tile_program && p->neighbor_program && p->class_program &&
+           p->blur_program && p->still_program;
+}
+
+/* `frag` for tiles.vert over the particles' tiles (*inside) and, with NO_PARTICLES, the rest. */
+static bool build_split(sbfx *fx, const char *frag, const char *defines, GLuint *inside, GLuint *rest)
+{
+    char plain[256];
+    snprintf(plain, sizeof(plain), "#define NO_PARTICLES\n%s", defines);
+    *inside = sbfx_program_build(fx, "tiles.vert", frag, defines);
+    *rest = sbfx_program_build(fx, "tiles.vert", frag, plain);
+    return *inside && *rest;
+}
+
+/* The depth of field's programs; with the velocity blur its composite writes the velocities
+ * (velocity_defines: the velocity programs' defines, else NULL). */
+static bool dof_programs(sbfx *fx, const char *velocity_defines, bool shimmer, bool float_ok)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    char setup[32], blur[48], composite[192];
+    snprintf(setup, sizeof(setup), "#define DOF_SCALE %d\n", fx->scene->post.dof_scale);
+    snprintf(blur, sizeof(blur), "#define RADIUS %d\n%s", dof_blur_radius(fx), float_ok ? "#define PAIRS\n" : "");
+    snprintf(composite, sizeof(composite), "%s%s%s", shimmer ? "#define HAS_SHIMMER\n" : "",
+             velocity_defines ? "#define WRITE_VELOCITY\n" : "", velocity_defines ? velocity_defines : "");
+    p->dof_blur_program = build(fx, "dof_blur.frag", blur, true);
+    return build_split(fx, "dof_setup.frag", setup, &p->dof_setup_program, &p->dof_setup_plain_program) &&
+           build_split(fx, "dof_composite.frag", composite, &p->dof_composite_program, &p->dof_plain_program) &&
+           p->dof_blur_program;
+}
+
 sbfx_result sbfx_post_programs_create(sbfx *fx)
 {
     sbfx_post_gl *p = &fx->render->post;
@@ -170,50 +217,17 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     if (fx->scene->plan.distortion && !float_ok)
         sbfx_log(fx, SBFX_LOG_WARN, "heat shimmer needs a float particle target (GL_EXT_color_buffer_half_float "
                  "or GL_EXT_color_buffer_float): shimmer is off");
-    char defines[128], tile_defines[160], class_defines[160], blur_defines[160], dof_defines[32], dof_blur_defines[48];
-    bool shimmer = fx->scene->plan.distortion && float_ok;
+    char defines[128];
     snprintf(defines, sizeof(defines), "%s%s", p->encode_velocity ? "#define ENCODE_UNORM\n" : "",
              fx->scene->plan.particle_velocity && float_ok ? "#define HAS_PARTICLE_VELOCITY\n" : "");
-    /* loops sized to the scene, so the compilers unroll what runs, not the largest size */
-    snprintf(tile_defines, sizeof(tile_defines), "%s#define TILE %d\n", defines, fx->scene->post.tile);
-    snprintf(class_defines, sizeof(class_defines), "%s#define BLOCK %d\n", defines, block_tiles(fx));
-    snprintf(blur_defines, sizeof(blur_defines), "%s#define SAMPLES %d\n", defines, fx->scene->post.samples);
-    snprintf(dof_defines, sizeof(dof_defines), "#define DOF_SCALE %d\n", fx->scene->post.dof_scale);
-    snprintf(dof_blur_defines, sizeof(dof_blur_defines), "#define RADIUS %d\n%s", dof_blur_radius(fx),
-             float_ok ? "#define PAIRS\n" : "");
     bool velocity = fx->scene->post.blur == SBFX_BLUR_VELOCITY, history = fx->scene->post.blur == SBFX_BLUR_HISTORY;
-    bool dof = fx->scene->post.dof;
     p->copy_program = build(fx, "copy.frag", NULL, true);
     p->history_program = build(fx, "history_blur.frag", NULL, history);
-    p->velocity_program = build(fx, "velocity.frag", defines, velocity && !dof);
-    p->tile_program = build(fx, "tile_max.frag", tile_defines, velocity);
-    p->neighbor_program = build(fx, "neighbor_max.frag", defines, velocity);
-    p->class_program = build(fx, "tile_class.frag", class_defines, velocity);
-    p->blur_program = build_tiled(fx, "motion_blur.frag", blur_defines, velocity);
-    p->still_program = build_tiled(fx, "copy.frag", NULL, velocity);
-    p->dof_setup_program = dof ? sbfx_program_build(fx, "tiles.vert", "dof_setup.frag", dof_defines) : 0;
-    char setup_plain_defines[64];
-    snprintf(setup_plain_defines, sizeof(setup_plain_defines), "#define NO_PARTICLES\n%s", dof_defines);
-    p->dof_setup_plain_program = dof ? sbfx_program_build(fx, "tiles.vert", "dof_setup.frag", setup_plain_defines) : 0;
-    p->dof_blur_program = build(fx, "dof_blur.frag", dof_blur_defines, dof);
-    char composite_defines[192];
-    snprintf(composite_defines, sizeof(composite_defines), "%s%s", shimmer ? "#define HAS_SHIMMER\n" : "",
-             velocity ? "#define WRITE_VELOCITY\n" : "");
-    if (velocity) snprintf(composite_defines + strlen(composite_defines), sizeof(composite_defines) - strlen(composite_defines),
-                           "%s", defines);
-    /* over the particles' tiles, and without the particles' fetches over the rest (tiles.vert) */
-    p->dof_composite_program = dof ? sbfx_program_build(fx, "tiles.vert", "dof_composite.frag", composite_defines) : 0;
-    char plain_defines[224];
-    snprintf(plain_defines, sizeof(plain_defines), "#define NO_PARTICLES\n%s", composite_defines);
-    p->dof_plain_program = dof ? sbfx_program_build(fx, "tiles.vert", "dof_composite.frag", plain_defines) : 0;
-    GLuint need[] = {p->copy_program, history ? p->history_program : 1, velocity ? p->blur_program : 1,
-                     velocity && !dof ? p->velocity_program : 1, velocity ? p->tile_program : 1,
-                     velocity ? p->neighbor_program : 1, velocity ? p->class_program : 1,
-                     velocity ? p->still_program : 1, dof ? p->dof_composite_program : 1,
-                     dof ? p->dof_plain_program : 1, dof ? p->dof_setup_plain_program : 1,
-                     dof ? p->dof_setup_program : 1, dof ? p->dof_blur_program : 1};
-    for (size_t i = 0; i < ARRAY_SIZE(need); i++)
-        if (!need[i]) return SBFX_ERR_SHADER;
+    bool ok = p->copy_program && (!history || p->history_program);
+    ok = ok && (!velocity || velocity_programs(fx, defines));
+    ok = ok && (!fx->scene->post.dof ||
+                dof_programs(fx, velocity ? defines : NULL, fx->scene->plan.distortion && float_ok, float_ok));
+    if (!ok) return SBFX_ERR_SHADER;
     locate_post_uniforms(p);
     return SBFX_OK;
 }
