@@ -4,6 +4,10 @@
 // pixel (cones of its own and this pixel's velocity) and which is in front (soft depth
 // compare). A half-pixel jitter per pixel hides the sample pattern. Below half a pixel of
 // motion the pixel is returned unchanged.
+//   FAST     the blocks whose neighbourhoods move as one (tile_class.frag: every velocity within
+//            half a pixel of the longest's length): every sample is taken to move as the
+//            neighbour max and to lie at this pixel's depth, so its weight follows from its
+//            distance alone, without its velocity and depth (Jimenez's fast path, CoD: AW)
 //   SAMPLES  the scene's sample count, set at load (src/render/post.c): the loop the compilers
 //            unroll, so that their static estimates count every sample (docs/gpus.md)
 precision highp float;
@@ -69,6 +73,24 @@ void main()
         o_color = center;
         return;
     }
+#ifdef FAST
+    float inv_speed = 1.0 / max(length(vmax), 0.5);
+    float weight = inv_speed;
+    vec3 sum = center.rgb * weight;
+    float j = jitter(gl_FragCoord.xy);
+    int middle = (u_samples - 1) >> 1;
+    for (int i = 0; i < SAMPLES; i++) {
+        if (i >= u_samples) break;
+        if (i == middle) continue;
+        float t = mix(-1.0, 1.0, (float(i) + j + 1.0) / float(u_samples + 1));
+        ivec2 y = clamp(ivec2(floor(vec2(p) + 0.5 + vmax * t)), ivec2(0), u_size - 1);
+        float x = length(vec2(y - p)) * inv_speed;
+        float a = 2.0 * cone(x) + 2.0 * cylinder(x) * cylinder(x);   // the full path's, one velocity and depth
+        weight += a;
+        sum += a * texelFetch(u_color, y, 0).rgb;
+    }
+    o_color = vec4(sum / weight, 1.0);
+#else
     vec4 tc = texelFetch(u_velocity, p, 0);
     vec2 vc = decode(tc);
     float inv_speed_c = 1.0 / max(length(vc), 0.5);
@@ -94,4 +116,5 @@ void main()
         sum += a * texelFetch(u_color, y, 0).rgb;
     }
     o_color = vec4(sum / weight, 1.0);
+#endif
 }

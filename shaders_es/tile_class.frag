@@ -1,9 +1,10 @@
 #version 300 es
-// Velocity blur, step 4: which blocks of BLOCK x BLOCK tiles the gather can change. A pixel's
-// gather returns it unchanged where its tile's neighbour max is under half a pixel
+// Velocity blur, step 4: which blocks of BLOCK x BLOCK tiles the gather can change, and how. A
+// pixel's gather returns it unchanged where its tile's neighbour max is under half a pixel
 // (motion_blur.frag), so a block whose tiles are all under it is still: 0 here, and
-// blur_tiles.vert draws a copy over it; a block with a tile at half a pixel or more: 1, and the
-// gather runs over it (the same test on the same texels: the two never disagree).
+// blur_tiles.vert draws a copy over it (the same test on the same texels: the two never
+// disagree). A block whose moving tiles' neighbourhoods all move as one (their shortest velocity
+// within UNIFORM pixels of their longest) gets the gather's fast path: 0.5; any other, 1.
 //   BLOCK  tiles per block side, set at load (src/render/post.c): the loop the compilers unroll
 precision highp float;
 precision highp sampler2D;
@@ -19,6 +20,7 @@ const bool encode = true;
 #else
 const bool encode = false;
 #endif
+const float UNIFORM = 0.5;       // pixels
 
 out vec4 o_class;
 
@@ -27,11 +29,14 @@ vec2 decode(vec4 t) { return encode ? (t.xy - 0.5) * 2.0 * u_max_radius : t.xy; 
 void main()
 {
     ivec2 base = ivec2(gl_FragCoord.xy) * BLOCK;
-    bool moving = false;
+    bool moving = false, varied = false;
     for (int j = 0; j < BLOCK; j++)
         for (int i = 0; i < BLOCK; i++) {
-            vec2 vmax = decode(texelFetch(u_neighbor_max, min(base + ivec2(i, j), u_tiles_size - 1), 0));
-            moving = moving || !(length(vmax) < 0.5);
+            vec4 t = texelFetch(u_neighbor_max, min(base + ivec2(i, j), u_tiles_size - 1), 0);
+            float longest = length(decode(t)), shortest = sqrt(encode ? t.z * u_max_radius * u_max_radius : t.z);
+            bool tile_moves = !(longest < 0.5);
+            moving = moving || tile_moves;
+            varied = varied || (tile_moves && !(longest - shortest < UNIFORM));
         }
-    o_class = vec4(moving ? 1.0 : 0.0, 0.0, 0.0, 1.0);
+    o_class = vec4(varied ? 1.0 : moving ? 0.5 : 0.0, 0.0, 0.0, 1.0);
 }

@@ -24,8 +24,9 @@
 # (docs/gpus.md, "The post chain"): base + (SAMPLES - 1) x sample, the two measured from the
 # unrolled builds at SAMPLES 3, 5 and 7 (tools/shader-stats.sh -s over scenes/post.cfg with
 # `samples` 3, 5 and 7; V3D unrolls only 3: its sample is 3's less the loop counted once; per
-# fragment: G52 3.875 + 2.25, G610 1.234 + 0.6875, V3D 4.2 12 + 39, V3D 7.1 14.25 + 30.75);
-# measure them again when motion_blur.frag changes. Then, for the scenes with a post chain, its
+# fragment: G52 3.875 + 2.25, G610 1.234 + 0.6875, V3D 4.2 12 + 39, V3D 7.1 14.25 + 30.75; its
+# FAST variant G52 3.0 + 1.75, G610 1.047 + 0.578, V3D 4.2 32 + 18, V3D 7.1 29.25 + 16.5, V3D from 3
+# and 5); measure them again when motion_blur.frag changes. Then, for the scenes with a post chain, its
 # programs in the worst frame on the G52: fragments, cycles per fragment as priced, ms.
 # With ERRORS_CSV (bench_boards --error), a last table: each scene's error against its own
 # full-resolution RGBA32F render (mean |difference| in 8-bit levels over the pixels either image
@@ -46,10 +47,14 @@ function pass_of(shader, variant) {
 }
 function left(ms) { return ms >= 16.667 ? "none" : sprintf("%.0f %%", 100 * (16.667 - ms) / 16.667) }
 BEGIN {
-    gather_base["g52"] = 3.875; gather_sample["g52"] = 2.25
-    gather_base["g610"] = 1.2344; gather_sample["g610"] = 0.6875
-    gather_base["rpi4"] = 12; gather_sample["rpi4"] = 39
-    gather_base["rpi5"] = 14.25; gather_sample["rpi5"] = 30.75
+    gather_base["g52", "full"] = 3.875; gather_sample["g52", "full"] = 2.25
+    gather_base["g610", "full"] = 1.2344; gather_sample["g610", "full"] = 0.6875
+    gather_base["rpi4", "full"] = 12; gather_sample["rpi4", "full"] = 39
+    gather_base["rpi5", "full"] = 14.25; gather_sample["rpi5", "full"] = 30.75
+    gather_base["g52", "fast"] = 3.0; gather_sample["g52", "fast"] = 1.75
+    gather_base["g610", "fast"] = 1.0469; gather_sample["g610", "fast"] = 0.5781
+    gather_base["rpi4", "fast"] = 32; gather_sample["rpi4", "fast"] = 18
+    gather_base["rpi5", "fast"] = 29.25; gather_sample["rpi5", "fast"] = 16.5
 }
 FNR == 1 { file++; next }
 file == 1 && $6 == "fragment" { cycles[key_of($1, $3, $4, $5)] = $8; texture[key_of($1, $3, $4, $5)] = $10; has[$1] = 1; next }
@@ -71,7 +76,8 @@ file == 2 {
         if (block && i > 2) c *= $4 * $4
         if ($7 == "motion_blur.frag" && match($8, /SAMPLES=[0-9]+/)) {
             samples = substr($8, RSTART + 8, RLENGTH - 8) + 0
-            priced = gather_base[gpus[i]] + (samples - 1) * gather_sample[gpus[i]]
+            fast = $8 ~ /FAST/ ? "fast" : "full"
+            priced = gather_base[gpus[i], fast] + (samples - 1) * gather_sample[gpus[i], fast]
             if (priced > c) c = priced
         }
         work[gpus[i], frame, mode] += $9 * c

@@ -104,7 +104,7 @@ static const char *const post_uniform_names[PU_COUNT] = {
 static GLuint *post_programs(sbfx_post_gl *p, int i)
 {
     GLuint *all[SBFX_POST_PROGRAMS] = {&p->copy_program, &p->history_program, &p->velocity_program, &p->tile_program,
-                                      &p->neighbor_program, &p->class_program, &p->blur_program,
+                                      &p->neighbor_program, &p->class_program, &p->blur_program, &p->fast_program,
                                       &p->still_program, &p->dof_setup_program, &p->dof_blur_program,
                                       &p->dof_composite_program, &p->dof_plain_program,
                                       &p->dof_setup_plain_program};
@@ -165,19 +165,21 @@ static bool velocity_programs(sbfx *fx, const char *defines)
 {
     sbfx_post_gl *p = &fx->render->post;
     const sbfx_post_params *post = &fx->scene->post;
-    char tile[160], block[160], samples[160];
+    char tile[160], block[160], samples[160], fast[176];
     /* loops sized to the scene, so the compilers unroll what runs, not the largest size */
     snprintf(tile, sizeof(tile), "%s#define TILE %d\n", defines, post->tile);
     snprintf(block, sizeof(block), "%s#define BLOCK %d\n", defines, block_tiles(fx));
     snprintf(samples, sizeof(samples), "%s#define SAMPLES %d\n", defines, post->samples);
+    snprintf(fast, sizeof(fast), "%s#define FAST\n", samples);
     p->velocity_program = build(fx, "velocity.frag", defines, !post->dof);
     p->tile_program = build(fx, "tile_max.frag", tile, true);
     p->neighbor_program = build(fx, "neighbor_max.frag", defines, true);
     p->class_program = build(fx, "tile_class.frag", block, true);
     p->blur_program = build_tiled(fx, "motion_blur.frag", samples, true);
+    p->fast_program = build_tiled(fx, "motion_blur.frag", fast, true);
     p->still_program = build_tiled(fx, "copy.frag", NULL, true);
     return (post->dof || p->velocity_program) && p->tile_program && p->neighbor_program && p->class_program &&
-           p->blur_program && p->still_program;
+           p->blur_program && p->fast_program && p->still_program;
 }
 
 /* `frag` for tiles.vert over the particles' tiles (*inside) and, with NO_PARTICLES, the rest. */
@@ -247,7 +249,7 @@ void sbfx_post_destroy(sbfx *fx)
     sbfx_post_gl *p = &fx->render->post;
     destroy_targets(fx);
     GLuint programs[] = {p->velocity_program, p->tile_program, p->neighbor_program, p->class_program,
-                         p->blur_program, p->still_program, p->history_program, p->copy_program, p->dof_setup_program, p->dof_blur_program,
+                         p->blur_program, p->fast_program, p->still_program, p->history_program, p->copy_program, p->dof_setup_program, p->dof_blur_program,
                          p->dof_composite_program, p->dof_plain_program, p->dof_setup_plain_program};
     for (size_t i = 0; i < ARRAY_SIZE(programs); i++) sbfx_program_delete(fx, programs[i]);
 }
@@ -568,8 +570,9 @@ static void draw_blocks(sbfx *fx, GLuint program, float class, const sbfx_frame 
     fx->counters.draw_calls++;
 }
 
-/* Which blocks the gather can change (tile_class.frag); as before the classes (the tiles'
- * full_screen: the bench's "before", the tests' control) every block is the gather's. */
+/* Which blocks the gather can change and how (tile_class.frag); as before the classes (the
+ * tiles' full_screen: the bench's "before", the tests' control) every block is the full
+ * gather's. */
 static void classify_blocks(sbfx *fx)
 {
     sbfx_post_gl *p = &fx->render->post;
@@ -585,6 +588,24 @@ static void classify_blocks(sbfx *fx)
     glUniform2i(post_loc(p, prog, PU_TILES_SIZE), p->neighbors.width, p->neighbors.height);
     glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->scene->post.tile);
     finish(fx);
+}
+
+/* The gather with `prog` over the blocks of `class`: 1 the full path, 0.5 the fast one. */
+static void gather(sbfx *fx, const post_frame *pf, GLuint prog, float class, GLuint source, GLuint fbo)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    const sbfx_frame *f = pf->f;
+    begin(prog, fbo, f->width, f->height);
+    bind_unit(fx, prog, PU_COLOR, 0, source);
+    bind_unit(fx, prog, PU_VELOCITY, 1, velocity_texture(fx));
+    bind_unit(fx, prog, PU_NEIGHBOR_MAX, 2, p->neighbors.texture[0]);
+    bind_unit(fx, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
+    glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
+    glUniform1i(post_loc(p, prog, PU_TILE), fx->scene->post.tile);
+    glUniform1i(post_loc(p, prog, PU_SAMPLES), fx->scene->post.samples);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->scene->post.tile);
+    set_depth_uniforms(p, prog, pf);
+    draw_blocks(fx, prog, class, f);
 }
 
 /* McGuire's reconstruction: velocity, tile max (rows, then columns), neighbour max, the blocks
@@ -616,18 +637,8 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
     glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
     finish(fx);
     classify_blocks(fx);
-    prog = p->blur_program;
-    begin(prog, fbo, f->width, f->height);
-    bind_unit(fx, prog, PU_COLOR, 0, source);
-    bind_unit(fx, prog, PU_VELOCITY, 1, velocity_texture(fx));
-    bind_unit(fx, prog, PU_NEIGHBOR_MAX, 2, p->neighbors.texture[0]);
-    bind_unit(fx, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
-    glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
-    glUniform1i(post_loc(p, prog, PU_TILE), post->tile);
-    glUniform1i(post_loc(p, prog, PU_SAMPLES), post->samples);
-    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
-    set_depth_uniforms(p, prog, pf);
-    draw_blocks(fx, prog, 1.0f, f);
+    gather(fx, pf, p->blur_program, 1.0f, source, fbo);
+    gather(fx, pf, p->fast_program, 0.5f, source, fbo);
     prog = p->still_program;
     begin(prog, fbo, f->width, f->height);
     bind_unit(fx, prog, PU_SOURCE, 0, source);

@@ -435,8 +435,9 @@ CHECK_TEST(no_nan_at_screen_edges_or_clear_depth)
     sbfx_destroy(fx);
 }
 
-/* The velocity blur's blocks (tile_class.frag) that are the gather's, 1 each, read back. */
-static int moving_blocks(sbfx *fx, int *total)
+/* The velocity blur's blocks (tile_class.frag) of a class (1 the gather, 0.5 its fast path, 0
+ * still), read back. */
+static int blocks_of(sbfx *fx, float class, int *total)
 {
     const sbfx_rt *c = &fx->render->post.classes;
     float v[4 * 16 * 16];
@@ -445,7 +446,7 @@ static int moving_blocks(sbfx *fx, int *total)
     glReadPixels(0, 0, c->width, c->height, GL_RGBA, GL_FLOAT, v);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     int n = 0;
-    for (int i = 0; i < c->width * c->height; i++) n += v[4 * i] == 1.0f;
+    for (int i = 0; i < c->width * c->height; i++) n += v[4 * i] == class;
     *total = c->width * c->height;
     return n;
 }
@@ -460,7 +461,7 @@ CHECK_TEST(a_still_camera_copies_every_block)
     sbfx *fx = post_module(&p, SMOKE_MEDIA "post = { motion_blur = { mode = \"velocity\"; shutter = 1.0; }; };\n");
     for (int frame = 0; frame < 2; frame++)
         CHECK(sbfx_render(fx, &p.gl.frame) == SBFX_OK, "%s", sbfx_last_error(fx));
-    int total, moving = moving_blocks(fx, &total);
+    int total, moving = blocks_of(fx, 1.0f, &total) + blocks_of(fx, 0.5f, &total);
     uint8_t out[W * H * 4];
     read_out(&p, out);
     int differ = 0;
@@ -473,8 +474,10 @@ CHECK_TEST(a_still_camera_copies_every_block)
 
 /* A sideways pan over a near wall (left half, 4 m) and the sky (right half): the wall moves 12 px,
  * the sky not at all. The gather runs over the wall's blocks and the block its tiles' neighbours
- * reach (three columns of 32 px), the copy over the last column, and the picture is byte for
- * byte the gather's over every block (the tiles' full_screen). */
+ * reach (three columns of 32 px), the copy over the last column: byte for byte the gather's over
+ * every block (the tiles' full_screen) there. The first column's neighbourhoods all move as one
+ * (the wall's 6 px of blur): its blocks take the fast path, which for one velocity at one depth
+ * is the full gather's weights (within a level: the order of the arithmetic). */
 static double wall_and_sky(int x, int y, void *u) { (void)y, (void)u; return x < W / 2 ? 4.0 : INFINITY; }
 
 CHECK_TEST(only_moving_blocks_get_the_gather)
@@ -491,7 +494,7 @@ CHECK_TEST(only_moving_blocks_get_the_gather)
     uint8_t out[W * H * 4], want[W * H * 4];
     sbfx *both[2] = {fx, control};
     uint8_t *images[2] = {out, want};
-    int total = 0, moving = 0, all_total = 0, all_moving = 0;
+    int total = 0, full = 0, fast = 0, all_total = 0, all_moving = 0;
     for (int k = 0; k < 2; k++) {
         p.gl.frame.view[12] = 0.0f;
         CHECK(sbfx_render(both[k], &p.gl.frame) == SBFX_OK, "%s", sbfx_last_error(both[k]));
@@ -499,19 +502,24 @@ CHECK_TEST(only_moving_blocks_get_the_gather)
         CHECK(sbfx_render(both[k], &p.gl.frame) == SBFX_OK, "%s", sbfx_last_error(both[k]));
         read_out(&p, images[k]);
     }
-    moving = moving_blocks(fx, &total);
-    all_moving = moving_blocks(control, &all_total);
-    int differ = 0, copied = 0, changed = 0;
+    full = blocks_of(fx, 1.0f, &total);
+    fast = blocks_of(fx, 0.5f, &total);
+    all_moving = blocks_of(control, 1.0f, &all_total);
+    int differ = 0, copied = 0, changed = 0, fast_worst = 0;
     for (int i = 0; i < W * H * 4; i++) {
-        differ += out[i] != want[i];
+        bool fast_column = (i / 4) % W < 32;
+        if (fast_column) fast_worst = abs(out[i] - want[i]) > fast_worst ? abs(out[i] - want[i]) : fast_worst;
+        else differ += out[i] != want[i];
         if (i % 4 == 3) continue;
         if ((i / 4) % W >= 96) copied += out[i] != p.color[i];
         else changed += out[i] != p.color[i];
     }
-    printf("# pan over a wall and the sky: %d of %d blocks moving (control %d), %d channels differ from "
-           "the gather everywhere; %d changed in the moving blocks, %d in the still column\n",
-           moving, total, all_moving, differ, changed, copied);
-    CHECK(moving == 3 * 2, "%d of %d blocks moving, want 6 (three columns)", moving, total);
+    printf("# pan over a wall and the sky: of %d blocks %d the gather's, %d its fast path's (control: %d the "
+           "gather's); %d channels differ from the gather everywhere outside the fast column, at most %d levels "
+           "in it; %d changed in the moving blocks, %d in the still column\n",
+           total, full, fast, all_moving, differ, fast_worst, changed, copied);
+    CHECK(full == 2 * 2 && fast == 2, "%d full and %d fast blocks of %d, want 4 and 2 (columns 2-3, 1)", full, fast, total);
+    CHECK(fast_worst <= 1, "the fast path differs from the gather by %d levels", fast_worst);
     CHECK(all_moving == all_total, "the control drew the copy over %d blocks", all_total - all_moving);
     CHECK(changed > 1000, "the wall was not blurred (%d channels changed)", changed);
     CHECK(copied == 0, "the still column changed (%d channels)", copied);
@@ -528,7 +536,7 @@ CHECK_TEST(post_effects_only_when_asked)
     struct { const char *post; int programs; } cases[] = {
         {"", 3},
         {"post = { motion_blur = { mode = \"history\"; }; };\n", 3 + 2},
-        {"post = { motion_blur = { mode = \"velocity\"; }; };\n", 3 + 7}, /* + the blocks' classes, their copy */
+        {"post = { motion_blur = { mode = \"velocity\"; }; };\n", 3 + 8}, /* + the blocks' classes, fast path, copy */
         {"post = { depth_of_field = { near = [1.0, 2.0]; far = [10.0, 20.0]; }; };\n", 3 + 6}, /* + the setup and composite outside the tiles */
     };
     for (size_t i = 0; i < ARRAY_SIZE(cases); i++) {

@@ -11,7 +11,7 @@
 typedef struct plan {
     const char *scene;
     int particle_programs; /* one per medium used */
-    int post_programs;     /* copy (+ 5 velocity blur: tile max, neighbour max, blocks, gather, copy; + the velocity
+    int post_programs;     /* copy (+ 6 velocity blur: tile max, neighbour max, blocks, gather, its fast path, copy; + the velocity
                               pass without depth of field, whose composite writes them; + 5 depth of field:
                               blur, setup and composite inside and outside the tiles; + 1 history blur) */
     bool blackbody, phase;
@@ -26,7 +26,7 @@ static const plan plans[] = {
     {"campfire", 3, 1, true, true, 1024, 256, true},   /* heat: shimmer owns the scene, a copy program */
     {"dust-storm", 1, 0, false, true, 1024, 256, false},
     {"barrage", 3, 0, true, true, 4096, 256, true},
-    {"post", 4, 1 + 5 + 5, true, true, 2048, 0, true},
+    {"post", 4, 1 + 6 + 5, true, true, 2048, 0, true},
 };
 
 CHECK_TEST(plan_holds_only_what_each_scene_uses)
