@@ -8,8 +8,9 @@
 //            half a pixel of the longest's length): every sample is taken to move as the
 //            neighbour max and to lie at this pixel's depth, so its weight follows from its
 //            distance alone, without its velocity and depth (Jimenez's fast path, CoD: AW)
-//   SAMPLES  the scene's sample count, set at load (src/render/post.c): the loop the compilers
-//            unroll, so that their static estimates count every sample (docs/gpus.md)
+//   SAMPLES  the scene's sample count, set at load (src/render/post.c): a loop the compilers can
+//            unroll (Mesa does up to 7 samples of the full path, 15 of the fast one; the boards'
+//            table prices the rest per sample: docs/gpus.md, "The post chain")
 precision highp float;
 precision highp sampler2D;
 
