@@ -35,8 +35,8 @@ void main()
 #endif
     vec3 c = v_center_radius.xyz;
     float r = v_center_radius.w;
-    vec2 ndc = gl_FragCoord.xy / u_target_size * 2.0 - 1.0;
-    vec3 ray = vec3((ndc + u_projection.zw) / u_projection.xy, -1.0);
+    // ndc = 2 gl_FragCoord / size - 1, ray.xy = (ndc + P[8], P[9]) / (P[0], P[5]): folded on the CPU
+    vec3 ray = vec3(gl_FragCoord.xy * u_ray_map.xy + u_ray_map.zw, -1.0);
     float e = texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r;
     float zs = e > 0.0 ? u_near / e : 1e30;   // no surface: nothing clips the ray
     float intensity = v_detail.w;
