@@ -98,7 +98,10 @@ void main()
     // shimmer is the detail's turbulence, so it scales with the detail strength like every
     // medium's perturbation: 0 leaves the picture behind the heat as it was (docs/look.md).
 #ifdef HAS_DETAIL
-    vec2 noise = u_detail_strength * (vec2(detail, detail_sample(c + vec3(0.37, 0.61, 0.0) * r, r, ray)) - 0.5);
+    // the second sample as at a centre moved by (0.37, 0.61) r across the view: the same window
+    // shifted by half of that (the window spans 2r)
+    vec3 shifted = detail_coordinate(c, r, ray) - vec3(vec2(0.185, 0.305) * u_detail_window, 0.0);
+    vec2 noise = u_detail_strength * (vec2(detail, detail_fetch(u_detail, shifted).r) - 0.5);
 #else
     vec2 noise = v_detail.xy - 0.5;   // without the volume: one random direction per particle
 #endif
