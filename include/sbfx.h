@@ -175,9 +175,12 @@ typedef struct sbfx_desc {
     int detail_frames;               /* detail volume depth = animation frames (32) */
     sbfx_detail_format detail_format;
     bool analytic_blackbody;         /* Planck x CIE evaluated per fragment, not the table */
-    bool analytic_phase;             /* phase function evaluated per fragment, not the table */
+    bool analytic_phase;             /* phase function evaluated per fragment: the default
+                                        since issue 43; set, it wins over table_phase */
     bool light_per_particle;         /* phase-model in-scattering evaluated once per particle
                                         (on the CPU, at its centre) instead of per fragment */
+    bool table_phase;                /* the phase function sampled from its table (scene
+                                        render.phase = "table", level flag tph) instead */
     sbfx_tone_map tone_map;          /* the particles' light on the display (hue-preserving) */
     float exposure;                  /* scale of the particles' light (1), applied where it is
                                         made (pre-exposed in the particle target) */
@@ -471,7 +474,8 @@ typedef struct sbfx_quality {
     sbfx_target_format target_format;
     bool light_per_particle;
     bool analytic_blackbody;
-    bool analytic_phase;
+    bool analytic_phase;             /* the default: resolved, exactly one of these two is set */
+    bool table_phase;                /* level flag tph: the phase function's table */
     int lod_particles;               /* at most this many particles drawn (level of detail);
                                         0 = all */
 } sbfx_quality;
@@ -487,7 +491,8 @@ SBFX_API sbfx_result sbfx_get_quality(const sbfx *fx, sbfx_quality *out);
  * spherical | exact, divisor 1 | 2 | 4 | 8, upsample nd (nearest-depth) | bl (bilinear) | mx
  * (mixed resolution: nearest-depth, refined at full resolution where the coarse target fails), flags
  * rgba8 | rgba16f | rgba32f (target format), lpp (light per particle), abb (analytic black
- * body), aph (analytic phase), lodN (at most N particles). "exact/4/nd", "spherical/8/bl/lod256".
+ * body), tph (the phase function's table; the analytic phase is the default, and aph, which
+ * named it, is still accepted), lodN (at most N particles). "exact/4/nd", "spherical/8/bl/lod256".
  * Parse fills *out (defaults resolved) or names the bad token in err. */
 SBFX_API sbfx_result sbfx_quality_parse(const char *name, sbfx_quality *out, char *err, size_t err_size);
 /* The canonical name of q (parse(name(q)) == q); returns buf. */

@@ -20,8 +20,7 @@ uniform float u_heat_strength;   // largest shimmer offset, UV units
 
 uniform sampler2D u_depth;       // low-res opaque near / distance (depth texture; 0: no surface)
 uniform float u_near;
-uniform vec4 u_projection;       // projection[0], [5], [8], [9]
-uniform vec2 u_target_size;
+uniform vec4 u_ray_map;         // this pixel's ray (z = -1): xy = gl_FragCoord.xy * u_ray_map.xy + u_ray_map.zw
 uniform float u_tau;
 uniform float u_soft_scale;
 
@@ -36,7 +35,7 @@ uniform sampler2D u_phase_lut;   // R32F, row m: medium m's phase function (src/
 uniform int u_phase_row;
 uniform vec4 u_phase_warp;       // sign(g), (1-|g|)^2, 2|g| (0: unwarped), 1/ln((1-|g|)^2/(1+|g|)^2)
 uniform vec2 u_phase_shift;      // -ln((1+|g|)^2) * u_phase_warp.w, entries - 1
-uniform float u_g;
+uniform vec4 u_phase_analytic;   // 3 (1 - g^2) / (8 pi (2 + g^2)), (1-|g|)^2, 2|g|, sign(g) (PHASE_ANALYTIC)
 uniform vec3 u_albedo_color;     // albedo * tint
 #define MAX_LIGHTS 8
 #ifndef LIGHT_SLOTS

@@ -14,9 +14,9 @@
 typedef struct sbfx_program {
     GLuint id;
     /* uniform locations used every frame */
-    GLint near, projection, target_size, pixel, octagon, tau, soft_scale, full_size, heat_strength;
+    GLint near, projection, ray_map, pixel, octagon, tau, soft_scale, full_size, heat_strength;
     GLint depth, detail, detail_window, detail_strength, time;
-    GLint phase_lut, phase_row, phase_warp, phase_shift, g, albedo_color, light_count, light_vector, light_color;
+    GLint phase_lut, phase_row, phase_warp, phase_shift, phase_analytic, albedo_color, light_count, light_vector, light_color;
     GLint ambient, blackbody, blackbody_map, temperature, emission_scale, cmf_rgb, cmf_band, probe;
     GLint smoke, smoke_size, smoke_variants, wrap, translucency, dampening, steps; /* LIGHTING_LIT */
 } sbfx_program;
@@ -30,6 +30,7 @@ typedef struct sbfx_pass_uniforms {
     GLint low_corners, particles_far, near_over_far;                  /* composite, nearest depth */
     GLint tile_size, tile_grid, tile_target;                          /* tiles.vert (render/tiles.h) */
     GLint refined, contrast;                                          /* mixed resolution (render/refine.c) */
+    GLint inv_divisor, low_texel, corners_texel, near_model, tone_filmic, tone_shoulder, full_texel; /* folded on the CPU (passes.c) */
 } sbfx_pass_uniforms;
 
 typedef struct sbfx_variant_key {

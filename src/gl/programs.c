@@ -47,7 +47,7 @@ void sbfx_program_locate(sbfx_program *p)
     GLuint id = p->id;
     p->near = glGetUniformLocation(id, "u_near");
     p->projection = glGetUniformLocation(id, "u_projection");
-    p->target_size = glGetUniformLocation(id, "u_target_size");
+    p->ray_map = glGetUniformLocation(id, "u_ray_map");
     p->pixel = glGetUniformLocation(id, "u_pixel");
     p->octagon = glGetUniformLocation(id, "u_octagon");
     p->tau = glGetUniformLocation(id, "u_tau");
@@ -63,7 +63,7 @@ void sbfx_program_locate(sbfx_program *p)
     p->phase_row = glGetUniformLocation(id, "u_phase_row");
     p->phase_warp = glGetUniformLocation(id, "u_phase_warp");
     p->phase_shift = glGetUniformLocation(id, "u_phase_shift");
-    p->g = glGetUniformLocation(id, "u_g");
+    p->phase_analytic = glGetUniformLocation(id, "u_phase_analytic");
     p->albedo_color = glGetUniformLocation(id, "u_albedo_color");
     p->light_count = glGetUniformLocation(id, "u_light_count");
     p->light_vector = glGetUniformLocation(id, "u_light_vector");
@@ -142,6 +142,13 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->tile_target = glGetUniformLocation(id, "u_tile_target");
     u->refined = glGetUniformLocation(id, "u_refined");
     u->contrast = glGetUniformLocation(id, "u_contrast");
+    u->inv_divisor = glGetUniformLocation(id, "u_inv_divisor");
+    u->low_texel = glGetUniformLocation(id, "u_low_texel");
+    u->corners_texel = glGetUniformLocation(id, "u_corners_texel");
+    u->near_model = glGetUniformLocation(id, "u_near_model");
+    u->tone_filmic = glGetUniformLocation(id, "u_tone_filmic");
+    u->tone_shoulder = glGetUniformLocation(id, "u_tone_shoulder");
+    u->full_texel = glGetUniformLocation(id, "u_full_texel");
 }
 
 /* Where RGBA32F renders, nearest-depth upsampling reads its four depths in one fetch from the

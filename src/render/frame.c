@@ -24,9 +24,10 @@ static float particles_far(const sbfx *fx, int count, float near)
 
 static frame_params frame_params_from(const sbfx_depth_model *m)
 {
-    frame_params fp = {{m->projection[0], m->projection[1], m->projection[2], m->projection[3]}, {0}, (float)m->near,
-                       0.0f};
+    frame_params fp = {.projection = {m->projection[0], m->projection[1], m->projection[2], m->projection[3]},
+                       .near = (float)m->near};
     sbfx_depth_model_uniform(m, fp.depth_model);
+    sbfx_near_model_uniform(m, fp.near_model);
     return fp;
 }
 

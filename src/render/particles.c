@@ -58,7 +58,10 @@ static void set_frame_uniforms(sbfx *fx, const sbfx_program *p, const frame_para
     const sbfx_gl *gl = fx->gl;
     glUniform1f(p->near, fp->near);
     glUniform4fv(p->projection, 1, fp->projection);
-    glUniform2f(p->target_size, (float)width, (float)height);
+    /* particle.frag's ray: ((2 x / size - 1) + P[8]) / P[0], folded in double (and y alike) */
+    const float *pr = fp->projection;
+    glUniform4f(p->ray_map, (float)(2.0 / ((double)width * pr[0])), (float)(2.0 / ((double)height * pr[1])),
+                (float)((pr[2] - 1.0) / pr[0]), (float)((pr[3] - 1.0) / pr[1]));
     glUniform2f(p->pixel, 2.0f / width, 2.0f / height);
     /* rectangles for the frame as before tiles, and for the bench's floor, whose every fragment
      * writes: its picture is its rectangle */

@@ -57,6 +57,7 @@ typedef struct sbfx_render_state {
 typedef struct frame_params {
     float projection[4];   /* P[0], P[5], P[8], P[9] */
     float depth_model[4];  /* window depth -> distance (projection.c) */
+    float near_model[3];   /* window depth -> near / distance: A (d - window_far) + B (sbfx_near_model_uniform) */
     float near;
     float particles_far;   /* view distance (along -z) beyond which no drawn particle reaches */
 } frame_params;
@@ -100,6 +101,9 @@ bool sbfx_tiles_any(const sbfx *fx);
 void sbfx_tiles_draw(sbfx *fx, const sbfx_pass_uniforms *u, bool inside, int width, int height, int divisor);
 
 /* passes.c and particles.c: the passes of a frame with live particles */
+/* The upsampling's uniforms (the composite's, mixed resolution's mark): the low-res target's
+ * texel, 1 / divisor, the depths' model and threshold, the particles' reach. */
+void sbfx_pass_upsample_uniforms(sbfx *fx, const sbfx_pass_uniforms *u, const frame_params *fp);
 void sbfx_pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp);
 /* The depth downsample into `target`, the output at 1 / divisor per axis, on the tiles. */
 void sbfx_pass_depth_into(sbfx *fx, const sbfx_frame *f, const frame_params *fp, const sbfx_rt *target, int divisor);

@@ -282,7 +282,7 @@ static int parse_render(parser *p, const config_setting_t *g)
         get_float(p, g, "sim_rate", 10, 1000, &rate) ||
         get_float(p, g, "blackbody_max_kelvin", 1000, 100000, &kelvin) ||
         get_choice(p, g, "light_rate", rates, 0, &rate_choice) ||
-        get_choice(p, g, "blackbody", evaluations, 0, &blackbody) || get_choice(p, g, "phase", evaluations, 0, &phase) ||
+        get_choice(p, g, "blackbody", evaluations, 0, &blackbody) || get_choice(p, g, "phase", evaluations, 1, &phase) ||
         get_choice(p, g, "detail_format", detail_formats, SBFX_DETAIL_R16F, &detail_format) ||
         get_choice(p, g, "tone_map", tone_maps, SBFX_TONE_MAP_NONE, &tone_map) ||
         get_float(p, g, "exposure", 0.01, 100, &d->exposure) ||
@@ -292,7 +292,8 @@ static int parse_render(parser *p, const config_setting_t *g)
     d->tone_map = (sbfx_tone_map)tone_map;
     d->light_per_particle = rate_choice == 1;
     d->analytic_blackbody = blackbody == 1;
-    d->analytic_phase = phase == 1;
+    d->table_phase = phase == 1;      /* analytic, the default, where the key names it or is left out */
+    d->analytic_phase = phase == 2;
     d->detail_format = (sbfx_detail_format)detail_format;
     int scale = d->target_divisor;
     if (scale && scale != 1 && scale != 2 && scale != 4 && scale != 8)

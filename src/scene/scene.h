@@ -74,5 +74,7 @@ sbfx_quality sbfx_quality_from_desc(const sbfx_desc *d);
 /* Fills zero fields with the defaults; false (err says why) for values out of range. */
 bool sbfx_quality_resolve(sbfx_quality *q, char *err, size_t size);
 bool sbfx_quality_equal(const sbfx_quality *a, const sbfx_quality *b);
+/* analytic_phase, table_phase resolved: the table where it is asked for and analytic is not */
+void sbfx_phase_resolve(bool *analytic, bool *table);
 
 #endif

@@ -7,7 +7,8 @@
  * The CPU side is given what the GPU has: the float particles, the window depth as the host
  * depth texture stores it (float), the detail volume rounded to half (R16F), and — for the
  * table paths — the module's own float tables (sbfx_get_tables), looked up the way the GPU
- * does; for the analytic paths (desc.analytic_blackbody / analytic_phase, or a table that
+ * does; for the analytic paths (desc.analytic_blackbody / analytic_phase (the phase's default; its
+ * table is desc.table_phase), or a table that
  * would miss) the analytic functions.
  *
  * Tolerances (GPU float32 against double, RGBA32F target unless said):
@@ -123,7 +124,8 @@ static sbfx *hc_module(gl_fixture *f, const hc_setup *s, sbfx_opacity_mode mode,
     if (s->media) s->media(scene.media);
     sbfx *fx = fixture_module(f, (sbfx_desc){.target_divisor = 1, .target_format = s->format, .opacity = mode,
                                              .max_particles = MAX_P, .analytic_blackbody = s->analytic_bb,
-                                             .analytic_phase = s->analytic_phase, .scene = &scene});
+                                             .analytic_phase = s->analytic_phase, .table_phase = !s->analytic_phase,
+                                             .scene = &scene});
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) has_detail[m] = sbfx_media(fx)[m].detail_strength > 0;
     sbfx_set_light(fx, s->light_dir, s->light_color, s->ambient);
     return fx;
@@ -965,7 +967,8 @@ CHECK_TEST(explosion_frames_have_no_nan_or_inf)
                 for (int analytic = 0; analytic < 2; analytic++)
                     all.levels[all.level_count++] = (sbfx_quality){
                         .opacity = (sbfx_opacity_mode)m, .target_divisor = div, .upsample = SBFX_UPSAMPLE_NEAREST_DEPTH,
-                        .target_format = formats[fm], .analytic_blackbody = analytic, .analytic_phase = analytic};
+                        .target_format = formats[fm], .analytic_blackbody = analytic, .analytic_phase = analytic,
+                        .table_phase = !analytic};
         scan_module(&scene, &frame, &all);
         for (int q = 0; q < all.level_count; q++) {
             const sbfx_quality *l = &all.levels[q];
@@ -978,7 +981,7 @@ CHECK_TEST(explosion_frames_have_no_nan_or_inf)
             int div = i < 2 ? 1 : 4, analytic = i % 2;
             floor[i] = (scan_set){.desc = {.target_divisor = div, .target_format = formats[fm],
                                            .opacity = SBFX_OPACITY_FLOOR, .analytic_blackbody = analytic,
-                                           .analytic_phase = analytic}};
+                                           .analytic_phase = analytic, .table_phase = !analytic}};
             scan_module(&scene, &frame, &floor[i]);
             CHECK(floor[i].bad[0] == 0, "floor, format %d, 1/%d, analytic %d: %d frames with NaN/Inf", formats[fm], div,
                   analytic, floor[i].bad[0]);
