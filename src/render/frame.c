@@ -1,6 +1,6 @@
 /* One frame's GPU work, as the seed's figure 9 draws it, between one save and one restore of the
  * host's GL state (gl/gl_state.c): the particle passes when particles live — opaque depth to the
- * particle target's resolution (passes.c), the particles back to front into it (particles.c), the
+ * particle target's resolution (passes.c), the particles front to back into it (particles.c), the
  * composite over the host's framebuffer (passes.c) — then the post chain when the scene has one
  * (post.c). The frame's particles come from the sim room, sorted (and merged by a lodN level)
  * here; sbfx.c (sbfx_render) brackets it with the frame budget. */

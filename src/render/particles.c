@@ -1,5 +1,6 @@
-/* Pass 2 of a frame (frame.c): the sorted particles into the low-resolution target, back to
- * front, premultiplied light and transmittance; consecutive particles of one medium share a
+/* Pass 2 of a frame (frame.c): the sorted particles into the low-resolution target, front to
+ * back (nearest first, the "under" operator: issue 43, docs/gpus.md "Front to back"),
+ * premultiplied light and transmittance; consecutive particles of one medium share a
  * draw call. Per particle its instance data (centre, radius, detail window, intensity; the
  * previous centre, the light per particle, the fire's light where the plan has them), per
  * medium its uniforms and tables. */
@@ -110,11 +111,17 @@ static void particle_fire(sbfx *fx, const sbfx_view_particle *v, float out[8])
     if (s.rgb[0] > 0.0 || s.rgb[1] > 0.0 || s.rgb[2] > 0.0) fx->counters.fire_lit_particles++;
 }
 
+/* The particle drawn i-th: the sort is back to front, the draws nearest first. */
+static const sbfx_view_particle *drawn(const sbfx *fx, int count, int i)
+{
+    return &fx->sim->view[fx->sim->order[count - 1 - i]];
+}
+
 static void upload_instances(sbfx *fx, const frame_lights *lights, int count)
 {
     const int stride = fx->scene->instance_floats;
     for (int i = 0; i < count; i++) {
-        const sbfx_view_particle *v = &fx->sim->view[fx->sim->order[i]];
+        const sbfx_view_particle *v = drawn(fx, count, i);
         float *dst = &fx->sim->instances[stride * i];
         memcpy(dst, v->center, 3 * sizeof(float));
         dst[3] = v->radius;
@@ -153,7 +160,7 @@ static void draw_run(sbfx *fx, int first, int count)
 }
 
 /* The particles' draws into the bound target (width x height, its opaque depth on UNIT_DEPTH):
- * back to front; consecutive particles of one medium share a draw call. ES 3.0 has no base
+ * front to back; consecutive particles of one medium share a draw call. ES 3.0 has no base
  * instance, so each run re-points the instance attributes at its first particle. */
 void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height)
 {
@@ -162,15 +169,18 @@ void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, 
     sbfx_gather_lights(fx, f->view, &lights);
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
-    /* rgb = src + dst (1 - a); transmittance a = dst (1 - a) */
-    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+    /* "under", nearest first: rgb = dst + dst.a src, transmittance a = dst (1 - a). Each
+     * attachment's alpha holds the transmittance in front of it (heat writes alpha 0), so its
+     * light, offset or velocity is weighed by what the nearer particles let through: the sum
+     * back-to-front "over" makes, in the other order (ES 3.0 core blend factors). */
+    glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
     if (gl->detail_texture) sbfx_bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture, 0);
     glBindVertexArray(gl->particle_vao);
     glBindBuffer(GL_ARRAY_BUFFER, gl->instance_buffer); /* draw_run points the attributes into it */
     for (int first = 0; first < count;) {
-        sbfx_medium m = fx->sim->view[fx->sim->order[first]].medium;
+        sbfx_medium m = drawn(fx, count, first)->medium;
         int end = first + 1;
-        while (end < count && fx->sim->view[fx->sim->order[end]].medium == m) end++;
+        while (end < count && drawn(fx, count, end)->medium == m) end++;
         const sbfx_program *p = &gl->particle[m];
         glUseProgram(p->id);
         set_frame_uniforms(fx, p, fp, width, height);

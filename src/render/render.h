@@ -5,7 +5,7 @@
  * Exports to the rooms above:
  *   - the frame (frame.c): checked against its projection (projection.h), then between one save
  *     and restore of the host's state its passes — opaque depth and corners, the composite
- *     (passes.c), the particles back to front (particles.c), the post chain (post.h, post.c);
+ *     (passes.c), the particles front to back (particles.c), the post chain (post.h, post.c);
  *   - the frame's lights in view space (lights.c) and the entry points that replace them;
  *   - the host's transmittance shadow map (shadow.c, sbfx_render_shadow_map);
  *   - the screen tiles the particles can change (tiles.h, tiles.c): where the composite and the

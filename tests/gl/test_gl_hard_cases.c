@@ -45,6 +45,7 @@
 #define RGB_REL 2e-3
 #define RGB_ABS 1e-5
 #define HALF_ROUNDING 0x1p-10 /* one rounding to either neighbouring half float */
+#define HALF_FLOOR 0x1p-24    /* ...and near 0: a subnormal half's spacing (ref/reference_frame.h) */
 
 static const sbfx_opacity_mode modes[] = {SBFX_OPACITY_PLANAR, SBFX_OPACITY_SOFT, SBFX_OPACITY_SPHERICAL,
                                           SBFX_OPACITY_EXACT};
@@ -234,6 +235,7 @@ static void cpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, sbfx_opacity_
     rf.filter_weight_error = filter_weight_error(), rf.filter_bound = r->bound;
     r->rounding = calloc(SIZE * SIZE * 4, sizeof(double));
     rf.target_rounding = s->format == SBFX_FORMAT_RGBA16F ? HALF_ROUNDING : 0.0, rf.rounding_bound = r->rounding;
+    rf.target_floor = s->format == SBFX_FORMAT_RGBA16F ? HALF_FLOOR : 0.0;
     rf_media(fx, has_detail, &rf);
     rf.fire_light = sbfx_fire_lit(fx);
     rf.light_count = rf_lights(fx, f->frame.view, lights, rf.ambient);
