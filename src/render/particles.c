@@ -112,7 +112,7 @@ static void particle_fire(sbfx *fx, const sbfx_view_particle *v, float out[8])
 }
 
 /* The particle drawn i-th: the sort is back to front, the draws nearest first. */
-static const sbfx_view_particle *drawn(const sbfx *fx, int count, int i)
+const sbfx_view_particle *sbfx_drawn_particle(const sbfx *fx, int count, int i)
 {
     return &fx->sim->view[fx->sim->order[count - 1 - i]];
 }
@@ -121,7 +121,7 @@ static void upload_instances(sbfx *fx, const frame_lights *lights, int count)
 {
     const int stride = fx->scene->instance_floats;
     for (int i = 0; i < count; i++) {
-        const sbfx_view_particle *v = drawn(fx, count, i);
+        const sbfx_view_particle *v = sbfx_drawn_particle(fx, count, i);
         float *dst = &fx->sim->instances[stride * i];
         memcpy(dst, v->center, 3 * sizeof(float));
         dst[3] = v->radius;
@@ -159,10 +159,13 @@ static void draw_run(sbfx *fx, int first, int count)
     fx->counters.draw_calls++;
 }
 
-/* The particles' draws into the bound target (width x height, its opaque depth on UNIT_DEPTH):
- * front to back; consecutive particles of one medium share a draw call. ES 3.0 has no base
- * instance, so each run re-points the instance attributes at its first particle. */
-void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height)
+/* The particles' draws into the bound target (width x height, its opaque depth on UNIT_DEPTH,
+ * depth_texture): front to back; consecutive particles of one medium share a draw call, and a
+ * run ends at each of early termination's checkpoints (stops: none, or terminate.c's), where
+ * the mark follows it. ES 3.0 has no base instance, so each run re-points the instance
+ * attributes at its first particle. */
+void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height,
+                         const sbfx_stops *stops, GLuint depth_texture)
 {
     sbfx_gl *gl = fx->gl;
     frame_lights lights;
@@ -177,16 +180,18 @@ void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, 
     if (gl->detail_texture) sbfx_bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture, 0);
     glBindVertexArray(gl->particle_vao);
     glBindBuffer(GL_ARRAY_BUFFER, gl->instance_buffer); /* draw_run points the attributes into it */
+    int stop = 0, stop_count = stops ? stops->count : 0;
     for (int first = 0; first < count;) {
-        sbfx_medium m = drawn(fx, count, first)->medium;
-        int end = first + 1;
-        while (end < count && drawn(fx, count, end)->medium == m) end++;
+        sbfx_medium m = sbfx_drawn_particle(fx, count, first)->medium;
+        int last = stop < stop_count ? stops->at[stop] : count, end = first + 1;
+        while (end < last && sbfx_drawn_particle(fx, count, end)->medium == m) end++;
         const sbfx_program *p = &gl->particle[m];
         glUseProgram(p->id);
         set_frame_uniforms(fx, p, fp, width, height);
         set_medium_uniforms(fx, p, m, &lights);
         draw_run(fx, first, end - first);
         first = end;
+        if (stop < stop_count && end == stops->at[stop]) sbfx_terminate_mark(fx, stops->epsilon[stop++], depth_texture);
     }
     fx->counters.passes++;
 }
@@ -206,7 +211,12 @@ void sbfx_pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, 
     sbfx_bind_texture(UNIT_DEPTH, GL_TEXTURE_2D, gl->low_depth.depth, 0);
     fx->counters.fire_lit_particles = 0;
     fx->sim->frame_fire_count = 0;
+    fx->render->stops_marked = 0;
     if (fx->scene->plan.fire_light) sbfx_fire_lights_of_frame(fx, count);
     upload_instances(fx, &lights, count);
-    sbfx_draw_particles(fx, f, fp, count, gl->low_width, gl->low_height);
+    sbfx_stops stops;
+    sbfx_terminate_plan(fx, &lights, fp, count, &stops);
+    if (stops.count > 0) sbfx_terminate_begin(fx);
+    sbfx_draw_particles(fx, f, fp, count, gl->low_width, gl->low_height, &stops, gl->low_depth.depth);
+    if (stops.count > 0) sbfx_terminate_end();
 }

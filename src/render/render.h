@@ -51,7 +51,17 @@ typedef struct sbfx_render_state {
     sbfx_probe probe;
     sbfx_tiles tiles;
     bool warned_polygon_mode;
+    int stops_marked;        /* early termination's marks drawn in the last frame (terminate.c) */
 } sbfx_render_state;
+
+/* Early termination's checkpoints of one draw of the particles (terminate.c): after the first
+ * at[k] particles (nearest first), the texels whose transmittance is below epsilon[k] stop. */
+#define SBFX_STOPS 3
+typedef struct sbfx_stops {
+    int count;
+    int at[SBFX_STOPS];
+    float epsilon[SBFX_STOPS];
+} sbfx_stops;
 
 /* The frame's projection as the passes' uniforms. */
 typedef struct frame_params {
@@ -108,7 +118,18 @@ void sbfx_pass_corners(sbfx *fx);
 void sbfx_pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count);
 /* The particles' draws (instances already uploaded) into the bound width x height target, its
  * opaque depth bound on UNIT_DEPTH (particles.c; the refinement draws them again). */
-void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height);
+void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height,
+                         const sbfx_stops *stops, GLuint depth_texture);
+/* The particle drawn i-th of count (nearest first: the sort's order reversed). */
+const sbfx_view_particle *sbfx_drawn_particle(const sbfx *fx, int count, int i);
+
+/* terminate.c: early termination (the scene's render.early_termination) */
+bool sbfx_terminate_used(const sbfx *fx);
+/* The frame's checkpoints and their epsilons (none where unused), from the instances written. */
+void sbfx_terminate_plan(sbfx *fx, const frame_lights *lights, const frame_params *fp, int count, sbfx_stops *out);
+void sbfx_terminate_begin(sbfx *fx);
+void sbfx_terminate_mark(sbfx *fx, float epsilon, GLuint depth_texture);
+void sbfx_terminate_end(void);
 /* refine.c: mixed resolution, the particles again at full resolution where the coarse target
  * fails (after sbfx_pass_particles, before the composite) */
 bool sbfx_refine_used(const sbfx *fx);

@@ -299,22 +299,24 @@ typedef struct state_case {
 
 /* The built-in explosion, every post effect (heat shimmer, velocity blur, depth of field), the
  * seed's history blur, and lit smoke (a 2D-array texture on a fifth unit). */
+/* Every case's frames with particles save the depth range: early termination's mask, on by
+ * default, compares the particles' window depth (render/terminate.c), as mixed resolution's does. */
 static const state_case cases[] = {
-    {"built-in explosion", NULL, NULL, "explosion", NULL, 0.0f, false},
-    {"post.cfg: shimmer, velocity blur, depth of field", "scenes/post.cfg", "", "explosion", NULL, 0.0f, false},
+    {"built-in explosion", NULL, NULL, "explosion", NULL, 0.0f, true},
+    {"post.cfg: shimmer, velocity blur, depth of field", "scenes/post.cfg", "", "explosion", NULL, 0.0f, true},
     {"explosion with history blur", "scenes/explosion.cfg", "\npost = { motion_blur = { mode = \"history\"; persistence = 0.15; }; };\n",
-     "explosion", NULL, 0.0f, false},
-    {"lit-smoke.cfg", "scenes/lit-smoke.cfg", "", "column", NULL, 0.0f, false},
+     "explosion", NULL, 0.0f, true},
+    {"lit-smoke.cfg", "scenes/lit-smoke.cfg", "", "column", NULL, 0.0f, true},
     /* a level's first use makes programs, the black-body constants, a wider instance buffer and
      * the level of detail's memory inside sbfx_set_quality; targets inside sbfx_render */
     {"built-in explosion switched to spherical/2/bl/lpp/abb/lod64", NULL, NULL, "explosion",
-     "spherical/2/bl/lpp/abb/lod64", 0.0f, false},
+     "spherical/2/bl/lpp/abb/lod64", 0.0f, true},
     /* mixed resolution: the refine target (made inside sbfx_render), its depth test as the mask
      * (the particles' window depth: the host's depth range 0.2-0.7 and clip control ZERO_TO_ONE
      * would move it), the refined particles on a sixth unit */
     {"built-in explosion switched to exact/4/mx", NULL, NULL, "explosion", "exact/4/mx", 0.0f, true},
     /* the budget walks down at once: timer queries around the passes, levels switched in render */
-    {"built-in explosion under a budget nothing meets (0.001 ms)", NULL, NULL, "explosion", NULL, 0.001f, false},
+    {"built-in explosion under a budget nothing meets (0.001 ms)", NULL, NULL, "explosion", NULL, 0.001f, true},
 };
 
 static sbfx *case_module(host *h, const state_case *c)
@@ -464,9 +466,9 @@ static void run_case(const state_case *c, int expected_queries[3])
  * read for the tone map only when it is not that one). */
 CHECK_TEST(builtin_explosion_leaves_state)
 {
-    /* units 0-3 2D (+ sampler each), unit 1 3D: 22 + 4 + 4 + 1, + 2 attachment queries; idle: no
-     * pass, no query */
-    int expected[3] = {33, 33, 0};
+    /* units 0-3 2D (+ sampler each), unit 1 3D: 22 + 4 + 4 + 1, + 2 attachment queries, + the
+     * depth range (early termination); idle: no pass, no query */
+    int expected[3] = {34, 34, 0};
     run_case(&cases[0], expected);
 }
 
@@ -474,14 +476,14 @@ CHECK_TEST(post_effects_leave_state)
 {
     /* units 0-6 2D (the DoF composite's seven), unit 1 3D, 7 samplers; idle (post passes only):
      * units 0-6 2D + samplers */
-    int expected[3] = {37, 37, 36};
+    int expected[3] = {38, 38, 36};
     run_case(&cases[1], expected);
 }
 
 CHECK_TEST(history_blur_leaves_state)
 {
     /* units 0-3 2D, unit 1 3D, 4 samplers; idle: the history pass and copy, units 0-1 */
-    int expected[3] = {31, 31, 26};
+    int expected[3] = {32, 32, 26};
     run_case(&cases[2], expected);
 }
 
@@ -489,21 +491,21 @@ CHECK_TEST(lit_smoke_leaves_state)
 {
     /* units 0-3 2D (3: no black body, the scene colour for the tone map), unit 1 3D, unit 4 2D
      * array, 4 samplers, + 2 attachment queries */
-    int expected[3] = {35, 35, 0};
+    int expected[3] = {36, 36, 0};
     run_case(&cases[3], expected);
 }
 
 CHECK_TEST(quality_first_use_leaves_state)
 {
     /* as the built-in explosion: the new level binds the same units */
-    int expected[3] = {33, 33, 0};
+    int expected[3] = {34, 34, 0};
     run_case(&cases[4], expected);
 }
 
 CHECK_TEST(frame_budget_leaves_state)
 {
     /* timer queries are not host state: the same save and restore as without a budget */
-    int expected[3] = {33, 33, 0};
+    int expected[3] = {34, 34, 0};
     run_case(&cases[6], expected);
 }
 
