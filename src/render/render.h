@@ -56,7 +56,7 @@ typedef struct sbfx_render_state {
 
 /* Early termination's checkpoints of one draw of the particles (terminate.c): after the first
  * at[k] particles (nearest first), the texels whose transmittance is below epsilon[k] stop. */
-#define SBFX_STOPS 3
+#define SBFX_STOPS 2
 typedef struct sbfx_stops {
     int count;
     int at[SBFX_STOPS];

@@ -23,76 +23,77 @@
 
 /* What a terminated texel may lose at most, in 8-bit levels on the display. */
 #define STOP_LEVELS 0.25
-/* The checkpoints: after these shares of the particles, nearest first (docs/gpus.md: chosen by
- * counting fragments over the example scenes). */
-static const double stop_shares[SBFX_STOPS] = {0.125, 0.25, 0.5};
+/* The checkpoints: after these shares of the particles, nearest first. Chosen by counting the
+ * barrage's particle fragments (docs/gpus.md "Front to back, and early termination"): at 1/2 and
+ * 3/4 it saves nearly what 1/4, 1/2, 3/4 or six checkpoints save, with fewer marks and
+ * framebuffer switches. */
+static const double stop_shares[SBFX_STOPS] = {0.5, 0.75};
 
 bool sbfx_terminate_used(const sbfx *fx)
 {
     return fx->scene->early_termination && fx->gl->stop_framebuffer && fx->gl->stop_program;
 }
 
-/* The largest of a phase function over directions: at cos = +-1 (Cornette-Shanks rises
- * monotonically toward g's side); 1 % over it for the table's interpolation (its error is
- * 4.4e-4 at |g| = 0.95, test_gl_tables). */
-static double phase_max(double g)
-{
-    return 1.01 * fmax(sbfx_phase(1.0, g), sbfx_phase(-1.0, g));
-}
-
-/* The brightest a fire particle of this frame emits (pre-exposed): the black body (the table
- * the shader reads, or analytic within its error) at the frame's hottest temperature, T0 + T1
- * at the coordinate's top, 1, times cooled (at most max_cooled), sampled over [0, that] since a
- * channel need not rise monotonically; glow shares are at most 1; then the ceiling. */
-static double fire_emission_max(const sbfx *fx, double max_cooled)
+/* The brightest a fire particle emits (pre-exposed), per share of cooling: hottest[j] bounds a
+ * particle whose cooled factor (1 - cooling (1 - intensity)) is at most (j + 1) / STOP_COOLED
+ * (the last entry: any above 1 as well, at the frame's largest). Its temperature is T0 + T1 x
+ * the coordinate, at most 1, times cooled; the black body (the table the shader reads, or
+ * analytic within its error, 1 % over) is sampled over [0, that] since a channel need not rise
+ * monotonically; glow shares are at most 1; then the ceiling. */
+#define STOP_COOLED 16
+static void fire_emission_max(const sbfx *fx, double max_cooled, double hottest[STOP_COOLED])
 {
     const sbfx_medium_params *m = &fx->scene->media[SBFX_FIRE];
     const sbfx_tables *t = fx->tables;
-    if (!t->blackbody) return SBFX_RADIANCE_CEILING;
-    double hottest = (m->t0 + fmax(m->t1, 0.0f)) * max_cooled, most = 0.0;
-    for (int i = 1; i <= 64; i++) {
-        double rgb[3];
-        sbfx_blackbody_table_lookup(t->blackbody, SBFX_BLACKBODY_SIZE, t->blackbody_lo, t->blackbody_hi,
-                                    hottest * i / 64.0, rgb);
-        most = fmax(most, fmax(rgb[0], fmax(rgb[1], rgb[2])));
+    double scale = (double)m->emission_scale * (1.0 - m->albedo) * fx->scene->desc.exposure, most = 0.0;
+    double top = (m->t0 + fmax(m->t1, 0.0f)) * fmax(max_cooled, 1.0);
+    for (int j = 0, i = 1; j < STOP_COOLED; j++) {
+        double upto = j == STOP_COOLED - 1 ? top : (m->t0 + fmax(m->t1, 0.0f)) * (j + 1) / STOP_COOLED;
+        for (; t->blackbody && i <= 8 * STOP_COOLED && top * i / (8.0 * STOP_COOLED) <= upto * (1.0 + 1e-12); i++) {
+            double rgb[3];
+            sbfx_blackbody_table_lookup(t->blackbody, SBFX_BLACKBODY_SIZE, t->blackbody_lo, t->blackbody_hi,
+                                        top * i / (8.0 * STOP_COOLED), rgb);
+            most = fmax(most, fmax(rgb[0], fmax(rgb[1], rgb[2])));
+        }
+        hottest[j] = t->blackbody ? fmin(1.01 * most * scale, SBFX_RADIANCE_CEILING) : SBFX_RADIANCE_CEILING;
     }
-    double scale = (double)m->emission_scale * (1.0 - m->albedo) * fx->scene->desc.exposure;
-    return fmin(1.01 * most * scale, SBFX_RADIANCE_CEILING);
 }
 
-/* The scattered light's bound of medium m before its albedo: the ambient and every light at
- * its largest falloff (4: no closer than 0.5 m) and phase (lit media: the wrap's largest,
- * |N / (1 + w)| <= sqrt(3) / (1 + w), its bias and the translucency; their maps at most 1). */
-static double scattered_max(const sbfx *fx, const frame_lights *lights, sbfx_medium m)
+/* Each light's largest contribution per unit of a medium's phase (or lit) factor at a particle:
+ * its colour's largest channel times its falloff at the sphere's nearest point, 1 / max(d², 1/4)
+ * as particle.frag computes it per pixel (d at least the centre's distance less the radius). */
+static double lights_at(const frame_lights *lights, const sbfx_view_particle *v)
 {
-    const sbfx_medium_params *mp = &fx->scene->media[m];
-    const float *a = fx->scene->ambient;
-    double per_light = mp->lit ? (sqrt(3.0) + mp->wrap) / (1.0 + mp->wrap) + mp->translucency
-                               : 4.0 * M_PI * phase_max(mp->phase_g);
     double sum = 0.0;
     for (int i = 0; i < lights->count; i++) {
-        const float *c = lights->color[i];
-        double falloff = lights->vector[i][3] > 0.5f ? 4.0 : 1.0;
-        sum += fmax(c[0], fmax(c[1], c[2])) * falloff * per_light;
+        const float *c = lights->color[i], *l = lights->vector[i];
+        double falloff = 1.0;
+        if (l[3] > 0.5f) {
+            double d[3] = {v->center[0] - l[0], v->center[1] - l[1], v->center[2] - l[2]};
+            double near = fmax(sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - v->radius, 0.0);
+            falloff = 1.0 / fmax(near * near, 0.25);
+        }
+        sum += fmax(c[0], fmax(c[1], c[2])) * falloff;
     }
-    double direct = mp->lit ? 1.0 - mp->dampening : 1.0;
-    return fmax(a[0], fmax(a[1], a[2])) + direct * sum;
+    return sum;
 }
 
-/* What multiplies medium m's in-scattered light: the albedo's colour, the exposure, the
- * detail's shading (1 + DETAIL_SHADE (0.5 - detail) x strength, detail >= 0) and for lit media
- * the dampening. */
-static double scatter_scale(const sbfx *fx, sbfx_medium m)
-{
-    const sbfx_medium_params *mp = &fx->scene->media[m];
-    double shade = !mp->lit && mp->detail_strength > 0.0f ? 1.0 + 0.9 * mp->detail_strength : 1.0;
-    double color = fmax(mp->color[0], fmax(mp->color[1], mp->color[2]));
-    return mp->albedo * fx->scene->desc.exposure * color * shade;
-}
-
-/* The fire's light in-scattered across a particle: the instance's colour times 1 + e.gradient,
- * e the ray's offset in the centre's plane (at most r |ray| where the sphere is hit) and the
+/* A medium's factors: what multiplies its in-scattered light (the albedo's colour, the exposure,
+ * the detail's shading 1 + DETAIL_SHADE (0.5 - detail) x strength, detail >= 0), each light's
+ * largest phase (4 pi p at cos = +-1: Cornette-Shanks rises toward g's side; 1 % over it for
+ * the table's interpolation, whose error is 4.4e-4 at |g| = 0.95, test_gl_tables) or for lit
+ * media the wrap's largest, |N / (1 + w)| <= sqrt(3) / (1 + w), its bias and the translucency
+ * (their maps at most 1) with the dampening; the fire's light across the particle: 1 + e.grad,
+ * e the ray's offset in the centre's plane (at most r |ray| where the sphere is hit), the
  * gradient at most 1 / r: at most 1 + |ray|, |ray| largest in the frame's corners. */
+typedef struct stop_media {
+    double scale[SBFX_MEDIUM_COUNT];     /* 0: the medium scatters nothing */
+    double per_light[SBFX_MEDIUM_COUNT];
+    double fire[SBFX_MEDIUM_COUNT];      /* times the instance's fire light */
+    double ambient;
+    double hottest[STOP_COOLED];         /* fire's emission (fire_emission_max) */
+} stop_media;
+
 static double fire_spread(const frame_params *fp)
 {
     double x = (1.0 + fabs(fp->projection[2])) / fabs(fp->projection[0]);
@@ -100,33 +101,45 @@ static double fire_spread(const frame_params *fp)
     return 1.0 + sqrt(1.0 + x * x + y * y);
 }
 
-typedef struct stop_media {
-    double own[SBFX_MEDIUM_COUNT];   /* emission and scattering of the frame's lights */
-    double fire[SBFX_MEDIUM_COUNT];  /* times the instance's fire light */
-} stop_media;
-
-static void media_bounds(const sbfx *fx, const frame_lights *lights, const frame_params *fp, double max_cooled,
-                         stop_media *b)
+static void media_bounds(const sbfx *fx, const frame_params *fp, double max_cooled, stop_media *b)
 {
+    const float *a = fx->scene->ambient;
+    b->ambient = fmax(a[0], fmax(a[1], a[2]));
     double spread = fire_spread(fp);
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) {
         const sbfx_medium_params *mp = &fx->scene->media[m];
         bool scatters = m != SBFX_HEAT && mp->albedo > 0.0f;
-        double scale = scatters ? scatter_scale(fx, (sbfx_medium)m) : 0.0;
-        b->own[m] = scatters ? scale * scattered_max(fx, lights, (sbfx_medium)m) : 0.0;
-        if (m == SBFX_FIRE && fx->scene->uses_medium[m]) b->own[m] += fire_emission_max(fx, max_cooled);
-        b->fire[m] = scale * (mp->lit ? 1.0 - mp->dampening : spread);
+        double shade = !mp->lit && mp->detail_strength > 0.0f ? 1.0 + 0.9 * mp->detail_strength : 1.0;
+        double color = fmax(mp->color[0], fmax(mp->color[1], mp->color[2]));
+        double direct = mp->lit ? 1.0 - mp->dampening : 1.0;
+        b->scale[m] = scatters ? mp->albedo * fx->scene->desc.exposure * color * shade : 0.0;
+        b->per_light[m] = mp->lit ? direct * ((sqrt(3.0) + mp->wrap) / (1.0 + mp->wrap) + mp->translucency)
+                                  : 4.0 * M_PI * 1.01 * fmax(sbfx_phase(1.0, mp->phase_g), sbfx_phase(-1.0, mp->phase_g));
+        b->fire[m] = mp->lit ? direct : spread;
     }
+    if (fx->scene->uses_medium[SBFX_FIRE]) fire_emission_max(fx, max_cooled, b->hottest);
 }
 
-/* Particle i's bound (drawn i-th): its medium's, and the fire's light its instance carries. */
-static double stop_radiance(const sbfx *fx, const stop_media *b, const sbfx_view_particle *v, int i)
+/* Particle i's bound (drawn i-th): what its medium scatters of the ambient, the lights and the
+ * fire's light its instance carries, and what fire emits. */
+static double stop_radiance(const sbfx *fx, const stop_media *b, const frame_lights *lights,
+                            const sbfx_view_particle *v, int i)
 {
-    double L = b->own[v->medium];
-    int at = fx->scene->instance_fire;
-    if (at && b->fire[v->medium] > 0.0) {
-        const float *f = &fx->sim->instances[(size_t)fx->scene->instance_floats * i + at];
-        L += b->fire[v->medium] * fmax(f[0], fmax(f[1], f[2]));
+    sbfx_medium m = v->medium;
+    double L = 0.0;
+    if (b->scale[m] > 0.0) {
+        double fire = 0.0;
+        int at = fx->scene->instance_fire;
+        if (at) {
+            const float *f = &fx->sim->instances[(size_t)fx->scene->instance_floats * i + at];
+            fire = b->fire[m] * fmax(f[0], fmax(f[1], f[2]));
+        }
+        L = b->scale[m] * (b->ambient + b->per_light[m] * lights_at(lights, v) + fire);
+    }
+    if (m == SBFX_FIRE) {
+        double cooled = 1.0 - fx->scene->media[SBFX_FIRE].cooling * (1.0 - v->intensity);
+        int j = (int)ceil(cooled * STOP_COOLED) - 1;
+        L += b->hottest[j < 0 ? 0 : j >= STOP_COOLED ? STOP_COOLED - 1 : j];
     }
     return isfinite(L) ? L : SBFX_RADIANCE_CEILING;
 }
@@ -142,7 +155,7 @@ void sbfx_terminate_plan(sbfx *fx, const frame_lights *lights, const frame_param
         if (v->medium == SBFX_FIRE) max_cooled = fmax(max_cooled, 1.0 - cooling * (1.0 - v->intensity));
     }
     stop_media b;
-    media_bounds(fx, lights, fp, max_cooled, &b);
+    media_bounds(fx, fp, max_cooled, &b);
     int n = 0, at[SBFX_STOPS];
     for (int k = 0; k < SBFX_STOPS; k++) {
         int i = (int)(stop_shares[k] * count);
@@ -151,7 +164,7 @@ void sbfx_terminate_plan(sbfx *fx, const frame_lights *lights, const frame_param
     double most = 0.0; /* the brightest of the particles from i on, walked back from the last */
     int k = n - 1;
     for (int i = count - 1; i >= 0 && k >= 0; i--) {
-        most = fmax(most, stop_radiance(fx, &b, sbfx_drawn_particle(fx, count, i), i));
+        most = fmax(most, stop_radiance(fx, &b, lights, sbfx_drawn_particle(fx, count, i), i));
         if (i == at[k]) {
             out->at[k] = at[k];
             out->epsilon[k] = (float)(STOP_LEVELS / (255.0 * (most + 1.0)));
@@ -201,4 +214,19 @@ void sbfx_terminate_mark(sbfx *fx, float epsilon, GLuint depth_texture)
 void sbfx_terminate_end(void)
 {
     glDisable(GL_DEPTH_TEST);
+}
+
+sbfx_result sbfx_set_early_termination(sbfx *fx, bool on)
+{
+    if (!fx) return SBFX_ERR_INVALID_ARGUMENT;
+    if (on == fx->scene->early_termination) return SBFX_OK;
+    fx->scene->early_termination = on;
+    if (!on) return SBFX_OK; /* the targets keep their depth, untested */
+    sbfx_gl_enter(fx);
+    sbfx_result r = sbfx_stop_program_build(fx);
+    /* targets made without the depth: made again, with it, by the next render */
+    if (r == SBFX_OK && fx->gl->out_width && !fx->gl->stop_framebuffer) sbfx_targets_destroy(fx);
+    if (r == SBFX_OK && !sbfx_gl_check(fx, "turning early termination on")) r = SBFX_ERR_GL;
+    sbfx_gl_leave(fx, "sbfx_set_early_termination");
+    return r;
 }
