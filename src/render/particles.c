@@ -111,12 +111,6 @@ static void particle_fire(sbfx *fx, const sbfx_view_particle *v, float out[8])
     if (s.rgb[0] > 0.0 || s.rgb[1] > 0.0 || s.rgb[2] > 0.0) fx->counters.fire_lit_particles++;
 }
 
-/* The particle drawn i-th: the sort is back to front, the draws nearest first. */
-const sbfx_view_particle *sbfx_drawn_particle(const sbfx *fx, int count, int i)
-{
-    return &fx->sim->view[fx->sim->order[count - 1 - i]];
-}
-
 static void upload_instances(sbfx *fx, const frame_lights *lights, int count)
 {
     const int stride = fx->scene->instance_floats;

@@ -120,8 +120,12 @@ void sbfx_pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, 
  * opaque depth bound on UNIT_DEPTH (particles.c; the refinement draws them again). */
 void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height,
                          const sbfx_stops *stops, GLuint depth_texture);
-/* The particle drawn i-th of count (nearest first: the sort's order reversed). */
-const sbfx_view_particle *sbfx_drawn_particle(const sbfx *fx, int count, int i);
+/* The particle drawn i-th of count (nearest first: the sort's order reversed; particles.c and
+ * terminate.c both walk it). */
+static inline const sbfx_view_particle *sbfx_drawn_particle(const sbfx *fx, int count, int i)
+{
+    return &fx->sim->view[fx->sim->order[count - 1 - i]];
+}
 
 /* terminate.c: early termination (the scene's render.early_termination) */
 bool sbfx_terminate_used(const sbfx *fx);
