@@ -52,6 +52,8 @@ typedef struct sbfx_render_state {
     sbfx_tiles tiles;
     bool warned_polygon_mode;
     int stops_marked;        /* early termination's marks drawn in the last frame (terminate.c) */
+    int stops_skipped;       /* its checkpoints left out: no texel could reach epsilon there */
+    float stop_depth[SBFX_TILE_GRID * SBFX_TILE_GRID]; /* terminate.c: optical depth per tile */
 } sbfx_render_state;
 
 /* Early termination's checkpoints of one draw of the particles (terminate.c): after the first
@@ -129,6 +131,9 @@ static inline const sbfx_view_particle *sbfx_drawn_particle(const sbfx *fx, int 
 
 /* terminate.c: early termination (the scene's render.early_termination) */
 bool sbfx_terminate_used(const sbfx *fx);
+/* tiles.c: the tiles a particle can change, columns box[0]..box[2], rows box[1]..box[3] (its
+ * region's bounding box, the grid of the frame's plan); false for none. */
+bool sbfx_tiles_box(const sbfx *fx, const frame_params *fp, const sbfx_view_particle *v, int box[4]);
 /* The frame's checkpoints and their epsilons (none where unused), from the instances written. */
 void sbfx_terminate_plan(sbfx *fx, const frame_lights *lights, const frame_params *fp, int count, sbfx_stops *out);
 void sbfx_terminate_begin(sbfx *fx);

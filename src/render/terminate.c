@@ -19,6 +19,7 @@
  * the same transmittance, so the shimmer offsets and the velocities behind lose at most T of
  * theirs too. */
 #include <math.h>
+#include <string.h>
 #include "render/render.h"
 
 /* What a terminated texel may lose at most, in 8-bit levels on the display. */
@@ -144,6 +145,56 @@ static double stop_radiance(const sbfx *fx, const stop_media *b, const frame_lig
     return isfinite(L) ? L : SBFX_RADIANCE_CEILING;
 }
 
+/* The largest optical depth particle v gives any ray, of what it covers with: every opacity
+ * model's is at most tau x tau_scale x the chord, at most 2r (optical_depth: the exact model's
+ * integral, the paper's (1 - d/r) ds, the flat profile's 2w), tau_scale = intensity x the
+ * detail's erosion (mix(1, at most EROSION_GAIN 2.2, strength)); fire covers with its soot on
+ * top, depth (1 + soot) + strength FIRE_SOOT (at most 16) tau tau_scale chord^2 / 2r; heat covers
+ * nothing; the bench's floor 0.05 a fragment. */
+static double depth_max(const sbfx *fx, const sbfx_view_particle *v)
+{
+    if (fx->scene->desc.opacity == SBFX_OPACITY_FLOOR) return -log(0.95);
+    if (v->medium == SBFX_HEAT) return 0.0;
+    const sbfx_medium_params *mp = &fx->scene->media[v->medium];
+    double strength = mp->detail_strength > 0.0f ? mp->detail_strength : 0.0;
+    double column = mp->tau * fmax(v->intensity, 0.0) * (1.0 + 1.2 * strength) * 2.0 * v->radius;
+    if (v->medium == SBFX_FIRE) column = column * (1.0 + fmax(mp->soot, 0.0f)) + 16.0 * strength * column;
+    return column;
+}
+
+/* Leaves out the checkpoints where no texel can be below its epsilon: a texel's transmittance
+ * after the first at[k] particles is at least exp(-(the sum of depth_max over those whose
+ * region's box holds its tile)), so where that sum stays under -ln(epsilon) on every tile the
+ * mark would write nothing (and cost a pass and two framebuffer switches). */
+static void keep_useful(sbfx *fx, const frame_params *fp, int count, sbfx_stops *s)
+{
+    const sbfx_tiles *t = &fx->render->tiles;
+    float *sum = fx->render->stop_depth;
+    memset(sum, 0, sizeof(float) * (size_t)(t->columns * t->rows));
+    double deepest = 0.0;
+    int kept = 0;
+    for (int i = 0, k = 0; k < s->count && i < count; i++) {
+        int box[4];
+        const sbfx_view_particle *v = sbfx_drawn_particle(fx, count, i);
+        double d = depth_max(fx, v);
+        if (d > 0.0 && sbfx_tiles_box(fx, fp, v, box))
+            for (int row = box[1]; row <= box[3]; row++)
+                for (int col = box[0]; col <= box[2]; col++) {
+                    float *at = &sum[row * t->columns + col];
+                    *at += (float)d;
+                    deepest = fmax(deepest, *at);
+                }
+        if (i + 1 < s->at[k]) continue;
+        if (deepest > -log(s->epsilon[k]) * (1.0 - 1e-6)) { /* float sums: a millionth's margin */
+            s->at[kept] = s->at[k];
+            s->epsilon[kept++] = s->epsilon[k];
+        } else
+            fx->render->stops_skipped++;
+        k++;
+    }
+    s->count = kept;
+}
+
 void sbfx_terminate_plan(sbfx *fx, const frame_lights *lights, const frame_params *fp, int count, sbfx_stops *out)
 {
     *out = (sbfx_stops){0};
@@ -172,6 +223,8 @@ void sbfx_terminate_plan(sbfx *fx, const frame_lights *lights, const frame_param
         }
     }
     out->count = n;
+    fx->render->stops_skipped = 0;
+    keep_useful(fx, fp, count, out);
 }
 
 /* The target's depth cleared to 1 and the test on (GL_LESS, no writes) for the particles. */
