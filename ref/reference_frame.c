@@ -378,11 +378,31 @@ static bool ray_hits_sphere(const sbfx_rf_particle *p, const double ray[3])
     return dist < p->radius && t0 > -p->radius;
 }
 
-/* What a pixel carries through "under" besides its colour: the filter's bound and the target's
- * rounding bound (sbfx_rf_frame's filter_bound and rounding_bound). */
+/* What a pixel carries through "over" or "under" besides its colour: the filter's bound and the
+ * target's rounding bound (sbfx_rf_frame's filter_bound and rounding_bound). */
 typedef struct pixel_bounds {
     double filter[4], rounding[4];
 } pixel_bounds;
+
+/* One blend back to front, C' = rgb + (1 - a) C and T' = (1 - a) T, and what it does to the
+ * bounds. The filter's: C' moves by at most d_rgb + (1 - a + d_a) d_C + d_a |C|, T' by d_a T +
+ * (1 - a + d_a) d_T. The target's rounding e: C' by e (|rgb| + |C| + |C'|) + (1 - a)(1 + 2e) r_C,
+ * T' by e (2 T + T') + (1 - a)(1 + 2e) r_T. */
+static void blend_over(double e, const double rgb[3], double a, const double d[4], double c[3], double *t,
+                       pixel_bounds *b)
+{
+    double keep = 1.0 - a + d[3], carry = (1.0 - a) * (1.0 + 2.0 * e);
+    for (int k = 0; k < 3; k++) {
+        double next = rgb[k] + c[k] * (1.0 - a);
+        b->filter[k] = d[k] + keep * b->filter[k] + d[3] * fabs(c[k]);
+        b->rounding[k] = e * (fabs(rgb[k]) + fabs(c[k]) + fabs(next)) + carry * b->rounding[k];
+        c[k] = next;
+    }
+    double next = *t * (1.0 - a);
+    b->filter[3] = d[3] * *t + keep * b->filter[3];
+    b->rounding[3] = e * (2.0 * *t + next) + carry * b->rounding[3];
+    *t = next;
+}
 
 /* One blend nearest first ("under", particles.c), C' = C + T rgb and T' = (1 - a) T, and what it
  * does to the bounds. The filter's: C' moves by at most d_C + (T + d_T) d_rgb + |rgb| d_T, T' by
@@ -411,8 +431,8 @@ static void blend_under(double e, double floor, const double rgb[3], double a, c
     *t = next;
 }
 
-/* One pixel: the sorted particles that may touch it (order is back to front), blended nearest
- * first as the module draws them. */
+/* One pixel: the sorted particles that may touch it (order is back to front), blended as the
+ * module draws them: back to front, or nearest first where it terminates early (front_to_back). */
 static void render_pixel(const sbfx_rf_frame *f, const sbfx_rf_particle *v, const int *order,
                          const pixel_rect *rects, int n, int x, int y, double *out, uint8_t *footprint)
 {
@@ -422,13 +442,15 @@ static void render_pixel(const sbfx_rf_frame *f, const sbfx_rf_particle *v, cons
     size_t at = (size_t)y * f->width + x;
     double zs = f->opaque_distance[at];
     bool hit = false;
-    for (int i = n - 1; i >= 0; i--) {
+    for (int j = 0; j < n; j++) {
+        int i = f->front_to_back ? n - 1 - j : j;
         const pixel_rect *r = &rects[order[i]];
         if (x < r->x0 || x > r->x1 || y < r->y0 || y > r->y1) continue;
         const sbfx_rf_particle *p = &v[order[i]];
         double rgb[3], a, d[4];
         shade_bounded(f, p, ray, zs, rgb, &a, d);
-        blend_under(f->target_rounding, f->target_floor, rgb, a, d, c, &t, &bounds);
+        if (f->front_to_back) blend_under(f->target_rounding, f->target_floor, rgb, a, d, c, &t, &bounds);
+        else blend_over(f->target_rounding, rgb, a, d, c, &t, &bounds);
         if (footprint && !hit) hit = ray_hits_sphere(p, ray);
     }
     memcpy(out, c, sizeof(c));

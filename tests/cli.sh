@@ -222,12 +222,11 @@ test_scene_run() {
     passes=$(json_number "$tmp/smoke.json" passes)
     # smoke, depth, composite and their passes, + the low-res corners' program and pass where
     # RGBA32F renders (src/render/passes.c), + the shadow map's program (render.host_shadows), whose
-    # pass is sbfx_render_shadow_map's, not sbfx_render's, + early termination's mark program and
-    # its two marks (src/render/terminate.c: the frame's particles at 1/2 and 3/4)
-    if { [ "$programs" = 5 ] || [ "$programs" = 6 ]; } && [ "${passes:-0}" = "$programs" ]; then
+    # pass is sbfx_render_shadow_map's, not sbfx_render's
+    if { [ "$programs" = 4 ] || [ "$programs" = 5 ]; } && [ "${passes:-0}" = "$((programs - 1))" ]; then
         ok scene-run
     else
-        fail scene-run "smoke scene: programs=$programs passes=$passes, expected 5 and 5 (6 and 6 with RGBA32F)"
+        fail scene-run "smoke scene: programs=$programs passes=$passes, expected 4 and 3 (5 and 4 with RGBA32F)"
     fi
     # the composite covered the column's tiles: some of the 160 x 90 frame, not all of it (issue 33)
     local tiles pixels

@@ -1,7 +1,7 @@
-/* Pass 2 of a frame (frame.c): the sorted particles into the low-resolution target, front to
- * back (nearest first, the "under" operator: issue 43, docs/gpus.md "Front to back"),
- * premultiplied light and transmittance; consecutive particles of one medium share a
- * draw call. Per particle its instance data (centre, radius, detail window, intensity; the
+/* Pass 2 of a frame (frame.c): the sorted particles into the low-resolution target, back to
+ * front ("over"), or front to back ("under") where early termination stops what is hidden
+ * (terminate.c; docs/gpus.md "Front to back, and early termination"), premultiplied light and
+ * transmittance; consecutive particles of one medium share a draw call. Per particle its instance data (centre, radius, detail window, intensity; the
  * previous centre, the light per particle, the fire's light where the plan has them), per
  * medium its uniforms and tables. */
 #include <math.h>
@@ -154,7 +154,7 @@ static void draw_run(sbfx *fx, int first, int count)
 }
 
 /* The particles' draws into the bound target (width x height, its opaque depth on UNIT_DEPTH,
- * depth_texture): front to back; consecutive particles of one medium share a draw call, and a
+ * depth_texture), in the frame's order (sbfx_drawn_particle); consecutive particles of one medium share a draw call, and a
  * run ends at each of early termination's checkpoints (stops: none, or terminate.c's), where
  * the mark follows it. ES 3.0 has no base instance, so each run re-points the instance
  * attributes at its first particle. */
@@ -166,11 +166,14 @@ void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, 
     sbfx_gather_lights(fx, f->view, &lights);
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
-    /* "under", nearest first: rgb = dst + dst.a src, transmittance a = dst (1 - a). Each
-     * attachment's alpha holds the transmittance in front of it (heat writes alpha 0), so its
-     * light, offset or velocity is weighed by what the nearer particles let through: the sum
-     * back-to-front "over" makes, in the other order (ES 3.0 core blend factors). */
-    glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+    /* back to front, "over": rgb = src + dst (1 - a); transmittance a = dst (1 - a). Nearest first,
+     * "under": rgb = dst + dst.a src, the same transmittance: each attachment's alpha holds the
+     * transmittance in front of it (heat writes alpha 0), so its light, offset or velocity is
+     * weighed by what the nearer particles let through, the same sum in the other order (ES 3.0
+     * core blend factors). In RGBA16F "under" multiplies every stored transmittance's rounding
+     * into the light behind it (docs/gpus.md): the order only early termination needs. */
+    if (fx->render->front_to_back) glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+    else glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
     if (gl->detail_texture) sbfx_bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture, 0);
     glBindVertexArray(gl->particle_vao);
     glBindBuffer(GL_ARRAY_BUFFER, gl->instance_buffer); /* draw_run points the attributes into it */
@@ -206,6 +209,7 @@ void sbfx_pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, 
     fx->counters.fire_lit_particles = 0;
     fx->sim->frame_fire_count = 0;
     fx->render->stops_marked = 0;
+    fx->render->front_to_back = sbfx_terminate_used(fx); /* the order of the instances and both draws */
     if (fx->scene->plan.fire_light) sbfx_fire_lights_of_frame(fx, count);
     upload_instances(fx, &lights, count);
     sbfx_stops stops;

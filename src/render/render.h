@@ -51,6 +51,7 @@ typedef struct sbfx_render_state {
     sbfx_probe probe;
     sbfx_tiles tiles;
     bool warned_polygon_mode;
+    bool front_to_back;      /* the frame's particles drawn nearest first (early termination) */
     int stops_marked;        /* early termination's marks drawn in the last frame (terminate.c) */
     int stops_skipped;       /* its checkpoints left out: no texel could reach epsilon there */
     float stop_depth[SBFX_TILE_GRID * SBFX_TILE_GRID]; /* terminate.c: optical depth per tile */
@@ -122,11 +123,11 @@ void sbfx_pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, 
  * opaque depth bound on UNIT_DEPTH (particles.c; the refinement draws them again). */
 void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height,
                          const sbfx_stops *stops, GLuint depth_texture);
-/* The particle drawn i-th of count (nearest first: the sort's order reversed; particles.c and
- * terminate.c both walk it). */
+/* The particle drawn i-th of count: the sort's order, back to front, or reversed, nearest
+ * first, where the frame terminates early (particles.c and terminate.c both walk it). */
 static inline const sbfx_view_particle *sbfx_drawn_particle(const sbfx *fx, int count, int i)
 {
-    return &fx->sim->view[fx->sim->order[count - 1 - i]];
+    return &fx->sim->view[fx->sim->order[fx->render->front_to_back ? count - 1 - i : i]];
 }
 
 /* terminate.c: early termination (the scene's render.early_termination) */

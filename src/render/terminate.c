@@ -1,5 +1,6 @@
 /* Early termination of the particles (issue 43 item 4; docs/gpus.md "Front to back, and early
- * termination"). The particles are drawn nearest first (particles.c); at a few checkpoints of
+ * termination"; the scene's render.early_termination, sbfx_set_early_termination, off by
+ * default). The particles are drawn nearest first (particles.c); at a few checkpoints of
  * that order a mark (terminate_mark.frag) over the particles' tiles writes depth 0 into the
  * particle target's depth (a DEPTH_COMPONENT16 renderbuffer, cleared to 1 each frame) where the
  * transmittance accumulated so far is below epsilon; the particles after it are drawn at clip

@@ -248,12 +248,12 @@ static int parse_ladder(parser *p, const config_setting_t *g)
 static int parse_render_host(parser *p, const config_setting_t *g)
 {
     sbfx_scene *scene = p->scene;
-    bool terminate = true;
+    bool terminate = false;
     if (get_bool(p, g, "host_lights", &scene->host_lights) || get_bool(p, g, "host_shadows", &scene->host_shadows) ||
         get_int(p, g, "shadow_map_size", 16, 16384, &scene->render.shadow_map_size) ||
         get_bool(p, g, "early_termination", &terminate))
         return -1;
-    scene->no_early_termination = !terminate;
+    scene->early_termination = terminate;
     if (scene->host_shadows && !scene->render.shadow_map_size) scene->render.shadow_map_size = 256;
     return 0;
 }

@@ -71,7 +71,7 @@ typedef struct hc_setup {
     bool cpu_true_depth;         /* the CPU reference gets `wall` itself, not what the buffer holds */
     double tolerance;            /* > 0: one absolute tolerance for every channel instead */
     bool report_only;            /* print how far GPU and CPU are apart, do not require agreement */
-    bool early_termination;      /* the module's early termination on (off: the model alone) */
+    bool early_termination;      /* the module's early termination on: drawn nearest first */
 } hc_setup;
 
 typedef struct hc_result {
@@ -123,7 +123,7 @@ static sbfx *hc_module(gl_fixture *f, const hc_setup *s, sbfx_opacity_mode mode,
 {
     static sbfx_scene scene;
     sbfx_scene_builtin(&scene);
-    scene.no_early_termination = !s->early_termination;
+    scene.early_termination = s->early_termination;
     if (s->media) s->media(scene.media);
     sbfx *fx = fixture_module(f, (sbfx_desc){.target_divisor = 1, .target_format = s->format, .opacity = mode,
                                              .max_particles = MAX_P, .analytic_blackbody = s->analytic_bb,
@@ -239,6 +239,7 @@ static void cpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, sbfx_opacity_
     r->rounding = calloc(SIZE * SIZE * 4, sizeof(double));
     rf.target_rounding = s->format == SBFX_FORMAT_RGBA16F ? HALF_ROUNDING : 0.0, rf.rounding_bound = r->rounding;
     rf.target_floor = s->format == SBFX_FORMAT_RGBA16F ? HALF_FLOOR : 0.0;
+    rf.front_to_back = s->early_termination; /* the module draws nearest first then */
     rf_media(fx, has_detail, &rf);
     rf.fire_light = sbfx_fire_lit(fx);
     rf.light_count = rf_lights(fx, f->frame.view, lights, rf.ambient);

@@ -58,9 +58,6 @@ static void render(gl_fixture *f, double t, int divisor, sbfx_upsample upsample,
 {
     sbfx *fx = fixture_module(f, (sbfx_desc){.target_divisor = divisor, .upsample = upsample, .target_format = format,
                                              .ignore_timeline = true});
-    /* the refinement's own counts (check_counters): the coarse pass's runs not split at early
-     * termination's checkpoints (its counts: test_gl_terminate) */
-    fx->scene->early_termination = false;
     CHECK(sbfx_trigger(fx, "explosion", (const float[3]){0.0f, 0.0f, (float)-CLOUD_DISTANCE}) == SBFX_OK, "%s",
           sbfx_last_error(fx));
     while (sbfx_time(fx) < t - 1e-9) sbfx_update(fx, 1.0 / 60.0);

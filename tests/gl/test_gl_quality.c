@@ -227,12 +227,11 @@ CHECK_TEST(only_declared_variants_exist)
     counters_of(plain, &a), counters_of(up, &b), counters_of(targets, &c);
     /* nearest-depth levels add the low-res corners' program and target where RGBA32F renders */
     int corners = sbfx_float32_renderable();
-    CHECK(a.programs == 6 + corners, "plain module: %d programs (dust, smoke, fire, depth, (corners), composite, "
-          "early termination's mark)", a.programs);
-    CHECK(b.programs == 7 + corners, "a bilinear level adds its composite only: %d programs", b.programs);
-    CHECK(c.programs == 6 + corners, "levels differing in target only add no program: %d", c.programs);
-    /* a set: particles, low-res depth, (corners), early termination's marks */
-    CHECK(c.framebuffers == a.framebuffers + 6 + 2 * corners, "two more target sets: %d framebuffers, plain %d",
+    CHECK(a.programs == 5 + corners, "plain module: %d programs (dust, smoke, fire, depth, (corners), composite)",
+          a.programs);
+    CHECK(b.programs == 6 + corners, "a bilinear level adds its composite only: %d programs", b.programs);
+    CHECK(c.programs == 5 + corners, "levels differing in target only add no program: %d", c.programs);
+    CHECK(c.framebuffers == a.framebuffers + 4 + 2 * corners, "two more target sets: %d framebuffers, plain %d",
           c.framebuffers, a.framebuffers);
     CHECK(strcmp(a.quality, "exact/4/nd") == 0 && a.budget_ms == 0 && a.quality_changes == 0, "%s", a.quality);
     sbfx_destroy(plain);
@@ -331,7 +330,7 @@ CHECK_TEST(scene_budget_and_ladder)
     CHECK(strcmp(c.quality, "exact/4/nd") == 0, "%s", c.quality);
     /* smoke + depth + the composites of nd (top) and bl (exact/8/bl) + nd's low-res corners where
      * RGBA32F renders: planar/4/bl and exact/2/nd are not below the top, so not built */
-    CHECK(c.programs == 5 + sbfx_float32_renderable(), "%d programs (and early termination's mark)", c.programs);
+    CHECK(c.programs == 4 + sbfx_float32_renderable(), "%d programs", c.programs);
     sbfx_destroy(fx);
     sbfx_destroy(own);
     fixture_close(&f);

@@ -51,9 +51,9 @@ CHECK_TEST(plan_holds_only_what_each_scene_uses)
                      (size_t)want->max_particles * 20;
         printf("# %-10s programs %d textures %d framebuffers %d gpu_bytes %zu\n", want->scene, c.programs,
                c.textures, c.framebuffers, c.gpu_bytes);
-        /* + depth, composite, early termination's mark and (where RGBA32F renders) the low-res corners; with post effects the
+        /* + depth, composite and (where RGBA32F renders) the low-res corners; with post effects the
          * composite's scene outside the tiles (composite.frag SCENE_ONLY) */
-        CHECK(c.programs == want->particle_programs + 3 + sbfx_float32_renderable() + want->post_programs +
+        CHECK(c.programs == want->particle_programs + 2 + sbfx_float32_renderable() + want->post_programs +
                                 (want->post_programs > 0) + (want->shadow_map > 0), "%s: %d programs", want->scene,
               c.programs);
         CHECK(c.textures == textures, "%s: %d textures, want %d", want->scene, c.textures, textures);

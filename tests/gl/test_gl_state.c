@@ -295,28 +295,31 @@ typedef struct state_case {
     const char *quality; /* switched to after sbfx_create (sbfx_set_quality), NULL: none */
     float budget_ms;     /* desc.frame_budget_ms */
     bool depth_range;    /* a frame saves the depth range on ES too (desktop OpenGL always does) */
+    bool terminate;      /* early termination turned on (sbfx_set_early_termination) */
 } state_case;
 
 /* The built-in explosion, every post effect (heat shimmer, velocity blur, depth of field), the
  * seed's history blur, and lit smoke (a 2D-array texture on a fifth unit). */
-/* Every case's frames with particles save the depth range: early termination's mask, on by
- * default, compares the particles' window depth (render/terminate.c), as mixed resolution's does. */
 static const state_case cases[] = {
-    {"built-in explosion", NULL, NULL, "explosion", NULL, 0.0f, true},
-    {"post.cfg: shimmer, velocity blur, depth of field", "scenes/post.cfg", "", "explosion", NULL, 0.0f, true},
+    {"built-in explosion", NULL, NULL, "explosion", NULL, 0.0f, false, false},
+    {"post.cfg: shimmer, velocity blur, depth of field", "scenes/post.cfg", "", "explosion", NULL, 0.0f, false, false},
     {"explosion with history blur", "scenes/explosion.cfg", "\npost = { motion_blur = { mode = \"history\"; persistence = 0.15; }; };\n",
-     "explosion", NULL, 0.0f, true},
-    {"lit-smoke.cfg", "scenes/lit-smoke.cfg", "", "column", NULL, 0.0f, true},
+     "explosion", NULL, 0.0f, false, false},
+    {"lit-smoke.cfg", "scenes/lit-smoke.cfg", "", "column", NULL, 0.0f, false, false},
     /* a level's first use makes programs, the black-body constants, a wider instance buffer and
      * the level of detail's memory inside sbfx_set_quality; targets inside sbfx_render */
     {"built-in explosion switched to spherical/2/bl/lpp/abb/lod64", NULL, NULL, "explosion",
-     "spherical/2/bl/lpp/abb/lod64", 0.0f, true},
+     "spherical/2/bl/lpp/abb/lod64", 0.0f, false, false},
     /* mixed resolution: the refine target (made inside sbfx_render), its depth test as the mask
      * (the particles' window depth: the host's depth range 0.2-0.7 and clip control ZERO_TO_ONE
      * would move it), the refined particles on a sixth unit */
-    {"built-in explosion switched to exact/4/mx", NULL, NULL, "explosion", "exact/4/mx", 0.0f, true},
+    {"built-in explosion switched to exact/4/mx", NULL, NULL, "explosion", "exact/4/mx", 0.0f, true, false},
     /* the budget walks down at once: timer queries around the passes, levels switched in render */
-    {"built-in explosion under a budget nothing meets (0.001 ms)", NULL, NULL, "explosion", NULL, 0.001f, true},
+    {"built-in explosion under a budget nothing meets (0.001 ms)", NULL, NULL, "explosion", NULL, 0.001f, false, false},
+    /* early termination: the particle target's depth renderbuffer (made inside sbfx_render: the
+     * host's renderbuffer binding), its test as the mask (the particles' window depth, as mixed
+     * resolution's), the marks' framebuffer */
+    {"built-in explosion with early termination", NULL, NULL, "explosion", NULL, 0.0f, true, true},
 };
 
 static sbfx *case_module(host *h, const state_case *c)
@@ -325,6 +328,7 @@ static sbfx *case_module(host *h, const state_case *c)
     sbfx *fx = fixture_module(&h->gl, (sbfx_desc){.scene = scene, .ignore_timeline = true, .max_particles = 512,
                                                   .frame_budget_ms = c->budget_ms});
     sbfx_scene_free(scene);
+    if (c->terminate) CHECK(sbfx_set_early_termination(fx, true) == SBFX_OK, "%s", sbfx_last_error(fx));
     return fx;
 }
 
@@ -466,9 +470,9 @@ static void run_case(const state_case *c, int expected_queries[3])
  * read for the tone map only when it is not that one). */
 CHECK_TEST(builtin_explosion_leaves_state)
 {
-    /* units 0-3 2D (+ sampler each), unit 1 3D: 22 + 4 + 4 + 1, + 2 attachment queries, + the
-     * depth range (early termination); idle: no pass, no query */
-    int expected[3] = {34, 34, 0};
+    /* units 0-3 2D (+ sampler each), unit 1 3D: 22 + 4 + 4 + 1, + 2 attachment queries; idle: no
+     * pass, no query */
+    int expected[3] = {33, 33, 0};
     run_case(&cases[0], expected);
 }
 
@@ -476,14 +480,14 @@ CHECK_TEST(post_effects_leave_state)
 {
     /* units 0-6 2D (the DoF composite's seven), unit 1 3D, 7 samplers; idle (post passes only):
      * units 0-6 2D + samplers */
-    int expected[3] = {38, 38, 36};
+    int expected[3] = {37, 37, 36};
     run_case(&cases[1], expected);
 }
 
 CHECK_TEST(history_blur_leaves_state)
 {
     /* units 0-3 2D, unit 1 3D, 4 samplers; idle: the history pass and copy, units 0-1 */
-    int expected[3] = {32, 32, 26};
+    int expected[3] = {31, 31, 26};
     run_case(&cases[2], expected);
 }
 
@@ -491,21 +495,21 @@ CHECK_TEST(lit_smoke_leaves_state)
 {
     /* units 0-3 2D (3: no black body, the scene colour for the tone map), unit 1 3D, unit 4 2D
      * array, 4 samplers, + 2 attachment queries */
-    int expected[3] = {36, 36, 0};
+    int expected[3] = {35, 35, 0};
     run_case(&cases[3], expected);
 }
 
 CHECK_TEST(quality_first_use_leaves_state)
 {
     /* as the built-in explosion: the new level binds the same units */
-    int expected[3] = {34, 34, 0};
+    int expected[3] = {33, 33, 0};
     run_case(&cases[4], expected);
 }
 
 CHECK_TEST(frame_budget_leaves_state)
 {
     /* timer queries are not host state: the same save and restore as without a budget */
-    int expected[3] = {34, 34, 0};
+    int expected[3] = {33, 33, 0};
     run_case(&cases[6], expected);
 }
 
@@ -516,6 +520,14 @@ CHECK_TEST(mixed_resolution_leaves_state)
      * the host's depth range and clip control place; on desktop OpenGL already counted) */
     int expected[3] = {36, 36, 0};
     run_case(&cases[5], expected);
+}
+
+CHECK_TEST(early_termination_leaves_state)
+{
+    /* as the built-in explosion, and the depth range (the marks' mask compares the particles'
+     * window depth; on desktop OpenGL already counted) */
+    int expected[3] = {34, 34, 0};
+    run_case(&cases[7], expected);
 }
 
 /* ---- the host's shadow map (sbfx_render_shadow_map) ------------------------------------------ */

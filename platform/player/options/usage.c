@@ -152,7 +152,7 @@ static const char usage_text[] =
     "  --early-termination on|off\n"
     "                         stop shading a particle-target texel once what it lets\n"
     "                         through cannot move the picture a quarter of an 8-bit level\n"
-    "                         (default: the scene's render.early_termination, on)\n"
+    "                         (default: the scene's render.early_termination, off)\n"
     "  --budget-ms MS         frame budget of sbfx's GPU work, 0 < MS <= 10000: sbfx walks\n"
     "                         down a quality ladder when over it; the quality flags above\n"
     "                         give the top level, never exceeded (docs/quality-and-budgets.md \"Frame budgets\")\n"
