@@ -34,7 +34,7 @@ function pass_of(shader, variant) {
     if (shader == "depth_downsample.frag" || shader == "low_corners.frag") return "depth"
     if (shader == "particle.frag") return variant ~ /MEDIUM_EMITS/ ? "fire" : variant ~ /MEDIUM_HEAT/ ? "heat" : "scatter"
     if (shader == "refine_mark.frag") return "refine"
-    if (shader == "terminate_mark.frag") return "stop" # the particles' early termination (render/terminate.c)
+    if (shader == "terminate_mark.frag") return "stop" # early termination of the particles (render/terminate.c)
     if (shader == "composite.frag") return "composite"
     return "post"
 }
