@@ -308,6 +308,7 @@ CHECK_TEST(barrage_over_its_life)
     f.frame.scene_depth_texture = host.depth_texture;
     long terminated = 0;
     int frames = 0;
+    unsigned long long allocs = 0;
     for (int step = 1; step <= 8; step++) {
         while (sbfx_time(fx) < 0.5 * step - 1e-9) CHECK(sbfx_update(fx, 1.0 / 60.0) == SBFX_OK);
         test_scene_camera(&camera, sbfx_time(fx), (float)W / H, f.frame.view, f.frame.projection);
@@ -319,6 +320,13 @@ CHECK_TEST(barrage_over_its_life)
         terminated += p.terminated > 0 ? p.terminated : 0;
         frames++;
         pair_free(&p);
+        /* after the first pair (the mark program and the targets with their depth made), both
+         * ways allocate nothing per frame */
+        sbfx_counters c;
+        sbfx_stats(fx, &c);
+        if (step == 1) allocs = c.heap_allocs_after_load;
+        CHECK(c.heap_allocs_after_load == allocs, "%llu allocations after the first frame",
+              (unsigned long long)(c.heap_allocs_after_load - allocs));
     }
     CHECK(terminated > 0, "nothing terminated over %d frames of the barrage", frames);
     CHECK(glGetError() == GL_NO_ERROR);
