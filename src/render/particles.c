@@ -1,9 +1,9 @@
 /* Pass 2 of a frame (frame.c): the sorted particles into the low-resolution target, back to
  * front ("over"), or front to back ("under") where early termination stops what is hidden
  * (terminate.c; docs/gpus.md "Front to back, and early termination"), premultiplied light and
- * transmittance; consecutive particles of one medium share a draw call. Per particle its instance data (centre, radius, detail window, intensity; the
- * previous centre, the light per particle, the fire's light where the plan has them), per
- * medium its uniforms and tables. */
+ * transmittance; consecutive particles of one medium share a draw call. Per particle its
+ * instance data (centre, radius, detail window, intensity; the previous centre, the light per
+ * particle, the fire's light where the plan has them), per medium its uniforms and tables. */
 #include <math.h>
 #include <string.h>
 #include "render/render.h"
@@ -154,9 +154,9 @@ static void draw_run(sbfx *fx, int first, int count)
 }
 
 /* The particles' draws into the bound target (width x height, its opaque depth on UNIT_DEPTH,
- * depth_texture), in the frame's order (sbfx_drawn_particle); consecutive particles of one medium share a draw call, and a
- * run ends at each of early termination's checkpoints (stops: none, or terminate.c's), where
- * the mark follows it. ES 3.0 has no base instance, so each run re-points the instance
+ * depth_texture), in the frame's order (sbfx_drawn_particle); consecutive particles of one
+ * medium share a draw call, and a run ends at each of early termination's checkpoints (stops:
+ * none, or terminate.c's), where the mark follows it. ES 3.0 has no base instance, so each run re-points the instance
  * attributes at its first particle. */
 void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height,
                          const sbfx_stops *stops, GLuint depth_texture)
