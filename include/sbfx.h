@@ -487,6 +487,15 @@ typedef struct sbfx_quality {
  * choosing: q becomes the ladder's top only when created so (set_quality picks a level). */
 SBFX_API sbfx_result sbfx_set_quality(sbfx *fx, const sbfx_quality *q);
 SBFX_API sbfx_result sbfx_get_quality(const sbfx *fx, sbfx_quality *out);
+/* Early termination of the particles (since 1.5.0; docs/gpus.md "Front to back, and early
+ * termination"): drawn nearest first, a texel stops taking particles once what it lets through
+ * is below a bound derived so that what it loses stays under a quarter of an 8-bit level on the
+ * display. Off by default (a scene's render.early_termination = true turns it on at load;
+ * sbfx-play --early-termination on): in an RGBA16F target the nearest-first order carries each
+ * stored transmittance's rounding into the light behind it, about twice the error of back to
+ * front against RGBA32F. Effective at the next sbfx_render; turning it on in a module loaded
+ * without it makes its mark program now and its targets again at that render. */
+SBFX_API sbfx_result sbfx_set_early_termination(sbfx *fx, bool on);
 /* Level names: <opacity>/<divisor>/<upsample>[/<flag>...] with opacity planar | soft |
  * spherical | exact, divisor 1 | 2 | 4 | 8, upsample nd (nearest-depth) | bl (bilinear) | mx
  * (mixed resolution: nearest-depth, refined at full resolution where the coarse target fails), flags

@@ -79,8 +79,8 @@ uniform sampler2D u_blackbody;   // RGBA32F, uniform in 1/T: rgb / Y, ln(Y / T) 
 uniform vec3 u_blackbody_map;    // 1/T at entry 0, entries per unit of 1/T, entries - 2
 uniform vec4 u_temperature;      // T0, T1, cooling, the cool share's soot (media.fire.soot)
 uniform float u_emission_scale;   // includes (1 - albedo)
-// Per-fragment radiance ceiling, in pre-exposed units: back-to-front "over" never sums layers
-// above their largest one, so the target stays inside half-float's 65504 (docs/look-fire.md).
+// Per-fragment radiance ceiling, in pre-exposed units: compositing ("under", front to back, as
+// "over") never sums layers above their largest one, so the target stays inside half-float's 65504 (docs/look-fire.md).
 const float RADIANCE_CEILING = 16384.0;
 #endif
 

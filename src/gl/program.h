@@ -31,6 +31,7 @@ typedef struct sbfx_pass_uniforms {
     GLint tile_size, tile_grid, tile_target;                          /* tiles.vert (render/tiles.h) */
     GLint refined, contrast;                                          /* mixed resolution (render/refine.c) */
     GLint inv_divisor, low_texel, corners_texel, near_model, tone_filmic, tone_shoulder, full_texel; /* folded on the CPU (passes.c) */
+    GLint epsilon;                                                    /* early termination (render/terminate.c) */
 } sbfx_pass_uniforms;
 
 typedef struct sbfx_variant_key {
@@ -53,6 +54,8 @@ void sbfx_particle_defines(const sbfx *fx, const sbfx_variant_key *key, sbfx_med
 /* Builds a variant's particle programs / an upsampling's composite (when not built yet). */
 sbfx_result sbfx_variant_build(sbfx *fx, const sbfx_variant_key *key);
 sbfx_result sbfx_composite_build(sbfx *fx, sbfx_upsample upsample);
+/* Early termination's mark program (render/terminate.c), when not built yet. */
+sbfx_result sbfx_stop_program_build(sbfx *fx);
 /* Re-creates the instance buffer with room for the per-particle light (first use of lpp). */
 sbfx_result sbfx_instances_reserve_light(sbfx *fx);
 void sbfx_program_locate(sbfx_program *p);

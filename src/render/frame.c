@@ -1,6 +1,6 @@
 /* One frame's GPU work, as the seed's figure 9 draws it, between one save and one restore of the
  * host's GL state (gl/gl_state.c): the particle passes when particles live — opaque depth to the
- * particle target's resolution (passes.c), the particles back to front into it (particles.c), the
+ * particle target's resolution (passes.c), the particles front to back into it (particles.c), the
  * composite over the host's framebuffer (passes.c) — then the post chain when the scene has one
  * (post.c). The frame's particles come from the sim room, sorted (and merged by a lodN level)
  * here; sbfx.c (sbfx_render) brackets it with the frame budget. */
@@ -88,11 +88,13 @@ static sbfx_gl_units frame_units(const sbfx *fx, int count, bool scene_color)
 }
 
 /* What the frame's block saves: the pass state, desktop OpenGL's own, and where mixed
- * resolution's refinement may run, the depth range (its mask compares window depths). */
+ * resolution's refinement or early termination may run, the depth range (their masks compare
+ * window depths). */
 static unsigned frame_parts(const sbfx *fx, int count)
 {
     bool mixed = count > 0 && fx->gl->refine_mark_program && fx->scene->desc.upsample == SBFX_UPSAMPLE_MIXED;
-    return SBFX_GL_SAVE_PASS | fx->gl->context.parts | (mixed ? SBFX_GL_SAVE_DEPTH_RANGE : 0u);
+    bool stops = count > 0 && fx->scene->early_termination && fx->gl->stop_program;
+    return SBFX_GL_SAVE_PASS | fx->gl->context.parts | (mixed || stops ? SBFX_GL_SAVE_DEPTH_RANGE : 0u);
 }
 
 sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_depth_model *depth, int count)

@@ -69,7 +69,7 @@ void sbfx_pass_refine(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int
      * particles' window depth, 0.5 or 0, is under the mark's 1 and not under the clear's 0) */
     glDepthFunc(GL_LESS);
     sbfx_bind_texture(UNIT_DEPTH, GL_TEXTURE_2D, gl->refine_depth.depth, 0);
-    sbfx_draw_particles(fx, f, fp, count, f->width, f->height);
+    sbfx_draw_particles(fx, f, fp, count, f->width, f->height, NULL, gl->refine_depth.depth);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
 }

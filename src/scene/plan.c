@@ -132,6 +132,7 @@ void sbfx_scene_adopt(sbfx *fx, const sbfx_scene *scene)
     memcpy(fx->scene->ambient, scene->ambient, sizeof(fx->scene->ambient));
     memcpy(fx->scene->effects, scene->effects, sizeof(fx->scene->effects));
     fx->scene->post = scene->post;
+    fx->scene->early_termination = scene->early_termination;
     fx->scene->effect_count = scene->effect_count;
     fx->scene->light_slots = sbfx_light_slots_of_scene(fx);
     for (int e = 0; e < fx->scene->effect_count; e++)

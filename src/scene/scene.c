@@ -248,9 +248,12 @@ static int parse_ladder(parser *p, const config_setting_t *g)
 static int parse_render_host(parser *p, const config_setting_t *g)
 {
     sbfx_scene *scene = p->scene;
+    bool terminate = false;
     if (get_bool(p, g, "host_lights", &scene->host_lights) || get_bool(p, g, "host_shadows", &scene->host_shadows) ||
-        get_int(p, g, "shadow_map_size", 16, 16384, &scene->render.shadow_map_size))
+        get_int(p, g, "shadow_map_size", 16, 16384, &scene->render.shadow_map_size) ||
+        get_bool(p, g, "early_termination", &terminate))
         return -1;
+    scene->early_termination = terminate;
     if (scene->host_shadows && !scene->render.shadow_map_size) scene->render.shadow_map_size = 256;
     return 0;
 }
@@ -261,7 +264,7 @@ static int parse_render(parser *p, const config_setting_t *g)
                                        "seed", "max_particles", "sim_rate", "blackbody_max_kelvin",
                                        "light_rate", "blackbody", "phase", "detail_format", "tone_map",
                                        "exposure", "budget_ms", "ladder", "white_luminance", "host_lights",
-                                       "host_shadows", "shadow_map_size", NULL};
+                                       "host_shadows", "shadow_map_size", "early_termination", NULL};
     static const char *const tone_maps[] = {"none", "hue-preserving", "per-channel", "filmic", NULL};
     static const char *const rates[] = {"per-pixel", "per-particle", NULL};
     static const char *const evaluations[] = {"table", "analytic", NULL};

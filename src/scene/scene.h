@@ -58,6 +58,7 @@ struct sbfx_scene {
     sbfx_gpio_trigger gpio[SBFX_MAX_GPIO];
     sbfx_post_params post;
     bool host_lights, host_shadows; /* render.host_lights, render.host_shadows (sbfx_scene_host) */
+    bool early_termination; /* render.early_termination (render/terminate.c); off by default */
     bool has_sky;
     float sky[3];       /* the host's sky colour, linear RGB (sbfx_scene_host) */
     bool has_camera;
