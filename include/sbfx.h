@@ -175,9 +175,12 @@ typedef struct sbfx_desc {
     int detail_frames;               /* detail volume depth = animation frames (32) */
     sbfx_detail_format detail_format;
     bool analytic_blackbody;         /* Planck x CIE evaluated per fragment, not the table */
-    bool analytic_phase;             /* phase function evaluated per fragment, not the table */
+    bool analytic_phase;             /* phase function evaluated per fragment: the default
+                                        since issue 43; set, it wins over table_phase */
     bool light_per_particle;         /* phase-model in-scattering evaluated once per particle
                                         (on the CPU, at its centre) instead of per fragment */
+    bool table_phase;                /* the phase function sampled from its table (scene
+                                        render.phase = "table", level flag tph) instead */
     sbfx_tone_map tone_map;          /* the particles' light on the display (hue-preserving) */
     float exposure;                  /* scale of the particles' light (1), applied where it is
                                         made (pre-exposed in the particle target) */
@@ -471,7 +474,8 @@ typedef struct sbfx_quality {
     sbfx_target_format target_format;
     bool light_per_particle;
     bool analytic_blackbody;
-    bool analytic_phase;
+    bool analytic_phase;             /* the default: resolved, exactly one of these two is set */
+    bool table_phase;                /* level flag tph: the phase function's table */
     int lod_particles;               /* at most this many particles drawn (level of detail);
                                         0 = all */
 } sbfx_quality;
@@ -483,11 +487,21 @@ typedef struct sbfx_quality {
  * choosing: q becomes the ladder's top only when created so (set_quality picks a level). */
 SBFX_API sbfx_result sbfx_set_quality(sbfx *fx, const sbfx_quality *q);
 SBFX_API sbfx_result sbfx_get_quality(const sbfx *fx, sbfx_quality *out);
+/* Early termination of the particles (since 1.5.0; docs/gpus.md "Front to back, and early
+ * termination"): drawn nearest first, a texel stops taking particles once what it lets through
+ * is below a bound derived so that what it loses stays under a quarter of an 8-bit level on the
+ * display. Off by default (a scene's render.early_termination = true turns it on at load;
+ * sbfx-play --early-termination on): in an RGBA16F target the nearest-first order carries each
+ * stored transmittance's rounding into the light behind it, about twice the error of back to
+ * front against RGBA32F. Effective at the next sbfx_render; turning it on in a module loaded
+ * without it makes its mark program now and its targets again at that render. */
+SBFX_API sbfx_result sbfx_set_early_termination(sbfx *fx, bool on);
 /* Level names: <opacity>/<divisor>/<upsample>[/<flag>...] with opacity planar | soft |
  * spherical | exact, divisor 1 | 2 | 4 | 8, upsample nd (nearest-depth) | bl (bilinear) | mx
  * (mixed resolution: nearest-depth, refined at full resolution where the coarse target fails), flags
  * rgba8 | rgba16f | rgba32f (target format), lpp (light per particle), abb (analytic black
- * body), aph (analytic phase), lodN (at most N particles). "exact/4/nd", "spherical/8/bl/lod256".
+ * body), tph (the phase function's table; the analytic phase is the default, and aph, which
+ * named it, is still accepted), lodN (at most N particles). "exact/4/nd", "spherical/8/bl/lod256".
  * Parse fills *out (defaults resolved) or names the bad token in err. */
 SBFX_API sbfx_result sbfx_quality_parse(const char *name, sbfx_quality *out, char *err, size_t err_size);
 /* The canonical name of q (parse(name(q)) == q); returns buf. */

@@ -378,16 +378,16 @@ static bool ray_hits_sphere(const sbfx_rf_particle *p, const double ray[3])
     return dist < p->radius && t0 > -p->radius;
 }
 
-/* What a pixel carries through "over" besides its colour: the filter's bound and the target's
- * rounding bound (sbfx_rf_frame's filter_bound and rounding_bound). */
+/* What a pixel carries through "over" or "under" besides its colour: the filter's bound and the
+ * target's rounding bound (sbfx_rf_frame's filter_bound and rounding_bound). */
 typedef struct pixel_bounds {
     double filter[4], rounding[4];
 } pixel_bounds;
 
-/* One blend, C' = rgb + (1 - a) C and T' = (1 - a) T, and what it does to the bounds. The
- * filter's: C' moves by at most d_rgb + (1 - a + d_a) d_C + d_a |C|, T' by d_a T + (1 - a + d_a)
- * d_T. The target's rounding e: C' by e (|rgb| + |C| + |C'|) + (1 - a)(1 + 2e) r_C, T' by
- * e (2 T + T') + (1 - a)(1 + 2e) r_T. */
+/* One blend back to front, C' = rgb + (1 - a) C and T' = (1 - a) T, and what it does to the
+ * bounds. The filter's: C' moves by at most d_rgb + (1 - a + d_a) d_C + d_a |C|, T' by d_a T +
+ * (1 - a + d_a) d_T. The target's rounding e: C' by e (|rgb| + |C| + |C'|) + (1 - a)(1 + 2e) r_C,
+ * T' by e (2 T + T') + (1 - a)(1 + 2e) r_T. */
 static void blend_over(double e, const double rgb[3], double a, const double d[4], double c[3], double *t,
                        pixel_bounds *b)
 {
@@ -404,7 +404,35 @@ static void blend_over(double e, const double rgb[3], double a, const double d[4
     *t = next;
 }
 
-/* One pixel: the sorted particles that may touch it, blended back to front. */
+/* One blend nearest first ("under", particles.c), C' = C + T rgb and T' = (1 - a) T, and what it
+ * does to the bounds. The filter's: C' moves by at most d_C + (T + d_T) d_rgb + |rgb| d_T, T' by
+ * d_a T + (1 - a + d_a) d_T. The target's rounding e, each rounding at most e of its result: the
+ * source, the product T rgb and the sum may round (e (2 T |rgb| + |C'|), to first order in e,
+ * with |C| + |C'| for the sum's inputs as the "over" bound had), and what is carried grows by
+ * (1 + 3e): C' by e (2 T |rgb| + |C| + |C'|) + (1 + 3e)(r_C + |rgb| r_T); T' as "over"'s, the
+ * same blend of alpha: e (2 T + T') + (1 - a)(1 + 2e) r_T, plus the format's floor (the spacing
+ * of its smallest values, which a relative e does not cover): "under" multiplies the stored T
+ * into every later particle's light, so a T that rounds to 0 or a subnormal loses up to
+ * floor x |rgb| of the light behind it (sbfx_rf_frame.target_floor). */
+static void blend_under(double e, double floor, const double rgb[3], double a, const double d[4], double c[3],
+                        double *t, pixel_bounds *b)
+{
+    double grow = 1.0 + 3.0 * e;
+    for (int k = 0; k < 3; k++) {
+        double next = c[k] + *t * rgb[k];
+        b->filter[k] = b->filter[k] + (*t + b->filter[3]) * d[k] + fabs(rgb[k]) * b->filter[3];
+        b->rounding[k] = e * (2.0 * *t * fabs(rgb[k]) + fabs(c[k]) + fabs(next)) +
+                         grow * (b->rounding[k] + fabs(rgb[k]) * b->rounding[3]);
+        c[k] = next;
+    }
+    double next = *t * (1.0 - a);
+    b->filter[3] = d[3] * *t + (1.0 - a + d[3]) * b->filter[3];
+    b->rounding[3] = e * (2.0 * *t + next) + floor + (1.0 - a) * (1.0 + 2.0 * e) * b->rounding[3];
+    *t = next;
+}
+
+/* One pixel: the sorted particles that may touch it (order is back to front), blended as the
+ * module draws them: back to front, or nearest first where it terminates early (front_to_back). */
 static void render_pixel(const sbfx_rf_frame *f, const sbfx_rf_particle *v, const int *order,
                          const pixel_rect *rects, int n, int x, int y, double *out, uint8_t *footprint)
 {
@@ -414,13 +442,15 @@ static void render_pixel(const sbfx_rf_frame *f, const sbfx_rf_particle *v, cons
     size_t at = (size_t)y * f->width + x;
     double zs = f->opaque_distance[at];
     bool hit = false;
-    for (int i = 0; i < n; i++) {
+    for (int j = 0; j < n; j++) {
+        int i = f->front_to_back ? n - 1 - j : j;
         const pixel_rect *r = &rects[order[i]];
         if (x < r->x0 || x > r->x1 || y < r->y0 || y > r->y1) continue;
         const sbfx_rf_particle *p = &v[order[i]];
         double rgb[3], a, d[4];
         shade_bounded(f, p, ray, zs, rgb, &a, d);
-        blend_over(f->target_rounding, rgb, a, d, c, &t, &bounds);
+        if (f->front_to_back) blend_under(f->target_rounding, f->target_floor, rgb, a, d, c, &t, &bounds);
+        else blend_over(f->target_rounding, rgb, a, d, c, &t, &bounds);
         if (footprint && !hit) hit = ray_hits_sphere(p, ray);
     }
     memcpy(out, c, sizeof(c));

@@ -7,6 +7,8 @@
  * the black body and the phase function analytic (or, for tests of the GPU tables, through the
  * same tables), and accumulates the particles back to front in the order src/sim/sort.c gives them:
  *     C <- c_i + C (1 - a_i),   T <- T (1 - a_i)      (C = premultiplied light, T = transmittance)
+ * or, as the module draws them where it terminates early (front_to_back; render/terminate.c),
+ * nearest first: C <- C + T c_i, T <- T (1 - a_i) ("under"; the same in exact arithmetic)
  * then composites over the opaque scene like composite.frag and an RGBA8 framebuffer do, with the
  * same tone mapping of the layer's light (C' = tone_map(C, T)):
  *     out = clamp(scene * T + C', 0, 1) * 255.
@@ -117,9 +119,16 @@ typedef struct sbfx_rf_frame {
      * rounding_bound set (width*height*4) it gets, per pixel and channel, how far those roundings
      * can move the result. A blend C' = rgb + (1 - a) C may round the source, the factor, the
      * product and the sum: it moves by at most e (|rgb| + |C| + |C'|) + (1 - a)(1 + 2e) d_C, and
-     * T' = (1 - a) T by e (2 T + T') + (1 - a)(1 + 2e) d_T (render_pixel). */
+     * T' = (1 - a) T by e (2 T + T') + (1 - a)(1 + 2e) d_T (blend_over). Front to back,
+     * C' = C + T rgb carries the stored T's error into the light behind it: it moves by at most
+     * e (2 T |rgb| + |C| + |C'|) + (1 + 3e)(d_C + |rgb| d_T) (blend_under). */
     double target_rounding;
+    /* ...and the absolute spacing of its values near 0, which a relative rounding does not cover:
+     * 2^-24 for a half float's subnormals (2^-14 on a GPU that flushes them, as ES 3.0 allows);
+     * 0: exact. Added to T's bound at every blend. */
+    double target_floor;
     double *rounding_bound;
+    bool front_to_back;            /* blend nearest first, as early termination draws (above) */
     double exposure;               /* desc.exposure, applied where light is made (0: 1) */
     /* The frame's fire lights its dust and smoke (the module's plan.fire_light: emitting fire and
      * dust or smoke of the phase model in the scene): sbfx_rf_render_layer gathers the frame's

@@ -34,18 +34,19 @@ precision highp sampler2D;
 uniform mediump sampler2D u_particles; // low-res: premultiplied light, transmittance
 uniform sampler2D u_low_depth;    // low-res opaque near / distance (0: no surface)
 uniform sampler2D u_scene_depth;  // full-res host depth, window depth
-uniform ivec2 u_low_size;
-uniform float u_divisor;
-uniform vec4 u_depth_model;       // window depth -> distance (view_distance)
-uniform float u_near;
+// Folded on the CPU (render/passes.c), so that no fragment divides by a uniform:
+uniform float u_inv_divisor;      // 1 / the target's divisor (a power of 2: exact)
+uniform vec2 u_low_texel;         // 1 / the low-res target's size: one texel in UV units
+uniform vec3 u_near_model;        // window depth -> near / distance, A (d - d_far) + B (near_over_distance)
 uniform float u_depth_threshold;  // relative depth difference that counts as an edge
 uniform sampler2D u_scene_color;  // full res, LINEAR filtering for the shimmer offset
 uniform bool u_scene_known;       // u_scene_color may be read (given, and not being drawn into)
 #ifdef OWN_SCENE
-uniform vec2 u_full_size;
+uniform vec2 u_full_texel;        // 1 / the output's size (passes.c)
 #endif
 #ifdef LOW_CORNERS
 uniform sampler2D u_low_corners;  // low-res + 1: the four low-res depths around a texel (low_corners.frag)
+uniform vec2 u_corners_texel;     // 1 / its size
 #endif
 #ifdef REFINED
 uniform mediump sampler2D u_refined; // full res: the refined particles; alpha -1 where not refined
@@ -58,13 +59,15 @@ out vec4 o_color;
 
 const float HALF_MAX = 65504.0;
 
-// Window depth -> view distance (src/render/projection.c): the matrix's own depth row, solved around
-// the far end so nothing cancels; the clear value means no surface.
-const float NO_SURFACE = 1e30;
-float view_distance(float d)
+// Window depth -> near / view distance (src/render/projection.c: the distance is p14 / (scale (d -
+// d_far) + offset), solved around the far end so nothing cancels; its reciprocal times near is
+// linear in d, A = near scale / p14, B = near offset / p14, folded in double on the CPU), as the
+// low-res depths store it. The clear value (no surface) gives B = near / the far plane's distance,
+// which the upsampling clamps to the particles' reach like every farther value: the reach is at
+// most the far plane's distance (passes.c), so it lands on the reach, as 0 (no surface) does.
+float near_over_distance(float d)
 {
-    if (d == u_depth_model.y) return NO_SURFACE;
-    return u_depth_model.w / (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z);
+    return u_near_model.x * (d - u_near_model.y) + u_near_model.z;
 }
 
 // The low-res texels are read by texture coordinate (NEAREST, CLAMP_TO_EDGE: the sampler clamps
@@ -94,25 +97,30 @@ float tone_curve(float v)
 // mean (TONE_INSET), goes through the curve, and the share is given back, so light too bright
 // for its hue turns orange -> yellow -> white, arriving at white smoothly at 1024.
 const float TONE_INSET = 0.06;
-const float TONE_FILMIC_WHITE = 1024.0;   // SBFX_TONE_FILMIC_WHITE: the shoulder is 1 from here on
+uniform vec4 u_tone_filmic;       // steepness / (1 - k), -k steepness / (1 - k), log2(1 + steepness x_white), knee k
+uniform vec2 u_tone_shoulder;     // 2 (1 - k) c, (1 - k) c^2 with c = ln 2 / ln(1 + steepness x_white) (render/passes.c)
 // tone_curve's shoulder u as k + (1 - k)(2u - u^2), on four values at once (the peak and the
-// three channels of the crossover). Without a branch: below the knee max(v - k, 0) = 0 gives
-// u = 0, and min(v, k) is v (v >= 0 here).
+// three channels of the crossover), u = c L with L = log2(1 + x), x = (v - k) steepness / (1 - k):
+// k + L (2 (1 - k) c - (1 - k) c^2 L), the constants folded on the CPU. Without a branch: below
+// the knee x = max(., 0) = 0 gives L = 0, and min(v, k) is v (v >= 0 here). From the white point
+// on, L is held at its value there (u = 1, the shoulder's top: v is not clamped before the log).
 vec4 tone_curve_smooth_white(vec4 v)
 {
-    float k = u_tone_curve.x;
-    vec4 x = max(min(v, TONE_FILMIC_WHITE) - k, 0.0) * (u_tone_curve.y / (1.0 - k));
-    vec4 u = min(log(1.0 + x) * u_tone_curve.z, 1.0);
-    return min(v, k) + (1.0 - k) * u * (2.0 - u);
+    vec4 x = max(v * u_tone_filmic.x + u_tone_filmic.y, 0.0);
+    vec4 L = min(log2(1.0 + x), u_tone_filmic.z);
+    return min(v, u_tone_filmic.w) + L * (u_tone_shoulder.x - u_tone_shoulder.y * L);
 }
 vec3 tone_filmic(vec3 q)
 {
     float peak = max(max(q.r, q.g), q.b);
-    vec3 y = (1.0 - TONE_INSET) * q + TONE_INSET * ((q.r + q.g + q.b) / 3.0);
+    vec3 y = (1.0 - TONE_INSET) * q + (TONE_INSET / 3.0) * (q.r + q.g + q.b);
     vec4 z = tone_curve_smooth_white(vec4(peak, y));
-    vec3 kept = peak > 0.0 ? q * (z.x / peak) : vec3(0.0);
-    vec3 crossed = clamp((z.yzw - TONE_INSET * ((z.y + z.z + z.w) / 3.0)) / (1.0 - TONE_INSET), 0.0, 1.0);
-    return mix(kept, crossed, smoothstep(0.0, 1.0, 0.5 * log2(clamp(peak, 1.0, 4.0))));
+    // peak 0: q and z.x are 0, and so is the kept colour
+    vec3 kept = q * (z.x / max(peak, 1e-30));
+    vec3 crossed = clamp(z.yzw * (1.0 / (1.0 - TONE_INSET)) - (TONE_INSET / (3.0 * (1.0 - TONE_INSET))) * (z.y + z.z + z.w), 0.0, 1.0);
+    // smoothstep over two stops, of h = log2(peak) / 2 in [0, 1] already: h^2 (3 - 2h) = t^2 (3/4 - t/4), t = 2h
+    float t = log2(clamp(peak, 1.0, 4.0));
+    return mix(kept, crossed, (t * t) * (0.75 - 0.25 * t));
 }
 #endif
 
@@ -127,7 +135,7 @@ vec4 tone_map(vec4 p, vec3 dst)
 #ifndef TONE_MAP_NONE
     vec3 room = max(1.0 - p.a * dst, vec3(1.0 / 1024.0));
 #if defined(TONE_MAP_FILMIC)
-    c = room * tone_filmic(c / room);
+    c = room * tone_filmic(c * (1.0 / room));
 #elif defined(TONE_MAP_PER_CHANNEL)
     c = room * vec3(tone_curve(c.r / room.r), tone_curve(c.g / room.g), tone_curve(c.b / room.b));
 #else
@@ -140,19 +148,28 @@ vec4 tone_map(vec4 p, vec3 dst)
 }
 // ---- end of tone mapping ----
 
+// A texel made finite and in range (docs/gpus.md "Precision"): light clamped to [0, the largest
+// half] (Inf), transmittance to [0, 1], and a transmittance that is not a number (or below 0) is
+// 1: the scene shows through. A NaN light is caught once, on the weighted sum (sanitize, in
+// upsample()): a zero weight times a clamped texel is 0, so where min and max pass a NaN on, it
+// reaches the sum, which is then transparent; where they return the number, the light is 0.
+mediump vec4 clamp_texel(mediump vec4 p)
+{
+    mediump vec3 light = clamp(p.rgb, vec3(0.0), vec3(HALF_MAX));
+    return vec4(light, p.a >= 0.0 ? min(p.a, 1.0) : 1.0);
+}
+
+// A NaN never reaches the screen: one test for the four channels, on their sum (NaN when any is;
+// non-negative values only overflow to +Inf, never to NaN).
 mediump vec4 sanitize(mediump vec4 p)
 {
-    // A NaN never reaches the screen; Inf is clamped to the largest half. One test for the four
-    // channels: their sum is NaN when any is (or when +Inf meets -Inf, which no valid texel holds).
     mediump vec2 pair = p.rg + p.ba;
-    mediump vec4 transparent = vec4(0.0, 0.0, 0.0, 1.0);
-    mediump vec4 clamped = clamp(p, vec4(0.0), vec4(HALF_MAX, HALF_MAX, HALF_MAX, 1.0));
-    return isnan(pair.x + pair.y) ? transparent : clamped;
+    return isnan(pair.x + pair.y) ? vec4(0.0, 0.0, 0.0, 1.0) : p;
 }
 
 mediump vec4 fetch(vec2 uv)
 {
-    return sanitize(textureLod(u_particles, uv, 0.0));
+    return clamp_texel(textureLod(u_particles, uv, 0.0));
 }
 
 // Weights of the four low-res texels around this pixel (x: base, y: +x, z: +y, w: +x+y).
@@ -162,30 +179,34 @@ mediump vec4 bilinear_weights(vec2 f)
 }
 
 #ifdef UPSAMPLE_NEAREST_DEPTH
-uniform float u_particles_far;    // view distance beyond which no particle reaches (render/frame.c)
-uniform float u_near_over_far;    // u_near / u_particles_far
+uniform float u_near_over_far;    // near / the particles' reach: the farthest distance a drawn particle
+                                  // reaches (render/frame.c), at most the far plane's (passes.c)
 
 // Bilinear where the four low-res depths agree with this pixel's, else all weight on the texel
 // whose depth is closest. Depths are compared up to the particles' reach: surfaces that all lie
 // behind every particle hide none of them, so the four texels hold the same particles (a far
 // floor meeting the sky at the horizon is no edge), and a surface just inside the reach hides
 // only the few particles in front of it.
+// In near / distance (e), without a division: with E this pixel's and e_k a texel's, both
+// clamped at the reach (no surface, 0, lands on it), the distances differ by
+// near |E - e_k| / (E e_k), which exceeds the threshold times this pixel's distance (near / E)
+// exactly when |E - e_k| > threshold e_k; the closest texel is the least |E - e_k| / e_k.
 mediump vec4 nearest_depth_weights(vec2 base, vec2 uv, vec2 t, vec2 f)
 {
-    float z = view_distance(texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r);
+    float E = max(near_over_distance(texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r), u_near_over_far);
     // the four low-res depths as near / distance (0: no surface)
 #ifdef LOW_CORNERS
     // one fetch: the corners texel of base is base + 1 (the texture starts at texel -1)
-    vec4 e = textureLod(u_low_corners, (base + 1.5) / vec2(u_low_size + 1), 0.0);
+    vec4 e = textureLod(u_low_corners, (base + 1.5) * u_corners_texel, 0.0);
 #else
     vec4 e = vec4(low_near_over_distance(uv), low_near_over_distance(uv + vec2(t.x, 0.0)),
                   low_near_over_distance(uv + vec2(0.0, t.y)), low_near_over_distance(uv + t));
 #endif
-    // distances beyond the particles' reach (no surface among them) count as that reach: what
-    // lies behind every particle hides none of them
-    float reach = min(z, u_particles_far);
-    vec4 dz = abs(u_near / max(e, vec4(u_near_over_far)) - reach);
-    if (!(max(max(dz.x, dz.y), max(dz.z, dz.w)) > u_depth_threshold * reach)) return bilinear_weights(f);
+    e = max(e, vec4(u_near_over_far));
+    vec4 r = abs(E - e);
+    vec4 over = r - u_depth_threshold * e;
+    if (!(max(max(over.x, over.y), max(over.z, over.w)) > 0.0)) return bilinear_weights(f);
+    vec4 dz = r / e;   // each texel's distance difference over this pixel's distance
     mediump vec4 w = vec4(1.0, 0.0, 0.0, 0.0);
     float best = dz.x;
     if (dz.y < best) { best = dz.y; w = vec4(0.0, 1.0, 0.0, 0.0); }
@@ -203,16 +224,16 @@ mediump vec4 upsample(vec2 uv, vec2 t, mediump vec4 w)
     sum += fetch(uv + vec2(t.x, 0.0)) * w.y;
     sum += fetch(uv + vec2(0.0, t.y)) * w.z;
     sum += fetch(uv + t) * w.w;
-    return sum;
+    return sanitize(sum);
 }
 
 #ifdef OWN_SCENE
 // The scene behind this pixel, displaced by the shimmer's offset (UV units).
 vec3 scene_behind(vec2 offset)
 {
-    vec2 scene_uv = gl_FragCoord.xy / u_full_size;
+    vec2 scene_uv = gl_FragCoord.xy * u_full_texel;
 #ifdef HAS_SHIMMER
-    scene_uv = clamp(scene_uv + offset, 0.5 / u_full_size, 1.0 - 0.5 / u_full_size);
+    scene_uv = clamp(scene_uv + offset, 0.5 * u_full_texel, 1.0 - 0.5 * u_full_texel);
 #endif
     return filtered_2d(u_scene_color, scene_uv).rgb;
 }
@@ -226,15 +247,15 @@ void main()
 #else
 void main()
 {
-    vec2 low = gl_FragCoord.xy / u_divisor - 0.5;
+    vec2 low = gl_FragCoord.xy * u_inv_divisor - 0.5;
     vec2 base = floor(low);
     vec2 f = low - base;
-    vec2 t = 1.0 / vec2(u_low_size);
+    vec2 t = u_low_texel;
     vec2 uv = (base + 0.5) * t;   // the base texel's centre
 #if defined(REFINED)
     mediump vec4 fine = texelFetch(u_refined, ivec2(gl_FragCoord.xy), 0);
     vec4 result;
-    if (fine.a >= 0.0) result = sanitize(fine);   // refined: the coarse texels are not read
+    if (fine.a >= 0.0) result = sanitize(clamp_texel(fine));   // refined: the coarse texels are not read
     else result = upsample(uv, t, nearest_depth_weights(base, uv, t, f));
 #elif defined(UPSAMPLE_NEAREST_DEPTH)
     vec4 result = upsample(uv, t, nearest_depth_weights(base, uv, t, f));

@@ -14,15 +14,15 @@ precision highp sampler2D;
 uniform sampler2D u_scene_depth;   // host depth texture, window depth in [0,1]
 uniform int u_divisor;
 uniform ivec2 u_full_size;
-uniform vec4 u_depth_model;        // distance = w / (x (d - y) + z); d = y: no surface (src/render/projection.c)
-uniform float u_near;
+uniform vec3 u_near_model;         // near / distance = x (d - y) + z; d = y: no surface (src/render/projection.c)
 uniform float u_closer;            // 1: a larger window depth is closer (x / w > 0), else -1
 
-// near / distance of one window depth; linear in d, so nothing cancels.
+// near / distance of one window depth; linear in d, so nothing cancels (its constants folded on
+// the CPU in double: sbfx_near_model_uniform).
 float inverse_distance(float d)
 {
-    if (d == u_depth_model.y) return 0.0;
-    return clamp(u_near * (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z) / u_depth_model.w, 0.0, 1.0);
+    if (d == u_near_model.y) return 0.0;
+    return clamp(u_near_model.x * (d - u_near_model.y) + u_near_model.z, 0.0, 1.0);
 }
 
 void main()

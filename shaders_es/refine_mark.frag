@@ -17,27 +17,25 @@ precision highp sampler2D;
 
 uniform mediump sampler2D u_particles;   // low-res: premultiplied light, transmittance
 uniform sampler2D u_scene_depth;         // full-res host depth, window depth
-uniform ivec2 u_low_size;
-uniform float u_divisor;
-uniform vec4 u_depth_model;              // window depth -> distance (composite.frag)
-uniform float u_near;
+uniform float u_inv_divisor;             // 1 / the target's divisor
+uniform vec2 u_low_texel;                // 1 / the low-res target's size
+uniform vec3 u_near_model;               // window depth -> near / distance (composite.frag)
 uniform float u_depth_threshold;         // relative depth difference that counts as an edge
-uniform float u_particles_far;           // view distance beyond which no particle reaches
-uniform float u_near_over_far;
+uniform float u_near_over_far;           // near / the view distance beyond which no particle reaches
 uniform float u_contrast;                // the coarse image's change that counts as an edge
 #ifdef LOW_CORNERS
 uniform sampler2D u_low_corners;         // the four low-res depths around a texel (low_corners.frag)
+uniform vec2 u_corners_texel;            // 1 / its size
 #else
 uniform sampler2D u_low_depth;
 #endif
 
 out vec4 o_color;
 
-const float NO_SURFACE = 1e30;
-float view_distance(float d)
+// near / distance (composite.frag's): no surface lands on the particles' reach when clamped there
+float near_over_distance(float d)
 {
-    if (d == u_depth_model.y) return NO_SURFACE;
-    return u_depth_model.w / (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z);
+    return u_near_model.x * (d - u_near_model.y) + u_near_model.z;
 }
 
 // One texel as (display-ish light, transmittance); NaN and Inf as the composite sanitizes them.
@@ -49,25 +47,26 @@ mediump vec2 texel(vec2 uv)
     return isnan(v.x + v.y) ? vec2(0.0, 1.0) : clamp(v, 0.0, 1.0);
 }
 
+// The composite's test (composite.frag, nearest_depth_weights), in near / distance
 bool depth_edge(vec2 base, vec2 uv, vec2 t)
 {
-    float z = view_distance(texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r);
+    float E = max(near_over_distance(texelFetch(u_scene_depth, ivec2(gl_FragCoord.xy), 0).r), u_near_over_far);
 #ifdef LOW_CORNERS
-    vec4 e = textureLod(u_low_corners, (base + 1.5) / vec2(u_low_size + 1), 0.0);
+    vec4 e = textureLod(u_low_corners, (base + 1.5) * u_corners_texel, 0.0);
 #else
     vec4 e = vec4(textureLod(u_low_depth, uv, 0.0).r, textureLod(u_low_depth, uv + vec2(t.x, 0.0), 0.0).r,
                   textureLod(u_low_depth, uv + vec2(0.0, t.y), 0.0).r, textureLod(u_low_depth, uv + t, 0.0).r);
 #endif
-    float reach = min(z, u_particles_far);
-    vec4 dz = abs(u_near / max(e, vec4(u_near_over_far)) - reach);
-    return max(max(dz.x, dz.y), max(dz.z, dz.w)) > u_depth_threshold * reach;
+    e = max(e, vec4(u_near_over_far));
+    vec4 over = abs(E - e) - u_depth_threshold * e;
+    return max(max(over.x, over.y), max(over.z, over.w)) > 0.0;
 }
 
 void main()
 {
-    vec2 low = gl_FragCoord.xy / u_divisor - 0.5;
+    vec2 low = gl_FragCoord.xy * u_inv_divisor - 0.5;
     vec2 base = floor(low);
-    vec2 t = 1.0 / vec2(u_low_size);
+    vec2 t = u_low_texel;
     vec2 uv = (base + 0.5) * t;
     mediump vec2 a = texel(uv), b = texel(uv + vec2(t.x, 0.0)), c = texel(uv + vec2(0.0, t.y)), d = texel(uv + t);
     mediump vec2 hi = max(max(a, b), max(c, d)), lo = min(min(a, b), min(c, d));

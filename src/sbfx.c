@@ -7,7 +7,7 @@
  *   sbfx_trigger   an effect instance spawned into the fixed pool (sim/timeline.c)
  *   sbfx_update    fixed steps of the live particles, the triggers due fired (sim/)
  *   sbfx_render    the particles in view space (sim/view.c) -> the budget's level (budget/) ->
- *                  opaque depth, particles back to front, composite, post chain (render/)
+ *                  opaque depth, particles front to back, composite, post chain (render/)
  * Replacing a live module's scene: set_scene.c. The module's block: module.h. */
 #include <math.h>
 #include <stdlib.h>

@@ -77,7 +77,7 @@ test_help() {
     play --help
     local missing="" flag
     for flag in --headless --size --frames --fps --start-time --out --contact-sheet --stats --trigger \
-        --no-timeline --scale --opacity --format --upsample --tone-map --exposure --budget-ms --seed --scene --quiet --help --version \
+        --no-timeline --scale --opacity --format --upsample --tone-map --exposure --early-termination --budget-ms --seed --scene --quiet --help --version \
         --display --device --connector --mode --modeset --screenshot --board --video --gpio --dis --dis-exercise \
         --mqtt --mqtt-topic; do
         grep -qF -- "$flag" "$tmp/out" || missing="$missing $flag"

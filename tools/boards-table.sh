@@ -17,7 +17,8 @@
 # tiling or vertex work. Then, per scene and size, the composite's and the depth passes'
 # fragments against the pixels of the tiles' union (their ratio over the life). Then each scene's
 # worst frame on the G52 (after) pass by pass: the depth passes (downsample, low-res corners), the
-# particles per medium (fire, heat, the scattering media), mixed resolution's refinement (its mark
+# particles per medium (fire, heat, the scattering media), early termination's marks
+# (terminate_mark.frag: render/terminate.c), mixed resolution's refinement (its mark
 # and the particles it shades again: boards.csv's refined column), the composite, the post chain.
 # The velocity blur's gather (motion_blur.frag) is a loop of SAMPLES - 1 samples that Mesa
 # unrolls only up to 7 on the Malis and 3 on V3D, and counts once beyond: it is priced per sample
@@ -42,6 +43,7 @@ function pass_of(shader, variant) {
     if (shader == "depth_downsample.frag" || shader == "low_corners.frag") return "depth"
     if (shader == "particle.frag") return variant ~ /MEDIUM_EMITS/ ? "fire" : variant ~ /MEDIUM_HEAT/ ? "heat" : "scatter"
     if (shader == "refine_mark.frag") return "refine"
+    if (shader == "terminate_mark.frag") return "stop" # early termination of the particles (render/terminate.c)
     if (shader == "composite.frag") return "composite"
     return "post"
 }
@@ -152,9 +154,9 @@ END {
         }
     }
     print ""
-    print "| scene | output | worst frame on the G52 MP2 (t) | depth passes | fire | heat | smoke, dust | refinement | composite | post | total (ms) |"
-    print "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
-    split("depth fire heat scatter refine composite post", passes, " ")
+    print "| scene | output | worst frame on the G52 MP2 (t) | depth passes | fire | heat | smoke, dust | termination marks | refinement | composite | post | total (ms) |"
+    print "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+    split("depth fire heat scatter stop refine composite post", passes, " ")
     for (k = 1; k <= n; k++) {
         split(order[k], sk, SUBSEP)
         worst = -1; wf = ""
@@ -166,7 +168,7 @@ END {
         worst_frame[order[k]] = wf
         split(wf, fk, SUBSEP)
         line = sprintf("| %s | %s | %.1f s |", sk[1], sk[2], fk[3])
-        for (p = 1; p <= 7; p++) line = line sprintf(" %.2f |", part[wf, passes[p]] / clock["g52"])
+        for (p = 1; p <= 8; p++) line = line sprintf(" %.2f |", part[wf, passes[p]] / clock["g52"])
         print line sprintf(" %.2f |", worst / clock["g52"])
     }
     print ""

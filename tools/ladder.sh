@@ -2,7 +2,7 @@
 # make ladder: the default quality ladder (docs/design.md §6, issue 11) from the accuracy bench's CSV.
 #   tools/ladder.sh ACCURACY_CSV [MORE_CSV...] OUT_HEADER
 # The qualities the module offers (opacity model, scale, upsampling, target format, light per
-# particle; tables, half-float detail, the scene's density) are walked from the least mean error
+# particle; the default's tables, half-float detail, the scene's density) are walked from the least mean error
 # up; a quality becomes the next rung if its whole-frame time (median) is at least SAVING (10 %)
 # below the rung above it — the Pareto front of error against time, thinned so that every rung
 # pays for its error with a saving larger than the noise of a shared machine (every rung kept is
@@ -67,7 +67,11 @@ src=$(basename "${runs[0]}")
 [ ${#runs[@]} -gt 1 ] && src="${#runs[@]} runs ($(for r in "${runs[@]}"; do basename "$r"; done | paste -sd' '))"
 [ -n "${LADDER_CSV:-}" ] && cp "$merged" "$LADDER_CSV"
 
-awk -F, -v saving="$SAVING" -v src="$src" '
+# the default level's tables, the lut most rows have: the black body's table and the analytic
+# phase since issue 43 ("analytic-phase"); a CSV from before it has both tables ("table")
+default_lut=$(awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) if ($c == "lut") l = c; next }
+    $l != "light-per-particle" { n[$l]++ } END { for (k in n) if (n[k] > best) { best = n[k]; v = k } print v }' "$csv")
+awk -F, -v saving="$SAVING" -v src="$src" -v default_lut="$default_lut" '
 function divisor(scale) { return scale == 1 ? 1 : scale == 0.5 ? 2 : scale == 0.25 ? 4 : 8 }
 function name(i,   s) {
     s = mode[i] "/" divisor(scale[i]) "/" (ups[i] == "bilinear" ? "bl" : ups[i] == "mixed" ? "mx" : "nd")
@@ -86,7 +90,7 @@ NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next }
     lod[n] = ("lod" in col) ? $col["lod"] + 0 : 0
     # chosen at GPU precision (issue 25): the gpu rows, where the bench wrote both
     quality[n] = mode[n] != "floor" && $col["density"] == "scene" && $col["detail"] == "R16F" &&
-                 (lut[n] == "table" || lut[n] == "light-per-particle") &&
+                 (lut[n] == default_lut || lut[n] == "light-per-particle") &&
                  (!("precision" in col) || $col["precision"] == "gpu")
 }
 END {

@@ -63,7 +63,7 @@ file == 3 {
     printf ",%s,%s\n", frame_ms(key, "rpi4", 8, 500), frame_ms(key, "rpi5", 16, 960)
 }
 function part_of(shader) {
-    if (shader == "particle.frag") return "particle"
+    if (shader == "particle.frag" || shader == "terminate_mark.frag") return "particle" # its early termination's marks too
     if (shader == "composite.frag") return "composite"
     if (shader == "depth_downsample.frag" || shader == "low_corners.frag") return "depth"
     if (shader == "refine_mark.frag") return "refine"

@@ -76,9 +76,12 @@ static int reload_scene(struct player *p)
         sbfx_scene_free(scene);
         return 0;
     }
+    /* --early-termination over the scene's render.early_termination, as at create */
+    if (p->opt->early_termination) sbfx_set_early_termination(p->fx, p->opt->early_termination > 0);
     sbfx_scene_camera_get(scene, &p->camera); /* the same orbit on the same clock, unless edited */
     if (p->world.on) world_take_timeline(p, scene); /* started again at world times, drawn at their age */
     player_keep_scene(p, scene);
+    if (p->opt->early_termination) sbfx_set_early_termination(p->fx, p->opt->early_termination > 0);
     schedule_triggers_again(p);
     reopen_clip(p);
     trigger_sources_reload(&p->triggers, p->fx); /* the dis group's placement and effects */

@@ -101,6 +101,10 @@ int player_create_fx(struct player *p, char *err, size_t n)
         snprintf(err, n, "sbfx_create failed: %s", sbfx_result_string(r));
         return -EIO;
     }
+    if (opt->early_termination && sbfx_set_early_termination(p->fx, opt->early_termination > 0) != SBFX_OK) {
+        snprintf(err, n, "--early-termination: %s", sbfx_last_error(p->fx));
+        return -EIO;
+    }
     if (rc) return rc;
     trigger_sources_listen(&p->triggers, p->fx); /* the trigger log hears of the timeline and --trigger too */
     p->timeline_start = p->sim_time; /* --loop counts from here */

@@ -20,8 +20,7 @@ uniform float u_heat_strength;   // largest shimmer offset, UV units
 
 uniform sampler2D u_depth;       // low-res opaque near / distance (depth texture; 0: no surface)
 uniform float u_near;
-uniform vec4 u_projection;       // projection[0], [5], [8], [9]
-uniform vec2 u_target_size;
+uniform vec4 u_ray_map;         // this pixel's ray (z = -1): xy = gl_FragCoord.xy * u_ray_map.xy + u_ray_map.zw
 uniform float u_tau;
 uniform float u_soft_scale;
 
@@ -36,7 +35,7 @@ uniform sampler2D u_phase_lut;   // R32F, row m: medium m's phase function (src/
 uniform int u_phase_row;
 uniform vec4 u_phase_warp;       // sign(g), (1-|g|)^2, 2|g| (0: unwarped), 1/ln((1-|g|)^2/(1+|g|)^2)
 uniform vec2 u_phase_shift;      // -ln((1+|g|)^2) * u_phase_warp.w, entries - 1
-uniform float u_g;
+uniform vec4 u_phase_analytic;   // 3 (1 - g^2) / (8 pi (2 + g^2)), (1-|g|)^2, 2|g|, sign(g) (PHASE_ANALYTIC)
 uniform vec3 u_albedo_color;     // albedo * tint
 #define MAX_LIGHTS 8
 #ifndef LIGHT_SLOTS
@@ -80,8 +79,8 @@ uniform sampler2D u_blackbody;   // RGBA32F, uniform in 1/T: rgb / Y, ln(Y / T) 
 uniform vec3 u_blackbody_map;    // 1/T at entry 0, entries per unit of 1/T, entries - 2
 uniform vec4 u_temperature;      // T0, T1, cooling, the cool share's soot (media.fire.soot)
 uniform float u_emission_scale;   // includes (1 - albedo)
-// Per-fragment radiance ceiling, in pre-exposed units: back-to-front "over" never sums layers
-// above their largest one, so the target stays inside half-float's 65504 (docs/look-fire.md).
+// Per-fragment radiance ceiling, in pre-exposed units: compositing ("under", front to back, as
+// "over") never sums layers above their largest one, so the target stays inside half-float's 65504 (docs/look-fire.md).
 const float RADIANCE_CEILING = 16384.0;
 #endif
 

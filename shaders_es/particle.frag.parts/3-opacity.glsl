@@ -6,20 +6,20 @@ float soft_fade(float x)
     return x < 0.5 ? 2.0 * x * x : 1.0 - 2.0 * (1.0 - x) * (1.0 - x);
 }
 
-// h * asinh(u / sqrt(h)), odd in u, -> 0 as h -> 0 without dividing by sqrt(h).
-float h_asinh(float h, float u)
+// u sqrt(h + u^2) + h asinh(u / sqrt(h)), the antiderivative along the chord; the second term
+// odd in u and -> 0 as h -> 0 without dividing by sqrt(h): h (ln(|u| + s) - ln(h) / 2), s =
+// sqrt(h + u^2) shared by both terms, ln(h) / 2 (half_log_h) by both ends.
+float chord_primitive(float h, float half_log_h, float u)
 {
-    if (h <= 1e-30) return 0.0;
-    float au = abs(u);
-    float v = h * (log(au + sqrt(h + au * au)) - 0.5 * log(h));
-    return u < 0.0 ? -v : v;
+    float s = sqrt(h + u * u);
+    float v = h <= 1e-30 ? 0.0 : h * (log(abs(u) + s) - half_log_h);
+    return u * s + (u < 0.0 ? -v : v);
 }
 
 float chord_integral(float h, float a, float b)
 {
-    float fa = a * sqrt(h + a * a) + h_asinh(h, a);
-    float fb = b * sqrt(h + b * b) + h_asinh(h, b);
-    return 0.5 * (fb - fa);
+    float half_log_h = 0.5 * log(h);
+    return 0.5 * (chord_primitive(h, half_log_h, b) - chord_primitive(h, half_log_h, a));
 }
 
 // Optical depth along this pixel's ray; `ray` has z = -1, zs = opaque distance along -z.
@@ -29,14 +29,15 @@ float optical_depth(vec3 c, float r, vec3 ray, float zs, out float chord)
     float zc = -c.z;
     chord = 0.0;
 #ifdef OPACITY_EXACT
-    vec3 u = normalize(ray);
+    float inv_length = inversesqrt(dot(ray, ray));
+    vec3 u = ray * inv_length;
     float t0 = dot(c, u);
     vec3 closest = c - t0 * u;
     float h = dot(closest, closest);
     float dist = sqrt(h);
     if (dist >= r) return 0.0;
     float w = sqrt((r - dist) * (r + dist));
-    float to_t = 1.0 / -u.z;               // distance along -z -> ray parameter
+    float to_t = dot(ray, ray) * inv_length;   // distance along -z -> ray parameter: |ray| (ray.z = -1)
     float a = clamp(u_near * to_t - t0, -w, w);
     float b = clamp(zs * to_t - t0, -w, w);
     if (b <= a) return 0.0;

@@ -1,12 +1,17 @@
 #version 300 es
 // particle.frag, part 4 of 7: the detail's perturbation: density, fire temperature, soot
 #ifdef HAS_DETAIL
-float detail_sample(vec3 c, float r, vec3 ray)
+// This pixel's place in the detail volume: the particle's window, 0..1 across the particle.
+vec3 detail_coordinate(vec3 c, float r, vec3 ray)
 {
     vec2 q = ray.xy * (-c.z);
     vec2 local = (q - c.xy) / (2.0 * r) + 0.5;   // 0..1 across the particle
-    vec3 uvw = vec3(v_detail.xy + local * u_detail_window, v_detail.z + u_time);
-    return detail_fetch(u_detail, uvw).r;
+    return vec3(v_detail.xy + local * u_detail_window, v_detail.z + u_time);
+}
+
+float detail_sample(vec3 c, float r, vec3 ray)
+{
+    return detail_fetch(u_detail, detail_coordinate(c, r, ray)).r;
 }
 #endif
 

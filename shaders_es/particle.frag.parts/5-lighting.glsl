@@ -1,21 +1,16 @@
 #version 300 es
 // particle.frag, part 5 of 7: light: phase function, lights, fire light, lit smoke
 #ifdef MEDIUM_SCATTERS
-// 1 + g^2 - 2 g cos, written (1-|g|)^2 + 2|g| (1 - sign(g) cos): no cancellation at the peak
-float phase_base(float cos_theta, float g)
-{
-    float a = abs(g), s = g < 0.0 ? -cos_theta : cos_theta;
-    return (1.0 - a) * (1.0 - a) + 2.0 * a * (1.0 - s);
-}
-
 mediump float phase(float cos_theta)
 {
 #ifdef PHASE_ANALYTIC
-    // Cornette-Shanks, cos_theta between the light's travel and the way to the eye
-    float g = u_g, gg = g * g;
-    float denom = max(phase_base(cos_theta, g), 1e-6);
-    return 3.0 * (1.0 - gg) * (1.0 + cos_theta * cos_theta) /
-           (25.132741229 * (2.0 + gg) * denom * sqrt(denom));
+    // Cornette-Shanks, cos_theta between the light's travel and the way to the eye:
+    // 3 (1 - g^2) / (8 pi (2 + g^2)) (1 + cos^2) / base^1.5, base = 1 + g^2 - 2 g cos written
+    // (1-|g|)^2 + 2|g| (1 - sign(g) cos): no cancellation at the peak (1 - cos is exact there).
+    // The constants per medium (src/gl/luts.c); base^-1.5 as a cubed inverse square root.
+    float base = max(u_phase_analytic.y + u_phase_analytic.z * (1.0 - u_phase_analytic.w * cos_theta), 1e-6);
+    float r = inversesqrt(base);
+    return u_phase_analytic.x * (1.0 + cos_theta * cos_theta) * (r * r * r);
 #else
     // The table's coordinate (sbfx_phase_coordinate): ln of the base for a peaked function,
     // cos itself for a nearly flat one; then the two entries around it, interpolated here.
@@ -44,9 +39,9 @@ mediump vec3 in_scattered(vec3 ray, vec3 p)
         float falloff = 1.0;
         if (l.w > 0.5) {
             vec3 d = p - l.xyz;
-            float d2 = max(dot(d, d), 0.25);
-            travel = d * inversesqrt(d2);
-            falloff = 1.0 / d2;
+            float s = inversesqrt(max(dot(d, d), 0.25));
+            travel = d * s;
+            falloff = s * s;
         }
         sum += u_light_color[i] * (falloff * phase(dot(travel, to_eye)));
     }

@@ -35,8 +35,8 @@ void main()
 #endif
     vec3 c = v_center_radius.xyz;
     float r = v_center_radius.w;
-    vec2 ndc = gl_FragCoord.xy / u_target_size * 2.0 - 1.0;
-    vec3 ray = vec3((ndc + u_projection.zw) / u_projection.xy, -1.0);
+    // ndc = 2 gl_FragCoord / size - 1, ray.xy = (ndc + P[8], P[9]) / (P[0], P[5]): folded on the CPU
+    vec3 ray = vec3(gl_FragCoord.xy * u_ray_map.xy + u_ray_map.zw, -1.0);
     float e = texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r;
     float zs = e > 0.0 ? u_near / e : 1e30;   // no surface: nothing clips the ray
     float intensity = v_detail.w;
@@ -98,7 +98,10 @@ void main()
     // shimmer is the detail's turbulence, so it scales with the detail strength like every
     // medium's perturbation: 0 leaves the picture behind the heat as it was (docs/look.md).
 #ifdef HAS_DETAIL
-    vec2 noise = u_detail_strength * (vec2(detail, detail_sample(c + vec3(0.37, 0.61, 0.0) * r, r, ray)) - 0.5);
+    // the second sample as at a centre moved by (0.37, 0.61) r across the view: the same window
+    // shifted by half of that (the window spans 2r)
+    vec3 shifted = detail_coordinate(c, r, ray) - vec3(vec2(0.185, 0.305) * u_detail_window, 0.0);
+    vec2 noise = u_detail_strength * (vec2(detail, detail_fetch(u_detail, shifted).r) - 0.5);
 #else
     vec2 noise = v_detail.xy - 0.5;   // without the volume: one random direction per particle
 #endif

@@ -61,6 +61,8 @@ typedef struct sbfx_gl {
     sbfx_pass_uniforms refine_mark_u;
     GLuint refine_depth_program; /* mixed resolution: the depth at full resolution (depth_downsample.frag SINGLE_TEXEL) */
     sbfx_pass_uniforms refine_depth_u;
+    GLuint stop_program;         /* early termination's mark (terminate_mark.frag, render/terminate.c) */
+    sbfx_pass_uniforms stop_u;
     GLuint scene_only_program;   /* the scene outside the particles' tiles (owned scenes: composite.frag SCENE_ONLY) */
     sbfx_pass_uniforms scene_only_u;
     sbfx_program particle[SBFX_MEDIUM_COUNT];
@@ -72,6 +74,7 @@ typedef struct sbfx_gl {
     /* targets, (re)made when the output size changes */
     sbfx_rt particles, low_depth, low_corners;
     sbfx_rt refine, refine_depth;  /* mixed resolution's (render/refine.c); none at other levels */
+    GLuint stop_framebuffer;       /* early termination's marks (render/terminate.c); 0: none */
     int out_width, out_height, low_width, low_height;
     GLenum target_type;
     /* quality caches (the fields above hold the current level's copies) */

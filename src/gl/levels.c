@@ -79,7 +79,7 @@ static void point(sbfx *fx, const sbfx_quality *q)
     sbfx_desc *d = &fx->scene->desc;
     d->opacity = q->opacity, d->target_divisor = q->target_divisor, d->upsample = q->upsample;
     d->target_format = q->target_format, d->light_per_particle = q->light_per_particle;
-    d->analytic_blackbody = q->analytic_blackbody, d->analytic_phase = q->analytic_phase;
+    d->analytic_blackbody = q->analytic_blackbody, d->analytic_phase = q->analytic_phase, d->table_phase = q->table_phase;
     d->lod_particles = q->lod_particles;
     sbfx_tables *t = fx->tables;
     t->blackbody_analytic = q->analytic_blackbody || t->blackbody_missed;

@@ -64,7 +64,10 @@ void sbfx_tables_bind(const sbfx *fx, const sbfx_program *p, sbfx_medium m)
     glUniform4f(p->phase_warp, g < 0.0 ? -1.0f : 1.0f, (float)peak, warp ? (float)(2.0 * a) : 0.0f, (float)k);
     glUniform2f(p->phase_shift, (float)(-log(back) * k), (float)(SBFX_PHASE_SIZE - 1));
     glUniform1i(p->phase_row, (GLint)m);
-    glUniform1f(p->g, (float)g);
+    /* the analytic phase's constants (particle.frag phase()), with g as given */
+    double ga = fabs(g);
+    glUniform4f(p->phase_analytic, (float)(3.0 * (1.0 - g * g) / (8.0 * M_PI * (2.0 + g * g))), (float)((1.0 - ga) * (1.0 - ga)),
+                (float)(2.0 * ga), g < 0.0 ? -1.0f : 1.0f);
 }
 
 /* ---- the detail volume and the smoke textures ------------------------------------------------ */

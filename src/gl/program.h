@@ -14,9 +14,9 @@
 typedef struct sbfx_program {
     GLuint id;
     /* uniform locations used every frame */
-    GLint near, projection, target_size, pixel, octagon, tau, soft_scale, full_size, heat_strength;
+    GLint near, projection, ray_map, pixel, octagon, tau, soft_scale, full_size, heat_strength;
     GLint depth, detail, detail_window, detail_strength, time;
-    GLint phase_lut, phase_row, phase_warp, phase_shift, g, albedo_color, light_count, light_vector, light_color;
+    GLint phase_lut, phase_row, phase_warp, phase_shift, phase_analytic, albedo_color, light_count, light_vector, light_color;
     GLint ambient, blackbody, blackbody_map, temperature, emission_scale, cmf_rgb, cmf_band, probe;
     GLint smoke, smoke_size, smoke_variants, wrap, translucency, dampening, steps; /* LIGHTING_LIT */
 } sbfx_program;
@@ -30,6 +30,8 @@ typedef struct sbfx_pass_uniforms {
     GLint low_corners, particles_far, near_over_far;                  /* composite, nearest depth */
     GLint tile_size, tile_grid, tile_target;                          /* tiles.vert (render/tiles.h) */
     GLint refined, contrast;                                          /* mixed resolution (render/refine.c) */
+    GLint inv_divisor, low_texel, corners_texel, near_model, tone_filmic, tone_shoulder, full_texel; /* folded on the CPU (passes.c) */
+    GLint epsilon;                                                    /* early termination (render/terminate.c) */
 } sbfx_pass_uniforms;
 
 typedef struct sbfx_variant_key {
@@ -52,6 +54,8 @@ void sbfx_particle_defines(const sbfx *fx, const sbfx_variant_key *key, sbfx_med
 /* Builds a variant's particle programs / an upsampling's composite (when not built yet). */
 sbfx_result sbfx_variant_build(sbfx *fx, const sbfx_variant_key *key);
 sbfx_result sbfx_composite_build(sbfx *fx, sbfx_upsample upsample);
+/* Early termination's mark program (render/terminate.c), when not built yet. */
+sbfx_result sbfx_stop_program_build(sbfx *fx);
 /* Re-creates the instance buffer with room for the per-particle light (first use of lpp). */
 sbfx_result sbfx_instances_reserve_light(sbfx *fx);
 void sbfx_program_locate(sbfx_program *p);

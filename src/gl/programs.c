@@ -47,7 +47,7 @@ void sbfx_program_locate(sbfx_program *p)
     GLuint id = p->id;
     p->near = glGetUniformLocation(id, "u_near");
     p->projection = glGetUniformLocation(id, "u_projection");
-    p->target_size = glGetUniformLocation(id, "u_target_size");
+    p->ray_map = glGetUniformLocation(id, "u_ray_map");
     p->pixel = glGetUniformLocation(id, "u_pixel");
     p->octagon = glGetUniformLocation(id, "u_octagon");
     p->tau = glGetUniformLocation(id, "u_tau");
@@ -63,7 +63,7 @@ void sbfx_program_locate(sbfx_program *p)
     p->phase_row = glGetUniformLocation(id, "u_phase_row");
     p->phase_warp = glGetUniformLocation(id, "u_phase_warp");
     p->phase_shift = glGetUniformLocation(id, "u_phase_shift");
-    p->g = glGetUniformLocation(id, "u_g");
+    p->phase_analytic = glGetUniformLocation(id, "u_phase_analytic");
     p->albedo_color = glGetUniformLocation(id, "u_albedo_color");
     p->light_count = glGetUniformLocation(id, "u_light_count");
     p->light_vector = glGetUniformLocation(id, "u_light_vector");
@@ -142,6 +142,14 @@ static void locate_pass_uniforms(GLuint id, sbfx_pass_uniforms *u)
     u->tile_target = glGetUniformLocation(id, "u_tile_target");
     u->refined = glGetUniformLocation(id, "u_refined");
     u->contrast = glGetUniformLocation(id, "u_contrast");
+    u->inv_divisor = glGetUniformLocation(id, "u_inv_divisor");
+    u->low_texel = glGetUniformLocation(id, "u_low_texel");
+    u->corners_texel = glGetUniformLocation(id, "u_corners_texel");
+    u->near_model = glGetUniformLocation(id, "u_near_model");
+    u->tone_filmic = glGetUniformLocation(id, "u_tone_filmic");
+    u->tone_shoulder = glGetUniformLocation(id, "u_tone_shoulder");
+    u->full_texel = glGetUniformLocation(id, "u_full_texel");
+    u->epsilon = glGetUniformLocation(id, "u_epsilon");
 }
 
 /* Where RGBA32F renders, nearest-depth upsampling reads its four depths in one fetch from the
@@ -226,6 +234,16 @@ static sbfx_result build_depth_program(sbfx *fx)
     return SBFX_OK;
 }
 
+/* Early termination's mark (render/terminate.c), made with the first frame that uses it. */
+sbfx_result sbfx_stop_program_build(sbfx *fx)
+{
+    if (fx->gl->stop_program) return SBFX_OK;
+    fx->gl->stop_program = sbfx_program_build(fx, "tiles.vert", "terminate_mark.frag", NULL);
+    if (!fx->gl->stop_program) return SBFX_ERR_SHADER;
+    locate_pass_uniforms(fx->gl->stop_program, &fx->gl->stop_u);
+    return SBFX_OK;
+}
+
 static sbfx_result create_buffers(sbfx *fx)
 {
     sbfx_gl *gl = fx->gl;
@@ -255,6 +273,7 @@ sbfx_result sbfx_programs_create(sbfx *fx)
 {
     sbfx_result r;
     if ((r = build_depth_program(fx)) != SBFX_OK) return r;
+    if (fx->scene->early_termination && (r = sbfx_stop_program_build(fx)) != SBFX_OK) return r;
     return create_buffers(fx);
 }
 
@@ -284,7 +303,7 @@ void sbfx_programs_destroy(sbfx *fx)
             sbfx_program_delete(fx, gl->variants[v].particle[m].id);
     for (int u = 0; u < SBFX_UPSAMPLE_COUNT; u++) sbfx_program_delete(fx, gl->composites[u]);
     GLuint programs[] = {gl->depth_program, gl->corners_program, gl->scene_only_program, gl->refine_mark_program,
-                         gl->refine_depth_program};
+                         gl->refine_depth_program, gl->stop_program};
     for (size_t i = 0; i < ARRAY_SIZE(programs); i++) sbfx_program_delete(fx, programs[i]);
     if (gl->instance_buffer) glDeleteBuffers(1, &gl->instance_buffer);
     GLuint vaos[] = {gl->fullscreen_vao, gl->particle_vao};

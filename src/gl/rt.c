@@ -4,10 +4,11 @@
  * textures, framebuffers and GPU bytes true. */
 #include "gl/gl.h"
 
-const sbfx_rt_format sbfx_rt_rgba8 = {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
-const sbfx_rt_format sbfx_rt_rgba16f = {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT, 8};
-const sbfx_rt_format sbfx_rt_rgba32f = {GL_RGBA32F, GL_RGBA, GL_FLOAT, 16};
-const sbfx_rt_format sbfx_rt_depth32f = {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, 4};
+const sbfx_rt_format sbfx_rt_rgba8 = {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4, false};
+const sbfx_rt_format sbfx_rt_rgba16f = {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT, 8, false};
+const sbfx_rt_format sbfx_rt_rgba32f = {GL_RGBA32F, GL_RGBA, GL_FLOAT, 16, false};
+const sbfx_rt_format sbfx_rt_depth32f = {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, 4, false};
+const sbfx_rt_format sbfx_rt_depth16_renderbuffer = {GL_DEPTH_COMPONENT16, GL_DEPTH_COMPONENT, GL_UNSIGNED_SHORT, 2, true};
 
 static GLuint new_texture(const sbfx_rt_format *f, int w, int h, GLenum filter)
 {
@@ -35,6 +36,7 @@ static uint64_t target_key(int w, int h, const sbfx_rt_format *const colors[SBFX
                            GLenum filter)
 {
     GLenum recipe[SBFX_RT_MAX + 4] = {(GLenum)w, (GLenum)h, filter, depth ? depth->internal : GL_NONE};
+    /* (a renderbuffer's format, DEPTH_COMPONENT16, is never a texture's here: the key tells them apart) */
     for (int i = 0; i < SBFX_RT_MAX; i++) recipe[4 + i] = colors && colors[i] ? colors[i]->internal : GL_NONE;
     return sbfx_hash64(0, recipe, sizeof(recipe));
 }
@@ -61,7 +63,16 @@ bool sbfx_rt_create(sbfx *fx, sbfx_rt *rt, int w, int h, const sbfx_rt_format *c
         rt->bytes += (size_t)w * h * colors[i]->bytes;
         last = i;
     }
-    if (depth) {
+    if (depth && depth->renderbuffer) {
+        GLint host = 0; /* the host's renderbuffer binding, which the render's save does not hold */
+        glGetIntegerv(GL_RENDERBUFFER_BINDING, &host);
+        glGenRenderbuffers(1, &rt->depth_renderbuffer);
+        glBindRenderbuffer(GL_RENDERBUFFER, rt->depth_renderbuffer);
+        glRenderbufferStorage(GL_RENDERBUFFER, depth->internal, w, h);
+        glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)host);
+        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rt->depth_renderbuffer);
+        rt->bytes += (size_t)w * h * depth->bytes;
+    } else if (depth) {
         rt->depth = new_texture(depth, w, h, GL_NEAREST);
         glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, rt->depth, 0);
         rt->bytes += (size_t)w * h * depth->bytes;
@@ -90,6 +101,7 @@ void sbfx_rt_destroy(sbfx *fx, sbfx_rt *rt)
     for (int i = 0; i < SBFX_RT_MAX; i++)
         if (rt->texture[i]) glDeleteTextures(1, &rt->texture[i]);
     if (rt->depth) glDeleteTextures(1, &rt->depth);
+    if (rt->depth_renderbuffer) glDeleteRenderbuffers(1, &rt->depth_renderbuffer);
     glDeleteFramebuffers(1, &rt->framebuffer);
     *rt = (sbfx_rt){0};
 }

@@ -13,13 +13,17 @@
 typedef struct sbfx_rt_format {
     GLenum internal, format, type;
     int bytes;
+    bool renderbuffer; /* a depth format made as a renderbuffer: tested, never sampled */
 } sbfx_rt_format;
 extern const sbfx_rt_format sbfx_rt_rgba8, sbfx_rt_rgba16f, sbfx_rt_rgba32f, sbfx_rt_depth32f;
+/* early termination's depth (render/particles.c): DEPTH_COMPONENT16, a renderbuffer */
+extern const sbfx_rt_format sbfx_rt_depth16_renderbuffer;
 
 typedef struct sbfx_rt {
     GLuint framebuffer;
     GLuint texture[SBFX_RT_MAX];
     GLuint depth;
+    GLuint depth_renderbuffer; /* instead of the depth texture (sbfx_rt_format.renderbuffer) */
     int width, height;
     size_t bytes;
 } sbfx_rt;
@@ -30,6 +34,10 @@ typedef struct sbfx_target_set {
     /* mixed resolution (SBFX_UPSAMPLE_MIXED, render/refine.c), at the output size: the refined
      * particles (RGBA16F; its depth marks the pixels refined) and the opaque depth as near / distance */
     sbfx_rt refine, refine_depth;
+    /* early termination (render/particles.c): the framebuffer of the particles' depth
+     * renderbuffer alone, which the marks write while they read the particles' colour; 0 where
+     * the particle target has no depth */
+    GLuint stop_framebuffer;
     int low_width, low_height;
     GLenum target_type;
     sbfx_target_format format;  /* what was made (a fallback may replace the one asked for) */

@@ -37,7 +37,9 @@ static bool try_format(sbfx *fx, sbfx_target_set *set, const target_format *f)
     bool is_float = f->id != SBFX_FORMAT_RGBA8;
     const sbfx_rt_format *colors[SBFX_RT_MAX] = {f->rt, is_float && fx->scene->plan.distortion ? &sbfx_rt_rgba16f : NULL,
                                                  is_float && fx->scene->plan.motion_target ? f->rt : NULL};
-    if (!sbfx_rt_create(fx, &set->particles, set->low_width, set->low_height, colors, NULL, GL_NEAREST)) return false;
+    /* early termination's depth, only where the scene uses it (render/terminate.c) */
+    const sbfx_rt_format *depth = fx->scene->early_termination ? &sbfx_rt_depth16_renderbuffer : NULL;
+    if (!sbfx_rt_create(fx, &set->particles, set->low_width, set->low_height, colors, depth, GL_NEAREST)) return false;
     set->target_type = f->rt->type;
     set->format = f->id;
     return true;
@@ -69,6 +71,31 @@ static sbfx_result create_particle_target(sbfx *fx, sbfx_target_set *set, sbfx_t
         return SBFX_OK;
     }
     return sbfx_fail(fx, SBFX_ERR_GL, "no particle target format is renderable (not even RGBA8)");
+}
+
+/* Early termination's marks (render/terminate.c) write the particle target's depth while they
+ * read its colour: a framebuffer of that depth alone, so the read is no feedback loop. */
+static sbfx_result create_stop_framebuffer(sbfx *fx, sbfx_target_set *set)
+{
+    if (!set->particles.depth_renderbuffer || set->stop_framebuffer) return SBFX_OK;
+    glGenFramebuffers(1, &set->stop_framebuffer);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, set->stop_framebuffer);
+    glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, set->particles.depth_renderbuffer);
+    const GLenum none = GL_NONE;
+    glDrawBuffers(1, &none);
+    fx->counters.framebuffers++;
+    if (glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return sbfx_fail(fx, SBFX_ERR_GL, "the %dx%d DEPTH_COMPONENT16 framebuffer of early termination is incomplete",
+                         set->low_width, set->low_height);
+    return sbfx_gl_check(fx, "creating early termination's framebuffer") ? SBFX_OK : SBFX_ERR_GL;
+}
+
+static void destroy_stop_framebuffer(sbfx *fx, sbfx_target_set *set)
+{
+    if (!set->stop_framebuffer) return;
+    glDeleteFramebuffers(1, &set->stop_framebuffer);
+    set->stop_framebuffer = 0;
+    fx->counters.framebuffers--;
 }
 
 static sbfx_result create_low_depth(sbfx *fx, sbfx_target_set *set)
@@ -110,6 +137,7 @@ static sbfx_result create_refine(sbfx *fx, sbfx_target_set *set)
 
 static void destroy_set(sbfx *fx, sbfx_target_set *set)
 {
+    destroy_stop_framebuffer(fx, set);
     sbfx_rt_destroy(fx, &set->refine);
     sbfx_rt_destroy(fx, &set->refine_depth);
     sbfx_rt_destroy(fx, &set->particles);
@@ -136,6 +164,7 @@ static sbfx_result ensure_set(sbfx *fx, const sbfx_quality *q)
         r = create_particle_target(fx, set, q->target_format);
         if (r == SBFX_OK) r = create_low_depth(fx, set);
     }
+    if (r == SBFX_OK) r = create_stop_framebuffer(fx, set);
     if (r == SBFX_OK && q->upsample == SBFX_UPSAMPLE_MIXED) r = create_refine(fx, set);
     if (r != SBFX_OK) destroy_set(fx, set);
     return r;
@@ -160,6 +189,7 @@ sbfx_result sbfx_targets_ensure(sbfx *fx, int width, int height)
     gl->particles = set->particles;
     gl->low_depth = set->low_depth;
     gl->low_corners = set->low_corners;
+    gl->stop_framebuffer = set->stop_framebuffer;
     bool mixed = fx->scene->current.upsample == SBFX_UPSAMPLE_MIXED;
     gl->refine = mixed ? set->refine : (sbfx_rt){0};
     gl->refine_depth = mixed ? set->refine_depth : (sbfx_rt){0};
@@ -174,5 +204,6 @@ void sbfx_targets_destroy(sbfx *fx)
 {
     for (int i = 0; i < SBFX_TARGET_SETS; i++) destroy_set(fx, &fx->gl->targets[i]);
     fx->gl->particles = fx->gl->low_depth = fx->gl->low_corners = fx->gl->refine = fx->gl->refine_depth = (sbfx_rt){0};
+    fx->gl->stop_framebuffer = 0;
     fx->gl->out_width = fx->gl->out_height = 0;
 }

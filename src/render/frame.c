@@ -1,6 +1,6 @@
 /* One frame's GPU work, as the seed's figure 9 draws it, between one save and one restore of the
  * host's GL state (gl/gl_state.c): the particle passes when particles live — opaque depth to the
- * particle target's resolution (passes.c), the particles back to front into it (particles.c), the
+ * particle target's resolution (passes.c), the particles front to back into it (particles.c), the
  * composite over the host's framebuffer (passes.c) — then the post chain when the scene has one
  * (post.c). The frame's particles come from the sim room, sorted (and merged by a lodN level)
  * here; sbfx.c (sbfx_render) brackets it with the frame budget. */
@@ -24,9 +24,10 @@ static float particles_far(const sbfx *fx, int count, float near)
 
 static frame_params frame_params_from(const sbfx_depth_model *m)
 {
-    frame_params fp = {{m->projection[0], m->projection[1], m->projection[2], m->projection[3]}, {0}, (float)m->near,
-                       0.0f};
+    frame_params fp = {.projection = {m->projection[0], m->projection[1], m->projection[2], m->projection[3]},
+                       .near = (float)m->near};
     sbfx_depth_model_uniform(m, fp.depth_model);
+    sbfx_near_model_uniform(m, fp.near_model);
     return fp;
 }
 
@@ -88,11 +89,13 @@ static sbfx_gl_units frame_units(const sbfx *fx, int count, bool scene_color)
 }
 
 /* What the frame's block saves: the pass state, desktop OpenGL's own, and where mixed
- * resolution's refinement may run, the depth range (its mask compares window depths). */
+ * resolution's refinement or early termination may run, the depth range (their masks compare
+ * window depths). */
 static unsigned frame_parts(const sbfx *fx, int count)
 {
     bool mixed = count > 0 && fx->gl->refine_mark_program && fx->scene->desc.upsample == SBFX_UPSAMPLE_MIXED;
-    return SBFX_GL_SAVE_PASS | fx->gl->context.parts | (mixed ? SBFX_GL_SAVE_DEPTH_RANGE : 0u);
+    bool stops = count > 0 && fx->scene->early_termination && fx->gl->stop_program;
+    return SBFX_GL_SAVE_PASS | fx->gl->context.parts | (mixed || stops ? SBFX_GL_SAVE_DEPTH_RANGE : 0u);
 }
 
 sbfx_result sbfx_render_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_depth_model *depth, int count)

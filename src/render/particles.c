@@ -1,8 +1,9 @@
 /* Pass 2 of a frame (frame.c): the sorted particles into the low-resolution target, back to
- * front, premultiplied light and transmittance; consecutive particles of one medium share a
- * draw call. Per particle its instance data (centre, radius, detail window, intensity; the
- * previous centre, the light per particle, the fire's light where the plan has them), per
- * medium its uniforms and tables. */
+ * front ("over"), or front to back ("under") where early termination stops what is hidden
+ * (terminate.c; docs/gpus.md "Front to back, and early termination"), premultiplied light and
+ * transmittance; consecutive particles of one medium share a draw call. Per particle its
+ * instance data (centre, radius, detail window, intensity; the previous centre, the light per
+ * particle, the fire's light where the plan has them), per medium its uniforms and tables. */
 #include <math.h>
 #include <string.h>
 #include "render/render.h"
@@ -58,7 +59,10 @@ static void set_frame_uniforms(sbfx *fx, const sbfx_program *p, const frame_para
     const sbfx_gl *gl = fx->gl;
     glUniform1f(p->near, fp->near);
     glUniform4fv(p->projection, 1, fp->projection);
-    glUniform2f(p->target_size, (float)width, (float)height);
+    /* particle.frag's ray: ((2 x / size - 1) + P[8]) / P[0], folded in double (and y alike) */
+    const float *pr = fp->projection;
+    glUniform4f(p->ray_map, (float)(2.0 / ((double)width * pr[0])), (float)(2.0 / ((double)height * pr[1])),
+                (float)((pr[2] - 1.0) / pr[0]), (float)((pr[3] - 1.0) / pr[1]));
     glUniform2f(p->pixel, 2.0f / width, 2.0f / height);
     /* rectangles for the frame as before tiles, and for the bench's floor, whose every fragment
      * writes: its picture is its rectangle */
@@ -114,7 +118,7 @@ static void upload_instances(sbfx *fx, const frame_lights *lights, int count)
 {
     const int stride = fx->scene->instance_floats;
     for (int i = 0; i < count; i++) {
-        const sbfx_view_particle *v = &fx->sim->view[fx->sim->order[i]];
+        const sbfx_view_particle *v = sbfx_drawn_particle(fx, count, i);
         float *dst = &fx->sim->instances[stride * i];
         memcpy(dst, v->center, 3 * sizeof(float));
         dst[3] = v->radius;
@@ -152,31 +156,42 @@ static void draw_run(sbfx *fx, int first, int count)
     fx->counters.draw_calls++;
 }
 
-/* The particles' draws into the bound target (width x height, its opaque depth on UNIT_DEPTH):
- * back to front; consecutive particles of one medium share a draw call. ES 3.0 has no base
- * instance, so each run re-points the instance attributes at its first particle. */
-void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height)
+/* The particles' draws into the bound target (width x height, its opaque depth on UNIT_DEPTH,
+ * depth_texture), in the frame's order (sbfx_drawn_particle); consecutive particles of one
+ * medium share a draw call, and a run ends at each of early termination's checkpoints (stops:
+ * none, or terminate.c's), where the mark follows it. ES 3.0 has no base instance, so each run re-points the instance
+ * attributes at its first particle. */
+void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height,
+                         const sbfx_stops *stops, GLuint depth_texture)
 {
     sbfx_gl *gl = fx->gl;
     frame_lights lights;
     sbfx_gather_lights(fx, f->view, &lights);
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
-    /* rgb = src + dst (1 - a); transmittance a = dst (1 - a) */
-    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+    /* back to front, "over": rgb = src + dst (1 - a); transmittance a = dst (1 - a). Nearest first,
+     * "under": rgb = dst + dst.a src, the same transmittance: each attachment's alpha holds the
+     * transmittance in front of it (heat writes alpha 0), so its light, offset or velocity is
+     * weighed by what the nearer particles let through, the same sum in the other order (ES 3.0
+     * core blend factors). In RGBA16F "under" multiplies every stored transmittance's rounding
+     * into the light behind it (docs/gpus.md): the order only early termination needs. */
+    if (fx->render->front_to_back) glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+    else glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
     if (gl->detail_texture) sbfx_bind_texture(UNIT_DETAIL, GL_TEXTURE_3D, gl->detail_texture, 0);
     glBindVertexArray(gl->particle_vao);
     glBindBuffer(GL_ARRAY_BUFFER, gl->instance_buffer); /* draw_run points the attributes into it */
+    int stop = 0, stop_count = stops ? stops->count : 0;
     for (int first = 0; first < count;) {
-        sbfx_medium m = fx->sim->view[fx->sim->order[first]].medium;
-        int end = first + 1;
-        while (end < count && fx->sim->view[fx->sim->order[end]].medium == m) end++;
+        sbfx_medium m = sbfx_drawn_particle(fx, count, first)->medium;
+        int last = stop < stop_count ? stops->at[stop] : count, end = first + 1;
+        while (end < last && sbfx_drawn_particle(fx, count, end)->medium == m) end++;
         const sbfx_program *p = &gl->particle[m];
         glUseProgram(p->id);
         set_frame_uniforms(fx, p, fp, width, height);
         set_medium_uniforms(fx, p, m, &lights);
         draw_run(fx, first, end - first);
         first = end;
+        if (stop < stop_count && end == stops->at[stop]) sbfx_terminate_mark(fx, stops->epsilon[stop++], depth_texture);
     }
     fx->counters.passes++;
 }
@@ -196,7 +211,13 @@ void sbfx_pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, 
     sbfx_bind_texture(UNIT_DEPTH, GL_TEXTURE_2D, gl->low_depth.depth, 0);
     fx->counters.fire_lit_particles = 0;
     fx->sim->frame_fire_count = 0;
+    fx->render->stops_marked = 0;
+    fx->render->front_to_back = sbfx_terminate_used(fx); /* the order of the instances and both draws */
     if (fx->scene->plan.fire_light) sbfx_fire_lights_of_frame(fx, count);
     upload_instances(fx, &lights, count);
-    sbfx_draw_particles(fx, f, fp, count, gl->low_width, gl->low_height);
+    sbfx_stops stops;
+    sbfx_terminate_plan(fx, &lights, fp, count, &stops);
+    if (stops.count > 0) sbfx_terminate_begin(fx);
+    sbfx_draw_particles(fx, f, fp, count, gl->low_width, gl->low_height, &stops, gl->low_depth.depth);
+    if (stops.count > 0) sbfx_terminate_end();
 }

@@ -36,8 +36,7 @@ void sbfx_pass_depth_into(sbfx *fx, const sbfx_frame *f, const frame_params *fp,
     glUniform1i(u->scene_depth, 0);
     glUniform1i(u->divisor, divisor);
     glUniform2i(u->full_size, f->width, f->height);
-    glUniform4fv(u->depth_model, 1, fp->depth_model);
-    glUniform1f(u->near, fp->near);
+    glUniform3fv(u->near_model, 1, fp->near_model);
     /* near / distance grows with window depth where scale / p14 > 0 (reversed-Z) */
     glUniform1f(u->closer, (fp->depth_model[0] > 0.0f) == (fp->depth_model[3] > 0.0f) ? 1.0f : -1.0f);
     sbfx_tiles_draw(fx, u, true, target->width, target->height, divisor);
@@ -102,8 +101,24 @@ static void pass_scene_outside_tiles(sbfx *fx, const sbfx_frame *f)
     glUseProgram(gl->scene_only_program);
     sbfx_bind_texture(3, GL_TEXTURE_2D, f->scene_color_texture, gl->color_sampler);
     glUniform1i(gl->scene_only_u.scene_color, 3);
-    glUniform2f(gl->scene_only_u.full_size, (float)f->width, (float)f->height);
+    glUniform2f(gl->scene_only_u.full_texel, 1.0f / (float)f->width, 1.0f / (float)f->height);
     sbfx_tiles_draw(fx, &gl->scene_only_u, false, f->width, f->height, 1);
+}
+
+/* What the composite's upsampling (and mixed resolution's mark, refine.c) reads of the low-res
+ * target and the depths, folded here so that no fragment divides by a uniform. */
+void sbfx_pass_upsample_uniforms(sbfx *fx, const sbfx_pass_uniforms *u, const frame_params *fp)
+{
+    const sbfx_gl *gl = fx->gl;
+    int divisor = fx->scene->desc.target_divisor;
+    glUniform1f(u->inv_divisor, 1.0f / (float)divisor); /* a power of 2: exact */
+    glUniform2f(u->low_texel, 1.0f / (float)gl->low_width, 1.0f / (float)gl->low_height);
+    glUniform2f(u->corners_texel, 1.0f / (float)(gl->low_width + 1), 1.0f / (float)(gl->low_height + 1));
+    glUniform3fv(u->near_model, 1, fp->near_model);
+    glUniform1f(u->depth_threshold, 0.05f);
+    /* the particles' reach, at most the far plane's distance (near / it is near_model's B): a window
+     * depth of no surface then lands on the reach in the shaders, as the low-res depths' 0 does */
+    glUniform1f(u->near_over_far, fmaxf(fp->near / fp->particles_far, fp->near_model[2]));
 }
 
 /* Pass 3: dst = dst * T + C over the host's framebuffer (its alpha is kept) on the tiles; where
@@ -132,7 +147,7 @@ void sbfx_pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
     if (scene_known) sbfx_bind_texture(3, GL_TEXTURE_2D, f->scene_color_texture, gl->color_sampler);
     glUniform1i(gl->composite_u.scene_color, 3);
     glUniform1i(gl->composite_u.scene_known, scene_known);
-    if (owns) glUniform2f(gl->composite_u.full_size, (float)f->width, (float)f->height);
+    if (owns) glUniform2f(gl->composite_u.full_texel, 1.0f / (float)f->width, 1.0f / (float)f->height);
     if (shimmer(fx)) {
         sbfx_bind_texture(4, GL_TEXTURE_2D, gl->particles.texture[1], gl->color_sampler); /* LINEAR: bilinear in one fetch */
         glUniform1i(gl->composite_u.distortion, 4);
@@ -145,15 +160,13 @@ void sbfx_pass_composite(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
     glUniform1i(u->low_depth, 1);
     glUniform1i(u->low_corners, 1);
     glUniform1i(u->scene_depth, 2);
-    glUniform2i(u->low_size, gl->low_width, gl->low_height);
-    glUniform1f(u->divisor, (float)fx->scene->desc.target_divisor);
-    glUniform4fv(u->depth_model, 1, fp->depth_model);
-    glUniform1f(u->near, fp->near);
-    glUniform1f(u->depth_threshold, 0.05f);
-    glUniform1f(u->particles_far, fp->particles_far);
-    glUniform1f(u->near_over_far, fp->near / fp->particles_far);
-    glUniform3f(u->tone_curve, (float)fx->scene->tone_curve.knee, (float)fx->scene->tone_curve.steepness,
-                (float)fx->scene->tone_curve.inverse_log_white);
+    sbfx_pass_upsample_uniforms(fx, u, fp);
+    const sbfx_tone_curve *tc = &fx->scene->tone_curve;
+    glUniform3f(u->tone_curve, (float)tc->knee, (float)tc->steepness, (float)tc->inverse_log_white);
+    /* the filmic shoulder's constants folded here (composite.frag tone_curve_smooth_white) */
+    double slope = tc->steepness / (1.0 - tc->knee), c = M_LN2 * tc->inverse_log_white;
+    glUniform4f(u->tone_filmic, (float)slope, (float)(-tc->knee * slope), (float)(1.0 / c), (float)tc->knee);
+    glUniform2f(u->tone_shoulder, (float)(2.0 * (1.0 - tc->knee) * c), (float)((1.0 - tc->knee) * c * c));
     if (refined(fx)) {
         sbfx_bind_texture(SBFX_UNIT_REFINED, GL_TEXTURE_2D, gl->refine.texture[0], 0);
         glUniform1i(u->refined, SBFX_UNIT_REFINED);

@@ -109,6 +109,13 @@ void sbfx_depth_model_uniform(const sbfx_depth_model *m, float out[4])
     out[3] = (float)m->p14;
 }
 
+void sbfx_near_model_uniform(const sbfx_depth_model *m, float out[3])
+{
+    out[0] = (float)(m->near * m->scale / m->p14);
+    out[1] = (float)m->window_far;
+    out[2] = (float)(m->near * m->offset / m->p14);
+}
+
 float sbfx_window_depth(const sbfx_frame *f, double distance)
 {
     char buf[320];

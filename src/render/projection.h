@@ -19,6 +19,9 @@ typedef struct sbfx_depth_model {
 bool sbfx_depth_model_from(sbfx *fx, const sbfx_frame *f, sbfx_depth_model *out);
 /* The shaders' vec4 u_depth_model: scale, window_far, offset, p14. */
 void sbfx_depth_model_uniform(const sbfx_depth_model *m, float out[4]);
+/* The shaders' vec3 u_near_model: near / distance = A (d - window_far) + B, A = near scale / p14,
+ * B = near offset / p14 (the depth model's reciprocal, folded in double: no division per fragment). */
+void sbfx_near_model_uniform(const sbfx_depth_model *m, float out[3]);
 /* The window depth a host's depth buffer holds for a view distance under the frame's projection
  * and clip depth mode (the clear value for INFINITY or beyond a finite far plane), and the view
  * distance sbfx reads from a window depth (INFINITY for the clear value): what the shaders

@@ -52,13 +52,7 @@ static void pass_mark(sbfx *fx, const sbfx_frame *f, const frame_params *fp)
     glUniform1i(u->particles, 0);
     glUniform1i(corners ? u->low_corners : u->low_depth, 1);
     glUniform1i(u->scene_depth, 2);
-    glUniform2i(u->low_size, gl->low_width, gl->low_height);
-    glUniform1f(u->divisor, (float)fx->scene->desc.target_divisor);
-    glUniform4fv(u->depth_model, 1, fp->depth_model);
-    glUniform1f(u->near, fp->near);
-    glUniform1f(u->depth_threshold, 0.05f); /* the composite's (passes.c) */
-    glUniform1f(u->particles_far, fp->particles_far);
-    glUniform1f(u->near_over_far, fp->near / fp->particles_far);
+    sbfx_pass_upsample_uniforms(fx, u, fp); /* the composite's (passes.c) */
     glUniform1f(u->contrast, REFINE_CONTRAST);
     sbfx_tiles_draw(fx, u, true, f->width, f->height, 1);
     glDepthMask(GL_FALSE);
@@ -75,7 +69,7 @@ void sbfx_pass_refine(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int
      * particles' window depth, 0.5 or 0, is under the mark's 1 and not under the clear's 0) */
     glDepthFunc(GL_LESS);
     sbfx_bind_texture(UNIT_DEPTH, GL_TEXTURE_2D, gl->refine_depth.depth, 0);
-    sbfx_draw_particles(fx, f, fp, count, f->width, f->height);
+    sbfx_draw_particles(fx, f, fp, count, f->width, f->height, NULL, gl->refine_depth.depth);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
 }

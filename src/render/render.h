@@ -5,7 +5,7 @@
  * Exports to the rooms above:
  *   - the frame (frame.c): checked against its projection (projection.h), then between one save
  *     and restore of the host's state its passes — opaque depth and corners, the composite
- *     (passes.c), the particles back to front (particles.c), the post chain (post.h, post.c);
+ *     (passes.c), the particles front to back (particles.c), the post chain (post.h, post.c);
  *   - the frame's lights in view space (lights.c) and the entry points that replace them;
  *   - the host's transmittance shadow map (shadow.c, sbfx_render_shadow_map);
  *   - the screen tiles the particles can change (tiles.h, tiles.c): where the composite and the
@@ -51,12 +51,26 @@ typedef struct sbfx_render_state {
     sbfx_probe probe;
     sbfx_tiles tiles;
     bool warned_polygon_mode;
+    bool front_to_back;      /* the frame's particles drawn nearest first (early termination) */
+    int stops_marked;        /* early termination's marks drawn in the last frame (terminate.c) */
+    int stops_skipped;       /* its checkpoints left out: no texel could reach epsilon there */
+    float stop_depth[SBFX_TILE_GRID * SBFX_TILE_GRID]; /* terminate.c: optical depth per tile */
 } sbfx_render_state;
+
+/* Early termination's checkpoints of one draw of the particles (terminate.c): after the first
+ * at[k] particles (nearest first), the texels whose transmittance is below epsilon[k] stop. */
+#define SBFX_STOPS 2
+typedef struct sbfx_stops {
+    int count;
+    int at[SBFX_STOPS];
+    float epsilon[SBFX_STOPS];
+} sbfx_stops;
 
 /* The frame's projection as the passes' uniforms. */
 typedef struct frame_params {
     float projection[4];   /* P[0], P[5], P[8], P[9] */
     float depth_model[4];  /* window depth -> distance (projection.c) */
+    float near_model[3];   /* window depth -> near / distance: A (d - window_far) + B (sbfx_near_model_uniform) */
     float near;
     float particles_far;   /* view distance (along -z) beyond which no drawn particle reaches */
 } frame_params;
@@ -103,6 +117,9 @@ bool sbfx_tiles_any(const sbfx *fx);
 void sbfx_tiles_draw(sbfx *fx, const sbfx_pass_uniforms *u, bool inside, int width, int height, int divisor);
 
 /* passes.c and particles.c: the passes of a frame with live particles */
+/* The upsampling's uniforms (the composite's, mixed resolution's mark): the low-res target's
+ * texel, 1 / divisor, the depths' model and threshold, the particles' reach. */
+void sbfx_pass_upsample_uniforms(sbfx *fx, const sbfx_pass_uniforms *u, const frame_params *fp);
 void sbfx_pass_depth(sbfx *fx, const sbfx_frame *f, const frame_params *fp);
 /* The depth downsample into `target`, the output at 1 / divisor per axis, on the tiles. */
 void sbfx_pass_depth_into(sbfx *fx, const sbfx_frame *f, const frame_params *fp, const sbfx_rt *target, int divisor);
@@ -111,7 +128,25 @@ void sbfx_pass_corners(sbfx *fx);
 void sbfx_pass_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count);
 /* The particles' draws (instances already uploaded) into the bound width x height target, its
  * opaque depth bound on UNIT_DEPTH (particles.c; the refinement draws them again). */
-void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height);
+void sbfx_draw_particles(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count, int width, int height,
+                         const sbfx_stops *stops, GLuint depth_texture);
+/* The particle drawn i-th of count: the sort's order, back to front, or reversed, nearest
+ * first, where the frame terminates early (particles.c and terminate.c both walk it). */
+static inline const sbfx_view_particle *sbfx_drawn_particle(const sbfx *fx, int count, int i)
+{
+    return &fx->sim->view[fx->sim->order[fx->render->front_to_back ? count - 1 - i : i]];
+}
+
+/* terminate.c: early termination (the scene's render.early_termination) */
+bool sbfx_terminate_used(const sbfx *fx);
+/* tiles.c: the tiles a particle can change, columns box[0]..box[2], rows box[1]..box[3] (its
+ * region's bounding box, the grid of the frame's plan); false for none. */
+bool sbfx_tiles_box(const sbfx *fx, const frame_params *fp, const sbfx_view_particle *v, int box[4]);
+/* The frame's checkpoints and their epsilons (none where unused), from the instances written. */
+void sbfx_terminate_plan(sbfx *fx, const frame_lights *lights, const frame_params *fp, int count, sbfx_stops *out);
+void sbfx_terminate_begin(sbfx *fx);
+void sbfx_terminate_mark(sbfx *fx, float epsilon, GLuint depth_texture);
+void sbfx_terminate_end(void);
 /* refine.c: mixed resolution, the particles again at full resolution where the coarse target
  * fails (after sbfx_pass_particles, before the composite) */
 bool sbfx_refine_used(const sbfx *fx);

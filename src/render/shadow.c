@@ -10,7 +10,7 @@
 #define SHADOW_MARGIN_TEXELS 2   /* cleared texels kept on each side: CLAMP_TO_EDGE reads 1 */
 #define SHADOW_INSTANCE_FLOATS 5 /* light-view centre, radius, tau x intensity */
 
-static const sbfx_rt_format shadow_rgba16f = {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT, 8};
+static const sbfx_rt_format shadow_rgba16f = {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT, 8, false};
 
 /* ---- load ---- */
 

@@ -259,6 +259,25 @@ void sbfx_tiles_plan_idle(sbfx *fx, const sbfx_frame *f)
 
 bool sbfx_tiles_any(const sbfx *fx) { return fx->render->tiles.inside > 0; }
 
+bool sbfx_tiles_box(const sbfx *fx, const frame_params *fp, const sbfx_view_particle *v, int box[4])
+{
+    const sbfx_tiles *t = &fx->render->tiles;
+    const sbfx_gl *gl = fx->gl;
+    region_axis axes[4];
+    region_axes(fp, gl->low_width, gl->low_height, fx->scene->desc.opacity == SBFX_OPACITY_FLOOR, axes);
+    particle_region g;
+    if (!particle_region_of(v, fp, axes, gl->low_width, gl->low_height, &g)) return false;
+    const double d = fx->scene->desc.target_divisor;
+    const int last[2] = {t->columns - 1, t->rows - 1};
+    for (int k = 0; k < 2; k++) { /* output pixels (p + 1/2 = d q), then tiles, clamped to the grid */
+        double lo = smaller(larger(floor(d * g.range[k][0] - 0.5), 0.0), (double)(last[k] << t->shift));
+        double hi = smaller(larger(ceil(d * g.range[k][1] - 0.5), 0.0), (double)(last[k] << t->shift));
+        box[k] = (int)lo >> t->shift;
+        box[2 + k] = (int)hi >> t->shift;
+    }
+    return true;
+}
+
 void sbfx_tiles_draw(sbfx *fx, const sbfx_pass_uniforms *u, bool inside, int width, int height, int divisor)
 {
     const sbfx_tiles *t = &fx->render->tiles;

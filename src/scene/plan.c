@@ -22,7 +22,8 @@ sbfx_desc sbfx_desc_with_defaults(const sbfx_desc *in)
         if (!(d.blackbody_max_kelvin > 0)) d.blackbody_max_kelvin = s->blackbody_max_kelvin;
         d.light_per_particle = d.light_per_particle || s->light_per_particle;
         d.analytic_blackbody = d.analytic_blackbody || s->analytic_blackbody;
-        d.analytic_phase = d.analytic_phase || s->analytic_phase;
+        /* the phase: the desc decides where it names either form, else the scene */
+        if (!d.analytic_phase && !d.table_phase) d.analytic_phase = s->analytic_phase, d.table_phase = s->table_phase;
         if (!d.detail_format) d.detail_format = s->detail_format;
         if (!d.tone_map) d.tone_map = s->tone_map;
         if (!(d.exposure > 0)) d.exposure = s->exposure;
@@ -34,6 +35,7 @@ sbfx_desc sbfx_desc_with_defaults(const sbfx_desc *in)
     if (!d.target_divisor) d.target_divisor = 4;
     if (!d.upsample) d.upsample = SBFX_UPSAMPLE_NEAREST_DEPTH;
     if (!d.opacity) d.opacity = SBFX_OPACITY_EXACT;
+    sbfx_phase_resolve(&d.analytic_phase, &d.table_phase);
     if (!d.seed) d.seed = 1;
     if (!d.max_particles) d.max_particles = 2048;
     if (!(d.blackbody_max_kelvin > 0)) d.blackbody_max_kelvin = (float)SBFX_DEFAULT_MAX_KELVIN;
@@ -130,6 +132,7 @@ void sbfx_scene_adopt(sbfx *fx, const sbfx_scene *scene)
     memcpy(fx->scene->ambient, scene->ambient, sizeof(fx->scene->ambient));
     memcpy(fx->scene->effects, scene->effects, sizeof(fx->scene->effects));
     fx->scene->post = scene->post;
+    fx->scene->early_termination = scene->early_termination;
     fx->scene->effect_count = scene->effect_count;
     fx->scene->light_slots = sbfx_light_slots_of_scene(fx);
     for (int e = 0; e < fx->scene->effect_count; e++)

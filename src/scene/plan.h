@@ -43,6 +43,9 @@ typedef struct sbfx_scene_state {
     sbfx_effect effects[SBFX_MAX_EFFECTS];
     int effect_count;
     sbfx_plan plan;
+    /* early termination of the particles (render/terminate.c): the scene's render key, then
+     * sbfx_set_early_termination */
+    bool early_termination;
     sbfx_tone_curve tone_curve;  /* the composite's (tables/tonemap.c), made at load */
     /* a particle's instance data (render/particles.c writes it, gl/programs.c lays out its buffer) */
     int instance_floats;         /* 8, + 4 previous centre (velocity blur), + 4 light, + 8 fire */

@@ -17,10 +17,19 @@ static const char *const upsample_tokens[SBFX_UPSAMPLE_COUNT] = {
 static const char *const format_tokens[SBFX_FORMAT_COUNT] = {
     [SBFX_FORMAT_RGBA8] = "rgba8", [SBFX_FORMAT_RGBA16F] = "rgba16f", [SBFX_FORMAT_RGBA32F] = "rgba32f"};
 
+/* The phase function is analytic unless the table is asked for and the analytic form is not
+ * (issue 43: the table bought no accuracy and cost cycles on every GPU; docs/quality-and-budgets.md).
+ * Resolved, exactly one of the two is set, so every reader of analytic_phase sees the choice. */
+void sbfx_phase_resolve(bool *analytic, bool *table)
+{
+    *table = *table && !*analytic;
+    *analytic = !*table;
+}
+
 sbfx_quality sbfx_quality_from_desc(const sbfx_desc *d)
 {
     return (sbfx_quality){d->opacity, d->target_divisor, d->upsample, d->target_format, d->light_per_particle,
-                          d->analytic_blackbody, d->analytic_phase, d->lod_particles};
+                          d->analytic_blackbody, d->analytic_phase, d->table_phase, d->lod_particles};
 }
 
 bool sbfx_quality_resolve(sbfx_quality *q, char *err, size_t size)
@@ -28,6 +37,7 @@ bool sbfx_quality_resolve(sbfx_quality *q, char *err, size_t size)
     if (!q->opacity) q->opacity = SBFX_OPACITY_EXACT;
     if (!q->target_divisor) q->target_divisor = 4;
     if (!q->upsample) q->upsample = SBFX_UPSAMPLE_NEAREST_DEPTH;
+    sbfx_phase_resolve(&q->analytic_phase, &q->table_phase);
     int d = q->target_divisor;
     const char *why = (unsigned)q->opacity >= SBFX_OPACITY_COUNT ? "unknown opacity mode"
                       : d != 1 && d != 2 && d != 4 && d != 8 ? "target_divisor is not 1, 2, 4 or 8"
@@ -43,7 +53,8 @@ bool sbfx_quality_equal(const sbfx_quality *a, const sbfx_quality *b)
 {
     return a->opacity == b->opacity && a->target_divisor == b->target_divisor && a->upsample == b->upsample &&
            a->target_format == b->target_format && a->light_per_particle == b->light_per_particle &&
-           a->analytic_blackbody == b->analytic_blackbody && a->analytic_phase == b->analytic_phase &&
+           a->analytic_blackbody == b->analytic_blackbody &&
+           (a->table_phase && !a->analytic_phase) == (b->table_phase && !b->analytic_phase) &&
            a->lod_particles == b->lod_particles;
 }
 
@@ -60,7 +71,7 @@ static int token_index(const char *const *tokens, int count, const char *t)
 static int parse_flag(const char *t, sbfx_quality *q, char *err, size_t size)
 {
     bool *flag = strcmp(t, "lpp") == 0 ? &q->light_per_particle : strcmp(t, "abb") == 0 ? &q->analytic_blackbody
-                 : strcmp(t, "aph") == 0 ? &q->analytic_phase : NULL;
+                 : strcmp(t, "aph") == 0 ? &q->analytic_phase : strcmp(t, "tph") == 0 ? &q->table_phase : NULL;
     int format = token_index(format_tokens, SBFX_FORMAT_COUNT, t);
     if (flag || format) {
         if (flag ? *flag : q->target_format != 0) {
@@ -69,6 +80,10 @@ static int parse_flag(const char *t, sbfx_quality *q, char *err, size_t size)
         }
         if (flag) *flag = true;
         else q->target_format = (sbfx_target_format)format;
+        if (q->analytic_phase && q->table_phase) {
+            snprintf(err, size, "'aph' and 'tph': the phase function is either analytic or its table");
+            return -1;
+        }
         return 0;
     }
     if (strncmp(t, "lod", 3) == 0 && t[3] >= '1' && t[3] <= '9' && strspn(t + 3, "0123456789") == strlen(t + 3) &&
@@ -80,7 +95,7 @@ static int parse_flag(const char *t, sbfx_quality *q, char *err, size_t size)
         q->lod_particles = atoi(t + 3);
         return 0;
     }
-    snprintf(err, size, "unknown flag '%.40s' (rgba8, rgba16f, rgba32f, lpp, abb, aph, lodN with N in 1..%d)", t, LOD_MAX);
+    snprintf(err, size, "unknown flag '%.40s' (rgba8, rgba16f, rgba32f, lpp, abb, tph, aph, lodN with N in 1..%d)", t, LOD_MAX);
     return -1;
 }
 
@@ -126,6 +141,7 @@ sbfx_result sbfx_quality_parse(const char *name, sbfx_quality *out, char *err, s
         if (err && err_size) snprintf(err, err_size, "quality \"%s\": %s", name ? name : "(null)", why);
         return SBFX_ERR_INVALID_ARGUMENT;
     }
+    sbfx_phase_resolve(&q.analytic_phase, &q.table_phase);
     *out = q;
     return SBFX_OK;
 }
@@ -142,6 +158,6 @@ const char *sbfx_quality_name(const sbfx_quality *q, char *buf, size_t size)
     if (r.lod_particles) snprintf(lod, sizeof(lod), "/lod%d", r.lod_particles);
     snprintf(buf, size, "%s/%d/%s%s%s%s%s%s%s", opacity_tokens[r.opacity], r.target_divisor,
              upsample_tokens[r.upsample], r.target_format ? "/" : "", r.target_format ? format_tokens[r.target_format] : "",
-             r.light_per_particle ? "/lpp" : "", r.analytic_blackbody ? "/abb" : "", r.analytic_phase ? "/aph" : "", lod);
+             r.light_per_particle ? "/lpp" : "", r.analytic_blackbody ? "/abb" : "", r.table_phase ? "/tph" : "", lod);
     return buf;
 }

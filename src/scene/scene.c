@@ -248,9 +248,12 @@ static int parse_ladder(parser *p, const config_setting_t *g)
 static int parse_render_host(parser *p, const config_setting_t *g)
 {
     sbfx_scene *scene = p->scene;
+    bool terminate = false;
     if (get_bool(p, g, "host_lights", &scene->host_lights) || get_bool(p, g, "host_shadows", &scene->host_shadows) ||
-        get_int(p, g, "shadow_map_size", 16, 16384, &scene->render.shadow_map_size))
+        get_int(p, g, "shadow_map_size", 16, 16384, &scene->render.shadow_map_size) ||
+        get_bool(p, g, "early_termination", &terminate))
         return -1;
+    scene->early_termination = terminate;
     if (scene->host_shadows && !scene->render.shadow_map_size) scene->render.shadow_map_size = 256;
     return 0;
 }
@@ -261,7 +264,7 @@ static int parse_render(parser *p, const config_setting_t *g)
                                        "seed", "max_particles", "sim_rate", "blackbody_max_kelvin",
                                        "light_rate", "blackbody", "phase", "detail_format", "tone_map",
                                        "exposure", "budget_ms", "ladder", "white_luminance", "host_lights",
-                                       "host_shadows", "shadow_map_size", NULL};
+                                       "host_shadows", "shadow_map_size", "early_termination", NULL};
     static const char *const tone_maps[] = {"none", "hue-preserving", "per-channel", "filmic", NULL};
     static const char *const rates[] = {"per-pixel", "per-particle", NULL};
     static const char *const evaluations[] = {"table", "analytic", NULL};
@@ -282,7 +285,7 @@ static int parse_render(parser *p, const config_setting_t *g)
         get_float(p, g, "sim_rate", 10, 1000, &rate) ||
         get_float(p, g, "blackbody_max_kelvin", 1000, 100000, &kelvin) ||
         get_choice(p, g, "light_rate", rates, 0, &rate_choice) ||
-        get_choice(p, g, "blackbody", evaluations, 0, &blackbody) || get_choice(p, g, "phase", evaluations, 0, &phase) ||
+        get_choice(p, g, "blackbody", evaluations, 0, &blackbody) || get_choice(p, g, "phase", evaluations, 1, &phase) ||
         get_choice(p, g, "detail_format", detail_formats, SBFX_DETAIL_R16F, &detail_format) ||
         get_choice(p, g, "tone_map", tone_maps, SBFX_TONE_MAP_NONE, &tone_map) ||
         get_float(p, g, "exposure", 0.01, 100, &d->exposure) ||
@@ -292,7 +295,8 @@ static int parse_render(parser *p, const config_setting_t *g)
     d->tone_map = (sbfx_tone_map)tone_map;
     d->light_per_particle = rate_choice == 1;
     d->analytic_blackbody = blackbody == 1;
-    d->analytic_phase = phase == 1;
+    d->table_phase = phase == 1;      /* analytic, the default, where the key names it or is left out */
+    d->analytic_phase = phase == 2;
     d->detail_format = (sbfx_detail_format)detail_format;
     int scale = d->target_divisor;
     if (scale && scale != 1 && scale != 2 && scale != 4 && scale != 8)

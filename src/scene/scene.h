@@ -58,6 +58,7 @@ struct sbfx_scene {
     sbfx_gpio_trigger gpio[SBFX_MAX_GPIO];
     sbfx_post_params post;
     bool host_lights, host_shadows; /* render.host_lights, render.host_shadows (sbfx_scene_host) */
+    bool early_termination; /* render.early_termination (render/terminate.c); off by default */
     bool has_sky;
     float sky[3];       /* the host's sky colour, linear RGB (sbfx_scene_host) */
     bool has_camera;
@@ -74,5 +75,7 @@ sbfx_quality sbfx_quality_from_desc(const sbfx_desc *d);
 /* Fills zero fields with the defaults; false (err says why) for values out of range. */
 bool sbfx_quality_resolve(sbfx_quality *q, char *err, size_t size);
 bool sbfx_quality_equal(const sbfx_quality *a, const sbfx_quality *b);
+/* analytic_phase, table_phase resolved: the table where it is asked for and analytic is not */
+void sbfx_phase_resolve(bool *analytic, bool *table);
 
 #endif

@@ -243,22 +243,36 @@ static void restore(const saved_state *s)
     glClearColor(s->clear[0], s->clear[1], s->clear[2], s->clear[3]);
 }
 
-/* A draw whose depth test masks it (mixed resolution's refinement: render/refine.c, the depth
- * test on and no depth writes) shades only where the test passes: its counting draw is tested
- * against the same depth texture. Returns that texture, or 0 (then every fragment counts: a
- * pass that writes depth tests ALWAYS). The depth function and mask stay as the draw had them. */
-static GLuint depth_mask_of_draw(void)
+/* A draw whose depth test masks it shades only where the test passes: its counting draw is
+ * tested against the same depth, attached to the counting target. Mixed resolution's
+ * refinement (render/refine.c) masks with a depth texture: what passes is the refinement's,
+ * counted apart too (tally.masked); early termination (render/terminate.c) with a depth
+ * renderbuffer: what passes is the particle pass's own. The depth function and mask stay as
+ * the draw had them; a pass that writes depth tests ALWAYS and every fragment counts. */
+typedef struct draw_mask {
+    GLenum type; /* GL_TEXTURE, GL_RENDERBUFFER or GL_NONE: no mask */
+    GLuint name;
+} draw_mask;
+
+static draw_mask depth_mask_of_draw(void)
 {
+    draw_mask none = {GL_NONE, 0};
     GLboolean writes = GL_TRUE;
     glGetBooleanv(GL_DEPTH_WRITEMASK, &writes);
     GLint func = GL_ALWAYS, fbo = 0, type = GL_NONE, name = 0;
     glGetIntegerv(GL_DEPTH_FUNC, &func);
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
-    if (!glIsEnabled(GL_DEPTH_TEST) || writes || func == GL_ALWAYS || fbo == 0) return 0;
+    if (!glIsEnabled(GL_DEPTH_TEST) || writes || func == GL_ALWAYS || fbo == 0) return none;
     glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
-    if (type != GL_TEXTURE) return 0;
+    if (type != GL_TEXTURE && type != GL_RENDERBUFFER) return none;
     glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
-    return (GLuint)name;
+    return (draw_mask){(GLenum)type, (GLuint)name};
+}
+
+static void attach_mask(draw_mask m, bool on)
+{
+    if (m.type == GL_TEXTURE) glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, on ? m.name : 0, 0);
+    if (m.type == GL_RENDERBUFFER) glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, on ? m.name : 0);
 }
 
 /* The tally's slot of the current program (a new one the first time), or -1 when full. */
@@ -281,7 +295,7 @@ void bench_fragments_draw(GLenum mode, GLint first, GLsizei count, GLsizei insta
     saved_state s;
     save(&s);
     int w = s.viewport[2], h = s.viewport[3];
-    GLuint mask = depth_mask_of_draw(); /* of the module's framebuffer, before a slot is bound */
+    draw_mask mask = depth_mask_of_draw(); /* of the module's framebuffer, before a slot is bound */
     int k = slot_of(t, (GLuint)s.program);
     if (k < 0 || !slot_ready(k, w, h)) {
         fprintf(stderr, "bench: fragment count: no counting program or target (%d programs, %dx%d)\n", t->draws, w, h);
@@ -290,7 +304,7 @@ void bench_fragments_draw(GLenum mode, GLint first, GLsizei count, GLsizei insta
         return;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, fc.slots[k].fbo);
-    if (mask) glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, mask, 0);
+    attach_mask(mask, true);
     glViewport(0, 0, w, h);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glUseProgram(fc.slots[k].counter);
@@ -303,9 +317,9 @@ void bench_fragments_draw(GLenum mode, GLint first, GLsizei count, GLsizei insta
     else glDrawArrays(mode, first, count);
     fc.tally = t;
     fc.slots[k].dirty = true;
-    if (mask) {
+    attach_mask(mask, false);
+    if (mask.type == GL_TEXTURE) {
         /* what passed the mask is the refinement's: counted apart as well (read back now) */
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
         double before = t->fragments[k];
         t->fragments[k] += read_count(&fc.slots[k]);
         t->masked[k] += t->fragments[k] - before;

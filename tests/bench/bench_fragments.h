@@ -7,9 +7,11 @@
  * a fragment shader that writes 1, additively (GL_ONE, GL_ONE), into an RGBA16F target of the
  * draw's viewport size kept for that program; the sums of the targets' read-backs are the
  * fragments each program's draws made (exact: a half float counts integers to 2048 per pixel).
- * A draw masked by its target's depth test (mixed resolution's refinement) is counted against
- * the same depth texture: what passes is what a GPU with early depth tests shades.
- * sbfx's shaders discard nothing (but refine_mark.frag, counted whole: it runs everywhere), so
+ * A draw masked by its target's depth test (mixed resolution's refinement: a depth texture;
+ * early termination of the particles: a depth renderbuffer) is counted against the same depth:
+ * what passes is what a GPU with early depth tests shades.
+ * sbfx's shaders discard nothing (but refine_mark.frag and terminate_mark.frag, counted whole:
+ * they run everywhere), so
  * this is what they shade: the particle pass's quads with
  * their overlap, the passes over the screen's tiles (render/tiles.h) and the full-screen ones —
  * counted, not assumed equal to the screen. Targets are read back when a program draws at

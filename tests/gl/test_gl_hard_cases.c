@@ -7,7 +7,8 @@
  * The CPU side is given what the GPU has: the float particles, the window depth as the host
  * depth texture stores it (float), the detail volume rounded to half (R16F), and — for the
  * table paths — the module's own float tables (sbfx_get_tables), looked up the way the GPU
- * does; for the analytic paths (desc.analytic_blackbody / analytic_phase, or a table that
+ * does; for the analytic paths (desc.analytic_blackbody / analytic_phase (the phase's default; its
+ * table is desc.table_phase), or a table that
  * would miss) the analytic functions.
  *
  * Tolerances (GPU float32 against double, RGBA32F target unless said):
@@ -45,6 +46,8 @@
 #define RGB_REL 2e-3
 #define RGB_ABS 1e-5
 #define HALF_ROUNDING 0x1p-10 /* one rounding to either neighbouring half float */
+#define STOP_ALLOWANCE (0.25 / 255.0) /* terminate.c's STOP_LEVELS of an 8-bit level */
+#define HALF_FLOOR 0x1p-24    /* ...and near 0: a subnormal half's spacing (ref/reference_frame.h) */
 
 static const sbfx_opacity_mode modes[] = {SBFX_OPACITY_PLANAR, SBFX_OPACITY_SOFT, SBFX_OPACITY_SPHERICAL,
                                           SBFX_OPACITY_EXACT};
@@ -69,6 +72,7 @@ typedef struct hc_setup {
     bool cpu_true_depth;         /* the CPU reference gets `wall` itself, not what the buffer holds */
     double tolerance;            /* > 0: one absolute tolerance for every channel instead */
     bool report_only;            /* print how far GPU and CPU are apart, do not require agreement */
+    bool early_termination;      /* the module's early termination on: drawn nearest first */
 } hc_setup;
 
 typedef struct hc_result {
@@ -120,10 +124,12 @@ static sbfx *hc_module(gl_fixture *f, const hc_setup *s, sbfx_opacity_mode mode,
 {
     static sbfx_scene scene;
     sbfx_scene_builtin(&scene);
+    scene.early_termination = s->early_termination;
     if (s->media) s->media(scene.media);
     sbfx *fx = fixture_module(f, (sbfx_desc){.target_divisor = 1, .target_format = s->format, .opacity = mode,
                                              .max_particles = MAX_P, .analytic_blackbody = s->analytic_bb,
-                                             .analytic_phase = s->analytic_phase, .scene = &scene});
+                                             .analytic_phase = s->analytic_phase, .table_phase = !s->analytic_phase,
+                                             .scene = &scene});
     for (int m = 0; m < SBFX_MEDIUM_COUNT; m++) has_detail[m] = sbfx_media(fx)[m].detail_strength > 0;
     sbfx_set_light(fx, s->light_dir, s->light_color, s->ambient);
     return fx;
@@ -234,6 +240,8 @@ static void cpu_render(gl_fixture *f, sbfx *fx, const hc_setup *s, sbfx_opacity_
     rf.filter_weight_error = filter_weight_error(), rf.filter_bound = r->bound;
     r->rounding = calloc(SIZE * SIZE * 4, sizeof(double));
     rf.target_rounding = s->format == SBFX_FORMAT_RGBA16F ? HALF_ROUNDING : 0.0, rf.rounding_bound = r->rounding;
+    rf.target_floor = s->format == SBFX_FORMAT_RGBA16F ? HALF_FLOOR : 0.0;
+    rf.front_to_back = s->early_termination; /* the module draws nearest first then */
     rf_media(fx, has_detail, &rf);
     rf.fire_light = sbfx_fire_lit(fx);
     rf.light_count = rf_lights(fx, f->frame.view, lights, rf.ambient);
@@ -252,6 +260,9 @@ static void compare(const hc_setup *s, hc_result *r)
 {
     double rel = RGB_REL, abs_tol = RGB_ABS, alpha_tol = ALPHA_TOL;
     if (s->tolerance > 0) rel = 0.0, abs_tol = alpha_tol = s->tolerance;
+    /* early termination leaves behind a texel at most T L < STOP_LEVELS / 255 of light and T of
+     * its transmittance (src/render/terminate.c: T < epsilon = STOP_LEVELS / (255 (L + 1))) */
+    if (s->early_termination) abs_tol += STOP_ALLOWANCE, alpha_tol += STOP_ALLOWANCE;
     for (int i = 0; i < SIZE * SIZE; i++)
         for (int k = 0; k < 4; k++) {
             double g = r->gpu[4 * i + k], c = r->cpu[4 * i + k];
@@ -436,6 +447,8 @@ CHECK_TEST(camera_inside_sphere)
     s.media = no_detail;
     s.p[s.count++] = particle(0.1f, -0.05f, -0.05f, 1.5f, SBFX_SMOKE); /* F < n: centre before the near plane */
     hc_all_modes("camera inside the sphere, centre closer than the near plane", &s, expect_inside);
+    s.early_termination = true;
+    hc_all_modes("the same with early termination", &s, expect_inside);
 }
 
 /* ---- opaque surface inside or in front of the sphere ------------------------------------- */
@@ -590,6 +603,8 @@ CHECK_TEST(tau_zero_and_huge)
     hc_all_modes("tau = 0: nothing", &s, expect_nothing);
     s.media = tau_huge;
     hc_all_modes("tau = 1e6: alpha -> 1", &s, expect_saturated);
+    s.early_termination = true; /* the opaque front stops what is behind it */
+    hc_all_modes("the same with early termination", &s, expect_saturated);
 }
 
 /* ---- depth at its far clear value ------------------------------------------------------------ */
@@ -646,6 +661,10 @@ CHECK_TEST(half_float_target_with_hot_fire)
     hc_all_modes("the same with the analytic black body", &s, expect_ceiling);
     s.format = SBFX_FORMAT_RGBA32F;
     hc_all_modes("the same into RGBA32F", &s, expect_ceiling);
+    s.format = SBFX_FORMAT_RGBA16F;
+    s.analytic_bb = false;
+    s.early_termination = true; /* epsilon at its smallest: L at the ceiling */
+    hc_all_modes("RGBA16F with early termination", &s, expect_ceiling);
 }
 
 /* ---- fire's soot: the cool share's soot covers, and glows not ------------------------------ */
@@ -965,7 +984,8 @@ CHECK_TEST(explosion_frames_have_no_nan_or_inf)
                 for (int analytic = 0; analytic < 2; analytic++)
                     all.levels[all.level_count++] = (sbfx_quality){
                         .opacity = (sbfx_opacity_mode)m, .target_divisor = div, .upsample = SBFX_UPSAMPLE_NEAREST_DEPTH,
-                        .target_format = formats[fm], .analytic_blackbody = analytic, .analytic_phase = analytic};
+                        .target_format = formats[fm], .analytic_blackbody = analytic, .analytic_phase = analytic,
+                        .table_phase = !analytic};
         scan_module(&scene, &frame, &all);
         for (int q = 0; q < all.level_count; q++) {
             const sbfx_quality *l = &all.levels[q];
@@ -978,7 +998,7 @@ CHECK_TEST(explosion_frames_have_no_nan_or_inf)
             int div = i < 2 ? 1 : 4, analytic = i % 2;
             floor[i] = (scan_set){.desc = {.target_divisor = div, .target_format = formats[fm],
                                            .opacity = SBFX_OPACITY_FLOOR, .analytic_blackbody = analytic,
-                                           .analytic_phase = analytic}};
+                                           .analytic_phase = analytic, .table_phase = !analytic}};
             scan_module(&scene, &frame, &floor[i]);
             CHECK(floor[i].bad[0] == 0, "floor, format %d, 1/%d, analytic %d: %d frames with NaN/Inf", formats[fm], div,
                   analytic, floor[i].bad[0]);

@@ -289,7 +289,7 @@ CHECK_TEST(gpu_tables_match_cpu_tables)
 {
     gl_fixture f;
     fixture_open(&f, 8, 8);
-    sbfx *fx = fixture_module(&f, (sbfx_desc){0});
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.table_phase = true});
     double bb_worst = 0, phase_worst = 0;
     sbfx_rng rng;
     sbfx_rng_seed(&rng, 7);

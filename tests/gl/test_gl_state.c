@@ -295,26 +295,31 @@ typedef struct state_case {
     const char *quality; /* switched to after sbfx_create (sbfx_set_quality), NULL: none */
     float budget_ms;     /* desc.frame_budget_ms */
     bool depth_range;    /* a frame saves the depth range on ES too (desktop OpenGL always does) */
+    bool terminate;      /* early termination turned on (sbfx_set_early_termination) */
 } state_case;
 
 /* The built-in explosion, every post effect (heat shimmer, velocity blur, depth of field), the
  * seed's history blur, and lit smoke (a 2D-array texture on a fifth unit). */
 static const state_case cases[] = {
-    {"built-in explosion", NULL, NULL, "explosion", NULL, 0.0f, false},
-    {"post.cfg: shimmer, velocity blur, depth of field", "scenes/post.cfg", "", "explosion", NULL, 0.0f, false},
+    {"built-in explosion", NULL, NULL, "explosion", NULL, 0.0f, false, false},
+    {"post.cfg: shimmer, velocity blur, depth of field", "scenes/post.cfg", "", "explosion", NULL, 0.0f, false, false},
     {"explosion with history blur", "scenes/explosion.cfg", "\npost = { motion_blur = { mode = \"history\"; persistence = 0.15; }; };\n",
-     "explosion", NULL, 0.0f, false},
-    {"lit-smoke.cfg", "scenes/lit-smoke.cfg", "", "column", NULL, 0.0f, false},
+     "explosion", NULL, 0.0f, false, false},
+    {"lit-smoke.cfg", "scenes/lit-smoke.cfg", "", "column", NULL, 0.0f, false, false},
     /* a level's first use makes programs, the black-body constants, a wider instance buffer and
      * the level of detail's memory inside sbfx_set_quality; targets inside sbfx_render */
     {"built-in explosion switched to spherical/2/bl/lpp/abb/lod64", NULL, NULL, "explosion",
-     "spherical/2/bl/lpp/abb/lod64", 0.0f, false},
+     "spherical/2/bl/lpp/abb/lod64", 0.0f, false, false},
     /* mixed resolution: the refine target (made inside sbfx_render), its depth test as the mask
      * (the particles' window depth: the host's depth range 0.2-0.7 and clip control ZERO_TO_ONE
      * would move it), the refined particles on a sixth unit */
-    {"built-in explosion switched to exact/4/mx", NULL, NULL, "explosion", "exact/4/mx", 0.0f, true},
+    {"built-in explosion switched to exact/4/mx", NULL, NULL, "explosion", "exact/4/mx", 0.0f, true, false},
     /* the budget walks down at once: timer queries around the passes, levels switched in render */
-    {"built-in explosion under a budget nothing meets (0.001 ms)", NULL, NULL, "explosion", NULL, 0.001f, false},
+    {"built-in explosion under a budget nothing meets (0.001 ms)", NULL, NULL, "explosion", NULL, 0.001f, false, false},
+    /* early termination: the particle target's depth renderbuffer (made inside sbfx_render: the
+     * host's renderbuffer binding), its test as the mask (the particles' window depth, as mixed
+     * resolution's), the marks' framebuffer */
+    {"built-in explosion with early termination", NULL, NULL, "explosion", NULL, 0.0f, true, true},
 };
 
 static sbfx *case_module(host *h, const state_case *c)
@@ -323,6 +328,7 @@ static sbfx *case_module(host *h, const state_case *c)
     sbfx *fx = fixture_module(&h->gl, (sbfx_desc){.scene = scene, .ignore_timeline = true, .max_particles = 512,
                                                   .frame_budget_ms = c->budget_ms});
     sbfx_scene_free(scene);
+    if (c->terminate) CHECK(sbfx_set_early_termination(fx, true) == SBFX_OK, "%s", sbfx_last_error(fx));
     return fx;
 }
 
@@ -514,6 +520,14 @@ CHECK_TEST(mixed_resolution_leaves_state)
      * the host's depth range and clip control place; on desktop OpenGL already counted) */
     int expected[3] = {36, 36, 0};
     run_case(&cases[5], expected);
+}
+
+CHECK_TEST(early_termination_leaves_state)
+{
+    /* as the built-in explosion, and the depth range (the marks' mask compares the particles'
+     * window depth; on desktop OpenGL already counted) */
+    int expected[3] = {34, 34, 0};
+    run_case(&cases[7], expected);
 }
 
 /* ---- the host's shadow map (sbfx_render_shadow_map) ------------------------------------------ */

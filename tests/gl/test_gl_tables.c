@@ -32,7 +32,8 @@ static sbfx_scene *parse(const char *text)
  * range rule of src/scene/scene_tables.c: the emitters' lo .. (t0 + t1) * 1.25 with cooling off). */
 static sbfx *module_for(gl_fixture *f, double lo, double hi, double g)
 {
-    sbfx *fx = fixture_module(f, (sbfx_desc){.ignore_timeline = true, .max_particles = 16});
+    /* the phase's table asked for: the analytic form is the default (issue 43) */
+    sbfx *fx = fixture_module(f, (sbfx_desc){.ignore_timeline = true, .max_particles = 16, .table_phase = true});
     sbfx_medium_params *m = sbfx_media(fx);
     m[SBFX_FIRE].t0 = (float)lo;
     m[SBFX_FIRE].t1 = (float)(hi / SBFX_BLACKBODY_MARGIN - lo);
@@ -258,7 +259,7 @@ CHECK_TEST(phase_table_that_would_miss_falls_back_once)
     sbfx_scene *scene = parse("media = { dust = { phase_g = 0.99; }; smoke = { phase_g = 0.5; }; };\n"
                               "effects = { e = { steps = ( { type = \"emitter\"; medium = \"dust\"; },\n"
                               "                            { type = \"emitter\"; medium = \"smoke\"; } ); }; };\n");
-    sbfx *fx = fixture_module(&f, (sbfx_desc){.scene = scene});
+    sbfx *fx = fixture_module(&f, (sbfx_desc){.scene = scene, .table_phase = true});
     sbfx_scene_free(scene);
     const sbfx_tables *t = sbfx_get_tables(fx);
     printf("# g = 0.99: the table's CPU lookup is %.2e off; g = 0.5: %.2e\n", t->phase_error[SBFX_DUST],
@@ -269,6 +270,27 @@ CHECK_TEST(phase_table_that_would_miss_falls_back_once)
     CHECK(strstr(f.last_warning, "media.dust") && strstr(f.last_warning, "per fragment"), "log: %s",
           f.last_warning);
     sbfx_destroy(fx);
+    fixture_close(&f);
+}
+
+/* The default since issue 43: the analytic phase, no phase table; the black body's table. */
+CHECK_TEST(default_phase_is_analytic)
+{
+    gl_fixture f;
+    fixture_open(&f, 4, 4);
+    sbfx *fx = fixture_module(&f, (sbfx_desc){0});
+    const sbfx_tables *t = sbfx_get_tables(fx);
+    CHECK(t->phase_analytic[SBFX_DUST] && t->phase_analytic[SBFX_SMOKE], "the phase is not analytic by default");
+    CHECK(!t->phase_table[SBFX_DUST] && !t->phase_table[SBFX_SMOKE], "a phase table by default");
+    CHECK(!t->blackbody_analytic, "the black body's table is the default");
+    sbfx_quality q;
+    CHECK(sbfx_get_quality(fx, &q) == SBFX_OK && q.analytic_phase && !q.table_phase);
+    sbfx_destroy(fx);
+    /* desc.analytic_phase wins over table_phase (the analytic form asked for by name) */
+    fx = fixture_module(&f, (sbfx_desc){.analytic_phase = true, .table_phase = true});
+    CHECK(sbfx_get_tables(fx)->phase_analytic[SBFX_SMOKE], "table_phase won over analytic_phase");
+    sbfx_destroy(fx);
+    CHECK(f.warnings == 0, "%s", f.last_warning);
     fixture_close(&f);
 }
 

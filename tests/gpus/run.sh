@@ -5,8 +5,9 @@
 # drivers compile and link every shader sbfx builds; nothing is drawn (the shims execute no
 # command stream), so this checks compilation, not pictures.
 # Each scene runs at its own quality and at a second level that compiles the other variants
-# (spherical opacity, bilinear upsampling, per-channel tone map, RGBA8 target), and three scenes
-# with mixed resolution (issue 43: its own programs). A run passes when
+# (spherical opacity, bilinear upsampling, per-channel tone map, RGBA8 target), three scenes
+# with mixed resolution (issue 43: its own programs) and one with early termination (its mark,
+# terminate_mark.frag, and the particle target's depth renderbuffer). A run passes when
 # every program links, or when sbfx refuses at create with a message naming what the GPU lacks
 # (no GLES 3.0, a missing format); a shader compile or link error is a failure. The etnaviv
 # driver of Mesa 25 offers no OpenGL ES 3.0 context on a GC7000L: there the check is that the
@@ -79,6 +80,7 @@ for gpu in $gpus; do
     for scene in scenes/explosion.cfg scenes/post.cfg scenes/campfire.cfg; do
         run_one "$gpu" "$scene" mixed --upsample mixed
     done
+    run_one "$gpu" scenes/barrage.cfg termination --early-termination on
 done
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -32,14 +32,14 @@ static long parse_level(const char *name)
     static const char *const divisor[] = {"1", "2", "4", "8"};
     static const char *const upsample[] = {"nd", "bl"};
     static const char *const formats[] = {"rgba8", "rgba16f", "rgba32f"};
-    static const char *const flags[] = {"lpp", "abb", "aph"};
+    static const char *const flags[] = {"lpp", "abb", "aph", "tph"};
     char copy[128], seen[8][16];
     snprintf(copy, sizeof(copy), "%s", name);
     int n = 0, nformats = 0;
     long lod = 0;
     for (char *save, *t = strtok_r(copy, "/", &save); t; t = strtok_r(NULL, "/", &save), n++) {
         bool ok = n == 0 ? one_of(t, opacity, 4) : n == 1 ? one_of(t, divisor, 4) : n == 2 ? one_of(t, upsample, 2)
-                : one_of(t, formats, 3) || one_of(t, flags, 3) || lod_of(t) > 0;
+                : one_of(t, formats, 3) || one_of(t, flags, 4) || lod_of(t) > 0;
         if (!ok || n >= 8) return -1;
         for (int k = 3; k < n; k++)
             if (strcmp(seen[k], t) == 0 || (lod_of(t) && lod_of(seen[k]))) return -1; /* repeated */

@@ -3,8 +3,9 @@
  * computes mediump at full precision, so the GL suites cannot see these roundings; this bounds
  * them. Each half operation is done in double (exact for a product or a sum of two halves) and
  * rounded to _Float16 once, as an IEEE half unit does. u = 2^-11, half's unit roundoff.
- *   fetch + sanitize: the texel as stored in RGBA16F (exact), one NaN test on (r + g) + (b + a),
- *                     clamped to [0, 65504] x [0, 1]
+ *   fetch + clamp:    the texel as stored in RGBA16F (exact), light clamped to [0, 65504],
+ *                     transmittance to [0, 1] (1 where it is NaN); after the weighted sum, one NaN
+ *                     test on (r + b) + (g + a) of the sum (sanitize)
  *   bilinear weights: each rounded to half once (the function returns mediump)
  *   upsample:         sum = t0 w0; sum += t1 w1; sum += t2 w2; sum += t3 w3, every product and
  *                     sum rounded to half
@@ -30,17 +31,25 @@ typedef _Float16 half;
 static half mul(half a, half b) { return (half)((double)a * (double)b); }
 static half add(half a, half b) { return (half)((double)a + (double)b); }
 
-/* composite.frag's sanitize(): true when the texel is replaced by transparent black */
+/* composite.frag's clamp_texel(): light to [0, 65504] (a NaN passes on, as a GPU whose min and
+ * max propagate NaN does), transmittance to [0, 1] and 1 where it is not a number or below 0 */
+static void clamp_texel(half p[4])
+{
+    for (int k = 0; k < 3; k++) {
+        double v = (double)p[k];
+        p[k] = (half)(v < 0.0 ? 0.0 : v > HALF_MAX ? HALF_MAX : v);
+    }
+    double a = (double)p[3];
+    p[3] = (half)(a >= 0.0 ? fmin(a, 1.0) : 1.0);
+}
+
+/* composite.frag's sanitize(), on the weighted sum: true when it is replaced by transparent */
 static bool sanitize(half p[4])
 {
     half pair0 = add(p[0], p[2]), pair1 = add(p[1], p[3]);
     if (isnan((double)add(pair0, pair1))) {
         p[0] = p[1] = p[2] = (half)0.0, p[3] = (half)1.0;
         return true;
-    }
-    for (int k = 0; k < 4; k++) {
-        double hi = k == 3 ? 1.0 : HALF_MAX, v = (double)p[k];
-        p[k] = (half)(v < 0.0 ? 0.0 : v > hi ? hi : v);
     }
     return false;
 }
@@ -75,7 +84,7 @@ CHECK_TEST(upsample_within_half_rounding_bound)
     int over = 0, differ = 0;
     for (int i = 0; i < CASES; i++) {
         half t[4][4];
-        for (int c = 0; c < 4; c++) random_texel(&rng, t[c]), sanitize(t[c]);
+        for (int c = 0; c < 4; c++) random_texel(&rng, t[c]), clamp_texel(t[c]);
         double fx = sbfx_rng_range(&rng, 0.0, 1.0), fy = sbfx_rng_range(&rng, 0.0, 1.0);
         double w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
         for (int k = 0; k < 4; k++) {
@@ -119,7 +128,7 @@ CHECK_TEST(upsample_at_sbfx_divisors_within_gamma4)
         double w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
         half t[4][4];
         for (int c = 0; c < 4; c++) {
-            random_texel(&rng, t[c]), sanitize(t[c]);
+            random_texel(&rng, t[c]), clamp_texel(t[c]);
             CHECK((double)(half)w[c] == w[c], "divisor %d: weight %g not exact in half", d, w[c]);
         }
         for (int k = 0; k < 4; k++) {
@@ -134,29 +143,46 @@ CHECK_TEST(upsample_at_sbfx_divisors_within_gamma4)
     CHECK(over == 0, "%d channels exceed gamma(4)", over);
 }
 
-/* One test on (r + b) + (g + a) finds every NaN channel, and no finite texel a shader can store is
- * taken for one: non-negative halves only overflow to +Inf when summed, never to NaN. */
+/* The four texels clamped, weighted and summed, then one test on the sum's (r + b) + (g + a): a
+ * NaN light in any texel reaches the sum (every weight times a clamped texel is finite, 0 where
+ * the weight is 0) and the pixel is dropped (transparent); a NaN transmittance is 1 (the scene
+ * shows through); Inf is clamped; and no finite texels are taken for a NaN: non-negative halves
+ * only overflow to +Inf when summed, never to NaN. The output is never NaN. */
 CHECK_TEST(sanitize_finds_every_nan_and_only_nans)
 {
     sbfx_rng rng;
     sbfx_rng_seed(&rng, 77);
     int missed = 0, false_alarms = 0;
-    for (int i = 0; i < CASES; i++) {
-        half p[4];
-        random_texel(&rng, p);
-        if (i % 3 == 0) p[i % 4] = (half)NAN;
-        if (i % 5 == 0) p[(i / 5) % 4] = (half)HALF_MAX;   /* sums that overflow half */
-        if (i % 7 == 0) p[(i / 7) % 3] = (half)INFINITY;   /* clamped, not dropped */
-        bool nan_in = false;
-        for (int k = 0; k < 4; k++) nan_in = nan_in || isnan((double)p[k]);
-        bool dropped = sanitize(p);
-        missed += nan_in && !dropped;
-        false_alarms += !nan_in && dropped;
-        for (int k = 0; k < 4; k++) CHECK(isfinite((double)p[k]), "case %d: channel %d not finite", i, k);
-        if (!dropped) CHECK((double)p[3] <= 1.0 && (double)p[0] <= HALF_MAX, "case %d: not clamped", i);
+    for (int i = 0; i < CASES / 4; i++) {
+        half t[4][4];
+        bool light_nan = false;
+        for (int c = 0; c < 4; c++) {
+            half *p = t[c];
+            int j = 4 * i + c;
+            random_texel(&rng, p);
+            if (j % 11 == 0) p[j % 4] = (half)NAN;
+            if (j % 5 == 0) p[(j / 5) % 4] = (half)HALF_MAX;   /* sums that overflow half */
+            if (j % 7 == 0) p[(j / 7) % 3] = (half)INFINITY;   /* clamped, not dropped */
+            for (int k = 0; k < 3; k++) light_nan = light_nan || isnan((double)p[k]);
+            clamp_texel(p);
+            for (int k = 0; k < 4; k++) CHECK(isnan((double)p[k]) || (double)p[k] <= (k == 3 ? 1.0 : HALF_MAX));
+            CHECK(!isnan((double)p[3]), "case %d: a NaN transmittance kept", j);
+        }
+        double fx = sbfx_rng_range(&rng, 0.0, 1.0), fy = sbfx_rng_range(&rng, 0.0, 1.0);
+        double w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+        if (i % 2) w[0] = 1.0, w[1] = w[2] = w[3] = 0.0;   /* nearest-depth's one texel */
+        half sum[4];
+        for (int k = 0; k < 4; k++) {
+            double exact;
+            sum[k] = weighted_sum(t, w, k, &exact);
+        }
+        bool dropped = sanitize(sum);
+        missed += light_nan && !dropped;
+        false_alarms += !light_nan && dropped;
+        for (int k = 0; k < 4; k++) CHECK(!isnan((double)sum[k]), "case %d: channel %d NaN", i, k);
     }
-    CHECK(missed == 0, "%d texels with a NaN kept", missed);
-    CHECK(false_alarms == 0, "%d finite texels dropped", false_alarms);
+    CHECK(missed == 0, "%d pixels with a NaN light kept", missed);
+    CHECK(false_alarms == 0, "%d pixels of finite texels dropped", false_alarms);
 }
 
 /* The shimmer offsets are stored in RGBA16F and summed there by the blend (heat adds): each

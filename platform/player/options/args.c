@@ -247,6 +247,15 @@ static int set_tone_map(struct player_options *opt, const char *value, char *err
     return rc;
 }
 
+static int set_early_termination(struct player_options *opt, const char *value, char *err, size_t n)
+{
+    static const struct choice choices[] = {{"on", 1}, {"off", -1}};
+    int v = 0;
+    int rc = parse_choice("--early-termination", value, choices, ARRAY_SIZE(choices), &v, err, n);
+    opt->early_termination = v;
+    return rc;
+}
+
 static int set_exposure(struct player_options *opt, const char *value, char *err, size_t n)
 {
     double v = 0;
@@ -554,6 +563,7 @@ static const struct flag flags[] = {
     {"--upsample", "bilinear|nearest-depth|mixed", set_upsample},
     {"--tone-map", "none|hue-preserving|per-channel|filmic", set_tone_map},
     {"--exposure", "X (0.01..100)", set_exposure},
+    {"--early-termination", "on|off", set_early_termination},
     {"--budget-ms", "MS (0 < MS <= 10000)", set_budget},
     {"--seed", "N (0..4294967295)", set_seed},
     {"--scene", "FILE", set_scene},

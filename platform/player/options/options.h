@@ -71,6 +71,7 @@ struct player_options {
     sbfx_target_format format;
     sbfx_upsample upsample;
     sbfx_tone_map tone_map;   /* 0 = the scene's or the library's default */
+    int early_termination;    /* --early-termination: 0 the scene's (on by default), 1 on, -1 off */
     float exposure;           /* 0 = the scene's or the library's default (1) */
     uint32_t seed;            /* 0 = the library's default */
     double start_time;        /* --start-time: desc.start_time, the clock's start (0) */

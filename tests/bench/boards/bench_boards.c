@@ -10,7 +10,10 @@
  * (refined: of the fragments, those of mixed resolution's refinement, render/refine.c)
  * which tools/boards-table.sh prices with Mesa's Mali estimates (mali.csv, tools/shader-stats.sh).
  *   bench_boards [--out DIR] [--sizes WxH[,WxH...]] [--step SECONDS] [--scenes a,b] [--camera scene|orbit]
- *                [--tile-sizes N[,N...]] [--quality LEVEL] [--frame-rate HZ]
+ *                [--tile-sizes N[,N...]] [--quality LEVEL] [--termination on|off] [--frame-rate HZ]
+ * --termination on|off renders with or without early termination of the particles
+ * (render/terminate.c; default: each scene's render.early_termination, off unless it says on):
+ * docs/gpus.md's "Front to back, and early termination".
  * --quality LEVEL renders every scene at that level (e.g. exact/4/mx) instead of its own;
  * --quality mixed, at its own level with mixed resolution's upsampling.
  * --error also renders each frame at its level and at full resolution in RGBA32F (the level's
@@ -50,6 +53,7 @@ typedef struct options {
     bool orbit;   /* --camera orbit: the accuracy bench's orbit camera, not the scene's */
     bool error;          /* --error: OUT/errors.csv, each frame against its own full resolution */
     const char *quality; /* --quality LEVEL: every scene at that level (sbfx_set_quality), not its own */
+    int termination;     /* --termination: 1 on, 0 off, -1 the scene's */
     char scenes[MAX_SCENES][64];
     int scene_count;
 } options;
@@ -177,6 +181,8 @@ static void scene_at_size(const options *opt, const char *name, int w, int h, FI
     if (bench_target_create(&out, w, h) != 0) die("output framebuffer", "incomplete");
     sbfx *fx = NULL;
     if (sbfx_create(&(sbfx_desc){.scene = scene, .log = log_line}, &fx) != SBFX_OK) die(path, "sbfx_create failed");
+    if (opt->termination >= 0 && sbfx_set_early_termination(fx, opt->termination > 0) != SBFX_OK)
+        die("--termination", sbfx_last_error(fx));
     if (opt->quality) {
         sbfx_quality q;
         if (!strcmp(opt->quality, "mixed")) { /* the scene's own level, refined */
@@ -248,8 +254,8 @@ static void parse_list(const char *text, const char *what, int *out, int max, in
 
 static options parse(int argc, char **argv)
 {
-    options o = {.out = "build/bench", .size_count = 2, .sizes = {{1280, 720}, {1920, 1080}}, .step = 0.1, .frame_rate = 60.0,
-                 .tile_size_count = 1};
+    options o = {.out = "build/bench", .size_count = 2, .sizes = {{1280, 720}, {1920, 1080}}, .step = 0.1,
+                 .frame_rate = 60.0, .tile_size_count = 1, .termination = -1};
     const char *all[] = {"barrage", "campfire", "dust-storm", "explosion", "lit-smoke", "night", "post", "smoke"};
     for (size_t i = 0; i < sizeof(all) / sizeof(all[0]); i++) snprintf(o.scenes[o.scene_count++], 64, "%s", all[i]);
     for (int i = 1; i < argc; i++) {
@@ -264,6 +270,7 @@ static options parse(int argc, char **argv)
         else if (!strcmp(a, "--step") && (o.step = atof(v)) > 0) continue;
         else if (!strcmp(a, "--frame-rate") && (o.frame_rate = atof(v)) > 0) continue;
         else if (!strcmp(a, "--quality") && v) o.quality = v;
+        else if (!strcmp(a, "--termination") && (!strcmp(v, "on") || !strcmp(v, "off"))) o.termination = !strcmp(v, "on");
         else if (!strcmp(a, "--camera") && (!strcmp(v, "scene") || !strcmp(v, "orbit"))) o.orbit = !strcmp(v, "orbit");
         else if (!strcmp(a, "--sizes")) parse_list(v, a, &o.sizes[0][0], MAX_SIZES, &o.size_count, true);
         else if (!strcmp(a, "--tile-sizes")) parse_list(v, a, o.tile_sizes, MAX_TILE_SIZES, &o.tile_size_count, false);
@@ -275,7 +282,8 @@ static options parse(int argc, char **argv)
                 p += n + (p[n] == ',');
             }
         } else die(a, "unknown option or value (--out DIR, --sizes WxH,..., --step S, --scenes a,b, "
-                      "--camera scene|orbit, --tile-sizes N,..., --quality LEVEL, --frame-rate HZ, --error)");
+                      "--camera scene|orbit, --tile-sizes N,..., --quality LEVEL, --termination on|off, "
+                      "--frame-rate HZ, --error)");
     }
     return o;
 }
