@@ -10,6 +10,13 @@
 // sharp full-resolution picture and only the sky seen through them is blurred, by how much of
 // it is seen; for particles in the far field (keep 1) C' = mix(C, F, w) as for the scene.
 //   HAS_SHIMMER  the scene as the composite read it: displaced by the heat's offsets
+//   NO_PARTICLES  drawn outside the particles' tiles (src/render/tiles.c), where their target is
+//                clear (transmittance 1, no motion) and the image the scene: what the particles'
+//                branch of main() gives there, without its fetches
+//   WRITE_VELOCITY  the velocity blur follows: this pass also writes its per-pixel motion, as
+//                velocity.frag would (the same depth and particle texels, read here once for
+//                both; with HAS_PARTICLE_VELOCITY and ENCODE_UNORM as there), and the velocity
+//                pass is not drawn
 // The blurred fields are read bilinearly by their LINEAR sampler (RGBA16F or RGBA8).
 precision highp float;
 precision highp sampler2D;
@@ -33,7 +40,37 @@ uniform vec2 u_full_size;
 uniform sampler2D u_distortion;    // low-res RGBA16F, LINEAR: the composite's scene offsets
 #endif
 
-out vec4 o_color;
+#ifdef WRITE_VELOCITY
+uniform mat4 u_reproject;              // current NDC -> previous clip
+uniform vec2 u_ndc_depth;              // window depth -> ndc z: x d + y (the clip depth mode)
+uniform float u_shutter;               // fraction of the frame the shutter is open
+uniform float u_max_radius;            // the velocity blur's tile size in pixels
+#ifdef ENCODE_UNORM
+const bool encode = true;
+#else
+const bool encode = false;
+#endif
+layout(location = 1) out vec4 o_velocity;
+
+// velocity.frag's motion of this pixel from its window depth (its view distance beside it) and,
+// where particles cover it, their premultiplied velocity and transmittance (m: the particle
+// texel under it).
+void write_velocity(float depth, float distance, vec4 m)
+{
+    vec2 ndc = gl_FragCoord.xy / u_full_size * 2.0 - 1.0;
+    vec4 previous = u_reproject * vec4(ndc, depth * u_ndc_depth.x + u_ndc_depth.y, 1.0);
+    vec2 motion = previous.w > 1e-6 ? (ndc - previous.xy / previous.w) * 0.5 * u_full_size : vec2(0.0);
+#if defined(HAS_PARTICLE_VELOCITY) && !defined(NO_PARTICLES)
+    if (u_particles_drawn) motion = m.xy + motion * m.a;
+#endif
+    vec2 v = motion * 0.5 * u_shutter;
+    float len = length(v);
+    if (!(len < 1e30)) v = vec2(0.0);                    // NaN or Inf: no blur
+    else if (len > u_max_radius) v *= u_max_radius / len;
+    o_velocity = encode ? vec4(v / (2.0 * u_max_radius) + 0.5, 0.0, 1.0) : vec4(v, min(distance, 6.0e4), 1.0);
+}
+#endif
+layout(location = 0) out vec4 o_color;
 
 // Window depth -> view distance (src/render/projection.c): the matrix's own depth row, solved around
 // the far end so nothing cancels; the clear value means no surface.
@@ -60,16 +97,21 @@ void main()
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec4 sharp = texelFetch(u_color, p, 0);
     float ramp = 1.0 / max(u_far.y - u_far.x, 1e-4);
-    float far_coc = clamp((view_distance(texelFetch(u_scene_depth, p, 0).r) - u_far.x) * ramp, 0.0, 1.0);
+    float depth = texelFetch(u_scene_depth, p, 0).r;
+    float distance = view_distance(depth);
+    float far_coc = clamp((distance - u_far.x) * ramp, 0.0, 1.0);
     vec3 x = sharp.rgb;   // what the far field holds here
+    vec4 m = vec4(0.0, 0.0, 0.0, 1.0);
+#ifndef NO_PARTICLES
     if (u_particles_drawn) {
         vec2 particle_uv = gl_FragCoord.xy * u_particle_texel;
-        vec4 m = textureLod(u_particle_motion, particle_uv, 0.0);
+        m = textureLod(u_particle_motion, particle_uv, 0.0);
         float coverage = 1.0 - m.a;
         float keep = coverage > 1e-3 ? clamp((m.b / coverage - u_far.x) * ramp, 0.0, 1.0) : 1.0;
         far_coc = mix(keep, far_coc, clamp(sharp.a, 0.0, 1.0));
         x = mix(scene_behind(particle_uv), x, keep);
     }
+#endif
     vec2 uv = gl_FragCoord.xy * u_low_texel;
     vec4 far_blur = filtered_2d(u_far_field, uv);
     vec4 near_blur = filtered_2d(u_near_field, uv);
@@ -77,4 +119,7 @@ void main()
     float coverage = clamp(near_blur.a * 2.0, 0.0, 1.0);   // a blurred edge at half coverage is opaque
     vec3 near_color = near_blur.a > 1e-4 ? near_blur.rgb / near_blur.a : color;
     o_color = vec4(mix(color, near_color, coverage), 1.0);
+#ifdef WRITE_VELOCITY
+    write_velocity(depth, distance, m);
+#endif
 }

@@ -8,6 +8,9 @@
 //   DOF_SCALE  the scene's blur resolution divisor, set at load (src/render/post.c): the loops the
 //              compilers unroll are as long as the block, and the block's size is a constant
 //              (without it: blocks of u_scale, loops as long as the largest, 4)
+//   NO_PARTICLES  drawn outside the particles' tiles (src/render/tiles.c) where each block lies in
+//              one tile (post.c): their target is clear under the block, and main() gives what
+//              it gives with no particles, without their fetches
 precision highp float;
 precision highp sampler2D;
 #ifndef FILTER_BITS   // SBFX_FILTER_BITS (shaders_es/filtered.frag): else the texture unit filters
@@ -63,6 +66,9 @@ float signed_coc(float z, vec2 ramps)
 // finer particle target the block takes its centre's texel (one fetch per block, not per pixel).
 vec2 particle_cover(vec2 centre)
 {
+#ifdef NO_PARTICLES
+    return vec2(0.0);
+#endif
     if (!u_particles_drawn) return vec2(0.0);
     vec4 m = textureLod(u_particle_motion, centre / (u_divisor * vec2(u_particle_size)), 0.0);
     float coverage = clamp(1.0 - m.a, 0.0, 1.0);
@@ -118,10 +124,12 @@ void main()
     // own CoC is 0), scaled back; unknown (0) where they are opaque.
     float keep = cover.x > 1e-3 ? max(particle_coc, 0.0) : 1.0;
     o_far = vec4(color, far_coc);
+#ifndef NO_PARTICLES
     if (keep < 1.0) {   // the scene's fetches only where particles cover the block
         float scene_coc = cover.x < 0.999 ? min(far_coc / (1.0 - cover.x), 1.0) : 0.0;
         o_far = mix(vec4(block_mean(u_scene_color, base, texel), scene_coc), o_far, keep);
     }
+#endif
     // The near field: the block's colour by its mean near CoC (the mean of the product where the
     // block's pixels share a CoC, as they do but at a near object's edge)
     o_near = vec4(near_coc > 0.0 ? color * (near_weight / n) : vec3(0.0), near_coc);

@@ -1,6 +1,7 @@
 #version 300 es
 // Velocity blur, step 3: the longest tile velocity among the 3x3 neighbouring tiles, so blur
-// from a fast object reaches into the tiles next to it.
+// from a fast object reaches into the tiles next to it; beside it (z) the shortest velocity's
+// squared length among them (tile_max.frag's z): whether the neighbourhood moves as one.
 precision highp float;
 precision highp sampler2D;
 
@@ -21,12 +22,14 @@ void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec2 best = vec2(0.0);
-    float best_len = -1.0;
+    float best_len = -1.0, shortest = 1e30;
     for (int j = -1; j <= 1; j++)
         for (int i = -1; i <= 1; i++) {
-            vec2 v = decode(texelFetch(u_tiles, clamp(p + ivec2(i, j), ivec2(0), u_tiles_size - 1), 0));
+            vec4 t = texelFetch(u_tiles, clamp(p + ivec2(i, j), ivec2(0), u_tiles_size - 1), 0);
+            vec2 v = decode(t);
             float len = dot(v, v);
             if (len > best_len) { best = v; best_len = len; }
+            shortest = min(shortest, t.z);   // stored as tile_max.frag stored it
         }
-    o_velocity = encode ? vec4(best / (2.0 * u_max_radius) + 0.5, 0.0, 1.0) : vec4(best, 0.0, 1.0);
+    o_velocity = encode ? vec4(best / (2.0 * u_max_radius) + 0.5, shortest, 1.0) : vec4(best, shortest, 1.0);
 }

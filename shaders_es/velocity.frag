@@ -3,8 +3,9 @@
 // with the camera (its depth reprojected into the previous frame); particles carry their own
 // screen motion, written premultiplied by the particle pass, and cover the scene's motion by
 // their transmittance. Stored as the blur's half-extent in pixels (half the displacement
-// during the open shutter), clamped to the tile size; encoded for an RGBA8 target when float
-// targets are not renderable.
+// during the open shutter), clamped to the tile size, and the pixel's view distance (at most 6e4,
+// inside half float) beside it for the gather's depth tests; encoded for an RGBA8 target when
+// float targets are not renderable (then without the distance: the gather reads the depth).
 precision highp float;
 precision highp sampler2D;
 
@@ -14,6 +15,7 @@ uniform vec2 u_ndc_depth;              // window depth -> ndc z: x d + y (the cl
 uniform vec2 u_size;                   // full-resolution size
 uniform float u_shutter;               // fraction of the frame the shutter is open
 uniform float u_max_radius;            // = tile size in pixels
+uniform vec4 u_depth_model;            // window depth -> distance (view_distance)
 #ifdef HAS_PARTICLE_VELOCITY
 uniform sampler2D u_particle_velocity; // low-res: premultiplied velocity [px], transmittance
 uniform bool u_particles_drawn;        // false on frames without particles
@@ -27,6 +29,14 @@ const bool encode = false;
 #endif
 
 out vec4 o_velocity;
+
+// Window depth -> view distance (src/render/projection.c): the matrix's own depth row, solved around
+// the far end so nothing cancels; the clear value means no surface.
+float view_distance(float d)
+{
+    if (d == u_depth_model.y) return 1e30;
+    return u_depth_model.w / (u_depth_model.x * (d - u_depth_model.y) + u_depth_model.z);
+}
 
 void main()
 {
@@ -46,5 +56,5 @@ void main()
     float len = length(v);
     if (!(len < 1e30)) v = vec2(0.0);                    // NaN or Inf: no blur
     else if (len > u_max_radius) v *= u_max_radius / len;
-    o_velocity = encode ? vec4(v / (2.0 * u_max_radius) + 0.5, 0.0, 1.0) : vec4(v, 0.0, 1.0);
+    o_velocity = encode ? vec4(v / (2.0 * u_max_radius) + 0.5, 0.0, 1.0) : vec4(v, min(view_distance(depth), 6.0e4), 1.0);
 }

@@ -20,6 +20,15 @@
 # particles per medium (fire, heat, the scattering media), early termination's marks
 # (terminate_mark.frag: render/terminate.c), mixed resolution's refinement (its mark
 # and the particles it shades again: boards.csv's refined column), the composite, the post chain.
+# The velocity blur's gather (motion_blur.frag) is a loop of SAMPLES - 1 samples that Mesa
+# unrolls only up to 7 on the Malis and 3 on V3D, and counts once beyond: it is priced per sample
+# (docs/gpus.md, "The post chain"): base + (SAMPLES - 1) x sample, the two measured from the
+# unrolled builds at SAMPLES 3, 5 and 7 (tools/shader-stats.sh -s over scenes/post.cfg with
+# `samples` 3, 5 and 7; V3D unrolls only 3: its sample is 3's less the loop counted once; per
+# fragment: G52 3.875 + 2.25, G610 1.234 + 0.6875, V3D 4.2 12 + 39, V3D 7.1 14.25 + 30.75; its
+# FAST variant G52 3.0 + 1.75, G610 1.047 + 0.578, V3D 4.2 32 + 18, V3D 7.1 29.25 + 16.5, V3D from 3
+# and 5); measure them again when motion_blur.frag changes. Then, for the scenes with a post chain, its
+# programs in the worst frame on the G52: fragments, cycles per fragment as priced, ms.
 # With ERRORS_CSV (bench_boards --error), a last table: each scene's error against its own
 # full-resolution RGBA32F render (mean |difference| in 8-bit levels over the pixels either image
 # changes), the mean over its life and the worst frame.
@@ -39,6 +48,16 @@ function pass_of(shader, variant) {
     return "post"
 }
 function left(ms) { return ms >= 16.667 ? "none" : sprintf("%.0f %%", 100 * (16.667 - ms) / 16.667) }
+BEGIN {
+    gather_base["g52", "full"] = 3.875; gather_sample["g52", "full"] = 2.25
+    gather_base["g610", "full"] = 1.2344; gather_sample["g610", "full"] = 0.6875
+    gather_base["rpi4", "full"] = 12; gather_sample["rpi4", "full"] = 39
+    gather_base["rpi5", "full"] = 14.25; gather_sample["rpi5", "full"] = 30.75
+    gather_base["g52", "fast"] = 3.0; gather_sample["g52", "fast"] = 1.75
+    gather_base["g610", "fast"] = 1.0469; gather_sample["g610", "fast"] = 0.5781
+    gather_base["rpi4", "fast"] = 32; gather_sample["rpi4", "fast"] = 18
+    gather_base["rpi5", "fast"] = 29.25; gather_sample["rpi5", "fast"] = 16.5
+}
 FNR == 1 { file++; next }
 file == 1 && $6 == "fragment" { cycles[key_of($1, $3, $4, $5)] = $8; texture[key_of($1, $3, $4, $5)] = $10; has[$1] = 1; next }
 file == 2 {
@@ -57,12 +76,23 @@ file == 2 {
         block = $7 == "depth_downsample.frag" && $8 !~ /SINGLE_TEXEL/ # not mixed resolution'"'"'s full-res depth
         if (block && texture[k] * $4 * $4 > c) c = texture[k] * $4 * $4
         if (block && i > 2) c *= $4 * $4
+        if ($7 == "motion_blur.frag" && match($8, /SAMPLES=[0-9]+/)) {
+            samples = substr($8, RSTART + 8, RLENGTH - 8) + 0
+            fast = $8 ~ /FAST/ ? "fast" : "full"
+            priced = gather_base[gpus[i], fast] + (samples - 1) * gather_sample[gpus[i], fast]
+            if (priced > c) c = priced
+        }
         work[gpus[i], frame, mode] += $9 * c
         if (i == 1 && mode == "after") {
             refined = NF >= 14 ? $14 + 0 : 0
             p = pass_of($7, $8)
             part[frame, p] += ($9 - refined) * c
             part[frame, "refine"] += refined * c
+            if (p == "post") {
+                prog = $7 ($8 == "-" ? "" : " " $8)
+                if (!((frame, prog) in post_frags)) post_progs[frame] = post_progs[frame] SUBSEP prog
+                post_frags[frame, prog] += $9; post_cycles[frame, prog] = c
+            }
         }
     }
     if (mode == "after") {
@@ -135,6 +165,7 @@ END {
             if (fk[1] != sk[1] || fk[2] != sk[2]) continue
             if (work["g52", f, "after"] > worst) { worst = work["g52", f, "after"]; wf = f }
         }
+        worst_frame[order[k]] = wf
         split(wf, fk, SUBSEP)
         line = sprintf("| %s | %s | %.1f s |", sk[1], sk[2], fk[3])
         for (p = 1; p <= 8; p++) line = line sprintf(" %.2f |", part[wf, passes[p]] / clock["g52"])
@@ -152,6 +183,25 @@ END {
             d += drawn[f]; p += pixels[f]; share += pixels[f] / (wh[1] * wh[2]); count++
         }
         printf "| %s | %s | %s | %.0f %% |\n", sk[1], sk[2], (p > 0 ? sprintf("%.3f", d / p) : "–"), 100 * share / count
+    }
+    header = 0
+    for (k = 1; k <= n; k++) {
+        split(order[k], sk, SUBSEP)
+        wf = worst_frame[order[k]]
+        if (post_progs[wf] == "") continue
+        if (!header++) {
+            print ""
+            print "| scene | output | worst frame (t) | post program | fragments | G52 cycles per fragment | G52 MP2 ms |"
+            print "| --- | --- | ---: | --- | ---: | ---: | ---: |"
+        }
+        split(wf, fk, SUBSEP)
+        np = split(substr(post_progs[wf], 2), progs, SUBSEP)
+        total = 0
+        for (q = 1; q <= np; q++) {
+            ms = post_frags[wf, progs[q]] * post_cycles[wf, progs[q]] / clock["g52"]; total += ms
+            printf "| %s | %s | %.1f s | `%s` | %.0f | %.2f | %.2f |\n", sk[1], sk[2], fk[3], progs[q], post_frags[wf, progs[q]], post_cycles[wf, progs[q]], ms
+        }
+        printf "| %s | %s | %.1f s | the post chain | | | %.2f |\n", sk[1], sk[2], fk[3], total
     }
 }' "$2" "$1"
 if [ $# -eq 3 ]; then

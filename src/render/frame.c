@@ -68,6 +68,7 @@ static sbfx_result draw_frame(sbfx *fx, const sbfx_frame *frame, const sbfx_dept
     }
     if (fx->scene->plan.owns_scene) {
         fx->render->post.particles_drawn = count > 0;
+        if (count == 0) sbfx_tiles_plan_idle(fx, frame); /* the post chain draws over the rest */
         bool composited_to_out = sbfx_post_composite_target(fx, frame) == frame->out_framebuffer;
         GLuint source = count == 0 ? frame->scene_color_texture
                         : composited_to_out ? 0 : sbfx_post_composite_texture(fx);

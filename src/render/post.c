@@ -7,6 +7,10 @@
 #include "render/render.h"
 
 enum post_uniform {
+    PU_BLOCK_COLUMNS,
+    PU_BLOCK_SIZE,
+    PU_CLASS,
+    PU_CLASSES,
     PU_COLOR,
     PU_CURRENT,
     PU_DEPTH_MODEL,
@@ -38,7 +42,11 @@ enum post_uniform {
     PU_SHUTTER,
     PU_SIZE,
     PU_SOURCE,
+    PU_TARGET,
     PU_TILE,
+    PU_TILE_GRID,
+    PU_TILE_SIZE,
+    PU_TILE_TARGET,
     PU_TILES,
     PU_TILES_SIZE,
     PU_VELOCITY,
@@ -46,6 +54,10 @@ enum post_uniform {
 };
 _Static_assert(PU_COUNT <= SBFX_POST_UNIFORMS, "SBFX_POST_UNIFORMS is too small for post.c");
 static const char *const post_uniform_names[PU_COUNT] = {
+    [PU_BLOCK_COLUMNS] = "u_block_columns",
+    [PU_BLOCK_SIZE] = "u_block_size",
+    [PU_CLASS] = "u_class",
+    [PU_CLASSES] = "u_classes",
     [PU_COLOR] = "u_color",
     [PU_CURRENT] = "u_current",
     [PU_DEPTH_MODEL] = "u_depth_model",
@@ -77,7 +89,11 @@ static const char *const post_uniform_names[PU_COUNT] = {
     [PU_SHUTTER] = "u_shutter",
     [PU_SIZE] = "u_size",
     [PU_SOURCE] = "u_source",
+    [PU_TARGET] = "u_target",
     [PU_TILE] = "u_tile",
+    [PU_TILE_GRID] = "u_tile_grid",
+    [PU_TILE_SIZE] = "u_tile_size",
+    [PU_TILE_TARGET] = "u_tile_target",
     [PU_TILES] = "u_tiles",
     [PU_TILES_SIZE] = "u_tiles_size",
     [PU_VELOCITY] = "u_velocity",
@@ -88,8 +104,10 @@ static const char *const post_uniform_names[PU_COUNT] = {
 static GLuint *post_programs(sbfx_post_gl *p, int i)
 {
     GLuint *all[SBFX_POST_PROGRAMS] = {&p->copy_program, &p->history_program, &p->velocity_program, &p->tile_program,
-                                      &p->neighbor_program, &p->blur_program, &p->dof_setup_program,
-                                      &p->dof_blur_program, &p->dof_composite_program};
+                                      &p->neighbor_program, &p->class_program, &p->blur_program, &p->fast_program,
+                                      &p->still_program, &p->dof_setup_program, &p->dof_blur_program,
+                                      &p->dof_composite_program, &p->dof_plain_program,
+                                      &p->dof_setup_plain_program};
     return all[i];
 }
 
@@ -109,10 +127,85 @@ static GLint post_loc(const sbfx_post_gl *p, GLuint program, int uniform)
 
 static bool has_steps(const sbfx *fx) { return fx->scene->post.dof || fx->scene->post.blur != SBFX_BLUR_NONE; }
 
+/* The depth of field's composite writes the velocity blur's velocities (no pass of their own). */
+static bool fused_velocity(const sbfx *fx) { return fx->scene->post.dof && fx->scene->post.blur == SBFX_BLUR_VELOCITY; }
+
+static GLuint velocity_texture(const sbfx *fx)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    return fused_velocity(fx) ? p->frame[1].texture[1] : p->velocity.texture[0];
+}
+
 /* ---- programs (load) ---- */
 static GLuint build(sbfx *fx, const char *frag, const char *defines, bool wanted)
 {
     return wanted ? sbfx_program_build(fx, "fullscreen.vert", frag, defines) : 0;
+}
+
+/* A program of the velocity blur's classified blocks (blur_tiles.vert). */
+static GLuint build_tiled(sbfx *fx, const char *frag, const char *defines, bool wanted)
+{
+    return wanted ? sbfx_program_build(fx, "blur_tiles.vert", frag, defines) : 0;
+}
+
+/* Tiles per side of the velocity blur's blocks: blocks of about 32 pixels, few enough
+ * instances (2040 at 1920x1080) that the vertex work of drawing them stays small. */
+static int block_tiles(const sbfx *fx) { return fx->scene->post.tile >= 32 ? 1 : 32 / fx->scene->post.tile; }
+
+/* The depth of field's blur radius in blur-resolution texels, as dof_blur.frag takes it. */
+static int dof_blur_radius(const sbfx *fx)
+{
+    int r = (int)ceilf(fx->scene->post.dof_max_radius / (float)fx->scene->post.dof_scale);
+    return r < 0 ? 0 : r > 16 ? 16 : r;
+}
+
+/* The velocity blur's programs (defines: the velocity target's encoding, the particles' motion);
+ * no velocity pass with depth of field, whose composite writes the velocities. */
+static bool velocity_programs(sbfx *fx, const char *defines)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    const sbfx_post_params *post = &fx->scene->post;
+    char tile[160], block[160], samples[160], fast[176];
+    /* loops sized to the scene, so the compilers unroll what runs, not the largest size */
+    snprintf(tile, sizeof(tile), "%s#define TILE %d\n", defines, post->tile);
+    snprintf(block, sizeof(block), "%s#define BLOCK %d\n", defines, block_tiles(fx));
+    snprintf(samples, sizeof(samples), "%s#define SAMPLES %d\n", defines, post->samples);
+    snprintf(fast, sizeof(fast), "%s#define FAST\n", samples);
+    p->velocity_program = build(fx, "velocity.frag", defines, !post->dof);
+    p->tile_program = build(fx, "tile_max.frag", tile, true);
+    p->neighbor_program = build(fx, "neighbor_max.frag", defines, true);
+    p->class_program = build(fx, "tile_class.frag", block, true);
+    p->blur_program = build_tiled(fx, "motion_blur.frag", samples, true);
+    p->fast_program = build_tiled(fx, "motion_blur.frag", fast, true);
+    p->still_program = build_tiled(fx, "copy.frag", NULL, true);
+    return (post->dof || p->velocity_program) && p->tile_program && p->neighbor_program && p->class_program &&
+           p->blur_program && p->fast_program && p->still_program;
+}
+
+/* `frag` for tiles.vert over the particles' tiles (*inside) and, with NO_PARTICLES, the rest. */
+static bool build_split(sbfx *fx, const char *frag, const char *defines, GLuint *inside, GLuint *rest)
+{
+    char plain[256];
+    snprintf(plain, sizeof(plain), "#define NO_PARTICLES\n%s", defines);
+    *inside = sbfx_program_build(fx, "tiles.vert", frag, defines);
+    *rest = sbfx_program_build(fx, "tiles.vert", frag, plain);
+    return *inside && *rest;
+}
+
+/* The depth of field's programs; with the velocity blur its composite writes the velocities
+ * (velocity_defines: the velocity programs' defines, else NULL). */
+static bool dof_programs(sbfx *fx, const char *velocity_defines, bool shimmer, bool float_ok)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    char setup[32], blur[48], composite[192];
+    snprintf(setup, sizeof(setup), "#define DOF_SCALE %d\n", fx->scene->post.dof_scale);
+    snprintf(blur, sizeof(blur), "#define RADIUS %d\n%s", dof_blur_radius(fx), float_ok ? "#define PAIRS\n" : "");
+    snprintf(composite, sizeof(composite), "%s%s%s", shimmer ? "#define HAS_SHIMMER\n" : "",
+             velocity_defines ? "#define WRITE_VELOCITY\n" : "", velocity_defines ? velocity_defines : "");
+    p->dof_blur_program = build(fx, "dof_blur.frag", blur, true);
+    return build_split(fx, "dof_setup.frag", setup, &p->dof_setup_program, &p->dof_setup_plain_program) &&
+           build_split(fx, "dof_composite.frag", composite, &p->dof_composite_program, &p->dof_plain_program) &&
+           p->dof_blur_program;
 }
 
 sbfx_result sbfx_post_programs_create(sbfx *fx)
@@ -126,30 +219,17 @@ sbfx_result sbfx_post_programs_create(sbfx *fx)
     if (fx->scene->plan.distortion && !float_ok)
         sbfx_log(fx, SBFX_LOG_WARN, "heat shimmer needs a float particle target (GL_EXT_color_buffer_half_float "
                  "or GL_EXT_color_buffer_float): shimmer is off");
-    char defines[128], tile_defines[160], dof_defines[32];
-    bool shimmer = fx->scene->plan.distortion && float_ok;
+    char defines[128];
     snprintf(defines, sizeof(defines), "%s%s", p->encode_velocity ? "#define ENCODE_UNORM\n" : "",
              fx->scene->plan.particle_velocity && float_ok ? "#define HAS_PARTICLE_VELOCITY\n" : "");
-    /* loops sized to the scene, so the compilers unroll what runs, not the largest size */
-    snprintf(tile_defines, sizeof(tile_defines), "%s#define TILE %d\n", defines, fx->scene->post.tile);
-    snprintf(dof_defines, sizeof(dof_defines), "#define DOF_SCALE %d\n", fx->scene->post.dof_scale);
     bool velocity = fx->scene->post.blur == SBFX_BLUR_VELOCITY, history = fx->scene->post.blur == SBFX_BLUR_HISTORY;
-    bool dof = fx->scene->post.dof;
     p->copy_program = build(fx, "copy.frag", NULL, true);
     p->history_program = build(fx, "history_blur.frag", NULL, history);
-    p->velocity_program = build(fx, "velocity.frag", defines, velocity);
-    p->tile_program = build(fx, "tile_max.frag", tile_defines, velocity);
-    p->neighbor_program = build(fx, "neighbor_max.frag", defines, velocity);
-    p->blur_program = build(fx, "motion_blur.frag", defines, velocity);
-    p->dof_setup_program = build(fx, "dof_setup.frag", dof_defines, dof);
-    p->dof_blur_program = build(fx, "dof_blur.frag", NULL, dof);
-    p->dof_composite_program = build(fx, "dof_composite.frag", shimmer ? "#define HAS_SHIMMER\n" : NULL, dof);
-    GLuint need[] = {p->copy_program, history ? p->history_program : 1, velocity ? p->blur_program : 1,
-                     velocity ? p->velocity_program : 1, velocity ? p->tile_program : 1,
-                     velocity ? p->neighbor_program : 1, dof ? p->dof_composite_program : 1,
-                     dof ? p->dof_setup_program : 1, dof ? p->dof_blur_program : 1};
-    for (size_t i = 0; i < ARRAY_SIZE(need); i++)
-        if (!need[i]) return SBFX_ERR_SHADER;
+    bool ok = p->copy_program && (!history || p->history_program);
+    ok = ok && (!velocity || velocity_programs(fx, defines));
+    ok = ok && (!fx->scene->post.dof ||
+                dof_programs(fx, velocity ? defines : NULL, fx->scene->plan.distortion && float_ok, float_ok));
+    if (!ok) return SBFX_ERR_SHADER;
     locate_post_uniforms(p);
     return SBFX_OK;
 }
@@ -158,7 +238,7 @@ static void destroy_targets(sbfx *fx)
 {
     sbfx_post_gl *p = &fx->render->post;
     sbfx_rt *all[] = {&p->frame[0], &p->frame[1], &p->history[0], &p->history[1], &p->velocity,
-                      &p->tile_rows, &p->tiles, &p->neighbors, &p->dof[0], &p->dof[1]};
+                      &p->tile_rows, &p->tiles, &p->neighbors, &p->classes, &p->dof[0], &p->dof[1]};
     for (size_t i = 0; i < ARRAY_SIZE(all); i++) sbfx_rt_destroy(fx, all[i]);
     p->width = p->height = 0;
     p->history_valid = false;
@@ -168,9 +248,9 @@ void sbfx_post_destroy(sbfx *fx)
 {
     sbfx_post_gl *p = &fx->render->post;
     destroy_targets(fx);
-    GLuint programs[] = {p->velocity_program, p->tile_program, p->neighbor_program, p->blur_program,
-                         p->history_program, p->copy_program, p->dof_setup_program, p->dof_blur_program,
-                         p->dof_composite_program};
+    GLuint programs[] = {p->velocity_program, p->tile_program, p->neighbor_program, p->class_program,
+                         p->blur_program, p->fast_program, p->still_program, p->history_program, p->copy_program, p->dof_setup_program, p->dof_blur_program,
+                         p->dof_composite_program, p->dof_plain_program, p->dof_setup_plain_program};
     for (size_t i = 0; i < ARRAY_SIZE(programs); i++) sbfx_program_delete(fx, programs[i]);
 }
 
@@ -189,13 +269,18 @@ sbfx_result sbfx_post_targets_ensure(sbfx *fx, int w, int h)
     const sbfx_rt_format *c = p->color_format, *v = p->velocity_format;
     bool ok = true;
     int frames = (fx->scene->post.dof ? 1 : 0) + (fx->scene->post.blur != SBFX_BLUR_NONE ? 1 : 0);
-    for (int i = 0; i < frames; i++) ok = ok && make(fx, &p->frame[i], w, h, c, NULL, GL_NEAREST);
+    /* frame[1] is the depth of field's image when the velocity blur follows: its composite writes
+     * the velocities beside it (dof_composite.frag, WRITE_VELOCITY) */
+    for (int i = 0; i < frames; i++) ok = ok && make(fx, &p->frame[i], w, h, c, i == 1 && fused_velocity(fx) ? v : NULL, GL_NEAREST);
     if (fx->scene->post.blur == SBFX_BLUR_HISTORY)
         for (int i = 0; i < 2; i++) ok = ok && make(fx, &p->history[i], w, h, c, NULL, GL_NEAREST);
     if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) {
         int t = fx->scene->post.tile, tw = (w + t - 1) / t, th = (h + t - 1) / t;
-        ok = ok && make(fx, &p->velocity, w, h, v, NULL, GL_NEAREST) && make(fx, &p->tile_rows, tw, h, v, NULL, GL_NEAREST) &&
-             make(fx, &p->tiles, tw, th, v, NULL, GL_NEAREST) && make(fx, &p->neighbors, tw, th, v, NULL, GL_NEAREST);
+        int k = block_tiles(fx), bw = (tw + k - 1) / k, bh = (th + k - 1) / k;
+        ok = ok && (fused_velocity(fx) || make(fx, &p->velocity, w, h, v, NULL, GL_NEAREST)) &&
+             make(fx, &p->tile_rows, tw, h, v, NULL, GL_NEAREST) &&
+             make(fx, &p->tiles, tw, th, v, NULL, GL_NEAREST) && make(fx, &p->neighbors, tw, th, v, NULL, GL_NEAREST) &&
+             make(fx, &p->classes, bw, bh, v, NULL, GL_NEAREST);
     }
     if (fx->scene->post.dof) {
         int s = fx->scene->post.dof_scale, dw = (w + s - 1) / s, dh = (h + s - 1) / s;
@@ -216,6 +301,7 @@ typedef struct post_frame {
     const sbfx_frame *f;
     float depth_model[4];  /* window depth -> distance (projection.c) */
     float ndc_depth[2];    /* window depth -> ndc z */
+    float reproject[16];   /* current NDC -> previous clip (the velocity blur) */
 } post_frame;
 
 /* The host's textures are read through sbfx's samplers, sbfx's own through their parameters. */
@@ -230,10 +316,10 @@ static void bind_unit(const sbfx *fx, GLuint program, int uniform, int unit, GLu
 
 sbfx_gl_units sbfx_post_units(const sbfx *fx)
 {
-    /* copy: unit 0; history: 0-1; velocity blur: 0-3; depth of field: 0-6 */
+    /* copy: unit 0; history: 0-1; velocity blur: 0-4; depth of field: 0-6 */
     uint32_t units = 1u;
     if (fx->scene->post.blur == SBFX_BLUR_HISTORY) units = 3u;
-    if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) units = 15u;
+    if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) units = 31u;
     if (fx->scene->post.dof) units = 127u;
     return (sbfx_gl_units){.tex_2d = units};
 }
@@ -268,6 +354,16 @@ static void set_depth_uniforms(const sbfx_post_gl *p, GLuint prog, const post_fr
     glUniform4fv(post_loc(p, prog, PU_DEPTH_MODEL), 1, pf->depth_model);
 }
 
+/* What the velocities are made of (velocity.frag, or dof_composite.frag's WRITE_VELOCITY). */
+static void set_velocity_uniforms(sbfx *fx, GLuint prog, const post_frame *pf)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    glUniformMatrix4fv(post_loc(p, prog, PU_REPROJECT), 1, GL_FALSE, pf->reproject);
+    glUniform2fv(post_loc(p, prog, PU_NDC_DEPTH), 1, pf->ndc_depth);
+    glUniform1f(post_loc(p, prog, PU_SHUTTER), fx->scene->post.shutter);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->scene->post.tile);
+}
+
 /* The particles' coverage and distance (the motion target) for the DoF's CoC, when this frame
  * drew particles into it; the pixel -> particle texel scale for the composite. */
 static void bind_particle_motion(sbfx *fx, GLuint prog, int unit)
@@ -282,14 +378,25 @@ static void bind_particle_motion(sbfx *fx, GLuint prog, int unit)
                     1.0f / (divisor * (float)fx->gl->low_height));
 }
 
-/* Depth of field: split by CoC at the blur resolution, blur both fields separably (two
- * passes), composite over the sharp image. */
-static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
+/* A post pass of `prog` over the particles' tiles (inside) or the rest (tiles.vert), in a target
+ * of w x h at 1/divisor of the output. */
+static void draw_tiles(sbfx *fx, GLuint prog, bool inside, int w, int h, int divisor)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    sbfx_pass_uniforms u = {.tile_size = post_loc(p, prog, PU_TILE_SIZE), .tile_grid = post_loc(p, prog, PU_TILE_GRID),
+                            .tile_target = post_loc(p, prog, PU_TILE_TARGET)};
+    sbfx_tiles_draw(fx, &u, inside, w, h, divisor);
+    fx->counters.passes++;
+}
+
+/* Depth of field, step 1, over the particles' tiles (inside) or the rest. */
+static void dof_setup(sbfx *fx, const post_frame *pf, GLuint prog, GLuint source, bool inside)
 {
     sbfx_post_gl *p = &fx->render->post;
     const sbfx_post_params *post = &fx->scene->post;
     const sbfx_frame *f = pf->f;
-    GLuint prog = p->dof_setup_program;
+    const sbfx_tiles *t = &fx->render->tiles;
+    if ((inside ? t->inside : t->outside) == 0) return;
     begin(prog, p->dof[0].framebuffer, p->dof[0].width, p->dof[0].height);
     sbfx_bind_texture(0, GL_TEXTURE_2D, source, fx->gl->color_sampler); /* LINEAR: 2 x 2 means in one fetch */
     glUniform1i(post_loc(p, prog, PU_COLOR), 0);
@@ -303,8 +410,23 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     bind_unit(fx, prog, PU_SCENE_COLOR, 3, f->scene_color_texture);
     glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->scene->desc.target_divisor);
     glUniform2i(post_loc(p, prog, PU_PARTICLE_SIZE), fx->gl->low_width, fx->gl->low_height);
-    finish(fx);
-    prog = p->dof_blur_program;
+    draw_tiles(fx, prog, inside, p->dof[0].width, p->dof[0].height, post->dof_scale);
+}
+
+static void dof_composite(sbfx *fx, const post_frame *pf, GLuint prog, GLuint source, GLuint fbo, bool inside);
+
+/* Depth of field: split by CoC at the blur resolution, blur both fields separably (two
+ * passes), composite over the sharp image. The setup and the composite draw over the particles'
+ * tiles and, without the particles' fetches (NO_PARTICLES), over the rest; the setup's blocks lie
+ * in one tile each only where its scale divides the tile: else its full variant covers both. */
+static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    const sbfx_post_params *post = &fx->scene->post;
+    bool split = fx->render->tiles.size % post->dof_scale == 0;
+    dof_setup(fx, pf, p->dof_setup_program, source, true);
+    dof_setup(fx, pf, split ? p->dof_setup_plain_program : p->dof_setup_program, source, false);
+    GLuint prog = p->dof_blur_program;
     for (int dir = 0; dir < 2; dir++) {
         const sbfx_rt *in = &p->dof[dir], *out = &p->dof[1 - dir];
         begin(prog, out->framebuffer, out->width, out->height);
@@ -315,7 +437,18 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
         glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), post->dof_max_radius / post->dof_scale);
         finish(fx);
     }
-    prog = p->dof_composite_program;
+    dof_composite(fx, pf, p->dof_composite_program, source, fbo, true);
+    dof_composite(fx, pf, p->dof_plain_program, source, fbo, false);
+}
+
+/* Depth of field, step 3, over the particles' tiles (inside) or the rest (tiles.vert). */
+static void dof_composite(sbfx *fx, const post_frame *pf, GLuint prog, GLuint source, GLuint fbo, bool inside)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    const sbfx_post_params *post = &fx->scene->post;
+    const sbfx_frame *f = pf->f;
+    const sbfx_tiles *t = &fx->render->tiles;
+    if ((inside ? t->inside : t->outside) == 0) return;
     begin(prog, fbo, f->width, f->height);
     bind_unit(fx, prog, PU_COLOR, 0, source);
     bind_unit(fx, prog, PU_FAR_FIELD, 1, p->dof[0].texture[0]);
@@ -331,7 +464,8 @@ static void pass_dof(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
     /* the shimmer offsets, LINEAR like the composite's (none: an empty unit reads 0, no offset) */
     sbfx_bind_texture(6, GL_TEXTURE_2D, fx->gl->particles.texture[1], fx->gl->color_sampler);
     glUniform1i(post_loc(p, prog, PU_DISTORTION), 6);
-    finish(fx);
+    if (fused_velocity(fx)) set_velocity_uniforms(fx, prog, pf);
+    draw_tiles(fx, prog, inside, f->width, f->height, 1);
 }
 
 /* The seed's motion blur: history = mix(new, history, e^(-dt/persistence)), then shown. */
@@ -394,65 +528,121 @@ static void view_projection(const sbfx_frame *f, double out[16])
     multiply4(p, v, out);
 }
 
-/* The longest velocity of `tile` texels of `in` along (dx, dy), into `out`: rows, then columns. */
-static void pass_tile_max(sbfx *fx, const sbfx_rt *in, const sbfx_rt *out, int dx, int dy)
+/* Current NDC -> the previous frame's clip space, in double (identity on the first frame). */
+static void reprojection(const sbfx *fx, const sbfx_frame *f, float out[16])
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    double now[16], inverse[16], reproject[16];
+    view_projection(f, now);
+    if (!p->have_previous || !invert4(now, inverse)) memcpy(reproject, (double[16]){1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, sizeof(reproject));
+    else multiply4(p->previous_view_projection, inverse, reproject);
+    for (int i = 0; i < 16; i++) out[i] = (float)reproject[i];
+}
+
+/* The longest velocity of `tile` texels of `in` (w x h) along (dx, dy), into `out`: rows, then
+ * columns. */
+static void pass_tile_max(sbfx *fx, GLuint in, int w, int h, const sbfx_rt *out, int dx, int dy)
 {
     const sbfx_post_gl *p = &fx->render->post;
     GLuint prog = p->tile_program;
     begin(prog, out->framebuffer, out->width, out->height);
-    bind_unit(fx, prog, PU_VELOCITY, 0, in->texture[0]);
+    bind_unit(fx, prog, PU_VELOCITY, 0, in);
     glUniform1i(post_loc(p, prog, PU_TILE), fx->scene->post.tile);
-    glUniform2i(post_loc(p, prog, PU_SIZE), in->width, in->height);
+    glUniform2i(post_loc(p, prog, PU_SIZE), w, h);
     glUniform2i(post_loc(p, prog, PU_DIRECTION), dx, dy);
     glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->scene->post.tile);
     finish(fx);
 }
 
-/* McGuire's reconstruction: velocity, tile max (rows, then columns), neighbour max, gather. */
+/* The velocity blur's blocks of `class` (tile_class.frag) with `program`, as instances of
+ * blur_tiles.vert, which reads the classes on unit 4. */
+static void draw_blocks(sbfx *fx, GLuint program, float class, const sbfx_frame *f)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    bind_unit(fx, program, PU_CLASSES, 4, p->classes.texture[0]);
+    glUniform1f(post_loc(p, program, PU_CLASS), class);
+    glUniform1i(post_loc(p, program, PU_BLOCK_COLUMNS), p->classes.width);
+    glUniform1f(post_loc(p, program, PU_BLOCK_SIZE), (float)(block_tiles(fx) * fx->scene->post.tile));
+    glUniform2f(post_loc(p, program, PU_TARGET), (float)f->width, (float)f->height);
+    glBindVertexArray(fx->gl->fullscreen_vao);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, p->classes.width * p->classes.height);
+    fx->counters.passes++;
+    fx->counters.draw_calls++;
+}
+
+/* Which blocks the gather can change and how (tile_class.frag); as before the classes (the
+ * tiles' full_screen: the bench's "before", the tests' control) every block is the full
+ * gather's. */
+static void classify_blocks(sbfx *fx)
+{
+    sbfx_post_gl *p = &fx->render->post;
+    if (fx->render->tiles.full_screen) {
+        static const GLfloat moving[4] = {1.0f, 0.0f, 0.0f, 1.0f};
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, p->classes.framebuffer);
+        glClearBufferfv(GL_COLOR, 0, moving);
+        return;
+    }
+    GLuint prog = p->class_program;
+    begin(prog, p->classes.framebuffer, p->classes.width, p->classes.height);
+    bind_unit(fx, prog, PU_NEIGHBOR_MAX, 0, p->neighbors.texture[0]);
+    glUniform2i(post_loc(p, prog, PU_TILES_SIZE), p->neighbors.width, p->neighbors.height);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->scene->post.tile);
+    finish(fx);
+}
+
+/* The gather with `prog` over the blocks of `class`: 1 the full path, 0.5 the fast one. */
+static void gather(sbfx *fx, const post_frame *pf, GLuint prog, float class, GLuint source, GLuint fbo)
+{
+    const sbfx_post_gl *p = &fx->render->post;
+    const sbfx_frame *f = pf->f;
+    begin(prog, fbo, f->width, f->height);
+    bind_unit(fx, prog, PU_COLOR, 0, source);
+    bind_unit(fx, prog, PU_VELOCITY, 1, velocity_texture(fx));
+    bind_unit(fx, prog, PU_NEIGHBOR_MAX, 2, p->neighbors.texture[0]);
+    bind_unit(fx, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
+    glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
+    glUniform1i(post_loc(p, prog, PU_TILE), fx->scene->post.tile);
+    glUniform1i(post_loc(p, prog, PU_SAMPLES), fx->scene->post.samples);
+    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)fx->scene->post.tile);
+    set_depth_uniforms(p, prog, pf);
+    draw_blocks(fx, prog, class, f);
+}
+
+/* McGuire's reconstruction: velocity, tile max (rows, then columns), neighbour max, the blocks
+ * it moves (tile_class.frag), the gather over them and a copy over the rest. */
 static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GLuint fbo)
 {
     sbfx_post_gl *p = &fx->render->post;
     const sbfx_frame *f = pf->f;
     const sbfx_post_params *post = &fx->scene->post;
-    double now[16], inverse[16], reproject[16];
-    view_projection(f, now);
-    if (!p->have_previous || !invert4(now, inverse)) memcpy(reproject, (double[16]){1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, sizeof(reproject));
-    else multiply4(p->previous_view_projection, inverse, reproject);
-    float reproject_f[16];
-    for (int i = 0; i < 16; i++) reproject_f[i] = (float)reproject[i];
     GLuint prog = p->velocity_program;
-    begin(prog, p->velocity.framebuffer, f->width, f->height);
-    bind_unit(fx, prog, PU_SCENE_DEPTH, 0, f->scene_depth_texture);
-    bind_unit(fx, prog, PU_PARTICLE_VELOCITY, 1, fx->gl->particles.texture[2]);
-    glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl->particles.texture[2]);
-    glUniformMatrix4fv(post_loc(p, prog, PU_REPROJECT), 1, GL_FALSE, reproject_f);
-    glUniform2fv(post_loc(p, prog, PU_NDC_DEPTH), 1, pf->ndc_depth);
-    glUniform2f(post_loc(p, prog, PU_SIZE), (float)f->width, (float)f->height);
-    glUniform1f(post_loc(p, prog, PU_SHUTTER), post->shutter);
-    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
-    glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->scene->desc.target_divisor);
-    glUniform2i(post_loc(p, prog, PU_LOW_SIZE), fx->gl->low_width, fx->gl->low_height);
-    finish(fx);
-    pass_tile_max(fx, &p->velocity, &p->tile_rows, 1, 0);
-    pass_tile_max(fx, &p->tile_rows, &p->tiles, 0, 1);
+    if (!fused_velocity(fx)) {
+        begin(prog, p->velocity.framebuffer, f->width, f->height);
+        bind_unit(fx, prog, PU_SCENE_DEPTH, 0, f->scene_depth_texture);
+        bind_unit(fx, prog, PU_PARTICLE_VELOCITY, 1, fx->gl->particles.texture[2]);
+        glUniform1i(post_loc(p, prog, PU_PARTICLES_DRAWN), p->particles_drawn && fx->gl->particles.texture[2]);
+        set_velocity_uniforms(fx, prog, pf);
+        set_depth_uniforms(p, prog, pf);
+        glUniform2f(post_loc(p, prog, PU_SIZE), (float)f->width, (float)f->height);
+        glUniform1f(post_loc(p, prog, PU_DIVISOR), (float)fx->scene->desc.target_divisor);
+        glUniform2i(post_loc(p, prog, PU_LOW_SIZE), fx->gl->low_width, fx->gl->low_height);
+        finish(fx);
+    }
+    pass_tile_max(fx, velocity_texture(fx), f->width, f->height, &p->tile_rows, 1, 0);
+    pass_tile_max(fx, p->tile_rows.texture[0], p->tile_rows.width, p->tile_rows.height, &p->tiles, 0, 1);
     prog = p->neighbor_program;
     begin(prog, p->neighbors.framebuffer, p->neighbors.width, p->neighbors.height);
     bind_unit(fx, prog, PU_TILES, 0, p->tiles.texture[0]);
     glUniform2i(post_loc(p, prog, PU_TILES_SIZE), p->tiles.width, p->tiles.height);
     glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
     finish(fx);
-    prog = p->blur_program;
+    classify_blocks(fx);
+    gather(fx, pf, p->blur_program, 1.0f, source, fbo);
+    gather(fx, pf, p->fast_program, 0.5f, source, fbo);
+    prog = p->still_program;
     begin(prog, fbo, f->width, f->height);
-    bind_unit(fx, prog, PU_COLOR, 0, source);
-    bind_unit(fx, prog, PU_VELOCITY, 1, p->velocity.texture[0]);
-    bind_unit(fx, prog, PU_NEIGHBOR_MAX, 2, p->neighbors.texture[0]);
-    bind_unit(fx, prog, PU_SCENE_DEPTH, 3, f->scene_depth_texture);
-    glUniform2i(post_loc(p, prog, PU_SIZE), f->width, f->height);
-    glUniform1i(post_loc(p, prog, PU_TILE), post->tile);
-    glUniform1i(post_loc(p, prog, PU_SAMPLES), post->samples);
-    glUniform1f(post_loc(p, prog, PU_MAX_RADIUS), (float)post->tile);
-    set_depth_uniforms(p, prog, pf);
-    finish(fx);
+    bind_unit(fx, prog, PU_SOURCE, 0, source);
+    draw_blocks(fx, prog, 0.0f, f);
 }
 
 /* Runs the post chain on `source` (the composite's image, or the bare scene on an idle frame)
@@ -460,8 +650,9 @@ static void pass_velocity_blur(sbfx *fx, const post_frame *pf, GLuint source, GL
 sbfx_result sbfx_post_run(sbfx *fx, const sbfx_frame *f, const sbfx_depth_model *depth, GLuint source)
 {
     sbfx_post_gl *p = &fx->render->post;
-    post_frame pf = {f, {0}, {depth->ndc[0], depth->ndc[1]}};
+    post_frame pf = {f, {0}, {depth->ndc[0], depth->ndc[1]}, {0}};
     sbfx_depth_model_uniform(depth, pf.depth_model);
+    if (fx->scene->post.blur == SBFX_BLUR_VELOCITY) reprojection(fx, f, pf.reproject);
     p->host_depth = f->scene_depth_texture;
     p->host_color = f->scene_color_texture;
     double dt = p->have_previous ? fx->sim->time - p->last_time : 0.0;

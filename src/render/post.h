@@ -8,11 +8,13 @@
 #include "render/projection.h"
 
 /* Post-effect state: programs at load, targets with the output size. */
-#define SBFX_POST_PROGRAMS 9
-#define SBFX_POST_UNIFORMS 40
+#define SBFX_POST_PROGRAMS 14
+#define SBFX_POST_UNIFORMS 48
 typedef struct sbfx_post_gl {
-    GLuint velocity_program, tile_program, neighbor_program, blur_program;
+    GLuint velocity_program, tile_program, neighbor_program, class_program, blur_program, fast_program, still_program;
     GLuint history_program, copy_program, dof_setup_program, dof_blur_program, dof_composite_program;
+    GLuint dof_plain_program, dof_setup_plain_program; /* the DoF composite and setup outside the
+                                                           particles' tiles (NO_PARTICLES) */
     const sbfx_rt_format *color_format, *velocity_format;
     bool encode_velocity;      /* RGBA8 velocity: stored as v / (2 max) + 0.5 */
     sbfx_rt frame[2];          /* full-res images between post passes */
@@ -20,6 +22,8 @@ typedef struct sbfx_post_gl {
     int history_next;
     bool history_valid;
     sbfx_rt velocity, tile_rows, tiles, neighbors; /* tile_rows: tile max along rows only */
+    sbfx_rt classes;           /* the velocity blur's blocks: 1 the gather, 0.5 its fast path, 0 still
+                                  (tile_class.frag) */
     sbfx_rt dof[2];            /* each: far field + near field, ping-pong of the separable blur */
     int width, height;
     double last_time;          /* simulation time of the previous render */

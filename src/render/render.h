@@ -106,6 +106,9 @@ void sbfx_tiles_destroy(sbfx *fx);
  * rectangles (and, where sbfx owns the scene, the rest into the scene copy's) and uploads them;
  * sets the frame's composite_tiles and composite_pixels. */
 void sbfx_tiles_plan(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count);
+/* An idle frame's tiles (none marked; every one with full_screen): the rest of the screen for
+ * the passes that draw there after it (post.c's depth of field). */
+void sbfx_tiles_plan_idle(sbfx *fx, const sbfx_frame *f);
 /* The frame has tiles to composite. */
 bool sbfx_tiles_any(const sbfx *fx);
 /* Draws the composite's rectangles (inside) or the scene copy's (!inside) with the current

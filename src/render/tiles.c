@@ -216,6 +216,20 @@ static void size_grid(sbfx_tiles *t, int width, int height)
     t->rows = (height + t->size - 1) / t->size;
 }
 
+/* The marked tiles as rectangles, the rest's too where sbfx owns the scene, into the buffer. */
+static void upload_rects(sbfx *fx, const sbfx_frame *f)
+{
+    sbfx_tiles *t = &fx->render->tiles;
+    make_rects(t, fx->scene->plan.owns_scene);
+    count_cover(t, f->width, f->height);
+    fx->counters.composite_tiles = t->marked;
+    fx->counters.composite_pixels = (int)t->pixels;
+    int rects = t->inside + t->outside;
+    if (rects == 0) return;
+    glBindBuffer(GL_ARRAY_BUFFER, t->buffer);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(rects * sizeof(sbfx_tile_rect)), t->rects);
+}
+
 void sbfx_tiles_plan(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int count)
 {
     sbfx_tiles *t = &fx->render->tiles;
@@ -232,14 +246,15 @@ void sbfx_tiles_plan(sbfx *fx, const sbfx_frame *f, const frame_params *fp, int 
             all = mark_particle(t, &g, divisor, f->width, f->height);
     }
     if (all) memset(t->mask, 1, (size_t)(t->columns * t->rows));
-    make_rects(t, fx->scene->plan.owns_scene);
-    count_cover(t, f->width, f->height);
-    fx->counters.composite_tiles = t->marked;
-    fx->counters.composite_pixels = (int)t->pixels;
-    int rects = t->inside + t->outside;
-    if (rects == 0) return;
-    glBindBuffer(GL_ARRAY_BUFFER, t->buffer);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(rects * sizeof(sbfx_tile_rect)), t->rects);
+    upload_rects(fx, f);
+}
+
+void sbfx_tiles_plan_idle(sbfx *fx, const sbfx_frame *f)
+{
+    sbfx_tiles *t = &fx->render->tiles;
+    size_grid(t, f->width, f->height);
+    memset(t->mask, t->full_screen ? 1 : 0, (size_t)(t->columns * t->rows));
+    upload_rects(fx, f);
 }
 
 bool sbfx_tiles_any(const sbfx *fx) { return fx->render->tiles.inside > 0; }

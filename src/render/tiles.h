@@ -29,7 +29,8 @@ typedef struct sbfx_tile_rect {
 typedef struct sbfx_tiles {
     /* settings (tests and the bench; never a public mode) */
     bool full_screen;        /* the frame as before tiles: the composite and the depth passes over
-                                every tile, each particle's whole rectangle (particle.vert): the
+                                every tile, each particle's whole rectangle (particle.vert), the
+                                velocity blur's gather over every block (post.c): the
                                 picture's control, the bench's "before" */
     int size_wanted;         /* pixels per tile (0: SBFX_TILE_SIZE), rounded up to a power of two >= 8 */
     /* the frame's */

@@ -128,7 +128,7 @@ static void copy_uniform(GLuint from, GLint src, GLint dst, GLenum type)
     case GL_FLOAT_VEC3: glGetUniformfv(from, src, f), glUniform3fv(dst, 1, f); break;
     case GL_FLOAT_VEC4: glGetUniformfv(from, src, f), glUniform4fv(dst, 1, f); break;
     case GL_FLOAT_MAT4: glGetUniformfv(from, src, f), glUniformMatrix4fv(dst, 1, GL_FALSE, f); break;
-    case GL_INT: case GL_BOOL: glGetUniformiv(from, src, i), glUniform1iv(dst, 1, i); break;
+    case GL_INT: case GL_BOOL: case GL_SAMPLER_2D: glGetUniformiv(from, src, i), glUniform1iv(dst, 1, i); break;
     case GL_INT_VEC2: glGetUniformiv(from, src, i), glUniform2iv(dst, 1, i); break;
     default: fprintf(stderr, "bench: fragment count: vertex uniform type 0x%04x not copied\n", type);
     }

@@ -435,6 +435,99 @@ CHECK_TEST(no_nan_at_screen_edges_or_clear_depth)
     sbfx_destroy(fx);
 }
 
+/* The velocity blur's blocks (tile_class.frag) of a class (1 the gather, 0.5 its fast path, 0
+ * still), read back. */
+static int blocks_of(sbfx *fx, float class, int *total)
+{
+    const sbfx_rt *c = &fx->render->post.classes;
+    float v[4 * 16 * 16];
+    CHECK(c->width * c->height <= 16 * 16, "%dx%d blocks", c->width, c->height);
+    glBindFramebuffer(GL_FRAMEBUFFER, c->framebuffer);
+    glReadPixels(0, 0, c->width, c->height, GL_RGBA, GL_FLOAT, v);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    int n = 0;
+    for (int i = 0; i < c->width * c->height; i++) n += v[4 * i] == class;
+    *total = c->width * c->height;
+    return n;
+}
+
+/* A still camera: every block is still, drawn by the copy, and the picture is the input. */
+CHECK_TEST(a_still_camera_copies_every_block)
+{
+    post_fixture p;
+    post_open(&p);
+    for (int i = 0; i < W * H * 4; i++) p.color[i] = (uint8_t)(i * 37 % 251);
+    upload_color(&p);
+    sbfx *fx = post_module(&p, SMOKE_MEDIA "post = { motion_blur = { mode = \"velocity\"; shutter = 1.0; }; };\n");
+    for (int frame = 0; frame < 2; frame++)
+        CHECK(sbfx_render(fx, &p.gl.frame) == SBFX_OK, "%s", sbfx_last_error(fx));
+    int total, moving = blocks_of(fx, 1.0f, &total) + blocks_of(fx, 0.5f, &total);
+    uint8_t out[W * H * 4];
+    read_out(&p, out);
+    int differ = 0;
+    for (int i = 0; i < W * H * 4; i++) differ += (i % 4 != 3) && out[i] != p.color[i];
+    printf("# still camera: %d of %d blocks moving, %d channels changed\n", moving, total, differ);
+    CHECK(total == 4 * 2 && moving == 0, "%d of %d blocks moving, want 0 of 8", moving, total);
+    CHECK(differ == 0, "%d channels changed without motion", differ);
+    sbfx_destroy(fx);
+}
+
+/* A sideways pan over a near wall (left half, 4 m) and the sky (right half): the wall moves 12 px,
+ * the sky not at all. The gather runs over the wall's blocks and the block its tiles' neighbours
+ * reach (three columns of 32 px), the copy over the last column: byte for byte the gather's over
+ * every block (the tiles' full_screen) there. The first column's neighbourhoods all move as one
+ * (the wall's 6 px of blur): its blocks take the fast path, which for one velocity at one depth
+ * is the full gather's weights (within a level: the order of the arithmetic). */
+static double wall_and_sky(int x, int y, void *u) { (void)y, (void)u; return x < W / 2 ? 4.0 : INFINITY; }
+
+CHECK_TEST(only_moving_blocks_get_the_gather)
+{
+    post_fixture p;
+    post_open(&p);
+    fixture_depth(&p.gl, wall_and_sky, NULL);
+    for (int i = 0; i < W * H * 4; i++) p.color[i] = (uint8_t)(i * 37 % 251);
+    upload_color(&p);
+    const char *text = SMOKE_MEDIA "post = { motion_blur = { mode = \"velocity\"; shutter = 1.0; tile = 8; }; };\n";
+    sbfx *fx = post_module(&p, text), *control = post_module(&p, text);
+    control->render->tiles.full_screen = true;
+    double metres = 12.0 * 2.0 / W * 4.0 / p.gl.frame.projection[0];
+    uint8_t out[W * H * 4], want[W * H * 4];
+    sbfx *both[2] = {fx, control};
+    uint8_t *images[2] = {out, want};
+    int total = 0, full = 0, fast = 0, all_total = 0, all_moving = 0;
+    for (int k = 0; k < 2; k++) {
+        p.gl.frame.view[12] = 0.0f;
+        CHECK(sbfx_render(both[k], &p.gl.frame) == SBFX_OK, "%s", sbfx_last_error(both[k]));
+        p.gl.frame.view[12] = (float)-metres;
+        CHECK(sbfx_render(both[k], &p.gl.frame) == SBFX_OK, "%s", sbfx_last_error(both[k]));
+        read_out(&p, images[k]);
+    }
+    full = blocks_of(fx, 1.0f, &total);
+    fast = blocks_of(fx, 0.5f, &total);
+    all_moving = blocks_of(control, 1.0f, &all_total);
+    int differ = 0, copied = 0, changed = 0, fast_worst = 0;
+    for (int i = 0; i < W * H * 4; i++) {
+        bool fast_column = (i / 4) % W < 32;
+        if (fast_column) fast_worst = abs(out[i] - want[i]) > fast_worst ? abs(out[i] - want[i]) : fast_worst;
+        else differ += out[i] != want[i];
+        if (i % 4 == 3) continue;
+        if ((i / 4) % W >= 96) copied += out[i] != p.color[i];
+        else changed += out[i] != p.color[i];
+    }
+    printf("# pan over a wall and the sky: of %d blocks %d the gather's, %d its fast path's (control: %d the "
+           "gather's); %d channels differ from the gather everywhere outside the fast column, at most %d levels "
+           "in it; %d changed in the moving blocks, %d in the still column\n",
+           total, full, fast, all_moving, differ, fast_worst, changed, copied);
+    CHECK(full == 2 * 2 && fast == 2, "%d full and %d fast blocks of %d, want 4 and 2 (columns 2-3, 1)", full, fast, total);
+    CHECK(fast_worst <= 1, "the fast path differs from the gather by %d levels", fast_worst);
+    CHECK(all_moving == all_total, "the control drew the copy over %d blocks", all_total - all_moving);
+    CHECK(changed > 1000, "the wall was not blurred (%d channels changed)", changed);
+    CHECK(copied == 0, "the still column changed (%d channels)", copied);
+    CHECK(differ == 0, "%d channels differ from the gather over every block", differ);
+    sbfx_destroy(fx);
+    sbfx_destroy(control);
+}
+
 /* Each post effect exists in the plan only when asked for. */
 CHECK_TEST(post_effects_only_when_asked)
 {
@@ -443,8 +536,8 @@ CHECK_TEST(post_effects_only_when_asked)
     struct { const char *post; int programs; } cases[] = {
         {"", 3},
         {"post = { motion_blur = { mode = \"history\"; }; };\n", 3 + 2},
-        {"post = { motion_blur = { mode = \"velocity\"; }; };\n", 3 + 5},
-        {"post = { depth_of_field = { near = [1.0, 2.0]; far = [10.0, 20.0]; }; };\n", 3 + 4},
+        {"post = { motion_blur = { mode = \"velocity\"; }; };\n", 3 + 8}, /* + the blocks' classes, fast path, copy */
+        {"post = { depth_of_field = { near = [1.0, 2.0]; far = [10.0, 20.0]; }; };\n", 3 + 6}, /* + the setup and composite outside the tiles */
     };
     for (size_t i = 0; i < ARRAY_SIZE(cases); i++) {
         char text[1024];

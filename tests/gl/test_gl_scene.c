@@ -11,7 +11,9 @@
 typedef struct plan {
     const char *scene;
     int particle_programs; /* one per medium used */
-    int post_programs;     /* copy (+ 4 velocity blur, + 3 depth of field, + 1 history blur) */
+    int post_programs;     /* copy (+ 6 velocity blur: tile max, neighbour max, blocks, gather, its fast path, copy; + the velocity
+                              pass without depth of field, whose composite writes them; + 5 depth of field:
+                              blur, setup and composite inside and outside the tiles; + 1 history blur) */
     bool blackbody, phase;
     int max_particles;
     int shadow_map;        /* render.host_shadows: the host's shadow map, texels per side (0: none) */
@@ -25,7 +27,7 @@ static const plan plans[] = {
     {"campfire", 3, 1, true, false, 1024, 256, true},   /* heat: shimmer owns the scene, a copy program */
     {"dust-storm", 1, 0, false, false, 1024, 256, false},
     {"barrage", 3, 0, true, false, 4096, 256, true},
-    {"post", 4, 1 + 4 + 3, true, false, 2048, 0, true},
+    {"post", 4, 1 + 6 + 5, true, false, 2048, 0, true},
 };
 
 CHECK_TEST(plan_holds_only_what_each_scene_uses)

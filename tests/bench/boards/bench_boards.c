@@ -10,7 +10,7 @@
  * (refined: of the fragments, those of mixed resolution's refinement, render/refine.c)
  * which tools/boards-table.sh prices with Mesa's Mali estimates (mali.csv, tools/shader-stats.sh).
  *   bench_boards [--out DIR] [--sizes WxH[,WxH...]] [--step SECONDS] [--scenes a,b] [--camera scene|orbit]
- *                [--tile-sizes N[,N...]] [--quality LEVEL] [--termination on|off]
+ *                [--tile-sizes N[,N...]] [--quality LEVEL] [--termination on|off] [--frame-rate HZ]
  * --termination on|off renders with or without early termination of the particles
  * (render/terminate.c; default: each scene's render.early_termination, off unless it says on):
  * docs/gpus.md's "Front to back, and early termination".
@@ -20,6 +20,8 @@
  * other choices kept) over the test scene and writes OUT/errors.csv:
  *   scene,width,height,t,quality,pixels,mean_abs_err
  * (mean |difference| in 8-bit levels over the pixels either image changes).
+ * --frame-rate HZ (60): each counted rendering sees the frame before as a player at HZ would (the
+ * camera and the particles 1/HZ s earlier): the motion the velocity blur's blocks follow.
  * --camera orbit: the accuracy bench's camera (test_scene_orbit_camera, 8.5 m from the blast)
  * instead of each scene's own.
  * --tile-sizes renders the tiled frame once per tile size (mode "tilesN"; the default size only:
@@ -47,6 +49,7 @@ typedef struct options {
     int sizes[MAX_SIZES][2], size_count;
     int tile_sizes[MAX_TILE_SIZES], tile_size_count;
     double step;
+    double frame_rate; /* --frame-rate: the player's, for the motion between frames */
     bool orbit;   /* --camera orbit: the accuracy bench's orbit camera, not the scene's */
     bool error;          /* --error: OUT/errors.csv, each frame against its own full resolution */
     const char *quality; /* --quality LEVEL: every scene at that level (sbfx_set_quality), not its own */
@@ -66,6 +69,30 @@ static void log_line(sbfx_log_level level, const char *message, void *user)
     (void)user;
     if (level == SBFX_LOG_INFO) bench_programs_note(message);
     else fprintf(stderr, "bench_boards: sbfx: %s\n", message);
+}
+
+/* The frame before, as at the player's frame rate (--frame-rate, 60 Hz): the camera one frame
+ * earlier and the particles where they were then, so that every counted rendering (both modes
+ * render the same instant) sees the motion a player at that rate shows, not the step between the
+ * bench's frames nor none (the second rendering of an instant after the first). The velocity
+ * blur's blocks (post.c) depend on it. */
+static void previous_frame(sbfx *fx, const sbfx_scene_camera *camera, double t, float aspect, double hz)
+{
+    float view[16], projection[16];
+    if (camera) test_scene_camera(camera, t - 1.0 / hz, aspect, view, projection);
+    else test_scene_orbit_camera(t - 1.0 / hz, aspect, view, projection);
+    memcpy(fx->sim->previous_view, view, sizeof(view));
+    fx->sim->previous_render_time = fx->sim->time - 1.0 / hz;
+    fx->sim->have_previous_view = true;
+    sbfx_post_gl *p = &fx->render->post;
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            double s = 0.0;
+            for (int k = 0; k < 4; k++) s += (double)projection[k * 4 + r] * view[c * 4 + k];
+            p->previous_view_projection[c * 4 + r] = s;
+        }
+    p->last_time = fx->sim->time - 1.0 / hz;
+    p->have_previous = true;
 }
 
 /* One rendering of a frame: the module's programs and what each shaded. */
@@ -180,10 +207,13 @@ static void scene_at_size(const options *opt, const char *name, int w, int h, FI
         if (has_camera) test_scene_camera(&camera, t, (float)w / (float)h, frame.view, frame.projection);
         else test_scene_orbit_camera(t, (float)w / (float)h, frame.view, frame.projection);
         if (test_scene_draw(&host, frame.view, frame.projection) != 0) die("test scene", "GL error");
+        float aspect = (float)w / (float)h;
         fx->render->tiles.full_screen = true;
+        previous_frame(fx, has_camera ? &camera : NULL, t, aspect, opt->frame_rate);
         render_counted(fx, &frame, "full", csv, name, t);
         fx->render->tiles.full_screen = false;
         for (int k = 0; k < opt->tile_size_count; k++) {
+            previous_frame(fx, has_camera ? &camera : NULL, t, aspect, opt->frame_rate);
             char mode[32] = "tiles";
             if (opt->tile_sizes[k] > 0) snprintf(mode, sizeof(mode), "tiles%d", opt->tile_sizes[k]);
             fx->render->tiles.size_wanted = opt->tile_sizes[k];
@@ -225,7 +255,7 @@ static void parse_list(const char *text, const char *what, int *out, int max, in
 static options parse(int argc, char **argv)
 {
     options o = {.out = "build/bench", .size_count = 2, .sizes = {{1280, 720}, {1920, 1080}}, .step = 0.1,
-                 .tile_size_count = 1, .termination = -1};
+                 .frame_rate = 60.0, .tile_size_count = 1, .termination = -1};
     const char *all[] = {"barrage", "campfire", "dust-storm", "explosion", "lit-smoke", "night", "post", "smoke"};
     for (size_t i = 0; i < sizeof(all) / sizeof(all[0]); i++) snprintf(o.scenes[o.scene_count++], 64, "%s", all[i]);
     for (int i = 1; i < argc; i++) {
@@ -238,6 +268,7 @@ static options parse(int argc, char **argv)
         i++;
         if (!strcmp(a, "--out")) o.out = v;
         else if (!strcmp(a, "--step") && (o.step = atof(v)) > 0) continue;
+        else if (!strcmp(a, "--frame-rate") && (o.frame_rate = atof(v)) > 0) continue;
         else if (!strcmp(a, "--quality") && v) o.quality = v;
         else if (!strcmp(a, "--termination") && (!strcmp(v, "on") || !strcmp(v, "off"))) o.termination = !strcmp(v, "on");
         else if (!strcmp(a, "--camera") && (!strcmp(v, "scene") || !strcmp(v, "orbit"))) o.orbit = !strcmp(v, "orbit");
@@ -251,7 +282,8 @@ static options parse(int argc, char **argv)
                 p += n + (p[n] == ',');
             }
         } else die(a, "unknown option or value (--out DIR, --sizes WxH,..., --step S, --scenes a,b, "
-                      "--camera scene|orbit, --tile-sizes N,..., --quality LEVEL, --termination on|off, --error)");
+                      "--camera scene|orbit, --tile-sizes N,..., --quality LEVEL, --termination on|off, "
+                      "--frame-rate HZ, --error)");
     }
     return o;
 }
