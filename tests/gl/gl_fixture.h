@@ -203,6 +203,22 @@ static inline float *fixture_read_target(sbfx *fx, int *w, int *h)
 }
 
 /* Whether the current context offers the GL extension `name` (glGetStringi, as src/ asks). */
+/* A program from two sources, as a host builds one (link status left to the caller's draw). */
+static inline GLuint fixture_program(const char *vs, const char *fs)
+{
+    GLuint prog = glCreateProgram(), shaders[2] = {glCreateShader(GL_VERTEX_SHADER), glCreateShader(GL_FRAGMENT_SHADER)};
+    const char *src[2] = {vs, fs};
+    for (int i = 0; i < 2; i++) {
+        glShaderSource(shaders[i], 1, &src[i], NULL);
+        glCompileShader(shaders[i]);
+        glAttachShader(prog, shaders[i]);
+    }
+    glLinkProgram(prog);
+    glDeleteShader(shaders[0]);
+    glDeleteShader(shaders[1]);
+    return prog;
+}
+
 static inline bool fixture_has_extension(const char *name)
 {
     GLint n = 0;

@@ -42,17 +42,7 @@ static GLuint host_program(void)
 {
     static const char *vs = "#version 300 es\nlayout(location = 0) in vec4 p;\nvoid main() { gl_Position = p; }\n";
     static const char *fs = "#version 300 es\nprecision mediump float;\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n";
-    GLuint prog = glCreateProgram(), shaders[2] = {glCreateShader(GL_VERTEX_SHADER), glCreateShader(GL_FRAGMENT_SHADER)};
-    const char *src[2] = {vs, fs};
-    for (int i = 0; i < 2; i++) {
-        glShaderSource(shaders[i], 1, &src[i], NULL);
-        glCompileShader(shaders[i]);
-        glAttachShader(prog, shaders[i]);
-    }
-    glLinkProgram(prog);
-    glDeleteShader(shaders[0]);
-    glDeleteShader(shaders[1]);
-    return prog;
+    return fixture_program(vs, fs);
 }
 
 static void make_textures(GLenum target, GLuint *out, int n)

@@ -69,14 +69,7 @@ static long terminated_texels(sbfx *fx)
     static const char vs[] = "#version 300 es\nvoid main() { vec2 p = vec2(gl_VertexID & 1, gl_VertexID >> 1) * 4.0 - 1.0;"
                              " gl_Position = vec4(p, 0.0, 1.0); }\n";
     static const char fs[] = "#version 300 es\nprecision mediump float;\nout vec4 o;\nvoid main() { o = vec4(1.0); }\n";
-    GLuint prog = glCreateProgram(), shaders[2] = {glCreateShader(GL_VERTEX_SHADER), glCreateShader(GL_FRAGMENT_SHADER)};
-    const char *src[2] = {vs, fs};
-    for (int i = 0; i < 2; i++) {
-        glShaderSource(shaders[i], 1, &src[i], NULL);
-        glCompileShader(shaders[i]);
-        glAttachShader(prog, shaders[i]);
-    }
-    glLinkProgram(prog);
+    GLuint prog = fixture_program(vs, fs);
     GLuint fbo, color, vao;
     glGenFramebuffers(1, &fbo);
     glGenRenderbuffers(1, &color);
@@ -107,8 +100,6 @@ static long terminated_texels(sbfx *fx)
     glDeleteRenderbuffers(1, &color);
     glDeleteVertexArrays(1, &vao);
     glDeleteProgram(prog);
-    glDeleteShader(shaders[0]);
-    glDeleteShader(shaders[1]);
     return stopped;
 }
 
