@@ -30,7 +30,7 @@ static long parse_level(const char *name)
 {
     static const char *const opacity[] = {"planar", "soft", "spherical", "exact"};
     static const char *const divisor[] = {"1", "2", "4", "8"};
-    static const char *const upsample[] = {"nd", "bl"};
+    static const char *const upsample[] = {"nd", "bl", "mx"};
     static const char *const formats[] = {"rgba8", "rgba16f", "rgba32f"};
     static const char *const flags[] = {"lpp", "abb", "aph", "tph"};
     char copy[128], seen[8][16];
@@ -38,7 +38,7 @@ static long parse_level(const char *name)
     int n = 0, nformats = 0;
     long lod = 0;
     for (char *save, *t = strtok_r(copy, "/", &save); t; t = strtok_r(NULL, "/", &save), n++) {
-        bool ok = n == 0 ? one_of(t, opacity, 4) : n == 1 ? one_of(t, divisor, 4) : n == 2 ? one_of(t, upsample, 2)
+        bool ok = n == 0 ? one_of(t, opacity, 4) : n == 1 ? one_of(t, divisor, 4) : n == 2 ? one_of(t, upsample, 3)
                 : one_of(t, formats, 3) || one_of(t, flags, 4) || lod_of(t) > 0;
         if (!ok || n >= 8) return -1;
         for (int k = 3; k < n; k++)
