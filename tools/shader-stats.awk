@@ -22,18 +22,8 @@
 inside && /SHADER-DB-[^ ]* - / {
     s = $0
     sub(/.*SHADER-DB-[^ ]* - /, "", s)
-    stage = s
-    sub(/ shader:.*/, "", stage)
-    stage = tolower(stage)
+    stage = tolower(shaderdb_fields(s))
     stage = stage ~ /frag|fs/ ? "fragment" : stage ~ /vert|vs/ ? "vertex" : stage
-    sub(/^[^:]*shader: /, "", s)
-    delete v
-    n = split(s, parts, /, /)
-    for (i = 1; i <= n; i++) {
-        split(parts[i], kv, " ")
-        v[kv[2]] = kv[1]
-    }
-    split(v["spills:fills"], sf, ":")
     c = v["inst-and-stalls"] / 4
     printf "%s,%s,%s,%s,%s,%s,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%d,%d,%d\n", gpu, id, scene, shader,
         variant, stage, v["inst"], c, c, 0, 0, 0, v["max-temps"], v["threads"], sf[1], sf[2]
@@ -42,10 +32,22 @@ inside && /SHADER-DB-[^ ]* - / {
 inside && /SHADER-DB: / {
     s = $0
     sub(/.*SHADER-DB: /, "", s)
-    stage = s
-    sub(/ shader:.*/, "", stage)
+    stage = shaderdb_fields(s)
     sub(/^MESA_SHADER_/, "", stage)
     stage = tolower(stage)
+    arith = "arith" in v ? v["arith"] : max3(v["fma"], v["cvt"], v["sfu"])
+    tex = "texture" in v ? v["texture"] : v["t"]
+    vary = "vary" in v ? v["vary"] : v["v"]
+    ldst = "ldst" in v ? v["ldst"] : v["ls"]
+    printf "%s,%s,%s,%s,%s,%s,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%d,%d,%d\n", gpu, id, scene, shader,
+        variant, stage, v["inst"], v["cycles"], arith, tex, vary, ldst,
+        "regs" in v ? v["regs"] : "", v["threads"], sf[1], sf[2]
+}
+# "STAGE shader: 671 inst, 20.4 cycles, 0:0 spills:fills, ...": the fields into v (name ->
+# value) and spills:fills into sf; returns STAGE as printed.
+function shaderdb_fields(s,    stage, parts, kv, n, i) {
+    stage = s
+    sub(/ shader:.*/, "", stage)
     sub(/^[^:]*shader: /, "", s)
     delete v
     n = split(s, parts, /, /)
@@ -54,12 +56,6 @@ inside && /SHADER-DB: / {
         v[kv[2]] = kv[1]
     }
     split(v["spills:fills"], sf, ":")
-    arith = "arith" in v ? v["arith"] : max3(v["fma"], v["cvt"], v["sfu"])
-    tex = "texture" in v ? v["texture"] : v["t"]
-    vary = "vary" in v ? v["vary"] : v["v"]
-    ldst = "ldst" in v ? v["ldst"] : v["ls"]
-    printf "%s,%s,%s,%s,%s,%s,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%d,%d,%d\n", gpu, id, scene, shader,
-        variant, stage, v["inst"], v["cycles"], arith, tex, vary, ldst,
-        "regs" in v ? v["regs"] : "", v["threads"], sf[1], sf[2]
+    return stage
 }
 function max3(a, b, c) { a += 0; b += 0; c += 0; return a > b ? (a > c ? a : c) : (b > c ? b : c) }
