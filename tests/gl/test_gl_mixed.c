@@ -82,6 +82,18 @@ static void render(gl_fixture *f, double t, int divisor, sbfx_upsample upsample,
     sbfx_destroy(fx);
 }
 
+/* The fixture at W x H with its projection, over `layout`'s depths; false where there is no
+ * colour-renderable RGBA16F target, which mixed resolution needs. */
+static bool open_over(gl_fixture *f, depth_layout layout)
+{
+    fixture_open(f, W, H);
+    if (!fixture_has_extension("GL_EXT_color_buffer_half_float") && !fixture_has_extension("GL_EXT_color_buffer_float"))
+        return false;
+    fixture_projection(f, 1.0f, 0.1f, 1000.0f);
+    fixture_depth(f, layout_distance, &layout);
+    return true;
+}
+
 typedef struct errors {
     double edge, elsewhere; /* mean |error| in 8-bit levels near the edges, and over the rest of the cloud */
     int edge_pixels, other_pixels;
@@ -157,12 +169,8 @@ static void check_counters(const frame_result *nd, const frame_result *mx)
 CHECK_TEST(an_occluder_inside_the_cloud_is_refined)
 {
     gl_fixture f;
-    fixture_open(&f, W, H);
-    if (!fixture_has_extension("GL_EXT_color_buffer_half_float") && !fixture_has_extension("GL_EXT_color_buffer_float"))
+    if (!open_over(&f, (depth_layout){INFINITY, BAR_DISTANCE}))
         CHECK_SKIP("mixed resolution needs a colour-renderable RGBA16F target");
-    fixture_projection(&f, 1.0f, 0.1f, 1000.0f);
-    depth_layout layout = {INFINITY, BAR_DISTANCE};
-    fixture_depth(&f, layout_distance, &layout);
     static frame_result nd, mx, full;
     three(&f, 0.6, &nd, &mx, &full);
     errors end = compare(&nd, &full, near_bar), emx = compare(&mx, &full, near_bar);
@@ -190,12 +198,8 @@ CHECK_TEST(an_occluder_inside_the_cloud_is_refined)
 CHECK_TEST(the_fire_silhouette_against_the_sky_is_refined)
 {
     gl_fixture f;
-    fixture_open(&f, W, H);
-    if (!fixture_has_extension("GL_EXT_color_buffer_half_float") && !fixture_has_extension("GL_EXT_color_buffer_float"))
+    if (!open_over(&f, (depth_layout){INFINITY, INFINITY}))
         CHECK_SKIP("mixed resolution needs a colour-renderable RGBA16F target");
-    fixture_projection(&f, 1.0f, 0.1f, 1000.0f);
-    depth_layout sky = {INFINITY, INFINITY};
-    fixture_depth(&f, layout_distance, &sky);
     static frame_result nd, mx, full;
     three(&f, 0.3, &nd, &mx, &full);
     errors end = compare(&nd, &full, near_silhouette), emx = compare(&mx, &full, near_silhouette);
@@ -224,13 +228,9 @@ CHECK_TEST(the_fire_silhouette_against_the_sky_is_refined)
 CHECK_TEST(the_refinement_ignores_the_hosts_clip_control_and_depth_range)
 {
     gl_fixture f;
-    fixture_open(&f, W, H);
-    if (!fixture_has_extension("GL_EXT_color_buffer_half_float") && !fixture_has_extension("GL_EXT_color_buffer_float"))
+    if (!open_over(&f, (depth_layout){INFINITY, BAR_DISTANCE}))
         CHECK_SKIP("mixed resolution needs a colour-renderable RGBA16F target");
     void (*clip_control)(GLenum, GLenum) = host_depth_clip_control();
-    fixture_projection(&f, 1.0f, 0.1f, 1000.0f);
-    depth_layout layout = {INFINITY, BAR_DISTANCE};
-    fixture_depth(&f, layout_distance, &layout);
     static frame_result base, other;
     render(&f, 0.6, 4, SBFX_UPSAMPLE_MIXED, SBFX_FORMAT_DEFAULT, &base);
     CHECK(base.refined > 0, "nothing refined under GL's defaults");
@@ -274,12 +274,8 @@ CHECK_TEST(the_refinement_ignores_the_hosts_clip_control_and_depth_range)
 CHECK_TEST(the_governor_walks_down_from_a_mixed_rung)
 {
     gl_fixture f;
-    fixture_open(&f, W, H);
-    if (!fixture_has_extension("GL_EXT_color_buffer_half_float") && !fixture_has_extension("GL_EXT_color_buffer_float"))
+    if (!open_over(&f, (depth_layout){INFINITY, BAR_DISTANCE}))
         CHECK_SKIP("mixed resolution needs a colour-renderable RGBA16F target");
-    fixture_projection(&f, 1.0f, 0.1f, 1000.0f);
-    depth_layout layout = {INFINITY, BAR_DISTANCE};
-    fixture_depth(&f, layout_distance, &layout);
     static const char *const ladder[] = {"exact/4/mx", "exact/4/nd", "exact/8/bl"};
     sbfx *fx = fixture_module(&f, (sbfx_desc){.target_divisor = 4, .upsample = SBFX_UPSAMPLE_MIXED,
                                               .ignore_timeline = true, .frame_budget_ms = 0.001f,
